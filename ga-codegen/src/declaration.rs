@@ -1,0 +1,66 @@
+//! What a user declares: basis vectors with their squares, the scalar type, the sparse types and
+//! (optionally) which operations to emit. This is the compiler's input; `Algebra::new` validates it.
+
+use crate::operation::Operation;
+
+/// The floating-point type of every emitted coefficient.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ScalarType {
+    F32,
+    F64,
+}
+
+impl ScalarType {
+    /// The Rust type name (`f32` or `f64`).
+    pub fn name(self) -> &'static str {
+        match self {
+            ScalarType::F32 => "f32",
+            ScalarType::F64 => "f64",
+        }
+    }
+
+    /// Parses `f32` or `f64`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "f32" => Some(ScalarType::F32),
+            "f64" => Some(ScalarType::F64),
+            _ => None,
+        }
+    }
+}
+
+/// One basis vector: its name and its square (+1, −1 or 0). Vectors are listed in bit order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BasisVectorDeclaration {
+    pub name: String,
+    pub square: i64,
+}
+
+/// How a declared type chooses its blades.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Layout {
+    /// Every blade of the listed grades, in canonical order (grade, then lexicographic).
+    Grades(Vec<u32>),
+    /// Exactly these blades, in this order. `scalar` names the grade-0 blade; a permuted name such as
+    /// `e31` means the blade `e13` with its sign flipped.
+    Blades(Vec<String>),
+    /// Every blade of the algebra (the full multivector), in canonical order.
+    All,
+}
+
+/// A declared sparse type, e.g. `Motor = grades(0, 2, 4)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TypeDeclaration {
+    pub name: String,
+    pub layout: Layout,
+}
+
+/// The whole input of the compiler.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AlgebraDeclaration {
+    pub scalar: ScalarType,
+    pub basis: Vec<BasisVectorDeclaration>,
+    pub types: Vec<TypeDeclaration>,
+    /// Emit only these operations (for big algebras); `None` emits all of them.
+    pub operations: Option<Vec<Operation>>,
+}

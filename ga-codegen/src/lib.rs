@@ -1,0 +1,41 @@
+//! # ga-codegen: a geometric algebra compiler
+//!
+//! Turns an algebra (basis vectors with their squares) and a set of declared sparse types (Motor,
+//! Line, Point, …) into fully unrolled Rust code: one function per operation and type pair, only the
+//! non-zero terms, cancellations found symbolically with exact rational coefficients.
+//!
+//! The pipeline, one module per stage:
+//! 1. [`declaration`] → [`algebra`]: the validated algebra model ([`blade`] masks and names, [`metric`]);
+//! 2. [`product`]: product rules computed per blade pair (never a dense 2ⁿ×2ⁿ table);
+//! 3. [`expand`]: symbolic expansion of an operation on two sparse types into polynomials, with
+//!    the [`cost`] model (exact multiply and add counts);
+//! 4. [`emit`]: Rust tokens via `quote`.
+//!
+//! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
+//! tests compare emitted code against, and a tool for exploring large algebras.
+//!
+//! Most users call it through the `algebra!` macro of `ga-macros`; [`generate`] is the library entry.
+
+pub mod algebra;
+pub mod blade;
+pub mod declaration;
+pub mod emit;
+pub mod error;
+pub mod metric;
+pub mod operation;
+
+pub use algebra::{Algebra, Field, SparseType};
+pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+pub use error::{Error, Location};
+pub use operation::Operation;
+
+/// Compiles a declaration into the items of a module (types, traits, impls); the caller wraps them
+/// in `mod name { … }`.
+pub fn generate(declaration: &AlgebraDeclaration) -> Result<proc_macro2::TokenStream, Error> {
+    emit::emit(&Algebra::new(declaration)?)
+}
+
+/// Formats emitted tokens as readable Rust source (prettyplease), e.g. to inspect or snapshot them.
+pub fn pretty(tokens: &proc_macro2::TokenStream) -> Result<String, syn::Error> {
+    Ok(prettyplease::unparse(&syn::parse2::<syn::File>(tokens.clone())?))
+}

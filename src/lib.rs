@@ -1,0 +1,9 @@
+//! Geometric algebra compiler and rigid-body dynamics in CGA and PGA.
+//!
+//! This umbrella crate re-exports the workspace crates:
+//! - [`ga_codegen`]: the compiler library (algebra model → product rules → symbolic expansion → emission);
+//! - [`algebra!`]: the proc-macro front end;
+//! - [`dynamics`]: rigid-body simulators generic over one `Algebra` trait.
+pub use dynamics;
+pub use ga_codegen;
+pub use ga_macros::algebra;

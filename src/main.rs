@@ -1,0 +1,3 @@
+fn main() {
+    println!("main job: not yet implemented (issue 6)");
+}
