@@ -1,22 +1,546 @@
 //! Emission: Rust tokens for the declared types and every operation between them.
+//!
+//! Per declared type: a `#[repr(C)]` struct with one pub field per blade, constructors and unary
+//! methods. Binary operations are traits (`Geometric<Rhs>`, `Outer<Rhs>`, …) implemented for every
+//! type pair, with `core::ops` sugar (`*` geometric, `^` outer, `&` regressive, `|` left contraction).
+//! The code uses only `core`, and each function's doc comment states its exact cost.
 
-use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use num_rational::Rational64;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote, ToTokens};
 
-use crate::algebra::Algebra;
+use crate::algebra::{Algebra, SparseType};
+use crate::declaration::ScalarType;
 use crate::error::Error;
+use crate::expand::{Operand, Variable};
+use crate::functions::{self, Finish, Function, Output};
+use crate::operation::Operation;
+use crate::program::{Definition, Term, Value};
 
 /// Emits the items of the algebra's module.
 pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
-    let scalar = format_ident!("{}", algebra.scalar.name());
-    let structs = algebra.types.iter().map(|ty| {
+    let emitter = Emitter {
+        algebra,
+        scalar: format_ident!("{}", algebra.scalar.name()),
+    };
+    let mut items = Vec::new();
+    let binary: Vec<Operation> = algebra.operations.iter().copied().filter(|op| op.is_binary()).collect();
+    items.extend(binary.iter().map(|&op| binary_trait(op)));
+    for (index, ty) in algebra.types.iter().enumerate() {
+        items.push(emitter.type_definition(ty));
+        let mut methods = Vec::new();
+        for &op in algebra.operations.iter().filter(|op| !op.is_binary()) {
+            for function in functions::unary(algebra, op, index)? {
+                methods.push(emitter.unary_method(&function));
+            }
+        }
         let name = format_ident!("{}", ty.name);
-        let fields = ty.fields.iter().map(|f| format_ident!("{}", f.name));
+        items.push(quote! { impl #name { #(#methods)* } });
+        items.push(emitter.scalar_arithmetic(ty));
+    }
+    for lhs in 0..algebra.types.len() {
+        for rhs in 0..algebra.types.len() {
+            for subtract in [false, true] {
+                if let Some(function) = functions::sum(algebra, lhs, rhs, subtract) {
+                    items.push(emitter.sum_impl(&function));
+                }
+            }
+            if lhs != rhs && algebra.types[rhs].holds(&blades(&algebra.types[lhs])) {
+                items.push(emitter.conversion(&algebra.types[lhs], &algebra.types[rhs]));
+            }
+            for &op in &binary {
+                let function = functions::binary(algebra, op, lhs, rhs)?;
+                items.push(binary_function(algebra, &function));
+            }
+        }
+    }
+    Ok(quote! { #(#items)* })
+}
+
+/// The trait impl (and operator sugar) of one binary function, e.g. to inspect or snapshot it.
+pub fn binary_function(algebra: &Algebra, function: &Function) -> TokenStream {
+    Emitter {
+        algebra,
+        scalar: format_ident!("{}", algebra.scalar.name()),
+    }
+    .binary_impl(function)
+}
+
+fn blades(ty: &SparseType) -> Vec<u32> {
+    ty.fields.iter().map(|f| f.blade).collect()
+}
+
+fn field_ident(ty: &SparseType, index: usize) -> Ident {
+    format_ident!("{}", ty.fields[index].name)
+}
+
+/// The trait name of a binary operation (`left_contraction` → `LeftContraction`).
+fn trait_ident(operation: Operation) -> Ident {
+    let camel: String = operation
+        .name()
+        .split('_')
+        .map(|word| {
+            let mut chars = word.chars();
+            chars
+                .next()
+                .map(|c| c.to_ascii_uppercase().to_string() + chars.as_str())
+                .unwrap_or_default()
+        })
+        .collect();
+    format_ident!("{}", camel)
+}
+
+fn operation_doc(operation: Operation) -> &'static str {
+    match operation {
+        Operation::Geometric => "The geometric product `a b` (operator `*`).",
+        Operation::Outer => "The outer (wedge) product `a ∧ b` (operator `^`).",
+        Operation::LeftContraction => "The left contraction `a ⌋ b`: ⟨a_r b_s⟩_{s−r}, zero if s < r (operator `|`).",
+        Operation::RightContraction => "The right contraction `a ⌊ b`: ⟨a_r b_s⟩_{r−s}, zero if r < s.",
+        Operation::ScalarProduct => "The scalar product ⟨a b⟩₀.",
+        Operation::HestenesInner => "The Hestenes inner product ⟨a_r b_s⟩_{|r−s|}, zero if r = 0 or s = 0.",
+        Operation::FatDot => "The \"fat dot\" inner product ⟨a_r b_s⟩_{|r−s|}, scalars included.",
+        Operation::Regressive => "The regressive product (join in PGA): LC(RC(a) ∧ RC(b)), metric-free (operator `&`).",
+        Operation::Commutator => "The commutator product (a b − b a)/2.",
+        Operation::Sandwich => "The sandwich `a x ~a`, expanded as one fused polynomial.",
+        Operation::Reverse => "The reverse: grade k times (−1)^{k(k−1)/2}.",
+        Operation::Involute => "The grade involution: grade k times (−1)^k.",
+        Operation::Conjugate => "The Clifford conjugate: grade k times (−1)^{k(k+1)/2}.",
+        Operation::RightComplement => "The right complement: RC(e_m) ∧ … chosen so that e_m ∧ RC(e_m) = I.",
+        Operation::LeftComplement => "The left complement, chosen so that LC(e_m) ∧ e_m = I.",
+        Operation::Polarity => "The polarity (dual) a I⁻¹.",
+        Operation::Grade => "The grade projection.",
+        Operation::NormSquared => "The squared norm ⟨a ~a⟩₀.",
+        Operation::Inverse => {
+            "The inverse ~a / (a ~a), defined because a ~a is a scalar for this type. \
+             Not finite where a ~a = 0."
+        }
+    }
+}
+
+fn binary_trait(operation: Operation) -> TokenStream {
+    let name = trait_ident(operation);
+    let method = format_ident!("{}", operation.name());
+    let doc = operation_doc(operation);
+    quote! {
+        #[doc = #doc]
+        pub trait #name<Rhs> {
+            type Output;
+            #[doc = #doc]
+            fn #method(self, rhs: Rhs) -> Self::Output;
+        }
+    }
+}
+
+struct Emitter<'a> {
+    algebra: &'a Algebra,
+    scalar: Ident,
+}
+
+impl Emitter<'_> {
+    fn literal(&self, value: Rational64) -> Literal {
+        let value = value.to_f64().unwrap_or(f64::NAN);
+        match self.algebra.scalar {
+            ScalarType::F32 => Literal::f32_unsuffixed(value as f32),
+            ScalarType::F64 => Literal::f64_unsuffixed(value),
+        }
+    }
+
+    fn output_type(&self, output: Output) -> TokenStream {
+        match output {
+            Output::Type(index) => {
+                let name = format_ident!("{}", self.algebra.types[index].name);
+                quote! { #name }
+            }
+            Output::Scalar => {
+                let scalar = &self.scalar;
+                quote! { #scalar }
+            }
+        }
+    }
+
+    fn type_definition(&self, ty: &SparseType) -> TokenStream {
+        let scalar = &self.scalar;
+        let name = format_ident!("{}", ty.name);
+        let fields: Vec<Ident> = (0..ty.fields.len()).map(|i| field_ident(ty, i)).collect();
+        let field_docs = ty.fields.iter().map(|f| {
+            let canonical = self.algebra.blade_name(f.blade);
+            if f.sign < 0 {
+                format!("Coefficient of `{}` (= −`{canonical}`).", f.name)
+            } else {
+                format!("Coefficient of `{canonical}`.")
+            }
+        });
+        let names = ty.fields.iter().map(|f| f.name.as_str());
+        let count = ty.fields.len();
+        let doc = format!(
+            "A `{}` multivector with blades [{}].",
+            ty.name,
+            ty.fields.iter().map(|f| f.name.as_str()).collect::<Vec<_>>().join(", ")
+        );
+        let zeros = fields.iter().map(|f| quote! { #f: 0.0 });
+        let indices = 0..count;
         quote! {
+            #[doc = #doc]
             #[derive(Clone, Copy, Debug, PartialEq, Default)]
             #[repr(C)]
-            pub struct #name { #(pub #fields: #scalar,)* }
+            pub struct #name {
+                #( #[doc = #field_docs] pub #fields: #scalar, )*
+            }
+
+            impl #name {
+                /// The blade of each field, in storage order.
+                pub const BLADES: &'static [&'static str] = &[#(#names),*];
+                /// All coefficients zero.
+                pub const ZERO: Self = Self { #(#zeros),* };
+
+                /// All coefficients zero.
+                #[inline]
+                pub const fn zero() -> Self {
+                    Self::ZERO
+                }
+
+                /// Builds from coefficients in [`Self::BLADES`] order.
+                #[inline]
+                pub const fn from_array(values: [#scalar; #count]) -> Self {
+                    Self { #( #fields: values[#indices], )* }
+                }
+
+                /// The coefficients in [`Self::BLADES`] order.
+                #[inline]
+                pub const fn to_array(self) -> [#scalar; #count] {
+                    [#(self.#fields),*]
+                }
+            }
         }
-    });
-    Ok(quote! { #(#structs)* })
+    }
+
+    fn scalar_arithmetic(&self, ty: &SparseType) -> TokenStream {
+        let scalar = &self.scalar;
+        let name = format_ident!("{}", ty.name);
+        let fields: Vec<Ident> = (0..ty.fields.len()).map(|i| field_ident(ty, i)).collect();
+        quote! {
+            impl core::ops::Neg for #name {
+                type Output = #name;
+                #[inline]
+                fn neg(self) -> #name {
+                    #name { #( #fields: -self.#fields, )* }
+                }
+            }
+            impl core::ops::Mul<#scalar> for #name {
+                type Output = #name;
+                /// Scales every coefficient.
+                #[inline]
+                fn mul(self, factor: #scalar) -> #name {
+                    #name { #( #fields: self.#fields * factor, )* }
+                }
+            }
+            impl core::ops::Mul<#name> for #scalar {
+                type Output = #name;
+                /// Scales every coefficient.
+                #[inline]
+                fn mul(self, value: #name) -> #name {
+                    value * self
+                }
+            }
+            impl core::ops::Div<#scalar> for #name {
+                type Output = #name;
+                /// Divides every coefficient.
+                #[inline]
+                fn div(self, divisor: #scalar) -> #name {
+                    #name { #( #fields: self.#fields / divisor, )* }
+                }
+            }
+            impl core::ops::MulAssign<#scalar> for #name {
+                #[inline]
+                fn mul_assign(&mut self, factor: #scalar) {
+                    #( self.#fields *= factor; )*
+                }
+            }
+            impl core::ops::AddAssign for #name {
+                #[inline]
+                fn add_assign(&mut self, other: #name) {
+                    #( self.#fields += other.#fields; )*
+                }
+            }
+            impl core::ops::SubAssign for #name {
+                #[inline]
+                fn sub_assign(&mut self, other: #name) {
+                    #( self.#fields -= other.#fields; )*
+                }
+            }
+        }
+    }
+
+    /// `From<A> for B` where B holds every blade of A.
+    fn conversion(&self, from: &SparseType, to: &SparseType) -> TokenStream {
+        let (source, target) = (format_ident!("{}", from.name), format_ident!("{}", to.name));
+        let assignments = to.fields.iter().map(|field| {
+            let name = format_ident!("{}", field.name);
+            match from.field_of(field.blade) {
+                Some(source_field) => {
+                    let source_name = format_ident!("{}", source_field.name);
+                    if source_field.sign == field.sign {
+                        quote! { #name: value.#source_name }
+                    } else {
+                        quote! { #name: -value.#source_name }
+                    }
+                }
+                None => quote! { #name: 0.0 },
+            }
+        });
+        let doc = format!(
+            "Embeds a `{}` in a `{}` (the other coefficients are zero).",
+            from.name, to.name
+        );
+        quote! {
+            impl From<#source> for #target {
+                #[doc = #doc]
+                #[inline]
+                fn from(value: #source) -> #target {
+                    #target { #(#assignments),* }
+                }
+            }
+        }
+    }
+
+    fn value(&self, function: &Function, value: Value) -> TokenStream {
+        match value {
+            Value::Input(Variable {
+                operand: Operand::Lhs,
+                field,
+            }) => {
+                let name = field_ident(&self.algebra.types[function.lhs], field);
+                quote! { self.#name }
+            }
+            Value::Input(Variable {
+                operand: Operand::Rhs,
+                field,
+            }) => {
+                let rhs = function.rhs.expect("a right-hand variable implies a binary function");
+                let name = field_ident(&self.algebra.types[rhs], field);
+                quote! { rhs.#name }
+            }
+            Value::Local(index) => {
+                let name = format_ident!("{}", function.program.locals[index].name);
+                quote! { #name }
+            }
+        }
+    }
+
+    /// `c · x · y`, without the sign (the sum places it).
+    fn magnitude(&self, function: &Function, term: &Term) -> TokenStream {
+        let mut factors = term.factors.iter().map(|&v| self.value(function, v));
+        let coefficient = term.coefficient.abs();
+        let mut tokens = if coefficient.is_one() {
+            factors
+                .next()
+                .unwrap_or_else(|| self.literal(coefficient).into_token_stream())
+        } else {
+            self.literal(coefficient).into_token_stream()
+        };
+        for factor in factors {
+            tokens.extend(quote! { * #factor });
+        }
+        tokens
+    }
+
+    /// A signed sum of terms, positive terms first so that no leading negation is needed.
+    fn sum(&self, function: &Function, terms: &[Term], negate: bool) -> TokenStream {
+        if terms.is_empty() {
+            let zero = self.literal(Rational64::zero());
+            return quote! { #zero };
+        }
+        let mut ordered: Vec<(bool, TokenStream)> = terms
+            .iter()
+            .map(|t| (t.coefficient.is_negative() != negate, self.magnitude(function, t)))
+            .collect();
+        ordered.sort_by_key(|(negative, _)| *negative);
+        let mut tokens = TokenStream::new();
+        for (position, (negative, magnitude)) in ordered.into_iter().enumerate() {
+            tokens.extend(match (position, negative) {
+                (0, false) => magnitude,
+                (0, true) => quote! { -#magnitude },
+                (_, false) => quote! { + #magnitude },
+                (_, true) => quote! { - #magnitude },
+            });
+        }
+        tokens
+    }
+
+    /// The statements computing the locals, and the result expression.
+    fn body(&self, function: &Function) -> TokenStream {
+        let locals = function.program.locals.iter().map(|local| {
+            let name = format_ident!("{}", local.name);
+            let expression = match &local.definition {
+                Definition::Sum(terms) => self.sum(function, terms, false),
+                Definition::Double(value) => {
+                    let value = self.value(function, *value);
+                    quote! { #value + #value }
+                }
+            };
+            quote! { let #name = #expression; }
+        });
+        let result = match (function.output, function.finish) {
+            (Output::Scalar, _) => {
+                let terms = function.program.outputs.get(&0).map(Vec::as_slice).unwrap_or(&[]);
+                self.sum(function, terms, false)
+            }
+            (Output::Type(index), Finish::Coefficients) => {
+                let ty = &self.algebra.types[index];
+                let name = format_ident!("{}", ty.name);
+                let fields = ty.fields.iter().map(|field| {
+                    let ident = format_ident!("{}", field.name);
+                    let terms = function
+                        .program
+                        .outputs
+                        .get(&field.blade)
+                        .map(Vec::as_slice)
+                        .unwrap_or(&[]);
+                    let value = self.sum(function, terms, field.sign < 0);
+                    quote! { #ident: #value }
+                });
+                quote! { #name { #(#fields),* } }
+            }
+            (Output::Type(index), Finish::DivideReverseByNorm) => {
+                let ty = &self.algebra.types[index];
+                let name = format_ident!("{}", ty.name);
+                let norm = self.sum(
+                    function,
+                    function.program.outputs.get(&0).map(Vec::as_slice).unwrap_or(&[]),
+                    false,
+                );
+                let one = self.literal(Rational64::one());
+                let fields = ty.fields.iter().map(|field| {
+                    let ident = format_ident!("{}", field.name);
+                    if functions::reverse_sign(field.blade).is_negative() {
+                        quote! { #ident: -self.#ident * scale }
+                    } else {
+                        quote! { #ident: self.#ident * scale }
+                    }
+                });
+                quote! {{
+                    let scale = #one / (#norm);
+                    #name { #(#fields),* }
+                }}
+            }
+        };
+        quote! { #(#locals)* #result }
+    }
+
+    fn doc(&self, function: &Function) -> String {
+        let what = match function.operation {
+            Some(Operation::Grade) => format!("The grade-{} part.", function.method.trim_start_matches("grade_")),
+            Some(operation) => operation_doc(operation).to_string(),
+            None => String::new(),
+        };
+        format!("{what}\n\nCost: {}.", function.cost)
+    }
+
+    fn unary_method(&self, function: &Function) -> TokenStream {
+        let method = format_ident!("{}", function.method);
+        let output = self.output_type(function.output);
+        let body = self.body(function);
+        let doc = self.doc(function);
+        quote! {
+            #[doc = #doc]
+            #[inline]
+            pub fn #method(self) -> #output {
+                #body
+            }
+        }
+    }
+
+    fn uses_rhs(function: &Function) -> bool {
+        let reads_rhs = |term: &Term| {
+            term.factors.iter().any(|v| {
+                matches!(
+                    v,
+                    Value::Input(Variable {
+                        operand: Operand::Rhs,
+                        ..
+                    })
+                )
+            })
+        };
+        function.program.outputs.values().flatten().any(reads_rhs)
+            || function.program.locals.iter().any(|local| match &local.definition {
+                Definition::Sum(terms) => terms.iter().any(reads_rhs),
+                Definition::Double(value) => matches!(
+                    value,
+                    Value::Input(Variable {
+                        operand: Operand::Rhs,
+                        ..
+                    })
+                ),
+            })
+    }
+
+    fn binary_impl(&self, function: &Function) -> TokenStream {
+        let operation = function.operation.expect("binary functions have an operation");
+        let lhs = format_ident!("{}", self.algebra.types[function.lhs].name);
+        let rhs_type = format_ident!("{}", self.algebra.types[function.rhs.expect("binary")].name);
+        let trait_name = trait_ident(operation);
+        let method = format_ident!("{}", operation.name());
+        let output = self.output_type(function.output);
+        let body = self.body(function);
+        let doc = self.doc(function);
+        let parameter = if Self::uses_rhs(function) {
+            format_ident!("rhs")
+        } else {
+            format_ident!("_rhs")
+        };
+        let sugar = match operation {
+            Operation::Geometric => Some((quote! { Mul }, quote! { mul })),
+            Operation::Outer => Some((quote! { BitXor }, quote! { bitxor })),
+            Operation::Regressive => Some((quote! { BitAnd }, quote! { bitand })),
+            Operation::LeftContraction => Some((quote! { BitOr }, quote! { bitor })),
+            _ => None,
+        };
+        let operator = sugar.map(|(op_trait, op_method)| {
+            let doc = format!("Sugar for [`{trait_name}::{method}`].");
+            quote! {
+                impl core::ops::#op_trait<#rhs_type> for #lhs {
+                    type Output = #output;
+                    #[doc = #doc]
+                    #[inline]
+                    fn #op_method(self, rhs: #rhs_type) -> #output {
+                        #trait_name::#method(self, rhs)
+                    }
+                }
+            }
+        });
+        quote! {
+            impl #trait_name<#rhs_type> for #lhs {
+                type Output = #output;
+                #[doc = #doc]
+                #[inline]
+                fn #method(self, #parameter: #rhs_type) -> #output {
+                    #body
+                }
+            }
+            #operator
+        }
+    }
+
+    fn sum_impl(&self, function: &Function) -> TokenStream {
+        let lhs = format_ident!("{}", self.algebra.types[function.lhs].name);
+        let rhs_type = format_ident!("{}", self.algebra.types[function.rhs.expect("binary")].name);
+        let (op_trait, method) = if function.method == "sub" {
+            (quote! { Sub }, quote! { sub })
+        } else {
+            (quote! { Add }, quote! { add })
+        };
+        let output = self.output_type(function.output);
+        let body = self.body(function);
+        quote! {
+            impl core::ops::#op_trait<#rhs_type> for #lhs {
+                type Output = #output;
+                #[inline]
+                fn #method(self, rhs: #rhs_type) -> #output {
+                    #body
+                }
+            }
+        }
+    }
 }

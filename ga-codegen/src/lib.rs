@@ -21,13 +21,18 @@ pub mod blade;
 pub mod declaration;
 pub mod emit;
 pub mod error;
+pub mod expand;
+pub mod functions;
 pub mod metric;
 pub mod operation;
+pub mod product;
+pub mod program;
 
 pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
 pub use error::{Error, Location};
 pub use operation::Operation;
+pub use program::Cost;
 
 /// Compiles a declaration into the items of a module (types, traits, impls); the caller wraps them
 /// in `mod name { … }`.

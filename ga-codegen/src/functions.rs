@@ -1,0 +1,245 @@
+//! The catalogue of emitted functions: for each operation and type (pair), its expansion, result
+//! type and lowered program. Emission prints these; [`cost`] reports their exact operation counts.
+
+use num_rational::Rational64;
+
+use crate::algebra::{Algebra, SparseType};
+use crate::blade::{grade, BladeMask};
+use crate::error::Error;
+use crate::expand::{self, Expansion, Operand, Variable};
+use crate::operation::Operation;
+use crate::program::{self, Cost, Program};
+
+/// What a function returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// A declared type (index into `Algebra::types`).
+    Type(usize),
+    /// The bare scalar (`scalar_product`, `norm_squared`).
+    Scalar,
+}
+
+/// How the program's result becomes the return value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Finish {
+    /// The outputs are the result's coefficients.
+    Coefficients,
+    /// `inverse`: the program computes `a ~a` (a scalar); the result is `~a / (a ~a)`.
+    DivideReverseByNorm,
+}
+
+#[derive(Clone, Debug)]
+pub struct Function {
+    /// The operation, or `None` for the sum and difference (always emitted).
+    pub operation: Option<Operation>,
+    /// The method name (`geometric`, `grade_2`, …).
+    pub method: String,
+    pub lhs: usize,
+    pub rhs: Option<usize>,
+    pub output: Output,
+    pub program: Program,
+    pub finish: Finish,
+    pub cost: Cost,
+}
+
+fn lower(algebra: &Algebra, expansion: &Expansion, lhs: &SparseType, rhs: Option<&SparseType>) -> Program {
+    let field_name = |v: Variable| match v.operand {
+        Operand::Lhs => lhs.fields[v.field].name.clone(),
+        Operand::Rhs => rhs.map_or_else(String::new, |r| r.fields[v.field].name.clone()),
+    };
+    program::lower(expansion, &field_name, &|blade| algebra.blade_name(blade))
+}
+
+/// The smallest declared type holding `blades` (any type for an identically zero result).
+fn result_type(
+    algebra: &Algebra,
+    blades: &[BladeMask],
+    describe: impl Fn() -> (String, String, String),
+) -> Result<usize, Error> {
+    let holding = algebra
+        .types
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.holds(blades))
+        .min_by_key(|(_, t)| t.fields.len());
+    match holding {
+        Some((index, _)) => Ok(index),
+        None => {
+            let (operation, lhs, rhs) = describe();
+            let blades = blades.iter().map(|&b| algebra.blade_name(b)).collect();
+            Err(Error::NoResultType {
+                operation,
+                lhs,
+                rhs,
+                blades,
+            })
+        }
+    }
+}
+
+/// The function `lhs.operation(rhs)` for a binary operation.
+pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -> Result<Function, Error> {
+    let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
+    let expansion = match operation {
+        Operation::Sandwich => expand::sandwich(algebra, left, right),
+        _ => expand::binary(algebra, operation, left, right),
+    };
+    let output = if operation == Operation::ScalarProduct {
+        Output::Scalar
+    } else {
+        let describe = || (operation.name().to_string(), left.name.clone(), right.name.clone());
+        Output::Type(result_type(algebra, &expansion.blades(), describe)?)
+    };
+    Ok(finish(
+        algebra,
+        Some(operation),
+        operation.name().to_string(),
+        lhs,
+        Some(rhs),
+        output,
+        &expansion,
+    ))
+}
+
+fn finish(
+    algebra: &Algebra,
+    operation: Option<Operation>,
+    method: String,
+    lhs: usize,
+    rhs: Option<usize>,
+    output: Output,
+    expansion: &Expansion,
+) -> Function {
+    let program = lower(algebra, expansion, &algebra.types[lhs], rhs.map(|r| &algebra.types[r]));
+    let cost = program.cost();
+    Function {
+        operation,
+        method,
+        lhs,
+        rhs,
+        output,
+        program,
+        finish: Finish::Coefficients,
+        cost,
+    }
+}
+
+/// The functions a unary operation emits on a type: none (polarity on a degenerate metric, inverse
+/// where `a ~a` is not a scalar), one, or one per grade (grade projection).
+pub fn unary(algebra: &Algebra, operation: Operation, ty: usize) -> Result<Vec<Function>, Error> {
+    let declared = &algebra.types[ty];
+    let typed = |method: String, expansion: Expansion| -> Result<Function, Error> {
+        let describe = || (method.clone(), declared.name.clone(), String::new());
+        let output = Output::Type(result_type(algebra, &expansion.blades(), describe)?);
+        Ok(finish(
+            algebra,
+            Some(operation),
+            method.clone(),
+            ty,
+            None,
+            output,
+            &expansion,
+        ))
+    };
+    match operation {
+        Operation::Polarity if algebra.metric.is_degenerate() => Ok(vec![]),
+        Operation::Reverse
+        | Operation::Involute
+        | Operation::Conjugate
+        | Operation::RightComplement
+        | Operation::LeftComplement
+        | Operation::Polarity => Ok(vec![typed(
+            operation.name().to_string(),
+            expand::unary(algebra, operation, declared),
+        )?]),
+        Operation::Grade => {
+            let mut grades: Vec<u32> = declared.fields.iter().map(|f| grade(f.blade)).collect();
+            grades.sort_unstable();
+            grades.dedup();
+            grades
+                .into_iter()
+                .map(|k| typed(format!("grade_{k}"), expand::grade_part(declared, k)))
+                .collect()
+        }
+        Operation::NormSquared => {
+            let mut product = expand::times_own_reverse(algebra, declared);
+            product.outputs.retain(|&blade, _| blade == 0);
+            Ok(vec![finish(
+                algebra,
+                Some(operation),
+                operation.name().to_string(),
+                ty,
+                None,
+                Output::Scalar,
+                &product,
+            )])
+        }
+        Operation::Inverse => {
+            let product = expand::times_own_reverse(algebra, declared);
+            if product.blades() != [0] {
+                return Ok(vec![]);
+            }
+            let mut function = finish(
+                algebra,
+                Some(operation),
+                operation.name().to_string(),
+                ty,
+                None,
+                Output::Type(ty),
+                &product,
+            );
+            function.finish = Finish::DivideReverseByNorm;
+            // One division for 1/(a ~a), then one multiply per coefficient.
+            function.cost = function.cost
+                + Cost {
+                    multiplies: declared.fields.len(),
+                    adds: 0,
+                    divisions: 1,
+                };
+            Ok(vec![function])
+        }
+        _ => Ok(vec![]),
+    }
+}
+
+/// `lhs + rhs` or `lhs - rhs`, where a declared type holds both operands' blades.
+pub fn sum(algebra: &Algebra, lhs: usize, rhs: usize, subtract: bool) -> Option<Function> {
+    let expansion = expand::sum(&algebra.types[lhs], &algebra.types[rhs], subtract);
+    let mut blades: Vec<BladeMask> = algebra.types[lhs].fields.iter().map(|f| f.blade).collect();
+    blades.extend(algebra.types[rhs].fields.iter().map(|f| f.blade));
+    let output = result_type(algebra, &blades, || Default::default()).ok()?;
+    let method = if subtract { "sub" } else { "add" };
+    Some(finish(
+        algebra,
+        None,
+        method.to_string(),
+        lhs,
+        Some(rhs),
+        Output::Type(output),
+        &expansion,
+    ))
+}
+
+/// The exact cost of `lhs.operation(rhs)` (or of the unary `lhs.operation()` when `rhs` is `None`;
+/// for grade projection, the sum over all grades). `Ok(None)` if no such function is emitted.
+pub fn cost(algebra: &Algebra, operation: Operation, lhs: &str, rhs: Option<&str>) -> Result<Option<Cost>, Error> {
+    let index = |name: &str| algebra.types.iter().position(|t| t.name == name);
+    let Some(lhs) = index(lhs) else { return Ok(None) };
+    match (operation.is_binary(), rhs) {
+        (true, Some(rhs)) => match index(rhs) {
+            Some(rhs) => Ok(Some(binary(algebra, operation, lhs, rhs)?.cost)),
+            None => Ok(None),
+        },
+        (false, None) => {
+            let functions = unary(algebra, operation, lhs)?;
+            Ok((!functions.is_empty()).then(|| functions.iter().fold(Cost::default(), |total, f| total + f.cost)))
+        }
+        _ => Ok(None),
+    }
+}
+
+/// The sign of a blade under reversion, as a rational coefficient.
+pub fn reverse_sign(blade: BladeMask) -> Rational64 {
+    let k = grade(blade) as i64;
+    Rational64::from(if (k * (k - 1) / 2) % 2 == 0 { 1 } else { -1 })
+}

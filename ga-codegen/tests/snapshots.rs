@@ -1,0 +1,29 @@
+//! Snapshots of the formatted expansion of key products: review a diff here like code.
+mod common;
+
+use ga_codegen::{emit, functions, Algebra, Operation};
+
+/// The formatted code of `lhs.operation(rhs)` alone.
+fn function_source(declaration: &ga_codegen::AlgebraDeclaration, operation: Operation, lhs: &str, rhs: &str) -> String {
+    let mut declaration = declaration.clone();
+    declaration.operations = Some(vec![operation]);
+    let algebra = Algebra::new(&declaration).unwrap();
+    let index = |name: &str| algebra.types.iter().position(|t| t.name == name).unwrap();
+    let function = functions::binary(&algebra, operation, index(lhs), index(rhs)).unwrap();
+    ga_codegen::pretty(&emit::binary_function(&algebra, &function)).unwrap()
+}
+
+#[test]
+fn pga_motor_times_motor() {
+    insta::assert_snapshot!(function_source(&common::pga(), Operation::Geometric, "Motor", "Motor"));
+}
+
+#[test]
+fn pga_motor_sandwich_point() {
+    insta::assert_snapshot!(function_source(&common::pga(), Operation::Sandwich, "Motor", "Point"));
+}
+
+#[test]
+fn cga_even_times_even() {
+    insta::assert_snapshot!(function_source(&common::cga(), Operation::Geometric, "Even", "Even"));
+}
