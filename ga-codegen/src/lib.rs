@@ -21,6 +21,7 @@ pub mod blade;
 pub mod declaration;
 pub mod emit;
 pub mod error;
+pub mod evaluator;
 pub mod expand;
 pub mod functions;
 pub mod metric;
@@ -31,6 +32,7 @@ pub mod program;
 pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
 pub use error::{Error, Location};
+pub use evaluator::Evaluator;
 pub use operation::Operation;
 pub use program::Cost;
 

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 
 use num_integer::Integer;
 use num_rational::Rational64;
-use num_traits::{One, Signed};
+use num_traits::{One, Signed, ToPrimitive};
 
 use crate::blade::BladeMask;
 use crate::expand::{Expansion, Operand, Variable};
@@ -105,6 +105,45 @@ impl Program {
         });
         let outputs = self.outputs.values().map(|terms| sum_cost(terms));
         locals.chain(outputs).fold(Cost::default(), |total, cost| total + cost)
+    }
+}
+
+impl Program {
+    /// Runs the program on numeric operands (field values in storage order): the emitted code's
+    /// semantics, for testing it against the [`crate::Evaluator`] without compiling it.
+    pub fn evaluate(&self, lhs: &[f64], rhs: &[f64]) -> BTreeMap<BladeMask, f64> {
+        let mut locals = Vec::with_capacity(self.locals.len());
+        let read = |value: Value, locals: &[f64]| match value {
+            Value::Input(Variable {
+                operand: Operand::Lhs,
+                field,
+            }) => lhs[field],
+            Value::Input(Variable {
+                operand: Operand::Rhs,
+                field,
+            }) => rhs[field],
+            Value::Local(index) => locals[index],
+        };
+        let sum = |terms: &[Term], locals: &[f64]| -> f64 {
+            terms
+                .iter()
+                .map(|t| {
+                    t.coefficient.to_f64().unwrap_or(f64::NAN)
+                        * t.factors.iter().map(|&v| read(v, locals)).product::<f64>()
+                })
+                .sum()
+        };
+        for local in &self.locals {
+            let value = match &local.definition {
+                Definition::Sum(terms) => sum(terms, &locals),
+                Definition::Double(value) => 2.0 * read(*value, &locals),
+            };
+            locals.push(value);
+        }
+        self.outputs
+            .iter()
+            .map(|(&blade, terms)| (blade, sum(terms, &locals)))
+            .collect()
     }
 }
 

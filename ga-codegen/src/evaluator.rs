@@ -1,0 +1,99 @@
+//! A runtime evaluator of the same product rules on dense coefficient vectors.
+//!
+//! A multivector is a slice of `2ⁿ` coefficients indexed by blade bitmask (the layout of the
+//! reference data). Products loop over the non-zero coefficient pairs and apply the blade rule of
+//! [`crate::product`]: no table is built, so the evaluator explores big algebras in O(4ⁿ) time and
+//! O(2ⁿ) memory. It is the oracle the tests compare emitted code against.
+
+use crate::blade::{grade, BladeMask};
+use crate::metric::Metric;
+use crate::operation::Operation;
+use crate::product::Rules;
+
+/// Dense evaluation of every operation in one algebra.
+#[derive(Clone, Debug)]
+pub struct Evaluator {
+    metric: Metric,
+}
+
+impl Evaluator {
+    /// An evaluator for the diagonal metric with these squares (basis vector `i` = bit `i`).
+    pub fn new(squares: &[i64]) -> Self {
+        Evaluator {
+            metric: Metric::diagonal(squares.to_vec()),
+        }
+    }
+
+    /// From a validated algebra.
+    pub fn of(algebra: &crate::Algebra) -> Self {
+        Evaluator {
+            metric: algebra.metric.clone(),
+        }
+    }
+
+    /// The number of coefficients of a dense multivector: 2ⁿ.
+    pub fn blade_count(&self) -> usize {
+        1 << self.metric.dimension()
+    }
+
+    fn rules(&self) -> Rules<'_> {
+        Rules::new(&self.metric)
+    }
+
+    fn check(&self, a: &[f64]) {
+        assert_eq!(a.len(), self.blade_count(), "a dense multivector has 2^n coefficients");
+    }
+
+    /// A binary operation, including the sandwich `a b ~a`.
+    ///
+    /// # Panics
+    /// If a slice does not have 2ⁿ coefficients.
+    pub fn binary(&self, operation: Operation, a: &[f64], b: &[f64]) -> Vec<f64> {
+        self.check(a);
+        self.check(b);
+        if operation == Operation::Sandwich {
+            let ab = self.binary(Operation::Geometric, a, b);
+            return self.binary(Operation::Geometric, &ab, &self.unary(Operation::Reverse, a));
+        }
+        let rules = self.rules();
+        let mut out = vec![0.0; a.len()];
+        for (i, &x) in a.iter().enumerate().filter(|(_, x)| **x != 0.0) {
+            for (j, &y) in b.iter().enumerate().filter(|(_, y)| **y != 0.0) {
+                if let Some((blade, sign)) = rules.binary(operation, i as BladeMask, j as BladeMask) {
+                    out[blade as usize] += sign as f64 * x * y;
+                }
+            }
+        }
+        out
+    }
+
+    /// A unary blade map (reverse, involute, conjugate, complements, polarity). Operations that are
+    /// not blade maps, and polarity on a degenerate metric, give zero.
+    ///
+    /// # Panics
+    /// If the slice does not have 2ⁿ coefficients.
+    pub fn unary(&self, operation: Operation, a: &[f64]) -> Vec<f64> {
+        self.check(a);
+        let rules = self.rules();
+        let mut out = vec![0.0; a.len()];
+        for (i, &x) in a.iter().enumerate() {
+            if let Some((blade, sign)) = rules.unary(operation, i as BladeMask) {
+                out[blade as usize] += sign as f64 * x;
+            }
+        }
+        out
+    }
+
+    /// The grade-`k` part.
+    pub fn grade_part(&self, a: &[f64], k: u32) -> Vec<f64> {
+        a.iter()
+            .enumerate()
+            .map(|(i, &x)| if grade(i as BladeMask) == k { x } else { 0.0 })
+            .collect()
+    }
+
+    /// ⟨a ~a⟩₀.
+    pub fn norm_squared(&self, a: &[f64]) -> f64 {
+        self.binary(Operation::Geometric, a, &self.unary(Operation::Reverse, a))[0]
+    }
+}
