@@ -1,8 +1,10 @@
 //! Emission: Rust tokens for the declared types and every operation between them.
 //!
 //! Per declared type: a `#[repr(C)]` struct with one pub field per blade, constructors and unary
-//! methods. Binary operations are traits (`Geometric<Rhs>`, `Outer<Rhs>`, …) implemented for every
-//! type pair, with `core::ops` sugar (`*` geometric, `^` outer, `&` regressive, `|` left contraction).
+//! methods (`const fn`). Binary operations are traits (`Geometric<Rhs>`, `Outer<Rhs>`, …) implemented
+//! for every type pair, with `core::ops` sugar (`*` geometric, `^` outer, `&` regressive, `|` left
+//! contraction); each is also an inherent `const fn` named after the operation and the right-hand
+//! type (`a.geometric_motor(b)`), so products can be evaluated in constants and const assertions.
 //! The code uses only `core`, and each function's doc comment states its exact cost.
 
 use num_rational::Rational64;
@@ -65,6 +67,22 @@ pub fn binary_function(algebra: &Algebra, function: &Function) -> TokenStream {
         scalar: format_ident!("{}", algebra.scalar.name()),
     }
     .binary_impl(function)
+}
+
+/// `PlaneSet` → `plane_set`: the suffix of the `const fn` form of a binary operation.
+fn snake_case(name: &str) -> String {
+    let mut out = String::with_capacity(name.len() + 4);
+    for (i, c) in name.chars().enumerate() {
+        if c.is_ascii_uppercase() {
+            if i > 0 {
+                out.push('_');
+            }
+            out.push(c.to_ascii_lowercase());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 fn blades(ty: &SparseType) -> Vec<u32> {
@@ -428,13 +446,15 @@ impl Emitter<'_> {
         quote! { #(#locals)* #result }
     }
 
-    fn doc(&self, function: &Function) -> String {
+    /// One `#[doc]` per line (so formatted code shows `///` lines): what it computes, then its cost.
+    fn doc(&self, function: &Function) -> TokenStream {
         let what = match function.operation {
-            Some(Operation::Grade) => format!("The grade-{} part.", function.method.trim_start_matches("grade_")),
-            Some(operation) => operation_doc(operation).to_string(),
+            Some(Operation::Grade) => format!(" The grade-{} part.", function.method.trim_start_matches("grade_")),
+            Some(operation) => format!(" {}", operation_doc(operation)),
             None => String::new(),
         };
-        format!("{what}\n\nCost: {}.", function.cost)
+        let cost = format!(" Cost: {}.", function.cost);
+        quote! { #[doc = #what] #[doc = ""] #[doc = #cost] }
     }
 
     fn unary_method(&self, function: &Function) -> TokenStream {
@@ -443,9 +463,9 @@ impl Emitter<'_> {
         let body = self.body(function);
         let doc = self.doc(function);
         quote! {
-            #[doc = #doc]
+            #doc
             #[inline]
-            pub fn #method(self) -> #output {
+            pub const fn #method(self) -> #output {
                 #body
             }
         }
@@ -510,13 +530,26 @@ impl Emitter<'_> {
                 }
             }
         });
+        let const_method = format_ident!(
+            "{}_{}",
+            operation.name(),
+            snake_case(&self.algebra.types[function.rhs.expect("binary")].name)
+        );
+        let forward_doc = format!("Forwards to the `const fn` [`{lhs}::{const_method}`].");
         quote! {
+            impl #lhs {
+                #doc
+                #[inline]
+                pub const fn #const_method(self, #parameter: #rhs_type) -> #output {
+                    #body
+                }
+            }
             impl #trait_name<#rhs_type> for #lhs {
                 type Output = #output;
-                #[doc = #doc]
+                #[doc = #forward_doc]
                 #[inline]
-                fn #method(self, #parameter: #rhs_type) -> #output {
-                    #body
+                fn #method(self, rhs: #rhs_type) -> #output {
+                    self.#const_method(rhs)
                 }
             }
             #operator

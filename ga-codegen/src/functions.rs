@@ -207,7 +207,7 @@ pub fn sum(algebra: &Algebra, lhs: usize, rhs: usize, subtract: bool) -> Option<
     let expansion = expand::sum(&algebra.types[lhs], &algebra.types[rhs], subtract);
     let mut blades: Vec<BladeMask> = algebra.types[lhs].fields.iter().map(|f| f.blade).collect();
     blades.extend(algebra.types[rhs].fields.iter().map(|f| f.blade));
-    let output = result_type(algebra, &blades, || Default::default()).ok()?;
+    let output = result_type(algebra, &blades, Default::default).ok()?;
     let method = if subtract { "sub" } else { "add" };
     Some(finish(
         algebra,

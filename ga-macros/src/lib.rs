@@ -1,7 +1,56 @@
-//! The `algebra!` macro (placeholder until the front end lands).
+//! # ga-macros: the `algebra!` macro
+//!
+//! Declares a geometric algebra and its sparse types in a module; the module receives fully unrolled
+//! Rust code for them, compiled by [`ga_codegen`].
+//!
+//! ```ignore
+//! ga_macros::algebra! {
+//!     /// 3D projective geometric algebra.
+//!     pub mod pga {
+//!         scalar = f64;                                   // or f32
+//!         basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1];       // names and squares, in bit order
+//!         types {
+//!             Plane = grades(1);
+//!             Line = grades(2);
+//!             Point = grades(3);
+//!             /// A rigid motion.
+//!             Motor = grades(0, 2, 4);
+//!             Translator = blades(scalar, e01, e02, e03);
+//!             Multivector = all;
+//!         }
+//!         ops = [geometric, outer, reverse];              // optional: emit only these operations
+//!     }
+//! }
+//! ```
+//!
+//! - Attributes and doc comments on the module are kept on the emitted module, and so is its
+//!   visibility. Doc comments on a type are kept on its struct; other attributes on a type are refused.
+//! - The settings may come in any order, each at most once. `scalar`, `basis` and `types` are
+//!   required; `ops` is optional (all operations are emitted without it).
+//! - `scalar` is `f32` or `f64`.
+//! - `basis` lists the basis vectors in bit order, each with its square: `1`, `-1` or `0`.
+//! - A type is `grades(…)` (every blade of those grades, in canonical order), `blades(…)` (exactly
+//!   those blades in that order; `scalar` is the grade-0 blade, and a permuted name such as `e31`
+//!   stores −`e13`) or `all` (the full multivector, for small algebras only).
+//! - `ops` takes the method names of [`ga_codegen::Operation`], e.g. `geometric`, `outer`,
+//!   `left_contraction`, `reverse`.
+//!
+//! Mistakes are compile errors at the offending token (the square `2`, the blade `e05`, the unknown
+//! setting), all of them at once where they are independent.
+
+mod diagnostics;
+mod expand;
+mod parse;
+mod validate;
+
 use proc_macro::TokenStream;
 
+/// Declares a geometric algebra module; see the [crate documentation](crate) for the syntax.
 #[proc_macro]
 pub fn algebra(input: TokenStream) -> TokenStream {
-    input
+    let input = syn::parse_macro_input!(input as parse::AlgebraInput);
+    validate::validate(&input)
+        .and_then(|declaration| expand::expand(&input, &declaration))
+        .unwrap_or_else(syn::Error::into_compile_error)
+        .into()
 }
