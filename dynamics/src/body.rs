@@ -1,0 +1,95 @@
+//! Rigid bodies: mass and principal moments of inertia about the centre of mass. The body frame has
+//! its origin at the centre of mass and its axes along the principal axes (SPEC §2, E10a).
+
+use nalgebra::Vector3;
+
+/// Why a body's parameters are not physical.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BodyError {
+    #[error("mass must be positive and finite, got {0}")]
+    Mass(f64),
+    #[error("principal moments must be positive and finite, got {0:?}")]
+    Moments([f64; 3]),
+    #[error("principal moments {0:?} violate the triangle inequality (each at most the sum of the others)")]
+    Triangle([f64; 3]),
+    #[error("shape dimensions must be positive and finite, got {0:?}")]
+    Dimensions(Vec<f64>),
+}
+
+/// Mass and principal moments (about the centre of mass, along the body axes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body {
+    pub mass: f64,
+    pub moments: Vector3<f64>,
+}
+
+fn positive(values: &[f64]) -> Result<(), BodyError> {
+    if values.iter().all(|v| v.is_finite() && *v > 0.0) {
+        Ok(())
+    } else {
+        Err(BodyError::Dimensions(values.to_vec()))
+    }
+}
+
+impl Body {
+    /// A body with these principal moments, checked to be physical.
+    pub fn new(mass: f64, moments: Vector3<f64>) -> Result<Body, BodyError> {
+        if !(mass.is_finite() && mass > 0.0) {
+            return Err(BodyError::Mass(mass));
+        }
+        let m = [moments.x, moments.y, moments.z];
+        if !m.iter().all(|v| v.is_finite() && *v > 0.0) {
+            return Err(BodyError::Moments(m));
+        }
+        // Any mass distribution has Iᵢ ≤ Iⱼ + Iₖ; allow round-off in the equality (thin plates).
+        let total = m[0] + m[1] + m[2];
+        if m.iter().any(|&v| v > (total - v) * (1.0 + 1e-12)) {
+            return Err(BodyError::Triangle(m));
+        }
+        Ok(Body { mass, moments })
+    }
+
+    /// A solid cuboid with side lengths `extents` along the body axes:
+    /// `I = m/12 (b² + c², a² + c², a² + b²)` (SPEC §11).
+    pub fn cuboid(mass: f64, extents: Vector3<f64>) -> Result<Body, BodyError> {
+        positive(&[extents.x, extents.y, extents.z])?;
+        let s = extents.component_mul(&extents);
+        Body::new(mass, mass / 12.0 * Vector3::new(s.y + s.z, s.x + s.z, s.x + s.y))
+    }
+
+    /// A thin rod of this length along the body z axis, with the given (small) axial moment, which a
+    /// thin rod needs for a non-singular inertia map (the scenes use 1e-3).
+    pub fn rod(mass: f64, length: f64, axial_moment: f64) -> Result<Body, BodyError> {
+        positive(&[length, axial_moment])?;
+        let transverse = mass * length * length / 12.0;
+        Body::new(mass, Vector3::new(transverse, transverse, axial_moment))
+    }
+
+    /// A solid cone of this height and base radius, axis along body z: transverse moment about the
+    /// centre of mass `m(3h²/80 + 3r²/20)`, axial `3mr²/10`. The centre of mass is on the axis at
+    /// `3h/4` from the tip, so the tip is at body `(0, 0, −3h/4)`.
+    pub fn solid_cone(mass: f64, height: f64, radius: f64) -> Result<Body, BodyError> {
+        positive(&[height, radius])?;
+        let transverse = mass * (3.0 / 80.0 * height * height + 3.0 / 20.0 * radius * radius);
+        Body::new(mass, Vector3::new(transverse, transverse, 0.3 * mass * radius * radius))
+    }
+
+    /// A solid sphere: `I = 2mr²/5` about every axis.
+    pub fn sphere(mass: f64, radius: f64) -> Result<Body, BodyError> {
+        positive(&[radius])?;
+        Body::new(mass, Vector3::repeat(0.4 * mass * radius * radius))
+    }
+
+    /// `H = diag(I₁, I₂, I₃, m, m, m)`: the inertia in velocity coordinates `(ω; v)` (SPEC §3–§4).
+    pub fn kinetic_metric(&self) -> nalgebra::Matrix6<f64> {
+        let m = self.mass;
+        nalgebra::Matrix6::from_diagonal(&nalgebra::Vector6::new(
+            self.moments.x,
+            self.moments.y,
+            self.moments.z,
+            m,
+            m,
+            m,
+        ))
+    }
+}

@@ -1,0 +1,89 @@
+//! Forces as screws (SPEC §3): a force f acting along the line through a is the wrench
+//! `W = f I₃ − (a∧f) I₃ N = Σ fᵢlᵢ + (a⨯f)ᵢtᵢ` (the same in both algebras); a couple b is `b∧N = Σ bᵢtᵢ`.
+
+use std::fmt;
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::body::Body;
+use crate::state::State;
+
+/// The wrench of force `force` acting along the line through `point` (world frame).
+#[inline]
+pub fn force_line<A: Algebra>(force: Vector3<f64>, point: Vector3<f64>) -> A::Screw {
+    A::screw(ScrewCoordinates {
+        l: force,
+        t: point.cross(&force),
+    })
+}
+
+/// The wrench of a pure moment (couple): a free vector, unchanged by translations.
+#[inline]
+pub fn couple<A: Algebra>(moment: Vector3<f64>) -> A::Screw {
+    A::screw(ScrewCoordinates {
+        l: Vector3::zeros(),
+        t: moment,
+    })
+}
+
+/// A user force: world wrench as a function of time and state.
+pub type WrenchFunction<A> = Arc<dyn Fn(f64, &State<A>) -> <A as Algebra>::Screw + Send + Sync>;
+
+/// An external force on a body; its wrench is expressed in the world frame.
+#[derive(Clone)]
+pub enum Force<A: Algebra> {
+    /// Uniform gravity `m g` acting at the centre of mass (g = 9.81 along −e₃ in the scenes).
+    Gravity { acceleration: Vector3<f64> },
+    /// A constant force along a fixed world line.
+    Line { force: Vector3<f64>, point: Vector3<f64> },
+    /// A constant couple.
+    Couple { moment: Vector3<f64> },
+    /// Any wrench depending on time and state.
+    Custom(WrenchFunction<A>),
+}
+
+impl<A: Algebra> fmt::Debug for Force<A> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Force::Gravity { acceleration } => write!(f, "Gravity({acceleration:?})"),
+            Force::Line { force, point } => write!(f, "Line({force:?} through {point:?})"),
+            Force::Couple { moment } => write!(f, "Couple({moment:?})"),
+            Force::Custom(_) => write!(f, "Custom(..)"),
+        }
+    }
+}
+
+/// Standard gravity of the scenes (m/s²).
+pub const STANDARD_GRAVITY: f64 = 9.81;
+
+impl<A: Algebra> Force<A> {
+    /// Gravity of 9.81 m/s² along −e₃.
+    pub fn gravity() -> Self {
+        Force::Gravity {
+            acceleration: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),
+        }
+    }
+
+    /// The world wrench on `body` in `state` at time `t`.
+    pub fn wrench(&self, body: &Body, t: f64, state: &State<A>) -> A::Screw {
+        match self {
+            Force::Gravity { acceleration } => {
+                let centre = A::position(A::transform_point(state.motor, A::point(Vector3::zeros())));
+                force_line::<A>(body.mass * acceleration, centre)
+            }
+            Force::Line { force, point } => force_line::<A>(*force, *point),
+            Force::Couple { moment } => couple::<A>(*moment),
+            Force::Custom(function) => function(t, state),
+        }
+    }
+
+    /// The potential energy of a conservative force (zero for the others): `−m g·c` for gravity.
+    pub fn potential_energy(&self, body: &Body, state: &State<A>) -> f64 {
+        match self {
+            Force::Gravity { acceleration } => -body.mass * acceleration.dot(&state.pose().0),
+            _ => 0.0,
+        }
+    }
+}

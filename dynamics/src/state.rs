@@ -1,0 +1,83 @@
+//! The state of one rigid body: the motor R (body → world) and the world-frame momentum Ω (SPEC §0, §5).
+
+use nalgebra::{UnitQuaternion, Vector3};
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::body::Body;
+use crate::motor;
+
+/// `[R, Ω]`: objects move as `V = R U ~R`; Ω is the momentum bivector in the world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State<A: Algebra> {
+    pub motor: A::Motor,
+    pub momentum: A::Screw,
+}
+
+/// Velocities in world terms, for reports and comparisons with classical references.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldVelocity {
+    /// Angular velocity, world axes.
+    pub angular: Vector3<f64>,
+    /// Velocity of the centre of mass, world axes.
+    pub linear: Vector3<f64>,
+}
+
+impl<A: Algebra> State<A> {
+    /// The state of a body at `position` (its centre of mass) with orientation `rotation`, moving
+    /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`:
+    /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (SPEC §11).
+    pub fn new(
+        body: &Body,
+        position: Vector3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        angular_body: Vector3<f64>,
+        linear_world: Vector3<f64>,
+    ) -> Self {
+        let motor = motor::from_pose::<A>(position, rotation);
+        let velocity = A::screw(ScrewCoordinates {
+            l: angular_body,
+            t: rotation.inverse() * linear_world,
+        });
+        State {
+            motor,
+            momentum: A::transform_screw(motor, body.momentum::<A>(velocity)),
+        }
+    }
+
+    /// `Ω_b = ~R Ω R`.
+    #[inline]
+    pub fn body_momentum(&self) -> A::Screw {
+        A::transform_screw(A::reverse(self.motor), self.momentum)
+    }
+
+    /// `Ḃ = M⁻¹[Ω_b]`: angular velocity and centre-of-mass velocity, both in body axes (SPEC §3).
+    #[inline]
+    pub fn body_velocity(&self, body: &Body) -> A::Screw {
+        body.velocity::<A>(self.body_momentum())
+    }
+
+    /// Position of the centre of mass and orientation (body → world).
+    pub fn pose(&self) -> (Vector3<f64>, UnitQuaternion<f64>) {
+        motor::pose::<A>(self.motor)
+    }
+
+    /// World angular velocity and centre-of-mass velocity.
+    pub fn world_velocity(&self, body: &Body) -> WorldVelocity {
+        let (_, rotation) = self.pose();
+        let v = A::screw_coordinates(self.body_velocity(body));
+        WorldVelocity {
+            angular: rotation * v.l,
+            linear: rotation * v.t,
+        }
+    }
+
+    /// Kinetic energy `½⟨Ḃ ∧ Ω_b⟩_Π` (SPEC §4).
+    pub fn kinetic_energy(&self, body: &Body) -> f64 {
+        body.kinetic_energy::<A>(self.body_velocity(body))
+    }
+
+    /// World position of a body-fixed point given in body coordinates.
+    pub fn world_point(&self, body_point: Vector3<f64>) -> Vector3<f64> {
+        A::position(A::transform_point(self.motor, A::point(body_point)))
+    }
+}
