@@ -1,0 +1,52 @@
+//! # reference: an independent classical yardstick for rigid-body simulators
+//!
+//! The geometric-algebra simulators of this project (CGA and PGA motors, constraints by virtual power and by pinning,
+//! following Hadfield & Lasenby, "Constrained Dynamics in Conformal and Projective Geometric Algebra") are tested
+//! against this crate, which shares no code or formalism with them: plain vectors and quaternions (nalgebra),
+//! textbook closed forms, and reference trajectories integrated with scipy's DOP853 on the classical Newton–Euler
+//! equations. The scenes, values and metrics are those of the project's `shared/scenes/SCENES.md` (SPEC §11.2).
+//!
+//! One module per concept:
+//! * [`scenes`]: the six reference scenes ([`SceneId`]): parameters, embedded reference trajectories, published end
+//!   states and published analytic values;
+//! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
+//! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;
+//! * [`analytic`]: the closed forms (Dzhanibekov flips, pendulum, heavy top) that the published values come from;
+//! * [`metrics`]: the error metrics (orientation/position errors, energy drift, flip times, pendulum period,
+//!   nutation and precession features, constraint violations).
+//!
+//! The reference data is compiled in (`include_str!`), so nothing is read from disk at run time. No function
+//! panics on bad input: errors are returned as `Result`.
+//!
+//! Typical use, with a simulator's output sampled on the same 0.01 s grid:
+//! ```
+//! use reference::{energy_drift, flip_time_error, flip_times, trajectory_errors, SceneId};
+//!
+//! let scene = SceneId::Cuboid;
+//! let reference = scene.reference_trajectory()?;
+//! let simulated = reference.clone(); // stand-in for a simulator's trajectory
+//! let errors = trajectory_errors(&reference, &simulated)?;
+//! let drift = energy_drift(&scene.parameters(), &simulated);
+//! let flips = flip_times(&simulated, &scene.parameters().principal_moments);
+//! let flip_error = flip_time_error(&flips, &reference::scenes::CUBOID_VALUES.flip_instants)?;
+//! assert!(errors.max_orientation < 1e-15 && drift < 1e-14 && flip_error < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod analytic;
+pub mod elliptic;
+pub mod metrics;
+pub mod scenes;
+pub mod trajectory;
+
+pub use analytic::{
+    AnalyticError, DzhanibekovSolution, HeavyTop, Nutation, Pendulum, PendulumSolution, SteadyPrecessionRates,
+};
+pub use elliptic::{complete_elliptic_k, jacobi_elliptic, EllipticError, EllipticParameter, JacobiElliptic};
+pub use metrics::{
+    constraint_violations, energy_drift, flip_time_error, flip_times, nutation_features, orientation_error,
+    pendulum_angle, pendulum_period, position_error, steady_precession_features, top_axis_angles, trajectory_errors,
+    ConstraintViolations, MetricError, NutationFeatures, SteadyPrecessionFeatures, TopAxisAngles, TrajectoryErrors,
+};
+pub use scenes::{SceneConstraint, SceneId, SceneParameters};
+pub use trajectory::{Sample, Trajectory, TrajectoryError};
