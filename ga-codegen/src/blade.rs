@@ -72,15 +72,14 @@ pub const SCALAR_NAME: &str = "scalar";
 
 impl BladeNaming {
     pub fn new(basis_names: &[String]) -> Self {
-        let prefix: String = match basis_names.first() {
+        // The longest alphabetic prefix shared by every name that leaves each a non-empty suffix.
+        let mut prefix: String = match basis_names.first() {
             Some(first) => first.chars().take_while(|c| c.is_ascii_alphabetic()).collect(),
             None => String::new(),
         };
-        let shares_prefix = !prefix.is_empty()
-            && basis_names
-                .iter()
-                .all(|name| name.starts_with(&prefix) && name.len() > prefix.len());
-        let prefix = if shares_prefix { prefix } else { String::new() };
+        while !basis_names.iter().all(|name| name.starts_with(&prefix) && name.len() > prefix.len()) {
+            prefix.pop();
+        }
         let suffixes: Vec<String> = basis_names
             .iter()
             .map(|name| name[prefix.len()..].to_string())
@@ -205,6 +204,10 @@ mod tests {
         assert_eq!(naming.parse("einf_1"), Ok((0b10001, -1)));
         let unrelated = BladeNaming::new(&names(&["x", "n0"]));
         assert_eq!(unrelated.name(0b11), "x_n0");
+        // The shared prefix is found even when the first name has more letters.
+        let letters = BladeNaming::new(&names(&["ea", "eb", "en", "ec"]));
+        assert_eq!(letters.name(0b1011), "eabc");
+        assert_eq!(letters.parse("eba"), Ok((0b11, -1)));
     }
 
     #[test]

@@ -566,7 +566,10 @@ impl Emitter<'_> {
         };
         let output = self.output_type(function.output);
         let body = self.body(function);
+        // A sum can hold only subtractions (a field stored sign-flipped, like `e31`), which clippy's
+        // `suspicious_arithmetic_impl` mistakes for a wrong operator.
         quote! {
+            #[allow(clippy::suspicious_arithmetic_impl)]
             impl core::ops::#op_trait<#rhs_type> for #lhs {
                 type Output = #output;
                 #[inline]
