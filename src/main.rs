@@ -1,3 +1,4 @@
-fn main() {
-    println!("main job: not yet implemented (issue 6)");
+//! The main job: `cargo run --release` runs every reference scene and writes the report (see `--help`).
+fn main() -> std::process::ExitCode {
+    report::cli::main()
 }

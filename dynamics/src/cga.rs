@@ -24,6 +24,8 @@ ga_macros::algebra! {
             Trivector = grades(3);
             /// 4-vectors: spheres and planes (OPNS).
             Quadvector = grades(4);
+            /// The pseudoscalar `e12345` (I5): incidence of a point and a sphere or plane (`P ∧ X`, SPEC §9).
+            Pseudoscalar = grades(5);
             /// Odd elements.
             Odd = grades(1, 3, 5);
         }

@@ -9,6 +9,8 @@
 pub mod algebra;
 pub mod body;
 pub mod cga;
+pub mod constraints;
+pub mod convert;
 pub mod equivalence;
 pub mod exponential;
 pub mod forces;
@@ -17,13 +19,17 @@ pub mod integrate;
 pub mod motion;
 pub mod motor;
 pub mod pga;
+pub mod scenes;
+pub mod simulate;
 pub mod state;
 
 pub use algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 pub use body::{Body, BodyError};
 pub use cga::Cga;
+pub use constraints::{ConstrainedBody, ConstraintError, Stabilisation};
 pub use forces::Force;
-pub use integrate::{step, Method};
+pub use integrate::{step, step_free_body, step_splitting, Integrator, KineticSplitting, Method, SplittingMethod};
 pub use motion::{Dynamics, FreeBody, Rates};
 pub use pga::Pga;
+pub use simulate::{simulate, simulate_free_body, Schedule, Simulation, SimulationError};
 pub use state::{State, WorldVelocity};

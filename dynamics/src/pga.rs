@@ -23,6 +23,8 @@ ga_macros::algebra! {
             Point = blades(e123, e230, e310, e120);
             /// A plane `n + δ e0`.
             Plane = blades(e1, e2, e3, e0);
+            /// The pseudoscalar `e1230`: incidence of a point and a plane (`P ∧ X`, SPEC §9).
+            Pseudoscalar = blades(e1230);
             /// Odd elements (products of planes and lines).
             Odd = grades(1, 3);
             Multivector = all;

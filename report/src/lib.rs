@@ -1,4 +1,16 @@
 //! The main job: every reference scene in both algebras with each integrator over a sweep of step
 //! sizes; work-precision tables (`report.md`), PNG plots and trajectories as CSV.
+//!
+//! The pipeline, one module per stage: [`sweep`] (configurations, running one) → [`measure`] (metrics
+//! against the `reference` crate) → [`markdown`] (the report), [`figures`] (the plots, drawn by
+//! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
 
+pub mod cli;
+pub mod csv;
+pub mod figures;
+pub mod job;
+pub mod markdown;
+pub mod measure;
+pub mod mujoco;
 pub mod plot;
+pub mod sweep;

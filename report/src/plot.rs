@@ -111,6 +111,7 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)
     chart: &mut ChartContext<'a, DB, CT>,
     series: &[Series],
     keep: impl Fn(&(f64, f64)) -> bool,
+    legend: SeriesLabelPosition,
 ) -> Result<(), String> {
     for (index, s) in series.iter().enumerate() {
         let color = color(index);
@@ -137,8 +138,8 @@ fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font((FONT, 16))
+        .position(legend)
+        .label_font((FONT, 15))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
@@ -175,7 +176,8 @@ pub fn log_log(path: &Path, labels: &Labels, series: &[Series]) -> Result<(), Pl
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(|e| e.to_string())?;
-        draw_series(&mut chart, series, |p| p.0 > 0.0 && p.1 > 0.0)?;
+        // Work-precision curves run from cheap-and-coarse to costly-and-accurate: the lower left is empty.
+        draw_series(&mut chart, series, |p| p.0 > 0.0 && p.1 > 0.0, SeriesLabelPosition::LowerLeft)?;
         root.present().map_err(|e| e.to_string())
     };
     draw().map_err(|message| error(path, message))
@@ -205,7 +207,8 @@ pub fn linear_log(path: &Path, labels: &Labels, series: &[Series]) -> Result<(),
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(|e| e.to_string())?;
-        draw_series(&mut chart, series, |p| p.1 > 0.0)?;
+        // Drift and violation grow with time: the upper left stays clear longest.
+        draw_series(&mut chart, series, |p| p.1 > 0.0, SeriesLabelPosition::UpperLeft)?;
         root.present().map_err(|e| e.to_string())
     };
     draw().map_err(|message| error(path, message))
@@ -213,6 +216,11 @@ pub fn linear_log(path: &Path, labels: &Labels, series: &[Series]) -> Result<(),
 
 /// A linear chart with equal scales on both axes (traced paths, like the paper's figures).
 pub fn path_view(path: &Path, labels: &Labels, series: &[Series]) -> Result<(), PlotError> {
+    linear(path, labels, series, true)
+}
+
+/// A linear chart; with `equal_aspect` one unit has the same length on both axes.
+pub fn linear(path: &Path, labels: &Labels, series: &[Series], equal_aspect: bool) -> Result<(), PlotError> {
     let root = canvas(path);
     let draw = || -> Result<(), String> {
         root.fill(&WHITE).map_err(|e| e.to_string())?;
@@ -220,7 +228,9 @@ pub fn path_view(path: &Path, labels: &Labels, series: &[Series]) -> Result<(), 
         // Equal aspect: widen the narrower range to the chart's proportions.
         let aspect = (SIZE.0 - 130) as f64 / (SIZE.1 - 140) as f64;
         let (width, height) = (x.end - x.start, y.end - y.start);
-        let (x, y) = if width / height < aspect {
+        let (x, y) = if !equal_aspect {
+            (x, y)
+        } else if width / height < aspect {
             let grow = (height * aspect - width) / 2.0;
             (x.start - grow..x.end + grow, y)
         } else {
@@ -242,7 +252,7 @@ pub fn path_view(path: &Path, labels: &Labels, series: &[Series]) -> Result<(), 
             .axis_desc_style((FONT, 20))
             .draw()
             .map_err(|e| e.to_string())?;
-        draw_series(&mut chart, series, |_| true)?;
+        draw_series(&mut chart, series, |_| true, SeriesLabelPosition::UpperRight)?;
         root.present().map_err(|e| e.to_string())
     };
     draw().map_err(|message| error(path, message))

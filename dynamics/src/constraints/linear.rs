@@ -1,0 +1,122 @@
+//! Pinning linear functions of multivectors (SPEC §9): `A[~R V(t) R] = U(t)` with A linear and fixed in
+//! the body frame. The incidence constraints "body point P on a world object X" are `A[X] = P ∧ X = 0`, which
+//! constrains fewer degrees of freedom than pinning X itself (SPEC §9 table).
+
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::algebra::Algebra;
+use crate::cga::{generated as cga_types, Cga};
+use crate::constraints::objects::{cga_circle, cga_sphere, PinningAlgebra};
+use crate::constraints::paths::{Fixed, Path, PathPoint, TranslatedPath};
+use crate::constraints::pinning::Pin;
+use crate::constraints::Coefficients;
+
+/// A linear map from X to Y, fixed in the body frame. Linearity is the caller's promise: the rows apply
+/// it to each term of SPEC §9's equation separately.
+pub struct LinearFunction<X, Y>(Arc<dyn Fn(X) -> Y + Send + Sync>);
+
+impl<X, Y> Clone for LinearFunction<X, Y> {
+    fn clone(&self) -> Self {
+        LinearFunction(self.0.clone())
+    }
+}
+
+impl<X, Y> LinearFunction<X, Y> {
+    pub fn new(function: impl Fn(X) -> Y + Send + Sync + 'static) -> Self {
+        LinearFunction(Arc::new(function))
+    }
+
+    #[inline]
+    pub fn apply(&self, x: X) -> Y {
+        (self.0)(x)
+    }
+}
+
+impl<X: 'static> LinearFunction<X, X> {
+    pub fn identity() -> Self {
+        LinearFunction::new(|x| x)
+    }
+}
+
+/// `P ∧ X = 0` with the target U = 0 at rest.
+fn incidence_target<Y: Coefficients>() -> Arc<dyn Path<Y>> {
+    Arc::new(Fixed(Y::zero()))
+}
+
+/// The body point `body_point` (body coordinates) stays on the world plane `{x : normal·x = offset}`:
+/// `P ∧ X = 0`, rank 1 (SPEC §9 table), in either algebra.
+pub fn point_on_plane<A: PinningAlgebra>(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    (normal, offset): (Vector3<f64>, f64),
+) -> Pin<A, A::PlaneObject, A::Incidence> {
+    let point = A::point_object(body_point);
+    Pin::linear(
+        name,
+        LinearFunction::new(move |plane| A::point_plane_incidence(point, plane)),
+        Arc::new(Fixed(A::plane_object(normal, offset))),
+        incidence_target(),
+        1,
+    )
+}
+
+/// CGA: the body point stays on the OPNS sphere (centre, radius): `P ∧ S = 0`, a 5-vector, rank 1 (SPEC §9).
+pub fn cga_point_on_sphere(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    centre: Vector3<f64>,
+    radius: f64,
+) -> Pin<Cga, cga_types::Quadvector, cga_types::Pseudoscalar> {
+    let point = Cga::point(body_point);
+    Pin::linear(
+        name,
+        LinearFunction::new(move |sphere| point ^ sphere),
+        Arc::new(Fixed(cga_sphere(centre, radius))),
+        incidence_target(),
+        1,
+    )
+}
+
+/// CGA: the body point stays on a sphere of `radius` whose centre moves along `centre(t)`:
+/// `V(t) = T(c(t)) S₀ ~T(c(t))` with S₀ at the origin (SPEC §8, §9 table), rank 1.
+pub fn cga_point_on_moving_sphere<F>(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    centre: F,
+    radius: f64,
+) -> Pin<Cga, cga_types::Quadvector, cga_types::Pseudoscalar>
+where
+    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
+{
+    let point = Cga::point(body_point);
+    Pin::linear(
+        name,
+        LinearFunction::new(move |sphere| point ^ sphere),
+        Arc::new(TranslatedPath::<Cga, _, _>::new(
+            cga_sphere(Vector3::zeros(), radius),
+            centre,
+        )),
+        incidence_target(),
+        1,
+    )
+}
+
+/// CGA: the body point stays on the OPNS circle: `P ∧ C = 0`, a 4-vector with 5 coefficients and rank 2.
+/// Off the circle the map picks up spurious small singular values (SPEC §7.1, E8), which the fixed-rank
+/// solve ignores.
+pub fn cga_point_on_circle(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    (centre, radius, normal): (Vector3<f64>, f64, Vector3<f64>),
+) -> Pin<Cga, cga_types::Trivector, cga_types::Quadvector> {
+    let point = Cga::point(body_point);
+    Pin::linear(
+        name,
+        LinearFunction::new(move |circle| point ^ circle),
+        Arc::new(Fixed(cga_circle(centre, radius, normal))),
+        incidence_target(),
+        2,
+    )
+}

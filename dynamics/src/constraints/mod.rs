@@ -1,0 +1,183 @@
+//! Constraints on one rigid body (SPEC §6–§10): by virtual power, by pinning multivectors, parametric paths
+//! and linear functions of them, solved for the reaction wrench at every evaluation of the equations of motion.
+//!
+//! # One formulation for all of them
+//!
+//! Every constraint here reduces, at one state, to scalar **rows** in the body velocity coordinates
+//! `x = (ω; v)` of Ḃ (SPEC §3) — see [`ConstraintRow`]:
+//!
+//! * a velocity residual `ė = a·x + s(t)`, linear in x with the Jacobian row `a`;
+//! * its rate along the motion `ë = a·ẍ + b`, where `ẍ` are the coordinates of B̈ and b (the *bias*) collects
+//!   every term without B̈;
+//! * optionally a position residual e with `de/dt = ė`, which the stabilisation uses (SPEC §10).
+//!
+//! Virtual power (§6): `ė = ⟨Ḃ ∧ T_b⟩_Π`, so `a` holds the wrench coordinates `(τ; f)` of `T_b = ~R T R`.
+//! Pinning (§7–§9): `ė = A[Ḃ × V_b + V̇_b] − U̇`, one row per multivector coefficient, column j of `a` holding
+//! `A[Ḃⱼ × V_b]` for the basis velocity Ḃⱼ. With `B̈ = M⁻¹[Ḃ×Ω_b + S + F]` (SPEC §5), i.e.
+//! `ẍ = H⁻¹(g + y)` in wrench coordinates, the acceleration condition `ë = 0` becomes the linear system
+//! `a·H⁻¹y = −a·H⁻¹g − b` for the reaction y (SPEC §6 and §7.1, with `C = −A H⁻¹`), solved in
+//! [`solve`] in the kinetic metric with the constraint's known rank.
+//!
+//! # Errors
+//!
+//! [`crate::Dynamics::rates`] cannot fail, so a [`ConstrainedBody`] offers fallible versions
+//! ([`ConstrainedBody::try_rates`], [`ConstrainedBody::try_step`], [`simulate_constrained`]) and, when driven
+//! through the infallible trait (e.g. by [`crate::integrate::step`]), records the first failure — then
+//! continues without the reaction, so no NaN enters the state — for [`ConstrainedBody::take_error`].
+
+mod kinematics;
+pub mod linear;
+pub mod objects;
+pub mod paths;
+pub mod pinning;
+mod rows;
+pub mod solve;
+pub mod stabilise;
+mod system;
+pub mod virtual_power;
+
+use std::sync::Arc;
+
+pub use kinematics::Kinematics;
+pub use linear::LinearFunction;
+pub use objects::{Coefficients, Pinnable, PinningAlgebra};
+pub use paths::{Path, PathPoint};
+pub use pinning::Pin;
+pub use rows::{ConstraintRow, RowBuffer, MAX_ROWS};
+pub use solve::SolverSettings;
+pub use stabilise::Stabilisation;
+pub use system::{simulate_constrained, ConstrainedBody, ConstrainedSimulationError, ReactionModel, Violation};
+pub use virtual_power::VirtualPower;
+
+use crate::algebra::Algebra;
+
+/// Why a constrained system could not be evaluated. Each variant names the constraint(s) involved.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ConstraintError {
+    /// The rows lost rank: the `rank`-th singular value of the (kinetic-metric scaled) constraint map is
+    /// negligible against the largest, so the reaction is not determined (SPEC §7.1).
+    #[error(
+        "constraint {names}: rank deficient, expected rank {rank} but singular value {rank} is {singular_value:e} \
+         (largest {largest:e})"
+    )]
+    RankDeficient {
+        names: String,
+        rank: usize,
+        singular_value: f64,
+        largest: f64,
+    },
+    /// The acceleration conditions have no solution within the declared rank (or the supplied reaction basis):
+    /// the relative residual `|C y − r| / |r|` exceeds [`SolverSettings::consistency_tolerance`].
+    #[error("constraint {names}: inconsistent, relative residual {relative_residual:e} of the reaction solve")]
+    Inconsistent { names: String, relative_residual: f64 },
+    /// A constraint produced a non-finite row (e.g. the state or a user path is not finite).
+    #[error("constraint {name}: non-finite residual or Jacobian at t = {t}")]
+    NonFinite { name: String, t: f64 },
+    /// More scalar rows than [`MAX_ROWS`].
+    #[error("constraint {name}: the system needs {rows} rows, more than the {capacity} supported")]
+    TooManyRows { name: String, rows: usize, capacity: usize },
+    /// A declared rank that cannot hold: more than 6 (the body's degrees of freedom) or than the rows.
+    #[error("constraint {name}: declared rank {rank} exceeds min(6, {rows} rows)")]
+    InvalidRank { name: String, rank: usize, rows: usize },
+    /// Projection (SPEC §10) needs a position residual, which this constraint does not provide (e.g. virtual
+    /// power from user wrenches, SPEC §6).
+    #[error("constraint {name}: has no position-level residual, so it cannot be stabilised by projection")]
+    NoPositionResidual { name: String },
+    /// A parameter of a constraint is not usable (zero axis, non-positive radius, …).
+    #[error("constraint {name}: {reason}")]
+    InvalidParameter { name: String, reason: String },
+}
+
+/// A constraint on one body: emits its rows at a state (see the module docs).
+pub trait Constraint<A: Algebra>: Send + Sync {
+    /// A name for error messages and reports.
+    fn name(&self) -> &str;
+    /// The number of degrees of freedom removed on the constraint manifold (SPEC §7 table, §9 table).
+    fn rank(&self) -> usize;
+    /// How many rows [`Constraint::rows`] pushes.
+    fn row_count(&self) -> usize;
+    /// Whether every row has a position residual (needed by projection, SPEC §10).
+    fn has_position_residual(&self) -> bool;
+    /// Pushes the rows at this state.
+    fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError>;
+}
+
+/// Several constraints acting as one, with a declared rank: a hinge pinned as a line plus a point has rank 5,
+/// not 4 + 3 (SPEC §7 table, E7), and a circle by virtual power is a sphere plus a plane (SPEC §6).
+#[derive(Clone)]
+pub struct Composite<A: Algebra> {
+    name: String,
+    parts: Vec<Arc<dyn Constraint<A>>>,
+    rank: usize,
+}
+
+impl<A: Algebra> Composite<A> {
+    /// The parts act together with `rank` constrained degrees of freedom.
+    pub fn new(name: impl Into<String>, parts: Vec<Arc<dyn Constraint<A>>>, rank: usize) -> Self {
+        Composite {
+            name: name.into(),
+            parts,
+            rank,
+        }
+    }
+
+    pub fn parts(&self) -> &[Arc<dyn Constraint<A>>] {
+        &self.parts
+    }
+}
+
+impl<A: Algebra> Constraint<A> for Composite<A> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn rank(&self) -> usize {
+        self.rank
+    }
+
+    fn row_count(&self) -> usize {
+        self.parts.iter().map(|part| part.row_count()).sum()
+    }
+
+    fn has_position_residual(&self) -> bool {
+        self.parts.iter().all(|part| part.has_position_residual())
+    }
+
+    fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
+        self.parts.iter().try_for_each(|part| part.rows(kinematics, rows))
+    }
+}
+
+impl<A: Algebra> std::fmt::Debug for Composite<A> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let names: Vec<&str> = self.parts.iter().map(|part| part.name()).collect();
+        f.debug_struct("Composite")
+            .field("name", &self.name)
+            .field("parts", &names)
+            .field("rank", &self.rank)
+            .finish()
+    }
+}
+
+/// A shared constraint is a constraint (e.g. one [`Arc`] used in several systems).
+impl<A: Algebra, C: Constraint<A> + ?Sized> Constraint<A> for Arc<C> {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+
+    fn rank(&self) -> usize {
+        (**self).rank()
+    }
+
+    fn row_count(&self) -> usize {
+        (**self).row_count()
+    }
+
+    fn has_position_residual(&self) -> bool {
+        (**self).has_position_residual()
+    }
+
+    fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
+        (**self).rows(kinematics, rows)
+    }
+}

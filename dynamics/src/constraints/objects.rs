@@ -1,0 +1,213 @@
+//! The multivectors a constraint can pin (SPEC §7): points, lines and planes in both algebras, and in CGA
+//! spheres and circles, as the types `algebra!` generated for PGA and CGA.
+//!
+//! Pinning is grade-agnostic (SPEC §7): it needs only to move an object between frames (`M X ~M`), to
+//! commute it with a screw (`B × X`, which keeps its grade) and to read its coefficients. [`Pinnable`] is
+//! that interface; [`PinningAlgebra`] names each algebra's point, line and plane types and builds them
+//! from Euclidean data (SPEC §1.2, §1.3).
+
+use std::fmt::Debug;
+use std::ops::{Add, Mul, Sub};
+
+use nalgebra::Vector3;
+
+use crate::algebra::Algebra;
+use crate::cga::{self, Cga};
+use crate::pga::{self, Pga};
+
+/// A value whose coefficients a constraint compares: residuals are differences of such values, one row
+/// per coefficient.
+pub trait Coefficients:
+    Copy + Debug + Send + Sync + 'static + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self>
+{
+    /// `[f64; n]` for an n-coefficient type.
+    type Array: AsRef<[f64]>;
+    fn coefficients(self) -> Self::Array;
+    fn zero() -> Self;
+}
+
+/// A multivector that can be pinned: moved by a motor and commuted with a screw.
+pub trait Pinnable<A: Algebra>: Coefficients {
+    /// `M X ~M`. For CGA's 16-component even motor the generated sandwich may have a wider result type; its
+    /// extra grades vanish for a unit motor and are dropped.
+    fn transformed(self, motor: A::Motor) -> Self;
+    /// `B × X` (commutator product, SPEC §1.1), which keeps the grade of X.
+    fn screw_commutator(screw: A::Screw, object: Self) -> Self;
+}
+
+impl Coefficients for Vector3<f64> {
+    type Array = [f64; 3];
+
+    fn coefficients(self) -> [f64; 3] {
+        self.into()
+    }
+
+    fn zero() -> Self {
+        Vector3::zeros()
+    }
+}
+
+macro_rules! generated_coefficients {
+    ($($ty:ty),* $(,)?) => {$(
+        impl Coefficients for $ty {
+            type Array = [f64; <$ty>::BLADES.len()];
+
+            #[inline]
+            fn coefficients(self) -> Self::Array {
+                self.to_array()
+            }
+
+            #[inline]
+            fn zero() -> Self {
+                <$ty>::ZERO
+            }
+        }
+    )*};
+}
+
+generated_coefficients!(
+    pga::generated::Point,
+    pga::generated::Line,
+    pga::generated::Plane,
+    pga::generated::Pseudoscalar,
+    cga::generated::Vector,
+    cga::generated::Bivector,
+    cga::generated::Trivector,
+    cga::generated::Quadvector,
+    cga::generated::Pseudoscalar,
+);
+
+/// `Pinnable` from the generated sandwich and commutator; `$grade` projects the sandwich back onto the
+/// object's grade where the generated result type is wider.
+macro_rules! generated_pinnable {
+    ($algebra:ty, $module:ident: $($ty:ident $(. $grade:ident)?),* $(,)?) => {$(
+        impl Pinnable<$algebra> for $module::generated::$ty {
+            #[inline]
+            fn transformed(self, motor: <$algebra as Algebra>::Motor) -> Self {
+                use $module::generated::Sandwich;
+                motor.sandwich(self)$(.$grade())?
+            }
+
+            #[inline]
+            fn screw_commutator(screw: <$algebra as Algebra>::Screw, object: Self) -> Self {
+                use $module::generated::Commutator;
+                screw.commutator(object)
+            }
+        }
+    )*};
+}
+
+generated_pinnable!(Pga, pga: Point, Line, Plane);
+generated_pinnable!(Cga, cga: Vector.grade_1, Bivector, Trivector, Quadvector.grade_4);
+
+/// An algebra in which points, lines and planes can be pinned (SPEC §7 table).
+pub trait PinningAlgebra: Algebra {
+    /// CGA: the null vector `up(x)`; PGA: the trivector `(1 + e₀x)I₃`.
+    type PointObject: Pinnable<Self>;
+    /// CGA: the OPNS trivector `up(a) ∧ up(a+d) ∧ n∞`; PGA: the bivector `d I₃ − (a∧d) I₃ e₀`.
+    type LineObject: Pinnable<Self>;
+    /// CGA: the OPNS 4-vector `(n + δ n∞) I₅`; PGA: the vector `n + δ e₀`.
+    type PlaneObject: Pinnable<Self>;
+    /// The value of `P ∧ X` for a point P and a plane X: a pseudoscalar, zero iff P is on X.
+    type Incidence: Coefficients;
+
+    fn point_object(x: Vector3<f64>) -> Self::PointObject;
+    /// The line through `point` along `direction`; with a unit direction it has unit weight.
+    fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject;
+    /// The plane `{x : normal·x = offset}`.
+    fn plane_object(normal: Vector3<f64>, offset: f64) -> Self::PlaneObject;
+    /// `P ∧ X` (SPEC §9 table: body point on plane).
+    fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence;
+}
+
+impl PinningAlgebra for Pga {
+    type PointObject = pga::generated::Point;
+    type LineObject = pga::generated::Line;
+    type PlaneObject = pga::generated::Plane;
+    type Incidence = pga::generated::Pseudoscalar;
+
+    fn point_object(x: Vector3<f64>) -> Self::PointObject {
+        Pga::point(x)
+    }
+
+    fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject {
+        // SPEC §1.3: L = d I₃ + (a⨯d)∧e₀, i.e. lᵢ-coordinates d and tᵢ-coordinates a⨯d.
+        let moment = point.cross(&direction);
+        pga::line_from_coordinates([direction.x, direction.y, direction.z, moment.x, moment.y, moment.z])
+    }
+
+    fn plane_object(normal: Vector3<f64>, offset: f64) -> Self::PlaneObject {
+        pga::generated::Plane {
+            e1: normal.x,
+            e2: normal.y,
+            e3: normal.z,
+            e0: offset,
+        }
+    }
+
+    fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence {
+        point ^ plane
+    }
+}
+
+/// `n∞ = e4 + e5` (SPEC §1.2).
+const INFINITY: cga::generated::Vector = cga::generated::Vector {
+    e1: 0.0,
+    e2: 0.0,
+    e3: 0.0,
+    e4: 1.0,
+    e5: 1.0,
+};
+
+/// `I₅ = e12345`, which takes IPNS (vector, bivector) objects to OPNS ones (SPEC §1.2).
+const UNIT_PSEUDOSCALAR: cga::generated::Pseudoscalar = cga::generated::Pseudoscalar { e12345: 1.0 };
+
+/// The IPNS plane `n + δ n∞` (SPEC §1.2).
+fn cga_dual_plane(normal: Vector3<f64>, offset: f64) -> cga::generated::Vector {
+    cga::generated::Vector {
+        e1: normal.x,
+        e2: normal.y,
+        e3: normal.z,
+        e4: 0.0,
+        e5: 0.0,
+    } + INFINITY * offset
+}
+
+/// The IPNS sphere `up(c) − ½ρ² n∞` (SPEC §1.2).
+fn cga_dual_sphere(centre: Vector3<f64>, radius: f64) -> cga::generated::Vector {
+    Cga::point(centre) - INFINITY * (0.5 * radius * radius)
+}
+
+/// The OPNS sphere `(up(c) − ½ρ² n∞) I₅` (CGA only).
+pub fn cga_sphere(centre: Vector3<f64>, radius: f64) -> cga::generated::Quadvector {
+    cga_dual_sphere(centre, radius) * UNIT_PSEUDOSCALAR
+}
+
+/// The OPNS circle of radius ρ about `centre` in the plane through it with `normal`: the meet of the sphere
+/// and the plane, `(σ ∧ π) I₅` (CGA only).
+pub fn cga_circle(centre: Vector3<f64>, radius: f64, normal: Vector3<f64>) -> cga::generated::Trivector {
+    (cga_dual_sphere(centre, radius) ^ cga_dual_plane(normal, normal.dot(&centre))) * UNIT_PSEUDOSCALAR
+}
+
+impl PinningAlgebra for Cga {
+    type PointObject = cga::generated::Vector;
+    type LineObject = cga::generated::Trivector;
+    type PlaneObject = cga::generated::Quadvector;
+    type Incidence = cga::generated::Pseudoscalar;
+
+    fn point_object(x: Vector3<f64>) -> Self::PointObject {
+        Cga::point(x)
+    }
+
+    fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject {
+        Cga::point(point) ^ Cga::point(point + direction) ^ INFINITY
+    }
+
+    fn plane_object(normal: Vector3<f64>, offset: f64) -> Self::PlaneObject {
+        cga_dual_plane(normal, offset) * UNIT_PSEUDOSCALAR
+    }
+
+    fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence {
+        point ^ plane
+    }
+}

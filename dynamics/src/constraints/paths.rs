@@ -1,0 +1,140 @@
+//! Parametric paths (SPEC §8): a body-frame U(t) or world-frame V(t) with exact first and second time
+//! derivatives, given by the user ([`FunctionPath`]) or generated exactly by a translator
+//! ([`TranslatedPath`]: a driven pivot, an attachment sliding on the body).
+
+use std::marker::PhantomData;
+
+use nalgebra::Vector3;
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::constraints::objects::{Coefficients, Pinnable, PinningAlgebra};
+
+/// A path's value and its first and second time derivatives at one time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathPoint<X> {
+    pub value: X,
+    pub rate: X,
+    pub acceleration: X,
+}
+
+impl<X: Coefficients> PathPoint<X> {
+    /// A value at rest.
+    pub fn at_rest(value: X) -> Self {
+        PathPoint {
+            value,
+            rate: X::zero(),
+            acceleration: X::zero(),
+        }
+    }
+}
+
+/// A prescribed path with exact derivatives.
+pub trait Path<X>: Send + Sync {
+    fn at(&self, t: f64) -> PathPoint<X>;
+    /// A fixed path lets a pin skip the derivative terms of SPEC §8 (they are zero).
+    fn is_fixed(&self) -> bool {
+        false
+    }
+}
+
+/// A constant value (SPEC §7: static U and V).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fixed<X>(pub X);
+
+impl<X: Coefficients> Path<X> for Fixed<X> {
+    fn at(&self, _t: f64) -> PathPoint<X> {
+        PathPoint::at_rest(self.0)
+    }
+
+    fn is_fixed(&self) -> bool {
+        true
+    }
+}
+
+/// A path given by a closure returning the value and its exact derivatives.
+#[derive(Clone, Copy, Debug)]
+pub struct FunctionPath<F>(pub F);
+
+impl<X, F: Fn(f64) -> PathPoint<X> + Send + Sync> Path<X> for FunctionPath<F> {
+    fn at(&self, t: f64) -> PathPoint<X> {
+        (self.0)(t)
+    }
+}
+
+/// `V(t) = T(c(t)) V₀ ~T(c(t))` for an offset path c(t) with exact derivatives (SPEC §8).
+///
+/// The SPEC writes it as `V₀ + L(c) + Q(c,c)` with `L(c) = ½(N c V₀ − V₀ N c)` and `Q(c₁,c₂) = −¼ N c₁ V₀ N c₂`.
+/// With the translation screw `τ(c) = N c = −Σ cᵢtᵢ` (so `T(c) = 1 + ½τ`), `L(c) = τ × V₀`, and since
+/// translation screws annihilate each other (`τ₁τ₂ = 0`), `Q(c₁,c₂) + Q(c₂,c₁) = τ₁ × (τ₂ × V₀)`. Hence,
+/// exactly and with the commutator alone:
+///
+/// ```text
+/// V = V₀ + τ×V₀ + ½ τ×(τ×V₀)
+/// V̇ = τ̇×V₀ + τ̇×(τ×V₀)
+/// V̈ = τ̈×V₀ + τ̈×(τ×V₀) + τ̇×(τ̇×V₀)
+/// ```
+/// (`τ̇ × (τ × V₀) = τ × (τ̇ × V₀)` by the Jacobi identity, translations commuting.)
+pub struct TranslatedPath<A, X, F> {
+    base: X,
+    offset: F,
+    algebra: PhantomData<fn() -> A>,
+}
+
+impl<A, X, F> TranslatedPath<A, X, F>
+where
+    A: Algebra,
+    X: Pinnable<A>,
+    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+{
+    /// `base` moved along the offset path `offset(t)` (value, velocity, acceleration).
+    pub fn new(base: X, offset: F) -> Self {
+        TranslatedPath {
+            base,
+            offset,
+            algebra: PhantomData,
+        }
+    }
+}
+
+/// `τ(c) = N c = −Σ cᵢtᵢ`.
+fn translation_screw<A: Algebra>(offset: Vector3<f64>) -> A::Screw {
+    A::screw(ScrewCoordinates {
+        l: Vector3::zeros(),
+        t: -offset,
+    })
+}
+
+impl<A, X, F> Path<X> for TranslatedPath<A, X, F>
+where
+    A: Algebra,
+    X: Pinnable<A>,
+    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+{
+    fn at(&self, t: f64) -> PathPoint<X> {
+        let c = (self.offset)(t);
+        let (tau, tau_rate, tau_acceleration) = (
+            translation_screw::<A>(c.value),
+            translation_screw::<A>(c.rate),
+            translation_screw::<A>(c.acceleration),
+        );
+        let commute = X::screw_commutator;
+        let first = commute(tau, self.base);
+        PathPoint {
+            value: self.base + first + commute(tau, first) * 0.5,
+            rate: commute(tau_rate, self.base) + commute(tau_rate, first),
+            acceleration: commute(tau_acceleration, self.base)
+                + commute(tau_acceleration, first)
+                + commute(tau_rate, commute(tau_rate, self.base)),
+        }
+    }
+}
+
+/// The point at `position(t)`: the origin point translated along the path, so its derivatives are exact
+/// (SPEC §8 gives them per algebra: `ṗ + (p·ṗ)n∞` in CGA, `e₀ṗI₃` in PGA).
+pub fn moving_point<A, F>(position: F) -> TranslatedPath<A, A::PointObject, F>
+where
+    A: PinningAlgebra,
+    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+{
+    TranslatedPath::new(A::point_object(Vector3::zeros()), position)
+}

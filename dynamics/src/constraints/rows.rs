@@ -1,0 +1,87 @@
+//! The scalar rows every constraint reduces to (see the module docs of [`crate::constraints`]), and a
+//! fixed-capacity buffer for them, so an evaluation of the equations of motion does not allocate.
+
+/// The most rows one system can have: a CGA hinge pinned as an OPNS line (10 coefficients) and a point
+/// (5) needs 15; twice that leaves room for several pins.
+pub const MAX_ROWS: usize = 32;
+
+/// One scalar constraint at one state, in the body velocity coordinates `x = (ω; v)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ConstraintRow {
+    /// `a`: the velocity residual is `a·x + s(t)`.
+    pub jacobian: [f64; 6],
+    /// `ė`, the velocity residual at this state.
+    pub velocity_residual: f64,
+    /// `b`: the rate of the velocity residual is `a·ẍ + b`.
+    pub bias: f64,
+    /// `e`, with `de/dt = ė`, if the constraint has a position-level form.
+    pub position_residual: Option<f64>,
+}
+
+impl ConstraintRow {
+    pub(crate) fn is_finite(&self) -> bool {
+        self.jacobian.iter().all(|a| a.is_finite())
+            && self.velocity_residual.is_finite()
+            && self.bias.is_finite()
+            && self.position_residual.iter().all(|e| e.is_finite())
+    }
+}
+
+/// Up to [`MAX_ROWS`] rows. Rows pushed beyond the capacity are counted, not stored, and reported by the
+/// system as [`crate::constraints::ConstraintError::TooManyRows`].
+#[derive(Clone, Debug)]
+pub struct RowBuffer {
+    rows: [ConstraintRow; MAX_ROWS],
+    len: usize,
+    requested: usize,
+}
+
+impl Default for RowBuffer {
+    fn default() -> Self {
+        RowBuffer {
+            rows: [ConstraintRow::default(); MAX_ROWS],
+            len: 0,
+            requested: 0,
+        }
+    }
+}
+
+impl RowBuffer {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Appends a row (see the type docs for overflow).
+    #[inline]
+    pub fn push(&mut self, row: ConstraintRow) {
+        self.requested += 1;
+        if self.len < MAX_ROWS {
+            self.rows[self.len] = row;
+            self.len += 1;
+        }
+    }
+
+    /// The stored rows.
+    #[inline]
+    pub fn rows(&self) -> &[ConstraintRow] {
+        &self.rows[..self.len]
+    }
+
+    /// How many rows were pushed, including any beyond the capacity.
+    pub fn requested(&self) -> usize {
+        self.requested
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.requested = 0;
+    }
+}

@@ -1,0 +1,243 @@
+//! The reference scenes of SCENES.md (built from the GA-independent [`mod@reference`] parameters) as constrained
+//! systems with their initial states, per algebra and per constraint formulation: one place for tests,
+//! examples and sweeps over scenes × integrators × step sizes.
+//!
+//! | scene | virtual power (SPEC §6) | pinning (SPEC §7, §9) |
+//! |---|---|---|
+//! | 1 cuboid | free | free |
+//! | 2 hinged rod | 3 forces + 2 couples | line + point, rank 5 |
+//! | 3a/3b top | ball joint: 3 forces | point, rank 3 |
+//! | 4 sphere | force towards the centre | CGA only: `P ∧ S = 0`, rank 1 |
+//! | 4 circle | sphere + plane forces | CGA only: `P ∧ C = 0`, rank 2 |
+//!
+//! PGA has no spheres or circles (SPEC §13), so scene 4 by pinning is CGA only.
+
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+use reference::{SceneConstraint, SceneId, SceneParameters};
+
+use crate::algebra::Algebra;
+use crate::body::{Body, BodyError};
+use crate::cga::Cga;
+use crate::constraints::ConstrainedBody;
+use crate::constraints::{linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower};
+use crate::forces::Force;
+use crate::pga::Pga;
+use crate::state::State;
+
+/// How a scene's constraint is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Formulation {
+    /// Constraint wrenches (SPEC §6).
+    VirtualPower,
+    /// Pinned multivectors and linear functions of them (SPEC §7, §9).
+    Pinning,
+}
+
+impl Formulation {
+    pub const ALL: [Formulation; 2] = [Formulation::VirtualPower, Formulation::Pinning];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::VirtualPower => "virtual power",
+            Formulation::Pinning => "pinning",
+        }
+    }
+}
+
+/// Why a scene could not be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    #[error("scene {scene} cannot be written by {formulation} in {algebra}")]
+    NotExpressible {
+        scene: &'static str,
+        formulation: &'static str,
+        algebra: &'static str,
+    },
+    #[error(transparent)]
+    Body(#[from] BodyError),
+    #[error(transparent)]
+    Constraint(#[from] ConstraintError),
+}
+
+/// An algebra in which the scenes can be built. Only CGA can pin a point to a sphere or a circle.
+pub trait SceneAlgebra: PinningAlgebra {
+    /// `P ∧ S = 0` (SPEC §9), if the algebra has spheres.
+    fn point_on_sphere_pin(
+        body_point: Vector3<f64>,
+        centre: Vector3<f64>,
+        radius: f64,
+    ) -> Option<Arc<dyn Constraint<Self>>>;
+    /// `P ∧ C = 0` (SPEC §9), if the algebra has circles.
+    fn point_on_circle_pin(
+        body_point: Vector3<f64>,
+        circle: (Vector3<f64>, f64, Vector3<f64>),
+    ) -> Option<Arc<dyn Constraint<Self>>>;
+}
+
+impl SceneAlgebra for Pga {
+    fn point_on_sphere_pin(_: Vector3<f64>, _: Vector3<f64>, _: f64) -> Option<Arc<dyn Constraint<Self>>> {
+        None
+    }
+
+    fn point_on_circle_pin(_: Vector3<f64>, _: (Vector3<f64>, f64, Vector3<f64>)) -> Option<Arc<dyn Constraint<Self>>> {
+        None
+    }
+}
+
+impl SceneAlgebra for Cga {
+    fn point_on_sphere_pin(
+        body_point: Vector3<f64>,
+        centre: Vector3<f64>,
+        radius: f64,
+    ) -> Option<Arc<dyn Constraint<Self>>> {
+        Some(Arc::new(linear::cga_point_on_sphere(
+            "rod end on sphere",
+            body_point,
+            centre,
+            radius,
+        )))
+    }
+
+    fn point_on_circle_pin(
+        body_point: Vector3<f64>,
+        circle: (Vector3<f64>, f64, Vector3<f64>),
+    ) -> Option<Arc<dyn Constraint<Self>>> {
+        Some(Arc::new(linear::cga_point_on_circle(
+            "rod end on circle",
+            body_point,
+            circle,
+        )))
+    }
+}
+
+/// A scene ready to run: the system, its initial state (projected onto the constraint manifold, SPEC §10) and
+/// how long SCENES.md runs it.
+#[derive(Clone, Debug)]
+pub struct Scene<A: Algebra> {
+    pub id: SceneId,
+    pub formulation: Formulation,
+    pub parameters: SceneParameters,
+    pub system: ConstrainedBody<A>,
+    pub initial: State<A>,
+    pub duration: f64,
+}
+
+/// The constraint of a scene in one formulation (`None` for a free body).
+fn scene_constraint<A: SceneAlgebra>(
+    id: SceneId,
+    parameters: &SceneParameters,
+    formulation: Formulation,
+) -> Result<Option<Arc<dyn Constraint<A>>>, SceneError> {
+    let not_expressible = || SceneError::NotExpressible {
+        scene: id.label(),
+        formulation: formulation.name(),
+        algebra: A::NAME,
+    };
+    let constraint: Arc<dyn Constraint<A>> = match (parameters.constraint, formulation) {
+        (SceneConstraint::Free, _) => return Ok(None),
+        (
+            SceneConstraint::Hinge {
+                pivot,
+                axis,
+                body_anchor,
+            },
+            _,
+        ) => {
+            let body_axis = parameters.initial_orientation.inverse() * axis;
+            let (body, world) = ((body_anchor, body_axis), (pivot, axis));
+            match formulation {
+                Formulation::VirtualPower => Arc::new(VirtualPower::hinge("hinge", body, world)?),
+                Formulation::Pinning => Arc::new(pinning::hinge::<A>("hinge", body, world)?),
+            }
+        }
+        (SceneConstraint::BallJoint { pivot, body_anchor }, Formulation::VirtualPower) => {
+            Arc::new(VirtualPower::ball_joint("ball joint", body_anchor, pivot))
+        }
+        (SceneConstraint::BallJoint { pivot, body_anchor }, Formulation::Pinning) => {
+            Arc::new(pinning::point::<A>("pinned tip", body_anchor, pivot))
+        }
+        (
+            SceneConstraint::PointOnSphere {
+                body_anchor,
+                centre,
+                radius,
+            },
+            Formulation::VirtualPower,
+        ) => Arc::new(VirtualPower::point_on_sphere(
+            "rod end on sphere",
+            body_anchor,
+            centre,
+            radius,
+        )?),
+        (
+            SceneConstraint::PointOnSphere {
+                body_anchor,
+                centre,
+                radius,
+            },
+            Formulation::Pinning,
+        ) => A::point_on_sphere_pin(body_anchor, centre, radius).ok_or_else(not_expressible)?,
+        (
+            SceneConstraint::PointOnCircle {
+                body_anchor,
+                centre,
+                radius,
+                normal,
+            },
+            Formulation::VirtualPower,
+        ) => Arc::new(VirtualPower::point_on_circle(
+            "rod end on circle",
+            body_anchor,
+            (centre, radius, normal),
+        )?),
+        (
+            SceneConstraint::PointOnCircle {
+                body_anchor,
+                centre,
+                radius,
+                normal,
+            },
+            Formulation::Pinning,
+        ) => A::point_on_circle_pin(body_anchor, (centre, radius, normal)).ok_or_else(not_expressible)?,
+    };
+    Ok(Some(constraint))
+}
+
+/// Builds scene `id` in algebra `A` with the constraint written by `formulation`, stabilised by
+/// `stabilisation`; the initial state is projected onto the constraint manifold.
+pub fn build<A: SceneAlgebra>(
+    id: SceneId,
+    formulation: Formulation,
+    stabilisation: Stabilisation,
+) -> Result<Scene<A>, SceneError> {
+    let parameters = id.parameters();
+    let body = Body::new(parameters.mass, parameters.principal_moments)?;
+    let mut system = ConstrainedBody::<A>::new(body);
+    if parameters.gravity != 0.0 {
+        system = system.with_force(Force::Gravity {
+            acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
+        });
+    }
+    if let Some(constraint) = scene_constraint::<A>(id, &parameters, formulation)? {
+        system = system.with_constraint(constraint)?;
+    }
+    let system = system.with_stabilisation(stabilisation)?;
+    let initial = State::new(
+        &body,
+        parameters.initial_com,
+        &parameters.initial_orientation,
+        parameters.initial_body_angular_velocity,
+        parameters.initial_com_velocity,
+    );
+    let initial = system.project(0.0, &initial)?;
+    Ok(Scene {
+        id,
+        formulation,
+        parameters,
+        system,
+        initial,
+        duration: parameters.duration,
+    })
+}

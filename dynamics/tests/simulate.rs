@@ -1,0 +1,136 @@
+//! The simulation loop: schedules land on the reference sample times or are refused, the record matches the
+//! state it samples, splitting refuses what it cannot integrate, and a blow-up is reported.
+
+mod common;
+
+use std::sync::Arc;
+
+use common::cuboid;
+use dynamics::integrate::SplittingError;
+use dynamics::simulate::SAMPLE_INTERVAL;
+use dynamics::{
+    simulate, simulate_free_body, step, Algebra, Force, Integrator, Method, Schedule, SimulationError, SplittingMethod,
+};
+use nalgebra::Vector3;
+use reference::SceneId;
+
+#[test]
+fn a_step_that_misses_the_sample_times_is_refused() {
+    assert!(matches!(
+        Schedule::new(3e-3, 10.0),
+        Err(SimulationError::StepDoesNotDivideInterval { .. })
+    ));
+    assert!(matches!(
+        Schedule::new(2e-2, 10.0),
+        Err(SimulationError::StepDoesNotDivideInterval { .. })
+    ));
+    assert!(matches!(
+        Schedule::new(1e-3, 10.005),
+        Err(SimulationError::IntervalDoesNotDivideDuration { .. })
+    ));
+    assert_eq!(Schedule::new(1e-3, 1e6).err(), Some(SimulationError::TooLong));
+    assert_eq!(Schedule::new(1e-300, 10.0).err(), Some(SimulationError::TooLong));
+    for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            Schedule::new(bad, 10.0),
+            Err(SimulationError::NotPositive { .. })
+        ));
+        assert!(matches!(
+            Schedule::new(1e-3, bad),
+            Err(SimulationError::NotPositive { .. })
+        ));
+    }
+}
+
+#[test]
+fn schedules_land_on_the_reference_sample_times() {
+    let reference = SceneId::Cuboid
+        .reference_trajectory()
+        .expect("embedded reference parses");
+    for (dt, steps_per_sample) in [(1e-2, 1), (5e-3, 2), (2.5e-3, 4), (1e-3, 10), (1e-4, 100), (2e-5, 500)] {
+        let schedule = Schedule::new(dt, 10.0).expect("dt divides 0.01");
+        assert_eq!(schedule.steps_per_sample(), steps_per_sample);
+        assert_eq!(schedule.sample_count(), reference.samples().len());
+        assert_eq!(schedule.step_count(), 1000 * steps_per_sample);
+        assert!((schedule.dt() - dt).abs() < 1e-18);
+        for (index, sample) in reference.samples().iter().enumerate() {
+            assert_eq!(schedule.sample_time(index), sample.t);
+        }
+    }
+}
+
+/// The record's first sample is the initial state in classical terms, and a run equals stepping by hand.
+fn the_record_matches_the_state<A: Algebra>() {
+    let scene = cuboid::<A>();
+    let schedule = Schedule::new(1e-3, 0.5).expect("1e-3 divides 0.01");
+    let run = simulate(&scene.system, scene.initial, Method::Rk4, &schedule).expect("scene 1 runs");
+    assert_eq!(run.samples.len(), 51);
+    assert_eq!(run.steps, 500);
+    let first = &run.samples[0];
+    let start = scene.scene.initial_state();
+    assert_eq!(first.t, 0.0);
+    assert!((first.position - start.position).norm() < 1e-15);
+    assert!(first.orientation.angle_to(&start.orientation) < 1e-15);
+    assert!((first.velocity - start.velocity).norm() < 1e-14);
+    assert!((first.angular_velocity - start.angular_velocity).norm() < 1e-14);
+    assert!((first.energy - scene.scene.initial_energy).abs() < 1e-12);
+
+    let mut state = scene.initial;
+    for k in 0..schedule.step_count() {
+        state = step(
+            Method::Rk4,
+            &scene.system,
+            k as f64 * schedule.dt(),
+            &state,
+            schedule.dt(),
+        );
+    }
+    assert_eq!(
+        (run.final_state.motor, run.final_state.momentum),
+        (state.motor, state.momentum)
+    );
+    let (position, orientation) = state.pose();
+    let last = run.samples.last().expect("51 samples");
+    assert_eq!((last.position, last.orientation), (position, orientation));
+}
+
+/// A custom force may depend on the momentum, so the splitting refuses it (and the general methods take it).
+fn splitting_refuses_custom_forces<A: Algebra>() {
+    let scene = cuboid::<A>();
+    let damping = Force::<A>::Custom(Arc::new(|_, state| state.momentum * -0.1));
+    let system = scene.system.clone().with_force(Force::gravity()).with_force(damping);
+    let schedule = Schedule::new(1e-3, 0.1).expect("1e-3 divides 0.01");
+    for method in SplittingMethod::ALL {
+        assert_eq!(
+            simulate_free_body(&system, scene.initial, Integrator::Splitting(method), &schedule).err(),
+            Some(SimulationError::Splitting(SplittingError::CustomForce { index: 1 }))
+        );
+    }
+    for method in Method::ALL {
+        assert!(simulate_free_body(&system, scene.initial, Integrator::General(method), &schedule).is_ok());
+    }
+}
+
+/// A state that stops being finite ends the run with the time of the first bad sample.
+fn a_blow_up_is_reported<A: Algebra>() {
+    let scene = cuboid::<A>();
+    let explosive = Force::<A>::Custom(Arc::new(|t, _| {
+        dynamics::forces::couple::<A>(Vector3::repeat(if t < 0.25 { 0.0 } else { f64::NAN }))
+    }));
+    let system = scene.system.clone().with_force(explosive);
+    let schedule = Schedule::new(1e-3, 1.0).expect("1e-3 divides 0.01");
+    for method in Method::ALL {
+        assert_eq!(
+            simulate(&system, scene.initial, method, &schedule).err(),
+            Some(SimulationError::NonFinite {
+                t: 25.0 * SAMPLE_INTERVAL
+            })
+        );
+    }
+}
+
+for_both_algebras!(
+    the_record_matches_the_state,
+    splitting_refuses_custom_forces,
+    a_blow_up_is_reported
+);

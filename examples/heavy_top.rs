@@ -1,0 +1,117 @@
+//! The spinning cone pinned at its tip (the heavy symmetric top, SCENES.md scenes 3a and 3b), by virtual power
+//! (a ball joint of three forces) and by pinning the tip point, in PGA and CGA. Writes
+//! `heavy_top_{cusp,steady}_{virtual_power,pinning}_{pga,cga}.csv` and `heavy_top.png`: the path of the
+//! centre of the cone's base seen from above (cusped nutation from rest, and steady precession) and the tilt
+//! over time between the analytic nutation bounds.
+//!
+//! ```sh
+//! cargo run --release --example heavy_top [output folder, default out/examples]
+//! ```
+
+mod output;
+
+use dynamics::constraints::Stabilisation;
+use dynamics::scenes::{build, Formulation, SceneAlgebra};
+use dynamics::{Cga, Pga, Simulation};
+use nalgebra::Vector3;
+use output::{plot, run, traced, write_trajectory, Curve, Panel};
+use reference::scenes::HEAVY_TOP_VALUES;
+use reference::SceneId;
+
+/// The centre of the cone's base: on the axis, h/4 = 0.25 m beyond the centre of mass (the tip is 0.75 m
+/// before it).
+const BASE_CENTRE: Vector3<f64> = Vector3::new(0.0, 0.0, 0.25);
+
+fn simulate<A: SceneAlgebra>(
+    id: SceneId,
+    formulation: Formulation,
+    folder: &std::path::Path,
+) -> output::Result<Simulation<A>> {
+    let scene = build::<A>(id, formulation, Stabilisation::PROJECTION)?;
+    let simulation = run(&scene.system, scene.initial, 1e-3, scene.duration)?;
+    let name = if id == SceneId::TopCusp { "cusp" } else { "steady" };
+    let formulation_name = formulation.name().replace(' ', "_");
+    write_trajectory(
+        &folder.join(format!(
+            "heavy_top_{name}_{formulation_name}_{}.csv",
+            A::NAME.to_lowercase()
+        )),
+        &simulation,
+    )?;
+    Ok(simulation)
+}
+
+fn tilt(simulation: &Simulation<Pga>) -> Vec<(f64, f64)> {
+    simulation
+        .samples
+        .iter()
+        .map(|s| {
+            let axis = s.orientation * Vector3::z();
+            (s.t, axis.z.acos().to_degrees())
+        })
+        .collect()
+}
+
+fn main() -> output::Result<()> {
+    let folder = output::output_folder()?;
+    let mut runs = Vec::new();
+    for id in [SceneId::TopCusp, SceneId::TopSteady] {
+        for formulation in Formulation::ALL {
+            let pga = simulate::<Pga>(id, formulation, &folder)?;
+            let cga = simulate::<Cga>(id, formulation, &folder)?;
+            let difference = pga
+                .samples
+                .iter()
+                .zip(&cga.samples)
+                .map(|(p, c)| p.orientation.angle_to(&c.orientation))
+                .fold(0.0, f64::max);
+            println!(
+                "{} by {}: PGA vs CGA max orientation difference {difference:.1e} rad",
+                id.label(),
+                formulation.name()
+            );
+            runs.push((id, formulation, pga));
+        }
+    }
+    let pinned = |id: SceneId| {
+        runs.iter()
+            .find(|(run_id, formulation, _)| *run_id == id && *formulation == Formulation::Pinning)
+            .map(|(_, _, simulation)| simulation)
+            .ok_or("missing run")
+    };
+    let (cusp, steady) = (pinned(SceneId::TopCusp)?, pinned(SceneId::TopSteady)?);
+    let top_view = |simulation: &Simulation<Pga>| traced(simulation, BASE_CENTRE).iter().map(|p| (p.x, p.y)).collect();
+    let bound = |degrees: f64| vec![(0.0, degrees), (10.0, degrees)];
+    plot(
+        &folder.join("heavy_top.png"),
+        "Heavy top: solid cone (1 kg, h = r = 1 m) spinning at 20 rad/s, tip pinned",
+        &[
+            Panel {
+                title: "Centre of the base, seen from above".into(),
+                x_label: "world x (m)".into(),
+                y_label: "world y (m)".into(),
+                curves: vec![
+                    Curve::new("3a: from rest (cusps)", top_view(cusp)),
+                    Curve::new("3b: steady precession", top_view(steady)),
+                ],
+                equal_axes: true,
+                y_range: None,
+            },
+            Panel {
+                title: "Tilt of the axis from the vertical".into(),
+                x_label: "time t (s)".into(),
+                y_label: "θ (degrees)".into(),
+                curves: vec![
+                    Curve::new("3a", tilt(cusp)),
+                    Curve::new("3b", tilt(steady)),
+                    Curve::new("analytic θmax (3a)", bound(HEAVY_TOP_VALUES.theta_max.to_degrees())),
+                ],
+                equal_axes: false,
+                // Room above the curves for the legend.
+                y_range: Some((28.0, 52.0)),
+            },
+        ],
+    )?;
+    println!("wrote {}", folder.display());
+    Ok(())
+}

@@ -1,0 +1,193 @@
+//! The configurations of the sweep (scene × algebra × formulation × integrator × step) and running one.
+
+use dynamics::constraints::{simulate_constrained, Stabilisation};
+use dynamics::integrate::{Integrator, Method};
+use dynamics::scenes::{self, Formulation, SceneAlgebra};
+use dynamics::simulate::{simulate_free_body, Sample, Schedule};
+use dynamics::{Body, Cga, Force, FreeBody, Pga};
+use nalgebra::Vector3;
+use reference::{SceneConstraint, SceneId};
+
+use crate::measure::{measure, Measurements};
+
+/// The two algebras, as a value (the simulators are generic; this picks the instantiation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum AlgebraKind {
+    Cga,
+    Pga,
+}
+
+impl AlgebraKind {
+    pub const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AlgebraKind::Cga => "CGA",
+            AlgebraKind::Pga => "PGA",
+        }
+    }
+}
+
+/// One run of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    pub scene: SceneId,
+    pub algebra: AlgebraKind,
+    /// `None` for the free body, which has no constraint to formulate.
+    pub formulation: Option<Formulation>,
+    pub integrator: Integrator,
+    pub dt: f64,
+    /// Simulated time (the scene's T unless shortened).
+    pub duration: f64,
+    pub stabilisation: Stabilisation,
+}
+
+impl Config {
+    /// A label for tables and legends: "PGA, pinning, RK4".
+    pub fn series_label(&self) -> String {
+        match self.formulation {
+            Some(formulation) => format!("{}, {}, {}", self.algebra.name(), formulation.name(), self.integrator.name()),
+            None => format!("{}, {}", self.algebra.name(), self.integrator.name()),
+        }
+    }
+
+    /// The same run in the other algebra.
+    pub fn same_but(&self, algebra: AlgebraKind) -> Config {
+        Config { algebra, ..*self }
+    }
+}
+
+/// What the sweep covers.
+#[derive(Clone, Debug)]
+pub struct SweepPlan {
+    pub scenes: Vec<SceneId>,
+    pub integrators: Vec<Integrator>,
+    pub steps: Vec<f64>,
+    /// Overrides every scene's duration (for quick runs); must be a multiple of 0.01 s.
+    pub duration: Option<f64>,
+    pub stabilisation: Stabilisation,
+}
+
+/// Whether a scene can be written by a formulation in an algebra (PGA has no spheres or circles, so scene 4
+/// pins only in CGA; SPEC §13).
+fn expressible(scene: SceneId, algebra: AlgebraKind, formulation: Formulation) -> bool {
+    let needs_round_objects = matches!(
+        scene.parameters().constraint,
+        SceneConstraint::PointOnSphere { .. } | SceneConstraint::PointOnCircle { .. }
+    );
+    !(needs_round_objects && formulation == Formulation::Pinning && algebra == AlgebraKind::Pga)
+}
+
+impl SweepPlan {
+    /// Every configuration of the plan that can run: splitting integrators only on the free body, and
+    /// formulations only where the algebra has the geometry.
+    pub fn configurations(&self) -> Vec<Config> {
+        let mut configs = Vec::new();
+        for &scene in &self.scenes {
+            let parameters = scene.parameters();
+            let free = matches!(parameters.constraint, SceneConstraint::Free);
+            let formulations: Vec<Option<Formulation>> =
+                if free { vec![None] } else { Formulation::ALL.iter().copied().map(Some).collect() };
+            for algebra in AlgebraKind::ALL {
+                for &formulation in &formulations {
+                    if formulation.is_some_and(|f| !expressible(scene, algebra, f)) {
+                        continue;
+                    }
+                    for &integrator in &self.integrators {
+                        if !free && matches!(integrator, Integrator::Splitting(_)) {
+                            continue;
+                        }
+                        for &dt in &self.steps {
+                            configs.push(Config {
+                                scene,
+                                algebra,
+                                formulation,
+                                integrator,
+                                dt,
+                                duration: self.duration.unwrap_or(parameters.duration),
+                                stabilisation: self.stabilisation,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        configs
+    }
+}
+
+/// A finished run.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub config: Config,
+    /// The samples every 0.01 s.
+    pub samples: Vec<Sample>,
+    /// Stepping time of the run divided by the simulated time (s/s).
+    pub cpu_per_simulated_second: f64,
+    /// Stepping time per step (s).
+    pub time_per_step: f64,
+    pub measurements: Measurements,
+}
+
+/// Why a run failed (reported in the table; the sweep goes on).
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("scene: {0}")]
+    Scene(#[from] scenes::SceneError),
+    #[error("simulation: {0}")]
+    Simulation(String),
+    #[error("metrics: {0}")]
+    Metrics(String),
+}
+
+/// Runs one configuration.
+pub fn run(config: &Config) -> Result<Outcome, RunError> {
+    match config.algebra {
+        AlgebraKind::Cga => run_in::<Cga>(config),
+        AlgebraKind::Pga => run_in::<Pga>(config),
+    }
+}
+
+fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
+    let schedule = Schedule::new(config.dt, config.duration).map_err(|e| RunError::Simulation(e.to_string()))?;
+    let simulation = match config.formulation {
+        None => {
+            // The free body runs as a `FreeBody`, where every integrator (splittings included) applies.
+            let scene = scenes::build::<A>(config.scene, Formulation::Pinning, config.stabilisation)?;
+            let parameters = &scene.parameters;
+            let body = Body::new(parameters.mass, parameters.principal_moments)
+                .map_err(|e| RunError::Simulation(e.to_string()))?;
+            let mut system = FreeBody::<A>::new(body);
+            if parameters.gravity != 0.0 {
+                system = system.with_force(Force::Gravity { acceleration: Vector3::new(0.0, 0.0, -parameters.gravity) });
+            }
+            simulate_free_body(&system, scene.initial, config.integrator, &schedule)
+                .map_err(|e| RunError::Simulation(e.to_string()))?
+        }
+        Some(formulation) => {
+            let scene = scenes::build::<A>(config.scene, formulation, config.stabilisation)?;
+            let Integrator::General(method) = config.integrator else {
+                return Err(RunError::Simulation("splitting methods apply to free bodies only".into()));
+            };
+            simulate_constrained(&scene.system, scene.initial, method, &schedule)
+                .map_err(|e| RunError::Simulation(e.to_string()))?
+        }
+    };
+    let stepping = simulation.stepping_time.as_secs_f64();
+    let trajectory = simulation.trajectory().map_err(|e| RunError::Metrics(e.to_string()))?;
+    let measurements = measure(config, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
+    Ok(Outcome {
+        config: *config,
+        cpu_per_simulated_second: stepping / schedule.duration(),
+        time_per_step: stepping / simulation.steps.max(1) as f64,
+        measurements,
+        samples: simulation.samples,
+    })
+}
+
+/// The default integrators: every general method, and the splittings for the free body.
+pub fn default_integrators() -> Vec<Integrator> {
+    let mut integrators: Vec<Integrator> = Method::ALL.iter().copied().map(Integrator::General).collect();
+    integrators.extend(Integrator::ALL.iter().copied().filter(|i| matches!(i, Integrator::Splitting(_))));
+    integrators
+}

@@ -1,0 +1,80 @@
+//! A shortened main job (every scene, both algebras, both formulations, RK4 at dt = 1e-3, 2 s) whose
+//! report is checked against the references, so the report cannot silently rot.
+
+use dynamics::constraints::Stabilisation;
+use dynamics::integrate::{Integrator, Method};
+use reference::SceneId;
+use report::job::run_job;
+use report::markdown::agreement;
+use report::sweep::{AlgebraKind, SweepPlan};
+
+#[test]
+fn shortened_job_matches_the_references() {
+    let output = std::env::temp_dir().join("ga-dynamics-shortened-job");
+    let _ = std::fs::remove_dir_all(&output);
+    let plan = SweepPlan {
+        scenes: SceneId::ALL.to_vec(),
+        integrators: vec![Integrator::General(Method::Rk4)],
+        steps: vec![1e-3],
+        duration: Some(2.0),
+        stabilisation: Stabilisation::PROJECTION,
+    };
+    let summary = run_job(&plan, &output, false).expect("the job writes its output");
+    assert_eq!(summary.failures, 0, "{:?}", summary.results.iter().filter(|(_, r)| r.is_err()).collect::<Vec<_>>());
+    // 1 free scene × 2 algebras + 3 hinge/top scenes × 2 algebras × 2 formulations + 2 scene-4 × 3.
+    assert_eq!(summary.results.len(), 2 + 12 + 6);
+
+    for (config, result) in &summary.results {
+        let outcome = result.as_ref().unwrap();
+        let m = &outcome.measurements;
+        let label = format!("{:?} {}", config.scene, config.series_label());
+        // Bounds: the largest maximum over the run measured on this configuration set (RK4, dt = 1e-3,
+        // 2 s; both algebras and formulations) times 5, for machine differences in round-off. Measured:
+        // orientation 2.0e-9 (scene 1), 2.2e-10 (2), 4.5e-8 (3a, 3b), 5.6e-7 (sphere: the spin about the
+        // rod, whose axial moment is 1e-3, is poorly determined), 3.3e-9 (circle); position 2.5e-10,
+        // 1.1e-10, 2.2e-9, 7.7e-9, 1.0e-11; energy drift 7.5e-11, 4.7e-11, 6.0e-11, 5.7e-9, 1.6e-13;
+        // scene features at most 1.9e-9 (flip times 2.9e-10 s, period 8.5e-11 s, top features 1.9e-9).
+        let (orientation, position, energy) = match config.scene {
+            SceneId::Cuboid => (1e-8, 1.3e-9, 3.8e-10),
+            SceneId::Pendulum => (1.1e-9, 5.5e-10, 2.4e-10),
+            SceneId::TopCusp | SceneId::TopSteady => (2.3e-7, 1.1e-8, 3e-10),
+            SceneId::RodOnSphere => (2.8e-6, 3.9e-8, 2.9e-8),
+            SceneId::RodOnCircle => (1.7e-8, 5e-11, 8e-13),
+        };
+        assert!(m.orientation_max < orientation, "{label}: orientation error {}", m.orientation_max);
+        assert!(m.position_max < position, "{label}: position error {}", m.position_max);
+        assert!(m.energy_drift_max < energy, "{label}: energy drift {}", m.energy_drift_max);
+        // Projection holds every constraint at round-off (SPEC §10).
+        if let Some(violation) = m.violation_max {
+            assert!(violation <= 1e-12, "{label}: constraint violation {violation}");
+        }
+        for feature in &m.features {
+            assert!(feature.error() < 1e-8, "{label}: {} error {}", feature.name, feature.error());
+        }
+    }
+
+    // CGA and PGA give the same trajectories with identical steps.
+    for (config, result) in summary.results.iter().filter(|(c, _)| c.algebra == AlgebraKind::Cga) {
+        let twin = config.same_but(AlgebraKind::Pga);
+        let Some((_, Ok(pga))) = summary.results.iter().find(|(c, _)| *c == twin) else { continue };
+        let (angle, distance) = agreement(result.as_ref().unwrap(), pga);
+        assert!(angle < 1e-10 && distance < 1e-10, "{config:?}: CGA and PGA differ by {angle} rad, {distance} m");
+    }
+
+    // The report states these numbers, and the figures and trajectories exist.
+    let report = std::fs::read_to_string(output.join("report.md")).unwrap();
+    for scene in SceneId::ALL {
+        assert!(report.contains(&format!("## Scene {}", scene.label())), "report lacks {scene:?}");
+    }
+    let (config, outcome) = summary.results.iter().find(|(c, _)| c.scene == SceneId::Cuboid).map(|(c, r)| (c, r.as_ref().unwrap())).unwrap();
+    let row = format!("| {} | 1e-3 |", config.series_label());
+    let line = report.lines().find(|l| l.starts_with(&row)).expect("the cuboid row");
+    assert!(line.contains(&format!("{:.1e}", outcome.measurements.orientation_end)), "{line}");
+    for entry in std::fs::read_dir(&output).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "png") {
+            assert!(std::fs::metadata(&path).unwrap().len() > 10_000, "{} is too small", path.display());
+        }
+    }
+    assert!(std::fs::read_dir(output.join("trajectories")).unwrap().count() >= summary.results.len());
+}
