@@ -69,7 +69,10 @@ impl From<StabilisationName> for Stabilisation {
     fn from(name: StabilisationName) -> Stabilisation {
         match name {
             StabilisationName::Projection => Stabilisation::PROJECTION,
-            StabilisationName::Baumgarte => Stabilisation::Baumgarte { alpha: 10.0, beta: 10.0 },
+            StabilisationName::Baumgarte => Stabilisation::Baumgarte {
+                alpha: 10.0,
+                beta: 10.0,
+            },
             StabilisationName::None => Stabilisation::None,
         }
     }

@@ -35,7 +35,10 @@ fn work_precision_error(scene: SceneId, outcome: &Outcome) -> f64 {
 
 /// The step closest to 1e-3 among those run: the one the over-time plots and CSVs show.
 pub fn showcase_step(outcomes: &[&Outcome]) -> Option<f64> {
-    outcomes.iter().map(|o| o.config.dt).min_by(|a, b| (a.ln() - 1e-3f64.ln()).abs().total_cmp(&(b.ln() - 1e-3f64.ln()).abs()))
+    outcomes
+        .iter()
+        .map(|o| o.config.dt)
+        .min_by(|a, b| (a.ln() - 1e-3f64.ln()).abs().total_cmp(&(b.ln() - 1e-3f64.ln()).abs()))
 }
 
 /// Outcomes grouped by series label, in a stable order.
@@ -69,9 +72,13 @@ fn traced_path(scene: SceneId) -> (&'static str, &'static str, &'static str, Pro
             }),
             true,
         ),
-        SceneConstraint::Hinge { .. } => {
-            ("centre of mass path (side view)", "x (m)", "z (m)", Box::new(|s| (s.position.x, s.position.z)), true)
-        }
+        SceneConstraint::Hinge { .. } => (
+            "centre of mass path (side view)",
+            "x (m)",
+            "z (m)",
+            Box::new(|s| (s.position.x, s.position.z)),
+            true,
+        ),
         SceneConstraint::BallJoint { .. } => (
             "centre of mass path (top view): precession and nutation",
             "x (m)",
@@ -103,14 +110,22 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
     let mut series: Vec<Series> = groups
         .iter()
         .map(|(label, runs)| {
-            let mut points: Vec<(f64, f64)> =
-                runs.iter().map(|o| (o.cpu_per_simulated_second, work_precision_error(scene, o))).collect();
+            let mut points: Vec<(f64, f64)> = runs
+                .iter()
+                .map(|o| (o.cpu_per_simulated_second, work_precision_error(scene, o)))
+                .collect();
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series { markers: true, ..Series::line(label.clone(), points) }
+            Series {
+                markers: true,
+                ..Series::line(label.clone(), points)
+            }
         })
         .collect();
     if let Some(points) = mujoco::work_precision_points(scene) {
-        series.push(Series { markers_only: true, ..Series::line("MuJoCo 4.0 RK4 (measured)", points) });
+        series.push(Series {
+            markers_only: true,
+            ..Series::line("MuJoCo 4.0 RK4 (measured)", points)
+        });
     }
     let y = match scene {
         SceneId::RodOnSphere | SceneId::RodOnCircle => "centre-of-mass position error at T (m)",
@@ -118,11 +133,21 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
     };
     let name = format!("{stem}_work_precision.png");
     let title = format!("Scene {}: error against CPU time", scene.label());
-    log_log(&dir.join(&name), &Labels { title: &title, x: "CPU per simulated second (s)", y }, &series)?;
+    log_log(
+        &dir.join(&name),
+        &Labels {
+            title: &title,
+            x: "CPU per simulated second (s)",
+            y,
+        },
+        &series,
+    )?;
     files.push(name);
 
     // Over time, at the showcase step.
-    let Some(dt) = showcase_step(&outcomes) else { return Ok(files) };
+    let Some(dt) = showcase_step(&outcomes) else {
+        return Ok(files);
+    };
     let showcase: Vec<&Outcome> = outcomes.iter().copied().filter(|o| o.config.dt == dt).collect();
     let over_time = |values: fn(&Outcome) -> &[f64]| -> Vec<Series> {
         showcase
@@ -137,7 +162,11 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
     let title = format!("Scene {}: energy drift, dt = {dt:.0e} s", scene.label());
     linear_log(
         &dir.join(&name),
-        &Labels { title: &title, x: "time (s)", y: "|E(t) − E₀| / E_scale" },
+        &Labels {
+            title: &title,
+            x: "time (s)",
+            y: "|E(t) − E₀| / E_scale",
+        },
         &over_time(|o| &o.measurements.energy_drift),
     )?;
     files.push(name);
@@ -146,7 +175,11 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
         let title = format!("Scene {}: constraint violation, dt = {dt:.0e} s", scene.label());
         linear_log(
             &dir.join(&name),
-            &Labels { title: &title, x: "time (s)", y: "constraint violation (m)" },
+            &Labels {
+                title: &title,
+                x: "time (s)",
+                y: "constraint violation (m)",
+            },
             &over_time(|o| &o.measurements.violation),
         )?;
         files.push(name);
@@ -154,7 +187,12 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
 
     // The paper-style traced path: the most accurate PGA run against the reference.
     let (what, x, y, project, equal) = traced_path(scene);
-    let best = outcomes.iter().min_by(|a, b| a.config.dt.total_cmp(&b.config.dt).then(a.config.algebra.cmp(&b.config.algebra).reverse()));
+    let best = outcomes.iter().min_by(|a, b| {
+        a.config
+            .dt
+            .total_cmp(&b.config.dt)
+            .then(a.config.algebra.cmp(&b.config.algebra).reverse())
+    });
     let reference = scene.reference_trajectory().ok();
     if let (Some(best), Some(reference)) = (best, reference) {
         let simulated: Vec<(f64, f64)> = best.samples.iter().map(&project).collect();
@@ -175,7 +213,10 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
             .collect();
         let series = [
             Series::line("reference (DOP853)", reference),
-            Series::line(format!("{}, dt = {:.0e} s", best.config.series_label(), best.config.dt), simulated),
+            Series::line(
+                format!("{}, dt = {:.0e} s", best.config.series_label(), best.config.dt),
+                simulated,
+            ),
         ];
         let name = format!("{stem}_path.png");
         let title = format!("Scene {}: {what}", scene.label());

@@ -8,11 +8,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use reference::SceneId;
 
+use crate::csv;
 use crate::figures::{self, showcase_step};
 use crate::markdown::{self, RunResult};
 use crate::plot::PlotError;
 use crate::sweep::{run, Outcome, SweepPlan};
-use crate::csv;
 
 /// Why the job could not write its output.
 #[derive(Debug, thiserror::Error)]
@@ -34,7 +34,10 @@ pub struct JobSummary {
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> JobError + '_ {
-    move |source| JobError::Io { path: path.to_path_buf(), source }
+    move |source| JobError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
 }
 
 /// Runs every configuration of `plan` and writes the report into `output`.
@@ -47,7 +50,11 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
     let trajectories = output.join("trajectories");
     std::fs::create_dir_all(&trajectories).map_err(io(&trajectories))?;
 
-    let progress = if show_progress { ProgressBar::new(configs.len() as u64) } else { ProgressBar::hidden() };
+    let progress = if show_progress {
+        ProgressBar::new(configs.len() as u64)
+    } else {
+        ProgressBar::hidden()
+    };
     progress.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, about {eta} left  {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -83,7 +90,12 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
                 let name = format!(
                     "{}_{}_dt{:.0e}.csv",
                     figures::stem(scene),
-                    outcome.config.series_label().to_lowercase().replace(", ", "_").replace(' ', "-"),
+                    outcome
+                        .config
+                        .series_label()
+                        .to_lowercase()
+                        .replace(", ", "_")
+                        .replace(' ', "-"),
                     dt
                 );
                 let path = trajectories.join(name);
@@ -95,5 +107,9 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
     let report_path = output.join("report.md");
     std::fs::write(&report_path, markdown::report(&results, threads, &figure_files)).map_err(io(&report_path))?;
     let failures = results.iter().filter(|(_, r)| r.is_err()).count();
-    Ok(JobSummary { output: output.to_path_buf(), results, failures })
+    Ok(JobSummary {
+        output: output.to_path_buf(),
+        results,
+        failures,
+    })
 }

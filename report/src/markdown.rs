@@ -22,9 +22,16 @@ fn scientific(value: f64) -> String {
 
 /// The largest orientation (rad) and position (m) difference over the samples of two runs.
 pub fn agreement(first: &Outcome, second: &Outcome) -> (f64, f64) {
-    first.samples.iter().zip(&second.samples).fold((0.0f64, 0.0f64), |(angle, distance), (a, b)| {
-        (angle.max(a.orientation.angle_to(&b.orientation)), distance.max((a.position - b.position).norm()))
-    })
+    first
+        .samples
+        .iter()
+        .zip(&second.samples)
+        .fold((0.0f64, 0.0f64), |(angle, distance), (a, b)| {
+            (
+                angle.max(a.orientation.angle_to(&b.orientation)),
+                distance.max((a.position - b.position).norm()),
+            )
+        })
 }
 
 fn scene_table(out: &mut String, results: &[&RunResult]) {
@@ -47,7 +54,11 @@ fn scene_table(out: &mut String, results: &[&RunResult]) {
     if constrained {
         header.push("max constraint violation (m)".into());
     }
-    header.extend(feature_names.iter().map(|(name, unit)| format!("{name} error ({unit})")));
+    header.extend(
+        feature_names
+            .iter()
+            .map(|(name, unit)| format!("{name} error ({unit})")),
+    );
     let _ = writeln!(out, "| {} |", header.join(" | "));
     let _ = writeln!(out, "|{}|", vec!["---"; header.len()].join("|"));
     for (config, result) in results {
@@ -79,17 +90,26 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
     let mut worst: BTreeMap<String, (f64, f64)> = BTreeMap::new();
     for (config, result) in results.iter().filter(|(c, _)| c.algebra == AlgebraKind::Cga) {
         let twin = config.same_but(AlgebraKind::Pga);
-        let Some((_, Ok(pga))) = results.iter().find(|(c, _)| *c == twin) else { continue };
+        let Some((_, Ok(pga))) = results.iter().find(|(c, _)| *c == twin) else {
+            continue;
+        };
         let Ok(cga) = result else { continue };
         let (angle, distance) = agreement(cga, pga);
-        let label = format!("{}, dt = {:.0e}", config.series_label().trim_start_matches("CGA, "), config.dt);
+        let label = format!(
+            "{}, dt = {:.0e}",
+            config.series_label().trim_start_matches("CGA, "),
+            config.dt
+        );
         worst.insert(label, (angle, distance));
     }
     if worst.is_empty() {
         let _ = writeln!(out, "No configuration runs in both algebras.\n");
         return;
     }
-    let _ = writeln!(out, "| configuration | max orientation difference (rad) | max position difference (m) |");
+    let _ = writeln!(
+        out,
+        "| configuration | max orientation difference (rad) | max position difference (m) |"
+    );
     let _ = writeln!(out, "|---|---|---|");
     for (label, (angle, distance)) in worst {
         let _ = writeln!(out, "| {label} | {} | {} |", scientific(angle), scientific(distance));
@@ -123,8 +143,11 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
         scene_table(&mut out, &runs);
         let _ = writeln!(out);
         if let Some(anchor) = mujoco::anchor(scene) {
-            let points: Vec<String> =
-                anchor.points.iter().map(|(dt, error)| format!("dt = {dt:.0e}: {error:.0e}")).collect();
+            let points: Vec<String> = anchor
+                .points
+                .iter()
+                .map(|(dt, error)| format!("dt = {dt:.0e}: {error:.0e}"))
+                .collect();
             let _ = writeln!(
                 out,
                 "MuJoCo 4.0 RK4 on this scene and machine (issue tracker): {:.1} µs/step; error at T {}.\n",

@@ -60,10 +60,17 @@ pub fn violation(constraint: &SceneConstraint, sample: &Sample) -> Option<f64> {
         SceneConstraint::Hinge { pivot, body_anchor, .. } | SceneConstraint::BallJoint { pivot, body_anchor } => {
             Some((sample.world_point(&body_anchor) - pivot).norm())
         }
-        SceneConstraint::PointOnSphere { body_anchor, centre, radius } => {
-            Some(((sample.world_point(&body_anchor) - centre).norm() - radius).abs())
-        }
-        SceneConstraint::PointOnCircle { body_anchor, centre, radius, normal } => {
+        SceneConstraint::PointOnSphere {
+            body_anchor,
+            centre,
+            radius,
+        } => Some(((sample.world_point(&body_anchor) - centre).norm() - radius).abs()),
+        SceneConstraint::PointOnCircle {
+            body_anchor,
+            centre,
+            radius,
+            normal,
+        } => {
             let offset = sample.world_point(&body_anchor) - centre;
             Some(((offset.norm() - radius).abs()).max(offset.dot(&normal.normalize()).abs()))
         }
@@ -75,11 +82,21 @@ fn truncated(trajectory: &Trajectory, count: usize) -> Result<Trajectory, Trajec
     Trajectory::new(trajectory.samples()[..count.min(trajectory.samples().len())].to_vec())
 }
 
-fn features(scene: SceneId, parameters: &SceneParameters, simulated: &Trajectory, reference: &Trajectory) -> Result<Vec<Feature>, MetricError> {
+fn features(
+    scene: SceneId,
+    parameters: &SceneParameters,
+    simulated: &Trajectory,
+    reference: &Trajectory,
+) -> Result<Vec<Feature>, MetricError> {
     let duration = simulated.last().t;
     Ok(match scene {
         SceneId::Cuboid => {
-            let analytic: Vec<f64> = CUBOID_VALUES.flip_instants.iter().copied().filter(|&t| t < duration - 0.05).collect();
+            let analytic: Vec<f64> = CUBOID_VALUES
+                .flip_instants
+                .iter()
+                .copied()
+                .filter(|&t| t < duration - 0.05)
+                .collect();
             if analytic.is_empty() {
                 vec![]
             } else {
@@ -99,9 +116,17 @@ fn features(scene: SceneId, parameters: &SceneParameters, simulated: &Trajectory
             reference: PENDULUM_VALUES.exact_period,
         }],
         SceneId::TopCusp => {
-            let (ours, theirs) = (metrics::nutation_features(simulated)?, metrics::nutation_features(reference)?);
+            let (ours, theirs) = (
+                metrics::nutation_features(simulated)?,
+                metrics::nutation_features(reference)?,
+            );
             vec![
-                Feature { name: "θ_max", unit: "rad", simulated: ours.theta_max, reference: theirs.theta_max },
+                Feature {
+                    name: "θ_max",
+                    unit: "rad",
+                    simulated: ours.theta_max,
+                    reference: theirs.theta_max,
+                },
                 Feature {
                     name: "nutation period",
                     unit: "s",
@@ -119,7 +144,12 @@ fn features(scene: SceneId, parameters: &SceneParameters, simulated: &Trajectory
         SceneId::TopSteady => {
             let steady = metrics::steady_precession_features(simulated, TOP_INITIAL_TILT)?;
             vec![
-                Feature { name: "spurious nutation", unit: "rad", simulated: steady.max_nutation, reference: 0.0 },
+                Feature {
+                    name: "spurious nutation",
+                    unit: "rad",
+                    simulated: steady.max_nutation,
+                    reference: 0.0,
+                },
                 Feature {
                     name: "precession rate",
                     unit: "rad/s",
@@ -143,7 +173,11 @@ pub fn measure(config: &Config, simulated: &Trajectory) -> Result<Measurements, 
         .iter()
         .map(|s| (parameters.mechanical_energy(s) - parameters.initial_energy).abs() / parameters.energy_scale)
         .collect();
-    let violation: Vec<f64> = simulated.samples().iter().filter_map(|s| self::violation(&parameters.constraint, s)).collect();
+    let violation: Vec<f64> = simulated
+        .samples()
+        .iter()
+        .filter_map(|s| self::violation(&parameters.constraint, s))
+        .collect();
     Ok(Measurements {
         orientation_end: errors.end_orientation,
         orientation_max: errors.max_orientation,

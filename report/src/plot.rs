@@ -177,7 +177,12 @@ pub fn log_log(path: &Path, labels: &Labels, series: &[Series]) -> Result<(), Pl
             .draw()
             .map_err(|e| e.to_string())?;
         // Work-precision curves run from cheap-and-coarse to costly-and-accurate: the lower left is empty.
-        draw_series(&mut chart, series, |p| p.0 > 0.0 && p.1 > 0.0, SeriesLabelPosition::LowerLeft)?;
+        draw_series(
+            &mut chart,
+            series,
+            |p| p.0 > 0.0 && p.1 > 0.0,
+            SeriesLabelPosition::LowerLeft,
+        )?;
         root.present().map_err(|e| e.to_string())
     };
     draw().map_err(|message| error(path, message))

@@ -46,7 +46,12 @@ impl Config {
     /// A label for tables and legends: "PGA, pinning, RK4".
     pub fn series_label(&self) -> String {
         match self.formulation {
-            Some(formulation) => format!("{}, {}, {}", self.algebra.name(), formulation.name(), self.integrator.name()),
+            Some(formulation) => format!(
+                "{}, {}, {}",
+                self.algebra.name(),
+                formulation.name(),
+                self.integrator.name()
+            ),
             None => format!("{}, {}", self.algebra.name(), self.integrator.name()),
         }
     }
@@ -86,8 +91,11 @@ impl SweepPlan {
         for &scene in &self.scenes {
             let parameters = scene.parameters();
             let free = matches!(parameters.constraint, SceneConstraint::Free);
-            let formulations: Vec<Option<Formulation>> =
-                if free { vec![None] } else { Formulation::ALL.iter().copied().map(Some).collect() };
+            let formulations: Vec<Option<Formulation>> = if free {
+                vec![None]
+            } else {
+                Formulation::ALL.iter().copied().map(Some).collect()
+            };
             for algebra in AlgebraKind::ALL {
                 for &formulation in &formulations {
                     if formulation.is_some_and(|f| !expressible(scene, algebra, f)) {
@@ -159,7 +167,9 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
                 .map_err(|e| RunError::Simulation(e.to_string()))?;
             let mut system = FreeBody::<A>::new(body);
             if parameters.gravity != 0.0 {
-                system = system.with_force(Force::Gravity { acceleration: Vector3::new(0.0, 0.0, -parameters.gravity) });
+                system = system.with_force(Force::Gravity {
+                    acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
+                });
             }
             simulate_free_body(&system, scene.initial, config.integrator, &schedule)
                 .map_err(|e| RunError::Simulation(e.to_string()))?
@@ -167,7 +177,9 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
         Some(formulation) => {
             let scene = scenes::build::<A>(config.scene, formulation, config.stabilisation)?;
             let Integrator::General(method) = config.integrator else {
-                return Err(RunError::Simulation("splitting methods apply to free bodies only".into()));
+                return Err(RunError::Simulation(
+                    "splitting methods apply to free bodies only".into(),
+                ));
             };
             simulate_constrained(&scene.system, scene.initial, method, &schedule)
                 .map_err(|e| RunError::Simulation(e.to_string()))?
@@ -188,6 +200,11 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
 /// The default integrators: every general method, and the splittings for the free body.
 pub fn default_integrators() -> Vec<Integrator> {
     let mut integrators: Vec<Integrator> = Method::ALL.iter().copied().map(Integrator::General).collect();
-    integrators.extend(Integrator::ALL.iter().copied().filter(|i| matches!(i, Integrator::Splitting(_))));
+    integrators.extend(
+        Integrator::ALL
+            .iter()
+            .copied()
+            .filter(|i| matches!(i, Integrator::Splitting(_))),
+    );
     integrators
 }

@@ -20,7 +20,12 @@ fn shortened_job_matches_the_references() {
         stabilisation: Stabilisation::PROJECTION,
     };
     let summary = run_job(&plan, &output, false).expect("the job writes its output");
-    assert_eq!(summary.failures, 0, "{:?}", summary.results.iter().filter(|(_, r)| r.is_err()).collect::<Vec<_>>());
+    assert_eq!(
+        summary.failures,
+        0,
+        "{:?}",
+        summary.results.iter().filter(|(_, r)| r.is_err()).collect::<Vec<_>>()
+    );
     // 1 free scene × 2 algebras + 3 hinge/top scenes × 2 algebras × 2 formulations + 2 scene-4 × 3.
     assert_eq!(summary.results.len(), 2 + 12 + 6);
 
@@ -41,39 +46,72 @@ fn shortened_job_matches_the_references() {
             SceneId::RodOnSphere => (2.8e-6, 3.9e-8, 2.9e-8),
             SceneId::RodOnCircle => (1.7e-8, 5e-11, 8e-13),
         };
-        assert!(m.orientation_max < orientation, "{label}: orientation error {}", m.orientation_max);
+        assert!(
+            m.orientation_max < orientation,
+            "{label}: orientation error {}",
+            m.orientation_max
+        );
         assert!(m.position_max < position, "{label}: position error {}", m.position_max);
-        assert!(m.energy_drift_max < energy, "{label}: energy drift {}", m.energy_drift_max);
+        assert!(
+            m.energy_drift_max < energy,
+            "{label}: energy drift {}",
+            m.energy_drift_max
+        );
         // Projection holds every constraint at round-off (SPEC §10).
         if let Some(violation) = m.violation_max {
             assert!(violation <= 1e-12, "{label}: constraint violation {violation}");
         }
         for feature in &m.features {
-            assert!(feature.error() < 1e-8, "{label}: {} error {}", feature.name, feature.error());
+            assert!(
+                feature.error() < 1e-8,
+                "{label}: {} error {}",
+                feature.name,
+                feature.error()
+            );
         }
     }
 
     // CGA and PGA give the same trajectories with identical steps.
     for (config, result) in summary.results.iter().filter(|(c, _)| c.algebra == AlgebraKind::Cga) {
         let twin = config.same_but(AlgebraKind::Pga);
-        let Some((_, Ok(pga))) = summary.results.iter().find(|(c, _)| *c == twin) else { continue };
+        let Some((_, Ok(pga))) = summary.results.iter().find(|(c, _)| *c == twin) else {
+            continue;
+        };
         let (angle, distance) = agreement(result.as_ref().unwrap(), pga);
-        assert!(angle < 1e-10 && distance < 1e-10, "{config:?}: CGA and PGA differ by {angle} rad, {distance} m");
+        assert!(
+            angle < 1e-10 && distance < 1e-10,
+            "{config:?}: CGA and PGA differ by {angle} rad, {distance} m"
+        );
     }
 
     // The report states these numbers, and the figures and trajectories exist.
     let report = std::fs::read_to_string(output.join("report.md")).unwrap();
     for scene in SceneId::ALL {
-        assert!(report.contains(&format!("## Scene {}", scene.label())), "report lacks {scene:?}");
+        assert!(
+            report.contains(&format!("## Scene {}", scene.label())),
+            "report lacks {scene:?}"
+        );
     }
-    let (config, outcome) = summary.results.iter().find(|(c, _)| c.scene == SceneId::Cuboid).map(|(c, r)| (c, r.as_ref().unwrap())).unwrap();
+    let (config, outcome) = summary
+        .results
+        .iter()
+        .find(|(c, _)| c.scene == SceneId::Cuboid)
+        .map(|(c, r)| (c, r.as_ref().unwrap()))
+        .unwrap();
     let row = format!("| {} | 1e-3 |", config.series_label());
     let line = report.lines().find(|l| l.starts_with(&row)).expect("the cuboid row");
-    assert!(line.contains(&format!("{:.1e}", outcome.measurements.orientation_end)), "{line}");
+    assert!(
+        line.contains(&format!("{:.1e}", outcome.measurements.orientation_end)),
+        "{line}"
+    );
     for entry in std::fs::read_dir(&output).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "png") {
-            assert!(std::fs::metadata(&path).unwrap().len() > 10_000, "{} is too small", path.display());
+            assert!(
+                std::fs::metadata(&path).unwrap().len() > 10_000,
+                "{} is too small",
+                path.display()
+            );
         }
     }
     assert!(std::fs::read_dir(output.join("trajectories")).unwrap().count() >= summary.results.len());
