@@ -50,9 +50,18 @@ pub const fn bivector_from_coordinates(c: [f64; 6]) -> Bivector {
     }
 }
 
-/// `[a₁, a₂, a₃, b₁, b₂, b₃]` of a screw: bᵢ is read from the eᵢ4 coefficient (SPEC §1.4).
+/// `[a₁, a₂, a₃, b₁, b₂, b₃]` of a screw. For a screw, bᵢ is both the eᵢ4 and the eᵢ5 coefficient
+/// (SPEC §1.4 reads eᵢ4); their mean is the orthogonal projection onto span{tᵢ}, which also removes
+/// round-off that a product leaves off the span.
 pub const fn bivector_coordinates(s: Bivector) -> [f64; 6] {
-    [s.e23, s.e31, s.e12, s.e14, s.e24, s.e34]
+    [
+        s.e23,
+        s.e31,
+        s.e12,
+        0.5 * (s.e14 + s.e15),
+        0.5 * (s.e24 + s.e25),
+        0.5 * (s.e34 + s.e35),
+    ]
 }
 
 /// `⟨X ∧ Y⟩_Π`: the e1234 coefficient (SPEC §1.4).

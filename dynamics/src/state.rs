@@ -38,9 +38,12 @@ impl<A: Algebra> State<A> {
             l: angular_body,
             t: rotation.inverse() * linear_world,
         });
+        // Project the sandwich's result back onto span{lᵢ, tᵢ}: in CGA its round-off leaves components
+        // off the span (e45, eᵢ4 ≠ eᵢ5) that the next sandwich multiplies by |x|² again.
+        let momentum = A::transform_screw(motor, body.momentum::<A>(velocity));
         State {
             motor,
-            momentum: A::transform_screw(motor, body.momentum::<A>(velocity)),
+            momentum: A::screw(A::screw_coordinates(momentum)),
         }
     }
 
