@@ -77,7 +77,10 @@ impl BladeNaming {
             Some(first) => first.chars().take_while(|c| c.is_ascii_alphabetic()).collect(),
             None => String::new(),
         };
-        while !basis_names.iter().all(|name| name.starts_with(&prefix) && name.len() > prefix.len()) {
+        while !basis_names
+            .iter()
+            .all(|name| name.starts_with(&prefix) && name.len() > prefix.len())
+        {
             prefix.pop();
         }
         let suffixes: Vec<String> = basis_names
