@@ -47,6 +47,7 @@ fn pga() -> AlgebraDeclaration {
             declared("Multivector", Layout::All),
         ],
         operations: None,
+        metric: None,
     }
 }
 
@@ -61,6 +62,7 @@ fn cga() -> AlgebraDeclaration {
             declared("Multivector", Layout::All),
         ],
         operations: None,
+        metric: None,
     }
 }
 

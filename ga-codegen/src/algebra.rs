@@ -1,5 +1,5 @@
-//! The validated algebra model: basis vectors with their metric, blade naming, and the declared
-//! sparse types resolved to blade lists.
+//! The validated algebra model: basis vectors with their metric (diagonal, or a general symmetric
+//! form), blade naming, and the declared sparse types resolved to blade lists.
 
 use crate::blade::{self, BladeMask, BladeNaming};
 use crate::declaration::{AlgebraDeclaration, Layout, ScalarType};
@@ -79,7 +79,7 @@ impl Algebra {
                     name: vector.name.clone(),
                 });
             }
-            if !matches!(vector.square, -1..=1) {
+            if declaration.metric.is_none() && !matches!(vector.square, -1..=1) {
                 return Err(Error::InvalidSquare {
                     index,
                     name: vector.name.clone(),
@@ -88,7 +88,16 @@ impl Algebra {
             }
         }
         let basis_names: Vec<String> = basis.iter().map(|v| v.name.clone()).collect();
-        let metric = Metric::diagonal(basis.iter().map(|v| v.square).collect());
+        let metric = match &declaration.metric {
+            None => Metric::diagonal(basis.iter().map(|v| v.square).collect()),
+            Some(rows) if rows.len() != basis.len() => {
+                return Err(Error::MetricSize {
+                    rows: rows.len(),
+                    expected: basis.len(),
+                })
+            }
+            Some(rows) => Metric::from_matrix(rows)?,
+        };
         let naming = BladeNaming::new(&basis_names);
         let n = basis.len();
 

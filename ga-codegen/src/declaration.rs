@@ -1,5 +1,8 @@
-//! What a user declares: basis vectors with their squares, the scalar type, the sparse types and
-//! (optionally) which operations to emit. This is the compiler's input; `Algebra::new` validates it.
+//! What a user declares: basis vectors with their squares (or a full metric matrix), the scalar type,
+//! the sparse types and (optionally) which operations to emit. This is the compiler's input;
+//! `Algebra::new` validates it.
+
+use num_rational::Rational64;
 
 use crate::operation::Operation;
 
@@ -33,6 +36,8 @@ impl ScalarType {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BasisVectorDeclaration {
     pub name: String,
+    /// Not read when the algebra has a [`metric`](AlgebraDeclaration::metric) matrix, whose diagonal
+    /// gives the squares.
     pub square: i64,
 }
 
@@ -60,6 +65,9 @@ pub struct TypeDeclaration {
 pub struct AlgebraDeclaration {
     pub scalar: ScalarType,
     pub basis: Vec<BasisVectorDeclaration>,
+    /// A general symmetric bilinear form, `metric[i][j]` = B(eᵢ, eⱼ) (e.g. a null basis with
+    /// `n0 · ninf = −1`); `None` for the orthogonal basis whose squares `basis` lists.
+    pub metric: Option<Vec<Vec<Rational64>>>,
     pub types: Vec<TypeDeclaration>,
     /// Emit only these operations (for big algebras); `None` emits all of them.
     pub operations: Option<Vec<Operation>>,

@@ -18,6 +18,7 @@ use crate::error::Error;
 use crate::expand::{Operand, Variable};
 use crate::functions::{self, Finish, Function, Output};
 use crate::operation::Operation;
+use crate::product::reverse_sign;
 use crate::program::{Definition, Term, Value};
 
 /// Emits the items of the algebra's module.
@@ -120,7 +121,15 @@ fn operation_doc(operation: Operation) -> &'static str {
         Operation::FatDot => "The \"fat dot\" inner product ⟨a_r b_s⟩_{|r−s|}, scalars included.",
         Operation::Regressive => "The regressive product (join in PGA): LC(RC(a) ∧ RC(b)), metric-free (operator `&`).",
         Operation::Commutator => "The commutator product (a b − b a)/2.",
-        Operation::Sandwich => "The sandwich `a x ~a`, expanded as one fused polynomial.",
+        Operation::Sandwich => {
+            "The sandwich `a x ~a`, as the cheaper of one fused polynomial and the commutator form\n\
+             `(a ~a) x + a (x ~a − ~a x)`."
+        }
+        Operation::Transform => {
+            "The sandwich `a x ~a` for a unit versor `a` (`a ~a = 1`: a normalised motor, rotor or\n\
+             reflection), computed with fewer operations by using that identity. Only the grades of `x`\n\
+             are kept (a versor preserves grades). For `a ~a ≠ 1` it is not the sandwich."
+        }
         Operation::Reverse => "The reverse: grade k times (−1)^{k(k−1)/2}.",
         Operation::Involute => "The grade involution: grade k times (−1)^k.",
         Operation::Conjugate => "The Clifford conjugate: grade k times (−1)^{k(k+1)/2}.",
@@ -136,15 +145,27 @@ fn operation_doc(operation: Operation) -> &'static str {
     }
 }
 
+/// One `#[doc]` attribute per line, so that formatted code shows `///` lines.
+fn doc_lines(text: &str) -> TokenStream {
+    let lines = text.lines().map(|line| {
+        if line.is_empty() {
+            String::new()
+        } else {
+            format!(" {line}")
+        }
+    });
+    quote! { #(#[doc = #lines])* }
+}
+
 fn binary_trait(operation: Operation) -> TokenStream {
     let name = trait_ident(operation);
     let method = format_ident!("{}", operation.name());
-    let doc = operation_doc(operation);
+    let doc = doc_lines(operation_doc(operation));
     quote! {
-        #[doc = #doc]
+        #doc
         pub trait #name<Rhs> {
             type Output;
-            #[doc = #doc]
+            #doc
             fn #method(self, rhs: Rhs) -> Self::Output;
         }
     }
@@ -431,7 +452,7 @@ impl Emitter<'_> {
                 let one = self.literal(Rational64::one());
                 let fields = ty.fields.iter().map(|field| {
                     let ident = format_ident!("{}", field.name);
-                    if functions::reverse_sign(field.blade).is_negative() {
+                    if reverse_sign(field.blade).is_negative() {
                         quote! { #ident: -self.#ident * scale }
                     } else {
                         quote! { #ident: self.#ident * scale }
@@ -449,12 +470,11 @@ impl Emitter<'_> {
     /// One `#[doc]` per line (so formatted code shows `///` lines): what it computes, then its cost.
     fn doc(&self, function: &Function) -> TokenStream {
         let what = match function.operation {
-            Some(Operation::Grade) => format!(" The grade-{} part.", function.method.trim_start_matches("grade_")),
-            Some(operation) => format!(" {}", operation_doc(operation)),
+            Some(Operation::Grade) => format!("The grade-{} part.", function.method.trim_start_matches("grade_")),
+            Some(operation) => operation_doc(operation).to_string(),
             None => String::new(),
         };
-        let cost = format!(" Cost: {}.", function.cost);
-        quote! { #[doc = #what] #[doc = ""] #[doc = #cost] }
+        doc_lines(&format!("{what}\n\nCost: {}.", function.cost))
     }
 
     fn unary_method(&self, function: &Function) -> TokenStream {

@@ -14,6 +14,12 @@ pub enum Location {
     TypeItem { ty: usize, item: usize },
     /// `operations[index]`.
     Operation(usize),
+    /// The `metric` matrix as a whole.
+    Metric,
+    /// Row `row` of the `metric` matrix.
+    MetricRow(usize),
+    /// The entry `metric[row][column]`.
+    MetricEntry { row: usize, column: usize },
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -26,6 +32,25 @@ pub enum Error {
     DuplicateBasisName { index: usize, name: String },
     #[error("basis vector `{name}` squares to {square}; a square must be 1, -1 or 0")]
     InvalidSquare { index: usize, name: String, square: i64 },
+    #[error("the metric has {rows} rows, but the basis has {expected} vectors: it must be {expected}×{expected}")]
+    MetricSize { rows: usize, expected: usize },
+    #[error("row {row} of the metric has {length} entries, but the metric is {expected}×{expected}")]
+    MetricRowLength { row: usize, length: usize, expected: usize },
+    #[error(
+        "the metric is not symmetric: entry ({row}, {column}) is {value} but entry ({column}, {row}) is {transposed}; \
+         a bilinear form B(eᵢ, eⱼ) = B(eⱼ, eᵢ) has a symmetric matrix"
+    )]
+    MetricNotSymmetric {
+        row: usize,
+        column: usize,
+        value: String,
+        transposed: String,
+    },
+    #[error(
+        "the metric's entries are too large for exact 64-bit coefficients in {dimension} dimensions: \
+         use smaller numerators and denominators, or fewer non-zero off-diagonal entries"
+    )]
+    MetricTooLarge { dimension: usize },
     #[error("basis vector name `{name}` is not a valid identifier")]
     InvalidBasisName { index: usize, name: String },
     #[error("type `{name}` is declared twice")]
@@ -95,6 +120,9 @@ impl Error {
             | Error::DuplicateBlade { ty_index, item, .. }
             | Error::GradeOutOfRange { ty_index, item, .. } => Location::TypeItem { ty: ty_index, item },
             Error::DuplicateOperation { index, .. } => Location::Operation(index),
+            Error::MetricSize { .. } | Error::MetricTooLarge { .. } => Location::Metric,
+            Error::MetricRowLength { row, .. } => Location::MetricRow(row),
+            Error::MetricNotSymmetric { row, column, .. } => Location::MetricEntry { row, column },
         }
     }
 }

@@ -3,7 +3,11 @@
 //! A multivector is a slice of `2ⁿ` coefficients indexed by blade bitmask (the layout of the
 //! reference data). Products loop over the non-zero coefficient pairs and apply the blade rule of
 //! [`crate::product`]: no table is built, so the evaluator explores big algebras in O(4ⁿ) time and
-//! O(2ⁿ) memory. It is the oracle the tests compare emitted code against.
+//! O(2ⁿ) memory (times the terms per blade pair on a non-orthogonal basis). It is the oracle the tests
+//! compare emitted code against.
+
+use num_rational::Rational64;
+use num_traits::ToPrimitive;
 
 use crate::blade::{grade, BladeMask};
 use crate::metric::Metric;
@@ -16,12 +20,22 @@ pub struct Evaluator {
     metric: Metric,
 }
 
+/// A rule's exact coefficient as a float (exact for the dyadic rationals of ordinary metrics).
+fn coefficient(c: Rational64) -> f64 {
+    c.to_f64().unwrap_or(f64::NAN)
+}
+
 impl Evaluator {
     /// An evaluator for the diagonal metric with these squares (basis vector `i` = bit `i`).
     pub fn new(squares: &[i64]) -> Self {
         Evaluator {
             metric: Metric::diagonal(squares.to_vec()),
         }
+    }
+
+    /// An evaluator for any metric, e.g. a general bilinear form from [`Metric::from_matrix`].
+    pub fn with_metric(metric: Metric) -> Self {
+        Evaluator { metric }
     }
 
     /// From a validated algebra.
@@ -59,8 +73,8 @@ impl Evaluator {
         let mut out = vec![0.0; a.len()];
         for (i, &x) in a.iter().enumerate().filter(|(_, x)| **x != 0.0) {
             for (j, &y) in b.iter().enumerate().filter(|(_, y)| **y != 0.0) {
-                if let Some((blade, sign)) = rules.binary(operation, i as BladeMask, j as BladeMask) {
-                    out[blade as usize] += sign as f64 * x * y;
+                for &(blade, c) in rules.binary(operation, i as BladeMask, j as BladeMask).terms() {
+                    out[blade as usize] += coefficient(c) * x * y;
                 }
             }
         }
@@ -77,8 +91,8 @@ impl Evaluator {
         let rules = self.rules();
         let mut out = vec![0.0; a.len()];
         for (i, &x) in a.iter().enumerate() {
-            if let Some((blade, sign)) = rules.unary(operation, i as BladeMask) {
-                out[blade as usize] += sign as f64 * x;
+            for &(blade, c) in rules.unary(operation, i as BladeMask).terms() {
+                out[blade as usize] += coefficient(c) * x;
             }
         }
         out

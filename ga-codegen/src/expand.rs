@@ -6,12 +6,12 @@ use std::collections::btree_map::Entry;
 use std::collections::BTreeMap;
 
 use num_rational::Rational64;
-use num_traits::Zero;
+use num_traits::{One, Zero};
 
 use crate::algebra::{Algebra, SparseType};
 use crate::blade::{grade, BladeMask};
 use crate::operation::Operation;
-use crate::product::Rules;
+use crate::product::{reverse_sign, Rules};
 
 /// Which operand a variable belongs to: `self` or the right-hand side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -27,8 +27,75 @@ pub struct Variable {
     pub field: usize,
 }
 
-/// A product of variables, sorted (so `a₁a₂` and `a₂a₁` are the same monomial).
-pub type Monomial = Vec<Variable>;
+/// The highest degree of any expansion: the sandwich is cubic.
+const MAX_DEGREE: usize = 3;
+
+/// A product of at most [`MAX_DEGREE`] variables, sorted (so `a₁a₂` and `a₂a₁` are the same
+/// monomial). Stored inline, since a big expansion builds millions of them, and ordered by a packed
+/// key (degree, then the factors lexicographically) for fast map lookups; it dereferences to its
+/// factors.
+#[derive(Clone, Copy, Debug)]
+pub struct Monomial {
+    key: u128,
+    degree: u8,
+    factors: [Variable; MAX_DEGREE],
+}
+
+impl Monomial {
+    /// The sorted product of `factors`.
+    ///
+    /// # Panics
+    /// If there are more than three factors: every expansion the compiler builds is at most cubic.
+    pub fn new(factors: &[Variable]) -> Self {
+        assert!(factors.len() <= MAX_DEGREE, "expansions are at most cubic");
+        let filler = Variable {
+            operand: Operand::Lhs,
+            field: 0,
+        };
+        let mut sorted = [filler; MAX_DEGREE];
+        sorted[..factors.len()].copy_from_slice(factors);
+        sorted[..factors.len()].sort_unstable();
+        // 32 bits per factor: the operand, then the field (a type has far fewer than 2³¹ fields).
+        let packed = |v: &Variable| u128::from(v.operand == Operand::Rhs) << 31 | v.field as u128;
+        let key = sorted[..factors.len()]
+            .iter()
+            .fold(factors.len() as u128, |key, v| key << 32 | packed(v))
+            << (32 * (MAX_DEGREE - factors.len()));
+        Monomial {
+            key,
+            degree: factors.len() as u8,
+            factors: sorted,
+        }
+    }
+}
+
+impl PartialEq for Monomial {
+    fn eq(&self, other: &Self) -> bool {
+        self.key == other.key
+    }
+}
+
+impl Eq for Monomial {}
+
+impl PartialOrd for Monomial {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Monomial {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.key.cmp(&other.key)
+    }
+}
+
+impl std::ops::Deref for Monomial {
+    type Target = [Variable];
+
+    fn deref(&self) -> &[Variable] {
+        &self.factors[..usize::from(self.degree)]
+    }
+}
 
 /// A polynomial with exact coefficients; a zero coefficient is never stored.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -38,9 +105,8 @@ pub struct Polynomial {
 
 impl Polynomial {
     /// Adds `coefficient · Π factors`.
-    pub fn add_term(&mut self, mut factors: Monomial, coefficient: Rational64) {
-        factors.sort_unstable();
-        match self.terms.entry(factors) {
+    pub fn add_term(&mut self, factors: &[Variable], coefficient: Rational64) {
+        match self.terms.entry(Monomial::new(factors)) {
             Entry::Occupied(mut existing) => {
                 *existing.get_mut() += coefficient;
                 if existing.get().is_zero() {
@@ -61,7 +127,7 @@ impl Polynomial {
 
     /// The total degree (all monomials of one expansion share it).
     pub fn degree(&self) -> usize {
-        self.terms.keys().map(Vec::len).max().unwrap_or(0)
+        self.terms.keys().map(|monomial| monomial.len()).max().unwrap_or(0)
     }
 }
 
@@ -72,7 +138,7 @@ pub struct Expansion {
 }
 
 impl Expansion {
-    fn add(&mut self, blade: BladeMask, factors: Monomial, coefficient: Rational64) {
+    fn add(&mut self, blade: BladeMask, factors: &[Variable], coefficient: Rational64) {
         let polynomial = self.outputs.entry(blade).or_default();
         polynomial.add_term(factors, coefficient);
         if polynomial.is_zero() {
@@ -105,14 +171,16 @@ fn rhs(field: usize) -> Variable {
     }
 }
 
-/// Expands a blade-pair operation (every binary operation but the sandwich) on two types.
+/// Expands a blade-pair operation (every binary operation but the sandwich and transform) on two
+/// types.
 pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
     for (i, a) in left.fields.iter().enumerate() {
         for (j, b) in right.fields.iter().enumerate() {
-            if let Some((blade, sign)) = rules.binary(operation, a.blade, b.blade) {
-                expansion.add(blade, vec![lhs(i), rhs(j)], Rational64::from(sign * a.sign * b.sign));
+            let signs = Rational64::from_integer(a.sign * b.sign);
+            for &(blade, c) in rules.binary(operation, a.blade, b.blade).terms() {
+                expansion.add(blade, &[lhs(i), rhs(j)], c * signs);
             }
         }
     }
@@ -127,22 +195,131 @@ pub fn sandwich(algebra: &Algebra, versor: &SparseType, operand: &SparseType) ->
     let mut expansion = Expansion::default();
     for (i, a) in versor.fields.iter().enumerate() {
         for (k, x) in operand.fields.iter().enumerate() {
-            let Some((ax, s1)) = rules.geometric(a.blade, x.blade) else {
-                continue;
-            };
-            for (j, b) in versor.fields.iter().enumerate() {
-                let Some((blade, s2)) = rules.geometric(ax, b.blade) else {
-                    continue;
-                };
-                let Some((_, reverse_sign)) = rules.unary(Operation::Reverse, b.blade) else {
-                    continue;
-                };
-                let coefficient = s1 * s2 * reverse_sign * a.sign * x.sign * b.sign;
-                expansion.add(blade, vec![lhs(i), rhs(k), lhs(j)], Rational64::from(coefficient));
+            let ax = rules.geometric(a.blade, x.blade);
+            for &(middle, c1) in ax.terms() {
+                for (j, b) in versor.fields.iter().enumerate() {
+                    let signs = reverse_sign(b.blade) * Rational64::from_integer(a.sign * x.sign * b.sign);
+                    for &(blade, c2) in rules.geometric(middle, b.blade).terms() {
+                        expansion.add(blade, &[lhs(i), rhs(k), lhs(j)], c1 * c2 * signs);
+                    }
+                }
             }
         }
     }
     expansion
+}
+
+/// Which side of `x` the commutator form of the sandwich puts the versor's norm on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// `a x ~a = (a ~a) x + a (x ~a − ~a x)`.
+    Left,
+    /// `a x ~a = x (a ~a) + (a x − x a) ~a`.
+    Right,
+}
+
+/// Whether the versor is known to be unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Norm {
+    /// Any versor: `a ~a` is expanded symbolically.
+    General,
+    /// `a ~a = 1`: the norm term is `x` itself.
+    Unit,
+}
+
+/// The sandwich in commutator form: `N x + a C` (or `x N + C ~a`), with `N = a ~a` (1 for a unit
+/// versor) and the commutator `C`. Every part of the versor that commutes with `x` (its scalar, at
+/// least) cancels from `C` symbolically, and `C`'s few blades are shared by every output.
+#[derive(Clone, Debug, Default)]
+pub struct CommutatorForm {
+    /// `N = a ~a` in the versor's fields (empty for a unit versor).
+    pub norm: Expansion,
+    /// `N x` (or `x N`): left-hand variable `k` is the `k`-th blade of `norm`.
+    pub norm_product: Expansion,
+    /// For a unit versor, `x` itself: `coefficient · variable` added to a blade.
+    pub passthrough: Vec<(BladeMask, Variable, Rational64)>,
+    /// `C` in the versor (left-hand) and operand (right-hand) fields.
+    pub commutator: Expansion,
+    /// `a C` (or `C ~a`): right-hand variable `k` is the `k`-th blade of `commutator`.
+    pub product: Expansion,
+}
+
+/// Expands the sandwich of `operand` by `versor` in commutator form, keeping the `outputs` blades.
+pub fn commutator_form(
+    algebra: &Algebra,
+    versor: &SparseType,
+    operand: &SparseType,
+    side: Side,
+    norm: Norm,
+    outputs: &[BladeMask],
+) -> CommutatorForm {
+    let rules = Rules::new(&algebra.metric);
+    let mut form = CommutatorForm::default();
+    // C = x ~a − ~a x (left) or a x − x a (right), term by term.
+    for (i, a) in versor.fields.iter().enumerate() {
+        let a_sign = Rational64::from_integer(a.sign);
+        let reversed = match side {
+            Side::Left => reverse_sign(a.blade),
+            Side::Right => Rational64::one(),
+        };
+        for (k, x) in operand.fields.iter().enumerate() {
+            let signs = reversed * a_sign * Rational64::from_integer(x.sign);
+            let (first, second) = match side {
+                Side::Left => (rules.geometric(x.blade, a.blade), rules.geometric(a.blade, x.blade)),
+                Side::Right => (rules.geometric(a.blade, x.blade), rules.geometric(x.blade, a.blade)),
+            };
+            for &(blade, c) in first.terms() {
+                form.commutator.add(blade, &[lhs(i), rhs(k)], c * signs);
+            }
+            for &(blade, c) in second.terms() {
+                form.commutator.add(blade, &[lhs(i), rhs(k)], -c * signs);
+            }
+        }
+    }
+    for (k, &c_blade) in form.commutator.outputs.keys().enumerate() {
+        for (i, a) in versor.fields.iter().enumerate() {
+            let (product, signs) = match side {
+                Side::Left => (rules.geometric(a.blade, c_blade), Rational64::from_integer(a.sign)),
+                Side::Right => (
+                    rules.geometric(c_blade, a.blade),
+                    reverse_sign(a.blade) * Rational64::from_integer(a.sign),
+                ),
+            };
+            for &(blade, c) in product.terms() {
+                if outputs.contains(&blade) {
+                    form.product.add(blade, &[lhs(i), rhs(k)], c * signs);
+                }
+            }
+        }
+    }
+    match norm {
+        Norm::Unit => {
+            for (k, x) in operand.fields.iter().enumerate() {
+                if outputs.contains(&x.blade) {
+                    form.passthrough
+                        .push((x.blade, rhs(k), Rational64::from_integer(x.sign)));
+                }
+            }
+        }
+        Norm::General => {
+            form.norm = times_own_reverse(algebra, versor);
+            for (k, &n_blade) in form.norm.outputs.keys().enumerate() {
+                for (j, x) in operand.fields.iter().enumerate() {
+                    let product = match side {
+                        Side::Left => rules.geometric(n_blade, x.blade),
+                        Side::Right => rules.geometric(x.blade, n_blade),
+                    };
+                    for &(blade, c) in product.terms() {
+                        if outputs.contains(&blade) {
+                            let sign = Rational64::from_integer(x.sign);
+                            form.norm_product.add(blade, &[lhs(k), rhs(j)], c * sign);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    form
 }
 
 /// Expands a unary blade map (reverse, involutions, complements, polarity).
@@ -150,8 +327,8 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expans
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
     for (i, a) in ty.fields.iter().enumerate() {
-        if let Some((blade, sign)) = rules.unary(operation, a.blade) {
-            expansion.add(blade, vec![lhs(i)], Rational64::from(sign * a.sign));
+        for &(blade, c) in rules.unary(operation, a.blade).terms() {
+            expansion.add(blade, &[lhs(i)], c * Rational64::from_integer(a.sign));
         }
     }
     expansion
@@ -161,7 +338,7 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expans
 pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
     let mut expansion = Expansion::default();
     for (i, a) in ty.fields.iter().enumerate().filter(|(_, a)| grade(a.blade) == k) {
-        expansion.add(a.blade, vec![lhs(i)], Rational64::from(a.sign));
+        expansion.add(a.blade, &[lhs(i)], Rational64::from(a.sign));
     }
     expansion
 }
@@ -173,17 +350,10 @@ pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
     let mut expansion = Expansion::default();
     for (i, a) in ty.fields.iter().enumerate() {
         for (j, b) in ty.fields.iter().enumerate() {
-            let Some((blade, sign)) = rules.geometric(a.blade, b.blade) else {
-                continue;
-            };
-            let Some((_, reverse_sign)) = rules.unary(Operation::Reverse, b.blade) else {
-                continue;
-            };
-            expansion.add(
-                blade,
-                vec![lhs(i), lhs(j)],
-                Rational64::from(sign * reverse_sign * a.sign * b.sign),
-            );
+            let signs = reverse_sign(b.blade) * Rational64::from_integer(a.sign * b.sign);
+            for &(blade, c) in rules.geometric(a.blade, b.blade).terms() {
+                expansion.add(blade, &[lhs(i), lhs(j)], c * signs);
+            }
         }
     }
     expansion
@@ -193,11 +363,40 @@ pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
 pub fn sum(left: &SparseType, right: &SparseType, subtract: bool) -> Expansion {
     let mut expansion = Expansion::default();
     for (i, a) in left.fields.iter().enumerate() {
-        expansion.add(a.blade, vec![lhs(i)], Rational64::from(a.sign));
+        expansion.add(a.blade, &[lhs(i)], Rational64::from(a.sign));
     }
     let sign = if subtract { -1 } else { 1 };
     for (j, b) in right.fields.iter().enumerate() {
-        expansion.add(b.blade, vec![rhs(j)], Rational64::from(sign * b.sign));
+        expansion.add(b.blade, &[rhs(j)], Rational64::from(sign * b.sign));
     }
     expansion
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn monomials_are_sorted_products_ordered_by_degree_then_factors() {
+        let (a0, a1, x0) = (lhs(0), lhs(1), rhs(0));
+        assert_eq!(Monomial::new(&[x0, a1, a0]), Monomial::new(&[a0, a1, x0]));
+        assert_eq!(&*Monomial::new(&[x0, a1, a0]), &[a0, a1, x0]);
+        assert!(Monomial::new(&[a0, x0]) < Monomial::new(&[a1, x0]));
+        assert!(Monomial::new(&[a1, x0]) < Monomial::new(&[x0, x0]));
+        assert!(Monomial::new(&[x0]) < Monomial::new(&[a0, a0]));
+        let big = Variable {
+            operand: Operand::Lhs,
+            field: 1 << 20,
+        };
+        assert!(Monomial::new(&[a0, big]) > Monomial::new(&[a0, a1]));
+        assert!(Monomial::new(&[a0, big]) < Monomial::new(&[a0, x0]));
+    }
+
+    #[test]
+    fn cancelling_terms_vanish() {
+        let mut polynomial = Polynomial::default();
+        polynomial.add_term(&[lhs(0), rhs(1)], Rational64::from(2));
+        polynomial.add_term(&[rhs(1), lhs(0)], Rational64::from(-2));
+        assert!(polynomial.is_zero());
+    }
 }

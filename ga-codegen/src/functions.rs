@@ -1,13 +1,14 @@
 //! The catalogue of emitted functions: for each operation and type (pair), its expansion, result
 //! type and lowered program. Emission prints these; [`cost`] reports their exact operation counts.
 
-use num_rational::Rational64;
+use num_traits::Zero;
 
 use crate::algebra::{Algebra, SparseType};
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
-use crate::expand::{self, Expansion, Operand, Variable};
+use crate::expand::{self, Expansion, Norm, Operand, Side, Variable};
 use crate::operation::Operation;
+use crate::product::Rules;
 use crate::program::{self, Cost, Program};
 
 /// What a function returns.
@@ -42,12 +43,26 @@ pub struct Function {
     pub cost: Cost,
 }
 
-fn lower(algebra: &Algebra, expansion: &Expansion, lhs: &SparseType, rhs: Option<&SparseType>) -> Program {
+/// Lowers with the names of the operands' fields and of the algebra's blades.
+fn lower_with(
+    algebra: &Algebra,
+    lhs: &SparseType,
+    rhs: Option<&SparseType>,
+    lower: impl FnOnce(&program::Names) -> Program,
+) -> Program {
     let field_name = |v: Variable| match v.operand {
         Operand::Lhs => lhs.fields[v.field].name.clone(),
         Operand::Rhs => rhs.map_or_else(String::new, |r| r.fields[v.field].name.clone()),
     };
-    program::lower(expansion, &field_name, &|blade| algebra.blade_name(blade))
+    let blade_name = |blade| algebra.blade_name(blade);
+    lower(&program::Names {
+        field: &field_name,
+        blade: &blade_name,
+    })
+}
+
+fn lower(algebra: &Algebra, expansion: &Expansion, lhs: &SparseType, rhs: Option<&SparseType>) -> Program {
+    lower_with(algebra, lhs, rhs, |names| program::lower(expansion, names))
 }
 
 /// The smallest declared type holding `blades` (any type for an identically zero result).
@@ -79,6 +94,9 @@ fn result_type(
 
 /// The function `lhs.operation(rhs)` for a binary operation.
 pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -> Result<Function, Error> {
+    if operation == Operation::Transform {
+        return transform(algebra, lhs, rhs);
+    }
     let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
     let expansion = match operation {
         Operation::Sandwich => expand::sandwich(algebra, left, right),
@@ -90,7 +108,7 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
         let describe = || (operation.name().to_string(), left.name.clone(), right.name.clone());
         Output::Type(result_type(algebra, &expansion.blades(), describe)?)
     };
-    Ok(finish(
+    let mut function = finish(
         algebra,
         Some(operation),
         operation.name().to_string(),
@@ -98,7 +116,76 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
         Some(rhs),
         output,
         &expansion,
-    ))
+    );
+    if operation == Operation::Sandwich {
+        use_cheapest_commutator_form(
+            algebra,
+            &mut function,
+            (left, right),
+            Norm::General,
+            &expansion.blades(),
+        );
+    }
+    Ok(function)
+}
+
+/// `lhs.transform(rhs)`: the sandwich of a unit versor, `a x ~a` with `a ~a = 1`.
+///
+/// A unit versor maps each grade to itself, so only the sandwich's blades of the operand's grades
+/// are kept, and the program is the cheapest of three that agree whenever `a ~a = 1`: the fused
+/// sandwich, `x + a (x ~a − ~a x)` and `x + (a x − x a) ~a`. For a type whose `a ~a` has no scalar
+/// part (so it is never 1) the transform is the sandwich.
+fn transform(algebra: &Algebra, lhs: usize, rhs: usize) -> Result<Function, Error> {
+    let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
+    let mut sandwich = expand::sandwich(algebra, left, right);
+    let norm = if expand::times_own_reverse(algebra, left).outputs.contains_key(&0) {
+        let grades: Vec<u32> = right.fields.iter().map(|f| grade(f.blade)).collect();
+        sandwich.outputs.retain(|&blade, _| grades.contains(&grade(blade)));
+        Norm::Unit
+    } else {
+        Norm::General
+    };
+    let blades = sandwich.blades();
+    let describe = || {
+        (
+            Operation::Transform.name().to_string(),
+            left.name.clone(),
+            right.name.clone(),
+        )
+    };
+    let output = Output::Type(result_type(algebra, &blades, describe)?);
+    let mut function = finish(
+        algebra,
+        Some(Operation::Transform),
+        Operation::Transform.name().to_string(),
+        lhs,
+        Some(rhs),
+        output,
+        &sandwich,
+    );
+    use_cheapest_commutator_form(algebra, &mut function, (left, right), norm, &blades);
+    Ok(function)
+}
+
+/// Replaces the program of a sandwich (or transform) `function` of `operand` by `versor` with a
+/// commutator form of it, on either side, if one costs fewer multiplies (or as many and fewer adds).
+fn use_cheapest_commutator_form(
+    algebra: &Algebra,
+    function: &mut Function,
+    (versor, operand): (&SparseType, &SparseType),
+    norm: Norm,
+    outputs: &[BladeMask],
+) {
+    for side in [Side::Left, Side::Right] {
+        let form = expand::commutator_form(algebra, versor, operand, side, norm, outputs);
+        let program = lower_with(algebra, versor, Some(operand), |names| {
+            program::lower_commutator_form(&form, names)
+        });
+        let cost = program.cost();
+        if (cost.multiplies, cost.adds) < (function.cost.multiplies, function.cost.adds) {
+            (function.program, function.cost) = (program, cost);
+        }
+    }
 }
 
 fn finish(
@@ -142,7 +229,7 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: usize) -> Result<Vec<F
         ))
     };
     match operation {
-        Operation::Polarity if algebra.metric.is_degenerate() => Ok(vec![]),
+        Operation::Polarity if Rules::new(&algebra.metric).pseudoscalar_square().is_zero() => Ok(vec![]),
         Operation::Reverse
         | Operation::Involute
         | Operation::Conjugate
@@ -236,10 +323,4 @@ pub fn cost(algebra: &Algebra, operation: Operation, lhs: &str, rhs: Option<&str
         }
         _ => Ok(None),
     }
-}
-
-/// The sign of a blade under reversion, as a rational coefficient.
-pub fn reverse_sign(blade: BladeMask) -> Rational64 {
-    let k = grade(blade) as i64;
-    Rational64::from(if (k * (k - 1) / 2) % 2 == 0 { 1 } else { -1 })
 }

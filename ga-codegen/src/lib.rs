@@ -1,15 +1,21 @@
 //! # ga-codegen: a geometric algebra compiler
 //!
-//! Turns an algebra (basis vectors with their squares) and a set of declared sparse types (Motor,
-//! Line, Point, …) into fully unrolled Rust code: one function per operation and type pair, only the
-//! non-zero terms, cancellations found symbolically with exact rational coefficients.
+//! Turns an algebra (basis vectors with their squares, or any symmetric bilinear form) and a set of
+//! declared sparse types (Motor, Line, Point, …) into fully unrolled Rust code: one function per
+//! operation and type pair, only the non-zero terms, cancellations found symbolically with exact
+//! rational coefficients.
 //!
 //! The pipeline, one module per stage:
 //! 1. [`declaration`] → [`algebra`]: the validated algebra model ([`blade`] masks and names, [`metric`]);
-//! 2. [`product`]: product rules computed per blade pair (never a dense 2ⁿ×2ⁿ table);
-//! 3. [`expand`]: symbolic expansion of an operation on two sparse types into polynomials, with
-//!    the [`cost`] model (exact multiply and add counts);
-//! 4. [`emit`]: Rust tokens via `quote`.
+//! 2. [`product`]: product rules computed per blade pair (never a dense 2ⁿ×2ⁿ table), a single
+//!    signed blade on an orthogonal basis and an exact sum of blades for a general bilinear form
+//!    (Chevalley's recursion);
+//! 3. [`expand`]: symbolic expansion of an operation on two sparse types into polynomials; for the
+//!    unit-versor `transform`, the two-stage form `x + a (x ~a − ~a x)`, equal to the sandwich when
+//!    `a ~a = 1`;
+//! 4. [`program`]: lowering to straight-line code (shared products, doubling), with the [`Cost`]
+//!    model (exact multiply and add counts); [`functions`] catalogues every emitted function;
+//! 5. [`emit`]: Rust tokens via `quote`.
 //!
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
@@ -33,6 +39,8 @@ pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
 pub use error::{Error, Location};
 pub use evaluator::Evaluator;
+/// Exact rational numbers: metric entries and every coefficient of the expansion.
+pub use num_rational::Rational64;
 pub use operation::Operation;
 pub use program::Cost;
 

@@ -15,6 +15,8 @@ pub enum Operation {
     Regressive,
     Commutator,
     Sandwich,
+    /// The sandwich for unit versors (`a ~a = 1`), using that identity to do less work.
+    Transform,
     // Unary.
     Reverse,
     Involute,
@@ -29,7 +31,7 @@ pub enum Operation {
 
 impl Operation {
     /// All operations, binary first.
-    pub const ALL: [Operation; 19] = [
+    pub const ALL: [Operation; 20] = [
         Operation::Geometric,
         Operation::Outer,
         Operation::LeftContraction,
@@ -40,6 +42,7 @@ impl Operation {
         Operation::Regressive,
         Operation::Commutator,
         Operation::Sandwich,
+        Operation::Transform,
         Operation::Reverse,
         Operation::Involute,
         Operation::Conjugate,
@@ -64,6 +67,7 @@ impl Operation {
             Operation::Regressive => "regressive",
             Operation::Commutator => "commutator",
             Operation::Sandwich => "sandwich",
+            Operation::Transform => "transform",
             Operation::Reverse => "reverse",
             Operation::Involute => "involute",
             Operation::Conjugate => "conjugate",
@@ -95,6 +99,7 @@ impl Operation {
                 | Operation::Regressive
                 | Operation::Commutator
                 | Operation::Sandwich
+                | Operation::Transform
         )
     }
 }

@@ -2,19 +2,24 @@
 //! output sums. Emission prints this program and the cost model counts it, so the counts in the doc
 //! comments are exactly what the emitted code computes.
 //!
-//! Cubic expansions (sandwiches) are factored as `out = Σₖ xₖ · Qₖ(a)`: every pair product `aᵢaⱼ`
-//! is computed once and shared by all outputs, and a pair that only ever appears doubled is built
-//! as `(aᵢ + aᵢ)·aⱼ` — an add instead of a multiply. Quadratic terms with coefficient ±2 use the same
-//! doubling.
+//! - Products: a monomial that several outputs share (on a non-orthogonal basis one blade pair feeds
+//!   several blades) is computed once; a term with coefficient ±2 doubles one of its factors — an add
+//!   instead of a multiply, the doubled value shared by every use, and the factors to double chosen
+//!   so that few are (a greedy cover of the doubled terms).
+//! - Cubic expansions (sandwiches) are factored as `out = Σₖ xₖ · Qₖ(a)`: every pair product `aᵢaⱼ`
+//!   is computed once and shared by all outputs, and a pair that only ever appears doubled is built
+//!   as `(aᵢ + aᵢ)·aⱼ`.
+//! - The commutator form of a sandwich, `N x + a C` with `N = a ~a` (or `x + a C` for a unit versor),
+//!   computes the blades of `N` and `C` as locals, then their products with the operand and versor.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use num_integer::Integer;
 use num_rational::Rational64;
 use num_traits::{One, Signed, ToPrimitive};
 
 use crate::blade::BladeMask;
-use crate::expand::{Expansion, Operand, Variable};
+use crate::expand::{CommutatorForm, Expansion, Operand, Polynomial, Variable};
 
 /// A value the program can read: an input field or a hoisted local.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -147,39 +152,98 @@ impl Program {
     }
 }
 
-/// Builds programs, naming locals after the fields they combine.
-struct Builder<'a> {
-    program: Program,
-    field_name: &'a dyn Fn(Variable) -> String,
-    blade_name: &'a dyn Fn(BladeMask) -> String,
-    doubles: BTreeMap<Variable, usize>,
+/// Names locals after the fields and blades they combine.
+pub struct Names<'a> {
+    pub field: &'a dyn Fn(Variable) -> String,
+    pub blade: &'a dyn Fn(BladeMask) -> String,
 }
 
-impl Builder<'_> {
+/// Builds programs. Local names are unique even where field names contain `_` (a pair `e1`·`e2_e3`
+/// and a pair `e1_e2`·`e3` would both be called `e1_e2_e3`).
+struct Builder<'a> {
+    program: Program,
+    names: &'a Names<'a>,
+    doubles: BTreeMap<Value, usize>,
+    /// The values a ±2 term prefers to double (see [`Builder::plan_doubling`]).
+    planned: BTreeSet<Value>,
+    taken: BTreeSet<String>,
+}
+
+impl<'a> Builder<'a> {
+    fn new(names: &'a Names<'a>) -> Self {
+        Builder {
+            program: Program::default(),
+            names,
+            doubles: BTreeMap::new(),
+            planned: BTreeSet::new(),
+            taken: BTreeSet::new(),
+        }
+    }
+
+    /// Chooses which values to double so that every product in `doubled` (the factor lists of terms
+    /// with coefficient ±2) has one, using few of them: a greedy set cover, taking the value in the
+    /// most uncovered products first (values already chosen cover for free).
+    fn plan_doubling(&mut self, mut doubled: Vec<Vec<Value>>) {
+        doubled.retain(|factors| factors.len() >= 2 && !factors.iter().any(|v| self.planned.contains(v)));
+        while !doubled.is_empty() {
+            let mut counts: BTreeMap<Value, usize> = BTreeMap::new();
+            for factors in &doubled {
+                for &value in factors {
+                    *counts.entry(value).or_default() += 1;
+                }
+            }
+            // The most used value; among equals, the first (inputs before locals, lhs before rhs).
+            let Some((&best, _)) = counts.iter().rev().max_by_key(|(_, &count)| count) else {
+                break;
+            };
+            self.planned.insert(best);
+            doubled.retain(|factors| !factors.contains(&best));
+        }
+    }
+
     fn local(&mut self, name: String, definition: Definition) -> Value {
-        self.program.locals.push(Local { name, definition });
+        let mut unique = name.clone();
+        let mut suffix = 1;
+        while !self.taken.insert(unique.clone()) {
+            suffix += 1;
+            unique = format!("{name}_{suffix}");
+        }
+        self.program.locals.push(Local {
+            name: unique,
+            definition,
+        });
         Value::Local(self.program.locals.len() - 1)
     }
 
-    /// The hoisted `v + v`, shared by every use.
-    fn double(&mut self, variable: Variable) -> Value {
-        if let Some(&index) = self.doubles.get(&variable) {
-            return Value::Local(index);
+    /// The name of a value, to name the locals built from it.
+    fn value_name(&self, value: Value) -> String {
+        match value {
+            Value::Input(variable) => (self.names.field)(variable),
+            Value::Local(index) => self.program.locals[index].name.clone(),
         }
-        let name = format!("twice_{}", (self.field_name)(variable));
-        let value = self.local(name, Definition::Double(Value::Input(variable)));
-        if let Value::Local(index) = value {
-            self.doubles.insert(variable, index);
-        }
-        value
     }
 
-    /// A term `c · Π factors`, with a coefficient of ±2 folded into a doubled first factor.
-    fn term(&mut self, coefficient: Rational64, factors: &[Variable]) -> Term {
+    /// The hoisted `v + v`, shared by every use.
+    fn double(&mut self, value: Value) -> Value {
+        if let Some(&index) = self.doubles.get(&value) {
+            return Value::Local(index);
+        }
+        let name = format!("twice_{}", self.value_name(value));
+        let doubled = self.local(name, Definition::Double(value));
+        if let Value::Local(index) = doubled {
+            self.doubles.insert(value, index);
+        }
+        doubled
+    }
+
+    /// A term `c · Π factors`, with a coefficient of ±2 folded into a doubled factor: a planned one if
+    /// any, else the first.
+    fn term(&mut self, coefficient: Rational64, factors: &[Value]) -> Term {
         let two = Rational64::from(2);
         if coefficient.abs() == two && factors.len() >= 2 {
-            let mut values = vec![self.double(factors[0])];
-            values.extend(factors[1..].iter().map(|&v| Value::Input(v)));
+            let chosen = factors.iter().position(|v| self.planned.contains(v)).unwrap_or(0);
+            let mut values = factors.to_vec();
+            values[chosen] = self.double(factors[chosen]);
             return Term {
                 coefficient: coefficient / two,
                 factors: values,
@@ -187,36 +251,160 @@ impl Builder<'_> {
         }
         Term {
             coefficient,
-            factors: factors.iter().map(|&v| Value::Input(v)).collect(),
+            factors: factors.to_vec(),
+        }
+    }
+
+    /// Sums of products, one per output blade. A product of several factors that more than one output
+    /// uses is hoisted into a local (with the common integer factor of its uses folded in).
+    fn products(&mut self, outputs: &BTreeMap<BladeMask, Vec<(Vec<Value>, Rational64)>>) {
+        let mut uses: BTreeMap<&[Value], Vec<Rational64>> = BTreeMap::new();
+        for terms in outputs.values() {
+            for (factors, c) in terms {
+                uses.entry(factors.as_slice()).or_default().push(*c);
+            }
+        }
+        let shared = |factors: &[Value], uses: usize| uses >= 2 && factors.len() >= 2;
+        let doubled = uses
+            .iter()
+            .filter(|(factors, coefficients)| {
+                if shared(factors, coefficients.len()) {
+                    common_factor(coefficients.iter()) == 2
+                } else {
+                    coefficients.iter().all(|c| c.abs() == Rational64::from(2))
+                }
+            })
+            .map(|(factors, _)| factors.to_vec())
+            .collect();
+        self.plan_doubling(doubled);
+        let mut hoisted: BTreeMap<Vec<Value>, (Value, i64)> = BTreeMap::new();
+        for (factors, coefficients) in uses {
+            if !shared(factors, coefficients.len()) {
+                continue;
+            }
+            let factor = common_factor(coefficients.iter());
+            let name = factors
+                .iter()
+                .map(|&v| self.value_name(v))
+                .collect::<Vec<_>>()
+                .join("_");
+            let term = self.term(Rational64::from(factor), factors);
+            let value = self.local(name, Definition::Sum(vec![term]));
+            hoisted.insert(factors.to_vec(), (value, factor));
+        }
+        for (&blade, terms) in outputs {
+            let lowered = terms
+                .iter()
+                .map(|(factors, c)| match hoisted.get(factors) {
+                    Some(&(value, factor)) => Term {
+                        coefficient: c / factor,
+                        factors: vec![value],
+                    },
+                    None => self.term(*c, factors),
+                })
+                .collect();
+            self.program.outputs.insert(blade, lowered);
         }
     }
 }
 
+impl Builder<'_> {
+    /// Locals for the blades of `expansion` whose index is in `read`, named `{blade}_{role}`; returns
+    /// the local of each index.
+    fn intermediates(&mut self, expansion: &Expansion, read: &BTreeSet<usize>, role: &str) -> BTreeMap<usize, Value> {
+        let read: Vec<(BladeMask, &Polynomial)> = expansion
+            .outputs
+            .iter()
+            .enumerate()
+            .filter(|(index, _)| read.contains(index))
+            .map(|(_, (&blade, polynomial))| (blade, polynomial))
+            .collect();
+        let doubled = read
+            .iter()
+            .flat_map(|(_, p)| &p.terms)
+            .filter(|(_, c)| c.abs() == Rational64::from(2))
+            .map(|(factors, _)| inputs(factors))
+            .collect();
+        self.plan_doubling(doubled);
+        let mut locals = BTreeMap::new();
+        for (index, (&blade, polynomial)) in expansion.outputs.iter().enumerate() {
+            if read.iter().any(|&(b, _)| b == blade) {
+                let terms = polynomial
+                    .terms
+                    .iter()
+                    .map(|(f, &c)| self.term(c, &inputs(f)))
+                    .collect();
+                let name = format!("{}_{role}", (self.names.blade)(blade));
+                locals.insert(index, self.local(name, Definition::Sum(terms)));
+            }
+        }
+        locals
+    }
+}
+
+fn inputs(factors: &[Variable]) -> Vec<Value> {
+    factors.iter().map(|&v| Value::Input(v)).collect()
+}
+
 /// Lowers an expansion to a program. The names of variables and output blades name the locals.
-pub fn lower(
-    expansion: &Expansion,
-    field_name: &dyn Fn(Variable) -> String,
-    blade_name: &dyn Fn(BladeMask) -> String,
-) -> Program {
-    let mut builder = Builder {
-        program: Program::default(),
-        field_name,
-        blade_name,
-        doubles: BTreeMap::new(),
-    };
+pub fn lower(expansion: &Expansion, names: &Names) -> Program {
+    let mut builder = Builder::new(names);
     let cubic = expansion.outputs.values().any(|p| p.degree() == 3);
     if cubic {
         lower_sandwich(&mut builder, expansion);
     } else {
-        for (&blade, polynomial) in &expansion.outputs {
+        let outputs = expansion
+            .outputs
+            .iter()
+            .map(|(&blade, polynomial)| {
+                let terms = polynomial.terms.iter().map(|(f, &c)| (inputs(f), c)).collect();
+                (blade, terms)
+            })
+            .collect();
+        builder.products(&outputs);
+    }
+    builder.program
+}
+
+/// Lowers the commutator form of a sandwich, `N x + a C` (see [`CommutatorForm`]): the blades of
+/// `N` and `C` that the outputs read become locals, then the outputs sum their products with the
+/// operand and the versor.
+pub fn lower_commutator_form(form: &CommutatorForm, names: &Names) -> Program {
+    let mut builder = Builder::new(names);
+    let read = |product: &Expansion, operand: Operand| -> BTreeSet<usize> {
+        let variables = product
+            .outputs
+            .values()
+            .flat_map(|p| p.terms.keys().flat_map(|m| m.iter()));
+        variables.filter(|v| v.operand == operand).map(|v| v.field).collect()
+    };
+    let norms = builder.intermediates(&form.norm, &read(&form.norm_product, Operand::Lhs), "norm");
+    let commutators = builder.intermediates(&form.commutator, &read(&form.product, Operand::Rhs), "commutator");
+    let mut outputs: BTreeMap<BladeMask, Vec<(Vec<Value>, Rational64)>> = BTreeMap::new();
+    let mut collect = |product: &Expansion, resolve: &dyn Fn(&Variable) -> Value| {
+        for (&blade, polynomial) in &product.outputs {
             let terms = polynomial
                 .terms
                 .iter()
-                .map(|(factors, &c)| builder.term(c, factors))
-                .collect();
-            builder.program.outputs.insert(blade, terms);
+                .map(|(f, &c)| (f.iter().map(resolve).collect(), c));
+            outputs.entry(blade).or_default().extend(terms);
         }
+    };
+    collect(&form.norm_product, &|v| match v.operand {
+        Operand::Lhs => norms[&v.field],
+        Operand::Rhs => Value::Input(*v),
+    });
+    collect(&form.product, &|v| match v.operand {
+        Operand::Lhs => Value::Input(*v),
+        Operand::Rhs => commutators[&v.field],
+    });
+    for &(blade, variable, coefficient) in &form.passthrough {
+        outputs
+            .entry(blade)
+            .or_default()
+            .push((vec![Value::Input(variable)], coefficient));
     }
+    builder.products(&outputs);
     builder.program
 }
 
@@ -237,11 +425,17 @@ fn lower_sandwich(builder: &mut Builder, expansion: &Expansion) {
             pair_uses.entry((factors[0], factors[1])).or_default().push(c);
         }
     }
+    let doubled = pair_uses
+        .iter()
+        .filter(|(_, coefficients)| common_factor(coefficients.iter()) == 2)
+        .map(|(&(a, b), _)| inputs(&[a, b]))
+        .collect();
+    builder.plan_doubling(doubled);
     let mut pairs: BTreeMap<(Variable, Variable), (Value, i64)> = BTreeMap::new();
     for (&(a, b), coefficients) in &pair_uses {
         let factor = common_factor(coefficients.iter());
-        let name = format!("{}_{}", (builder.field_name)(a), (builder.field_name)(b));
-        let term = builder.term(Rational64::from(factor), &[a, b]);
+        let name = format!("{}_{}", (builder.names.field)(a), (builder.names.field)(b));
+        let term = builder.term(Rational64::from(factor), &inputs(&[a, b]));
         let value = builder.local(name, Definition::Sum(vec![term]));
         pairs.insert((a, b), (value, factor));
     }
@@ -263,7 +457,7 @@ fn lower_sandwich(builder: &mut Builder, expansion: &Expansion) {
                     factors: vec![Value::Input(x), factors[0]],
                 });
             } else {
-                let name = format!("{}_into_{}", (builder.field_name)(x), (builder.blade_name)(blade));
+                let name = format!("{}_into_{}", (builder.names.field)(x), (builder.names.blade)(blade));
                 let q = builder.local(name, Definition::Sum(quadratic));
                 output.push(Term {
                     coefficient: Rational64::one(),
@@ -272,5 +466,63 @@ fn lower_sandwich(builder: &mut Builder, expansion: &Expansion) {
             }
         }
         builder.program.outputs.insert(blade, output);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn variable(operand: Operand, field: usize) -> Variable {
+        Variable { operand, field }
+    }
+
+    /// Fields `e1`, `e1_e2` (left) and `e2_e3`, `e3` (right): the products `e1 · e2_e3` and
+    /// `e1_e2 · e3` would both be named `e1_e2_e3`.
+    fn names() -> (impl Fn(Variable) -> String, impl Fn(BladeMask) -> String) {
+        let field = |v: Variable| match (v.operand, v.field) {
+            (Operand::Lhs, 0) => "e1".to_string(),
+            (Operand::Lhs, _) => "e1_e2".to_string(),
+            (_, 0) => "e2_e3".to_string(),
+            _ => "e3".to_string(),
+        };
+        (field, |blade: BladeMask| format!("b{blade}"))
+    }
+
+    #[test]
+    fn products_shared_by_outputs_are_hoisted_under_unique_names() {
+        let (a, b) = (
+            vec![variable(Operand::Lhs, 0), variable(Operand::Rhs, 0)],
+            vec![variable(Operand::Lhs, 1), variable(Operand::Rhs, 1)],
+        );
+        let mut expansion = Expansion::default();
+        for blade in [1, 2] {
+            let mut polynomial = Polynomial::default();
+            polynomial.add_term(&a, Rational64::from(1));
+            polynomial.add_term(&b, Rational64::from(2));
+            expansion.outputs.insert(blade, polynomial);
+        }
+        let (field, blade) = names();
+        let program = lower(
+            &expansion,
+            &Names {
+                field: &field,
+                blade: &blade,
+            },
+        );
+        let local_names: Vec<&str> = program.locals.iter().map(|l| l.name.as_str()).collect();
+        assert_eq!(local_names, ["e1_e2_e3", "twice_e1_e2", "e1_e2_e3_2"]);
+        // Two shared products (one of them doubled: an add), then two adds per output.
+        assert_eq!(
+            program.cost(),
+            Cost {
+                multiplies: 2,
+                adds: 3,
+                divisions: 0
+            }
+        );
+        let values = program.evaluate(&[2.0, 3.0], &[5.0, 7.0]);
+        assert_eq!(values[&1], 2.0 * 5.0 + 2.0 * 3.0 * 7.0);
+        assert_eq!(values[&2], values[&1]);
     }
 }

@@ -27,3 +27,18 @@ fn pga_motor_sandwich_point() {
 fn cga_even_times_even() {
     insta::assert_snapshot!(function_source(&common::cga(), Operation::Geometric, "Even", "Even"));
 }
+
+#[test]
+fn pga_motor_transform_point() {
+    insta::assert_snapshot!(function_source(&common::pga(), Operation::Transform, "Motor", "Point"));
+}
+
+#[test]
+fn null_cga_motor_times_motor() {
+    insta::assert_snapshot!(function_source(
+        &common::null_cga(),
+        Operation::Geometric,
+        "Motor",
+        "Motor"
+    ));
+}

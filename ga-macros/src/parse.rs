@@ -6,12 +6,12 @@ use proc_macro2::TokenStream;
 use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
-use syn::{braced, bracketed, parenthesized, Attribute, Ident, LitInt, Token, Visibility};
+use syn::{braced, bracketed, parenthesized, token, Attribute, Expr, Ident, LitInt, Token, Visibility};
 
 use crate::diagnostics::{both, combine};
 
 /// The settings a module body accepts, as error messages list them.
-const SETTING_KEYS: &str = "`scalar`, `basis`, `types` or `ops`";
+const SETTING_KEYS: &str = "`scalar`, `basis`, `metric`, `types` or `ops`";
 
 /// `#[attributes] visibility mod name { settings }`.
 pub struct AlgebraInput {
@@ -22,8 +22,10 @@ pub struct AlgebraInput {
     pub name: Ident,
     /// `scalar = f64;`
     pub scalar: Ident,
-    /// `basis = [e0 = 0, e1 = 1];`
+    /// `basis = [e0 = 0, e1 = 1];`, or names only (`basis = [n0, ninf];`) with a `metric`.
     pub basis: BasisSetting,
+    /// `metric = [[0, -1], [-1, 0]];`, if present.
+    pub metric: Option<MetricSetting>,
     /// `types { Motor = grades(0, 2, 4); … }`
     pub types: Vec<TypeEntry>,
     /// `ops = [geometric, reverse];`, if present.
@@ -37,10 +39,24 @@ pub struct BasisSetting {
     pub vectors: Punctuated<BasisEntry, Token![,]>,
 }
 
-/// `name = square`, e.g. `e0 = 0` or `e4 = -1`.
+/// `name = square`, e.g. `e0 = 0` or `e4 = -1`; just `name` when a `metric` gives the squares.
 pub struct BasisEntry {
     pub name: Ident,
-    pub square: SquareLiteral,
+    pub square: Option<SquareLiteral>,
+}
+
+/// The `metric` setting: the rows of B(eᵢ, eⱼ). Its key is where errors about the matrix as a whole
+/// (its size, its magnitude) are reported.
+pub struct MetricSetting {
+    pub key: Ident,
+    pub rows: Punctuated<MetricRow, Token![,]>,
+}
+
+/// One bracketed row of the metric. Entries are parsed as expressions so that anything that is not a
+/// rational number (`0.5`, `x`) is reported at its own span by [`crate::validate`].
+pub struct MetricRow {
+    pub bracket: token::Bracket,
+    pub entries: Punctuated<Expr, Token![,]>,
 }
 
 /// An integer literal with an optional minus sign; its tokens span both so that an error covers `-2`.
@@ -88,6 +104,7 @@ impl Parse for AlgebraInput {
 
         let mut scalar = None;
         let mut basis = None;
+        let mut metric = None;
         let mut types = None;
         let mut ops = None;
         // A repeated setting does not stop parsing, so that every repetition is reported at once.
@@ -111,6 +128,11 @@ impl Parse for AlgebraInput {
                         vectors,
                     };
                     store(&mut basis, setting, &key)
+                }
+                "metric" => {
+                    let rows = assigned_list(&body, MetricRow::parse)?;
+                    let setting = MetricSetting { key: key.clone(), rows };
+                    store(&mut metric, setting, &key)
                 }
                 "types" => {
                     let block;
@@ -146,6 +168,7 @@ impl Parse for AlgebraInput {
             name,
             scalar,
             basis,
+            metric,
             types,
             ops,
         })
@@ -189,9 +212,28 @@ fn required<T>(setting: Option<T>, module: &Ident, key: &str, example: &str) -> 
 impl Parse for BasisEntry {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let name = input.parse()?;
-        input.parse::<Token![=]>()?;
-        let square = input.parse()?;
+        let square = if input.peek(Token![=]) {
+            input.parse::<Token![=]>()?;
+            Some(input.parse()?)
+        } else {
+            None
+        };
         Ok(BasisEntry { name, square })
+    }
+}
+
+impl Parse for MetricRow {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let row;
+        let bracket = bracketed!(row in input);
+        let entries = row.parse_terminated(Expr::parse, Token![,])?;
+        Ok(MetricRow { bracket, entries })
+    }
+}
+
+impl ToTokens for MetricRow {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        self.bracket.surround(tokens, |inner| self.entries.to_tokens(inner));
     }
 }
 

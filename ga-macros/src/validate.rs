@@ -4,26 +4,33 @@
 //! [`locate`] turns into `syn::Error`s at the offending tokens.
 
 use ga_codegen::{
-    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Layout, Location, Operation, ScalarType,
+    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Layout, Location, Operation, Rational64, ScalarType,
     TypeDeclaration,
 };
 use quote::ToTokens;
-use syn::{Attribute, Ident};
+use syn::{Attribute, BinOp, Expr, ExprBinary, ExprLit, ExprUnary, Ident, Lit, UnOp};
 
 use crate::diagnostics::{both, collect};
-use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, TypeEntry};
+use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, MetricRow, TypeEntry};
 
 /// The declaration written in `input`, checked by the compiler.
 pub fn validate(input: &AlgebraInput) -> syn::Result<AlgebraDeclaration> {
     let scalar = scalar_type(&input.scalar);
-    let basis = collect(input.basis.vectors.iter().map(basis_vector));
+    let has_metric = input.metric.is_some();
+    let basis = collect(input.basis.vectors.iter().map(|entry| basis_vector(entry, has_metric)));
+    let metric = input
+        .metric
+        .as_ref()
+        .map(|metric| collect(metric.rows.iter().map(metric_row)));
     let types = collect(input.types.iter().map(type_declaration));
     let operations = input.ops.as_ref().map(|names| collect(names.iter().map(operation)));
-    let operations = operations.transpose();
-    let (((scalar, basis), types), operations) = both(both(both(scalar, basis), types), operations)?;
+    let (metric, operations) = (metric.transpose(), operations.transpose());
+    let ((((scalar, basis), metric), types), operations) =
+        both(both(both(both(scalar, basis), metric), types), operations)?;
     let declaration = AlgebraDeclaration {
         scalar,
         basis,
+        metric,
         types,
         operations,
     };
@@ -45,10 +52,27 @@ fn offending_tokens<'a>(input: &'a AlgebraInput, error: &Error) -> &'a dyn ToTok
         Location::Algebra if matches!(error, Error::EmptyBasis | Error::TooManyBasisVectors { .. }) => &input.basis.key,
         Location::Algebra => module_name,
         Location::Basis(index) => match input.basis.vectors.get(index) {
-            Some(vector) if matches!(error, Error::InvalidSquare { .. }) => &vector.square,
+            Some(BasisEntry {
+                square: Some(square), ..
+            }) if matches!(error, Error::InvalidSquare { .. }) => square,
             Some(vector) => &vector.name,
             None => module_name,
         },
+        Location::Metric => match &input.metric {
+            Some(metric) => &metric.key,
+            None => module_name,
+        },
+        Location::MetricRow(row) => match input.metric.as_ref().and_then(|metric| metric.rows.get(row)) {
+            Some(row) => row,
+            None => module_name,
+        },
+        Location::MetricEntry { row, column } => {
+            let row = input.metric.as_ref().and_then(|metric| metric.rows.get(row));
+            match row.and_then(|row| row.entries.get(column)) {
+                Some(entry) => entry,
+                None => module_name,
+            }
+        }
         Location::Type(index) => match input.types.get(index) {
             Some(entry) => &entry.name,
             None => module_name,
@@ -73,17 +97,91 @@ fn scalar_type(name: &Ident) -> syn::Result<ScalarType> {
     })
 }
 
-fn basis_vector(entry: &BasisEntry) -> syn::Result<BasisVectorDeclaration> {
-    let magnitude: i64 = entry.square.magnitude.base10_parse()?;
-    let square = if entry.square.minus.is_some() {
-        -magnitude
-    } else {
-        magnitude
+/// A basis vector with its square, or — when a `metric` matrix gives the squares — its name alone.
+fn basis_vector(entry: &BasisEntry, has_metric: bool) -> syn::Result<BasisVectorDeclaration> {
+    let square = match (&entry.square, has_metric) {
+        (Some(square), false) => {
+            let magnitude: i64 = square.magnitude.base10_parse()?;
+            if square.minus.is_some() {
+                -magnitude
+            } else {
+                magnitude
+            }
+        }
+        // Not read by the compiler: the metric's diagonal is the square.
+        (None, true) => 0,
+        (Some(square), true) => {
+            return Err(syn::Error::new_spanned(
+                square,
+                format!(
+                    "basis vector `{}` has a square, but the `metric` matrix gives the squares: \
+                     with a metric, list only the names of the basis vectors",
+                    entry.name
+                ),
+            ))
+        }
+        (None, false) => {
+            return Err(syn::Error::new(
+                entry.name.span(),
+                format!(
+                    "basis vector `{0}` has no square: write `{0} = 1`, `{0} = -1` or `{0} = 0`, \
+                     or give every inner product in a `metric` matrix",
+                    entry.name
+                ),
+            ))
+        }
     };
     Ok(BasisVectorDeclaration {
         name: entry.name.to_string(),
         square,
     })
+}
+
+fn metric_row(row: &MetricRow) -> syn::Result<Vec<Rational64>> {
+    collect(row.entries.iter().map(rational))
+}
+
+/// A metric entry: an integer or a fraction of integers, optionally negative (`1`, `-1`, `1/2`, `-1/2`).
+fn rational(entry: &Expr) -> syn::Result<Rational64> {
+    let (numerator, denominator) = match entry {
+        Expr::Binary(ExprBinary {
+            left,
+            op: BinOp::Div(_),
+            right,
+            ..
+        }) => (signed_integer(left, entry)?, integer(right, entry)?),
+        _ => (signed_integer(entry, entry)?, 1),
+    };
+    if denominator == 0 {
+        return Err(syn::Error::new_spanned(
+            entry,
+            "a metric entry cannot have a zero denominator",
+        ));
+    }
+    Ok(Rational64::new(numerator, denominator))
+}
+
+/// `n` or `-n` for an integer literal `n`; any other expression is an error at `entry`, the whole
+/// metric entry it belongs to.
+fn signed_integer(expression: &Expr, entry: &Expr) -> syn::Result<i64> {
+    match expression {
+        Expr::Unary(ExprUnary {
+            op: UnOp::Neg(_),
+            expr: magnitude,
+            ..
+        }) => Ok(-integer(magnitude, entry)?),
+        _ => integer(expression, entry),
+    }
+}
+
+fn integer(expression: &Expr, entry: &Expr) -> syn::Result<i64> {
+    match expression {
+        Expr::Lit(ExprLit { lit: Lit::Int(int), .. }) => int.base10_parse(),
+        _ => Err(syn::Error::new_spanned(
+            entry,
+            "a metric entry must be a rational number: an integer or a fraction such as `1/2` or `-1/2`",
+        )),
+    }
 }
 
 fn type_declaration(entry: &TypeEntry) -> syn::Result<TypeDeclaration> {
@@ -164,6 +262,7 @@ mod tests {
                         square
                     })
                     .to_vec(),
+                metric: None,
                 types: vec![
                     TypeDeclaration {
                         name: "Motor".to_string(),
@@ -194,6 +293,30 @@ mod tests {
             Layout::Blades(["e23", "e31", "e12"].map(String::from).to_vec())
         );
         assert_eq!(declaration.operations, None);
+    }
+
+    #[test]
+    fn a_metric_gives_rational_entries_and_leaves_the_basis_names_only() {
+        let declaration = declaration(
+            "mod null {
+                scalar = f64;
+                basis = [e1, n0, ninf];
+                metric = [[1, 0, 0], [0, 0, -1/2], [0, -1 / 2, 0]];
+                types { Vector = grades(1); }
+            }",
+        )
+        .unwrap();
+        let (zero, one, half) = (Rational64::from(0), Rational64::from(1), Rational64::new(1, 2));
+        assert_eq!(
+            declaration.metric,
+            Some(vec![
+                vec![one, zero, zero],
+                vec![zero, zero, -half],
+                vec![zero, -half, zero]
+            ])
+        );
+        let names: Vec<&str> = declaration.basis.iter().map(|v| v.name.as_str()).collect();
+        assert_eq!(names, ["e1", "n0", "ninf"]);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 ga_macros::algebra! {
     mod vga {
         scalar = f64;
-        metric = [1, 1];
+        signature = [3, 0, 1];
         types {
             Vector = grades(1);
         }
