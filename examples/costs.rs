@@ -66,6 +66,37 @@ fn cga() -> AlgebraDeclaration {
     }
 }
 
+/// CGA on e1, e2, e3, n0, ninf with n0·ninf = −1: a rigid motor (1, eᵢⱼ, eᵢ∞, e123∞) has 8 components.
+fn null_basis_cga() -> AlgebraDeclaration {
+    let metric = [
+        [1, 0, 0, 0, 0],
+        [0, 1, 0, 0, 0],
+        [0, 0, 1, 0, 0],
+        [0, 0, 0, 0, -1],
+        [0, 0, 0, -1, 0],
+    ];
+    let blades = |names: &[&str]| Layout::Blades(names.iter().map(|n| n.to_string()).collect());
+    AlgebraDeclaration {
+        scalar: ScalarType::F64,
+        basis: basis(&[("e1", 0), ("e2", 0), ("e3", 0), ("e4", 0), ("e5", 0)]),
+        types: vec![
+            declared(
+                "Motor",
+                blades(&["scalar", "e12", "e13", "e23", "e15", "e25", "e35", "e1235"]),
+            ),
+            declared("Even", Layout::Grades(vec![0, 2, 4])),
+            declared("Multivector", Layout::All),
+        ],
+        operations: None,
+        metric: Some(
+            metric
+                .iter()
+                .map(|row| row.iter().map(|&x| ga_codegen::Rational64::from(x)).collect())
+                .collect(),
+        ),
+    }
+}
+
 fn binary_cost(algebra: &Algebra, operation: Operation, lhs: &str, rhs: &str) -> Cost {
     functions::cost(algebra, operation, lhs, Some(rhs))
         .expect("the declared types have a result type")
@@ -115,8 +146,25 @@ fn main() {
         first + second,
     );
     row(
+        "PGA Motor `transform` Point (unit motor)",
+        binary_cost(&pga, Operation::Transform, "Motor", "Point"),
+    );
+    row(
         "CGA Even × Even",
         binary_cost(&cga, Operation::Geometric, "Even", "Even"),
+    );
+    row(
+        "CGA Even `transform` Vector (unit versor)",
+        binary_cost(&cga, Operation::Transform, "Even", "Vector"),
+    );
+    let null = Algebra::new(&null_basis_cga()).expect("the null-basis CGA is valid");
+    row(
+        "null-basis CGA Motor × Motor (8 components)",
+        binary_cost(&null, Operation::Geometric, "Motor", "Motor"),
+    );
+    row(
+        "null-basis CGA Even × Even",
+        binary_cost(&null, Operation::Geometric, "Even", "Even"),
     );
     row(
         "PGA Multivector × Multivector",
