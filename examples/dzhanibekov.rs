@@ -1,6 +1,7 @@
 //! Fig. 1 of the paper: the Dzhanibekov (tennis-racket) flips of a free cuboid spinning about its intermediate
 //! axis (SCENES.md scene 1), in PGA and CGA. Writes `dzhanibekov_{pga,cga}.csv` and `dzhanibekov.png`
-//! (body angular velocity over time; the path traced by the tip of the intermediate axis).
+//! (body angular velocity over time; the path of the centre of a face on the intermediate axis, relative to
+//! the centre of mass).
 //!
 //! ```sh
 //! cargo run --release --example dzhanibekov [output folder, default out/examples]
@@ -12,15 +13,16 @@ use dynamics::constraints::Stabilisation;
 use dynamics::scenes::{build, Formulation, SceneAlgebra};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
-use output::{plot, run, write_trajectory, Curve, Panel};
+use output::run;
 use reference::SceneId;
+use report::plot::{figure, Labels, Panel, Series};
 
 fn simulate<A: SceneAlgebra>(folder: &std::path::Path) -> output::Result<Simulation<A>> {
     let scene = build::<A>(SceneId::Cuboid, Formulation::VirtualPower, Stabilisation::None)?;
     let simulation = run(&scene.system, scene.initial, 1e-3, scene.duration)?;
-    write_trajectory(
+    report::csv::write(
         &folder.join(format!("dzhanibekov_{}.csv", A::NAME.to_lowercase())),
-        &simulation,
+        &simulation.samples,
     )?;
     Ok(simulation)
 }
@@ -43,44 +45,42 @@ fn main() -> output::Result<()> {
         .map(|s| s.orientation.inverse() * s.angular_velocity)
         .collect();
     let component = |i: usize, name: &str| {
-        Curve::new(
+        Series::line(
             name,
             pga.samples.iter().zip(&body_rates).map(|(s, w)| (s.t, w[i])).collect(),
         )
     };
-    // The intermediate (body y) axis in the world: it turns over at every flip.
-    let axis_tip: Vec<(f64, f64)> = pga
+    // The centre of the +y face (1 m out along the intermediate axis) seen from the centre of mass: it turns
+    // over at every flip.
+    let face_centre: Vec<(f64, f64)> = pga
         .samples
         .iter()
         .map(|s| {
-            let tip = s.orientation * Vector3::y();
-            (tip.y, tip.z)
+            let offset = s.orientation * Vector3::y();
+            (offset.y, offset.z)
         })
         .collect();
-    plot(
+    figure(
         &folder.join("dzhanibekov.png"),
-        "Free cuboid (1 × 2 × 3 m, 1 kg) spun about its intermediate axis",
+        "Free cuboid (1 × 2 × 3 m, 1 kg) spun about its intermediate axis, PGA",
         &[
-            Panel {
-                title: "Body angular velocity".into(),
-                x_label: "time t (s)".into(),
-                y_label: "ω, body axes (rad/s)".into(),
-                curves: vec![
+            Panel::new(
+                Labels::new("Body angular velocity", "time t (s)", "ω, body axes (rad/s)"),
+                vec![
                     component(0, "ω_x (largest I)"),
-                    component(1, "ω_y (intermediate)"),
+                    component(1, "ω_y (intermediate I)"),
                     component(2, "ω_z (smallest I)"),
                 ],
-                equal_axes: false,
-                y_range: None,
-            },
-            Panel {
-                title: "Path of the intermediate axis tip".into(),
-                x_label: "world y".into(),
-                y_label: "world z".into(),
-                curves: vec![Curve::new("R e_y, 0–10 s", axis_tip)],
-                equal_axes: true,
-                y_range: None,
-            },
+            ),
+            Panel::new(
+                Labels::new(
+                    "Centre of the +y face relative to the centre of mass, 0–10 s",
+                    "world y offset (m)",
+                    "world z offset (m)",
+                ),
+                vec![Series::line("R (0, 1 m, 0)", face_centre)],
+            )
+            .equal_aspect(),
         ],
     )?;
     println!("wrote {}", folder.display());

@@ -14,9 +14,10 @@ use dynamics::constraints::Stabilisation;
 use dynamics::scenes::{build, Formulation, SceneAlgebra};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
-use output::{plot, run, traced, write_trajectory, Curve, Panel};
+use output::{run, traced};
 use reference::scenes::HEAVY_TOP_VALUES;
 use reference::SceneId;
+use report::plot::{figure, Labels, Panel, Series};
 
 /// The centre of the cone's base: on the axis, h/4 = 0.25 m beyond the centre of mass (the tip is 0.75 m
 /// before it).
@@ -31,12 +32,12 @@ fn simulate<A: SceneAlgebra>(
     let simulation = run(&scene.system, scene.initial, 1e-3, scene.duration)?;
     let name = if id == SceneId::TopCusp { "cusp" } else { "steady" };
     let formulation_name = formulation.name().replace(' ', "_");
-    write_trajectory(
+    report::csv::write(
         &folder.join(format!(
             "heavy_top_{name}_{formulation_name}_{}.csv",
             A::NAME.to_lowercase()
         )),
-        &simulation,
+        &simulation.samples,
     )?;
     Ok(simulation)
 }
@@ -82,34 +83,26 @@ fn main() -> output::Result<()> {
     let (cusp, steady) = (pinned(SceneId::TopCusp)?, pinned(SceneId::TopSteady)?);
     let top_view = |simulation: &Simulation<Pga>| traced(simulation, BASE_CENTRE).iter().map(|p| (p.x, p.y)).collect();
     let bound = |degrees: f64| vec![(0.0, degrees), (10.0, degrees)];
-    plot(
+    figure(
         &folder.join("heavy_top.png"),
-        "Heavy top: solid cone (1 kg, h = r = 1 m) spinning at 20 rad/s, tip pinned",
+        "Heavy top: solid cone (1 kg, h = r = 1 m) spinning at 20 rad/s, tip pinned, PGA",
         &[
-            Panel {
-                title: "Centre of the base, seen from above".into(),
-                x_label: "world x (m)".into(),
-                y_label: "world y (m)".into(),
-                curves: vec![
-                    Curve::new("3a: from rest (cusps)", top_view(cusp)),
-                    Curve::new("3b: steady precession", top_view(steady)),
+            Panel::new(
+                Labels::new("Centre of the base, seen from above", "world x (m)", "world y (m)"),
+                vec![
+                    Series::line("3a: from rest (cusps)", top_view(cusp)),
+                    Series::line("3b: steady precession", top_view(steady)),
                 ],
-                equal_axes: true,
-                y_range: None,
-            },
-            Panel {
-                title: "Tilt of the axis from the vertical".into(),
-                x_label: "time t (s)".into(),
-                y_label: "θ (degrees)".into(),
-                curves: vec![
-                    Curve::new("3a", tilt(cusp)),
-                    Curve::new("3b", tilt(steady)),
-                    Curve::new("analytic θmax (3a)", bound(HEAVY_TOP_VALUES.theta_max.to_degrees())),
+            )
+            .equal_aspect(),
+            Panel::new(
+                Labels::new("Tilt of the axis from the vertical", "time t (s)", "θ (degrees)"),
+                vec![
+                    Series::line("3a", tilt(cusp)),
+                    Series::line("3b", tilt(steady)),
+                    Series::line("analytic θmax (3a)", bound(HEAVY_TOP_VALUES.theta_max.to_degrees())),
                 ],
-                equal_axes: false,
-                // Room above the curves for the legend.
-                y_range: Some((28.0, 52.0)),
-            },
+            ),
         ],
     )?;
     println!("wrote {}", folder.display());

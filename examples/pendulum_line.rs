@@ -13,7 +13,8 @@ mod output;
 use dynamics::constraints::{pinning, ConstrainedBody, PinningAlgebra, Stabilisation};
 use dynamics::{Body, Cga, Force, Pga, Simulation, State};
 use nalgebra::{UnitQuaternion, Vector3};
-use output::{plot, run, traced, write_trajectory, Curve, Panel};
+use output::{run, traced};
+use report::plot::{figure, Labels, Panel, Series};
 
 /// The rod end at the hinge and the free end, body coordinates (rod axis = body z, CoM at the origin).
 const HINGE_END: Vector3<f64> = Vector3::new(0.0, 0.0, 0.5);
@@ -44,9 +45,9 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
     let initial = system.project(0.0, &initial)?;
     let simulation = run(&system, initial, 1e-3, 4.0)?;
     let name = if hinge { "hinge" } else { "line" };
-    write_trajectory(
+    report::csv::write(
         &folder.join(format!("pendulum_{name}_{}.csv", A::NAME.to_lowercase())),
-        &simulation,
+        &simulation.samples,
     )?;
     Ok(simulation)
 }
@@ -74,32 +75,25 @@ fn main() -> output::Result<()> {
             .map(|(s, p)| (s.t, p.y))
             .collect()
     };
-    plot(
+    figure(
         &folder.join("pendulum_line.png"),
-        "Rod pinned by its hinge line (cylindrical joint) vs line + point (hinge)",
+        "Rod pinned by its hinge line (cylindrical joint) vs line + point (hinge), PGA",
         &[
-            Panel {
-                title: "Free end, seen along the axis".into(),
-                x_label: "world x (m)".into(),
-                y_label: "world z (m)".into(),
-                curves: vec![
-                    Curve::new("line pinned (same swing, hidden)", side_view(&line)),
-                    Curve::new("line + point pinned", side_view(&hinge)),
+            Panel::new(
+                Labels::new("Free end, seen along the axis", "world x (m)", "world z (m)"),
+                vec![
+                    Series::line("line pinned (same swing, hidden)", side_view(&line)),
+                    Series::line("line + point pinned", side_view(&hinge)),
                 ],
-                equal_axes: true,
-                y_range: None,
-            },
-            Panel {
-                title: "Free end, along the axis".into(),
-                x_label: "time t (s)".into(),
-                y_label: "world y (m)".into(),
-                curves: vec![
-                    Curve::new("line pinned: slides at 0.3 m/s", slide(&line)),
-                    Curve::new("line + point pinned", slide(&hinge)),
+            )
+            .equal_aspect(),
+            Panel::new(
+                Labels::new("Free end, along the axis", "time t (s)", "world y (m)"),
+                vec![
+                    Series::line("line pinned: slides at 0.3 m/s", slide(&line)),
+                    Series::line("line + point pinned", slide(&hinge)),
                 ],
-                equal_axes: false,
-                y_range: None,
-            },
+            ),
         ],
     )?;
     println!("wrote {}", folder.display());

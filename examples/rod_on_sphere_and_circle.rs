@@ -14,8 +14,9 @@ use dynamics::constraints::Stabilisation;
 use dynamics::scenes::{build, Formulation, SceneAlgebra, SceneError};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
-use output::{plot, run, traced, write_trajectory, Curve, Panel};
+use output::{run, traced};
 use reference::SceneId;
+use report::plot::{figure, Labels, Panel, Series};
 
 /// The constrained rod end P, body coordinates.
 const END: Vector3<f64> = Vector3::new(0.0, 0.0, 0.5);
@@ -34,12 +35,12 @@ fn simulate<A: SceneAlgebra>(
     let simulation = run(&scene.system, scene.initial, 1e-3, scene.duration)?;
     let name = if id == SceneId::RodOnSphere { "sphere" } else { "circle" };
     let formulation_name = formulation.name().replace(' ', "_");
-    write_trajectory(
+    report::csv::write(
         &folder.join(format!(
             "rod_on_{name}_{formulation_name}_{}.csv",
             A::NAME.to_lowercase()
         )),
-        &simulation,
+        &simulation.samples,
     )?;
     let violation = traced(&simulation, END)
         .iter()
@@ -71,39 +72,30 @@ fn main() -> output::Result<()> {
             if formulation == Formulation::VirtualPower {
                 let end = traced(&cga, END);
                 let centre: Vec<Vector3<f64>> = cga.samples.iter().map(|s| s.position).collect();
-                curves_top.push(Curve::new("rod end P", end.iter().map(|p| (p.x, p.y)).collect()));
-                curves_top.push(Curve::new(
+                curves_top.push(Series::line("rod end P", end.iter().map(|p| (p.x, p.y)).collect()));
+                curves_top.push(Series::line(
                     "centre of mass",
                     centre.iter().map(|p| (p.x, p.y)).collect(),
                 ));
-                curves_side.push(Curve::new("rod end P", end.iter().map(|p| (p.x, p.z)).collect()));
-                curves_side.push(Curve::new(
+                curves_side.push(Series::line("rod end P", end.iter().map(|p| (p.x, p.z)).collect()));
+                curves_side.push(Series::line(
                     "centre of mass",
                     centre.iter().map(|p| (p.x, p.z)).collect(),
                 ));
             }
         }
         let name = if id == SceneId::RodOnSphere { "sphere" } else { "circle" };
-        plot(
+        let title = format!("Rod (1 kg, 1 m) with its end on a {name} of radius 0.5 m, 5 s, CGA, virtual power");
+        figure(
             &folder.join(format!("rod_on_{name}.png")),
-            &format!("Rod (1 kg, 1 m) with its end on a {name} of radius 0.5 m, 5 s"),
+            &title,
             &[
-                Panel {
-                    title: "Seen from above".into(),
-                    x_label: "world x (m)".into(),
-                    y_label: "world y (m)".into(),
-                    curves: curves_top,
-                    equal_axes: true,
-                    y_range: None,
-                },
-                Panel {
-                    title: "Seen from the side".into(),
-                    x_label: "world x (m)".into(),
-                    y_label: "world z (m)".into(),
-                    curves: curves_side,
-                    equal_axes: true,
-                    y_range: None,
-                },
+                Panel::new(Labels::new("Seen from above", "world x (m)", "world y (m)"), curves_top).equal_aspect(),
+                Panel::new(
+                    Labels::new("Seen from the side", "world x (m)", "world z (m)"),
+                    curves_side,
+                )
+                .equal_aspect(),
             ],
         )?;
     }

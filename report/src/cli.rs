@@ -1,14 +1,16 @@
 //! The command line of the main job (`cargo run --release -- --help`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, ValueEnum};
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method, SplittingMethod};
 use reference::SceneId;
+use serde::Deserialize;
 
 use crate::job::run_job;
+use crate::scene_job::run_scene_file;
 use crate::sweep::SweepPlan;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -34,7 +36,9 @@ impl From<SceneName> for SceneId {
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+/// The integrators by name, on the command line and in scene files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum IntegratorName {
     Rk4,
     Rkmk4,
@@ -55,7 +59,9 @@ impl From<IntegratorName> for Integrator {
     }
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+/// The stabilisations by name, on the command line and in scene files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum StabilisationName {
     /// Post-step projection onto the constraint manifold (SPEC §10).
     Projection,
@@ -95,9 +101,13 @@ pub struct Options {
     /// Simulated time in seconds for every scene (default: each scene's T from SCENES.md).
     #[arg(long)]
     pub duration: Option<f64>,
-    /// Output folder.
-    #[arg(long, default_value = "out")]
-    pub output: PathBuf,
+    /// Output folder (default: out, or out/<file name> with --scene-file).
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Run the scene described in this TOML file (README, "Scene files") instead of the sweep: writes its
+    /// trajectories (CSV), energy and constraint-violation plots and summary.md.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "duration", "stabilisation"])]
+    pub scene_file: Option<PathBuf>,
     /// Worker threads (default: one per core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -132,9 +142,12 @@ impl Options {
     }
 }
 
-/// Parses the command line, runs the job and prints where the output went.
+/// Parses the command line, runs the job (or the scene file) and prints where the output went.
 pub fn main() -> ExitCode {
     let options = Options::parse();
+    if let Some(path) = &options.scene_file {
+        return scene_file_main(path, options.output.as_deref());
+    }
     if let Some(threads) = options.threads {
         if let Err(error) = rayon::ThreadPoolBuilder::new().num_threads(threads).build_global() {
             eprintln!("cannot start {threads} threads: {error}");
@@ -142,7 +155,8 @@ pub fn main() -> ExitCode {
         }
     }
     let started = std::time::Instant::now();
-    match run_job(&options.plan(), &options.output, !options.quiet) {
+    let output = options.output.clone().unwrap_or_else(|| PathBuf::from("out"));
+    match run_job(&options.plan(), &output, !options.quiet) {
         Ok(summary) => {
             println!(
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",
@@ -155,6 +169,35 @@ pub fn main() -> ExitCode {
         }
         Err(error) => {
             eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs one scene file into `output` (default `out/<file name>`) and prints its summary's numbers.
+fn scene_file_main(path: &Path, output: Option<&Path>) -> ExitCode {
+    let stem = path.file_stem().unwrap_or(path.as_os_str());
+    let output = output.map_or_else(|| Path::new("out").join(stem), Path::to_path_buf);
+    match run_scene_file(path, &output) {
+        Ok(summary) => {
+            for run in &summary.runs {
+                println!(
+                    "{}: largest energy change {:.1e}, largest constraint violation {:.1e} m, CPU {:.2e} s per \
+                     simulated second",
+                    run.algebra.name(),
+                    run.max_energy_change(),
+                    run.max_violation(),
+                    run.cpu_per_simulated_second
+                );
+            }
+            println!(
+                "summary, plots and trajectories in {}",
+                output.join("summary.md").display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(error) => {
+            eprintln!("error: {}: {error}", path.display());
             ExitCode::FAILURE
         }
     }

@@ -10,7 +10,7 @@ use reference::{SceneConstraint, SceneId};
 
 use crate::markdown::RunResult;
 use crate::mujoco;
-use crate::plot::{linear, linear_log, log_log, path_view, Labels, PlotError, Series};
+use crate::plot::{chart, Labels, Panel, PlotError, Series};
 use crate::sweep::Outcome;
 
 /// A file-name stem for a scene.
@@ -133,15 +133,12 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
     };
     let name = format!("{stem}_work_precision.png");
     let title = format!("Scene {}: error against CPU time", scene.label());
-    log_log(
-        &dir.join(&name),
-        &Labels {
-            title: &title,
-            x: "CPU per simulated second (s)",
-            y,
-        },
-        &series,
-    )?;
+    let labels = Labels {
+        title: &title,
+        x: "CPU per simulated second (s)",
+        y,
+    };
+    chart(&dir.join(&name), &Panel::new(labels, series).log_x().log_y())?;
     files.push(name);
 
     // Over time, at the showcase step.
@@ -160,27 +157,27 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
     };
     let name = format!("{stem}_energy_drift.png");
     let title = format!("Scene {}: energy drift, dt = {dt:.0e} s", scene.label());
-    linear_log(
+    let labels = Labels {
+        title: &title,
+        x: "time (s)",
+        y: "|E(t) − E₀| / E_scale",
+    };
+    chart(
         &dir.join(&name),
-        &Labels {
-            title: &title,
-            x: "time (s)",
-            y: "|E(t) − E₀| / E_scale",
-        },
-        &over_time(|o| &o.measurements.energy_drift),
+        &Panel::new(labels, over_time(|o| &o.measurements.energy_drift)).log_y(),
     )?;
     files.push(name);
     if !matches!(scene.parameters().constraint, SceneConstraint::Free) {
         let name = format!("{stem}_violation.png");
         let title = format!("Scene {}: constraint violation, dt = {dt:.0e} s", scene.label());
-        linear_log(
+        let labels = Labels {
+            title: &title,
+            x: "time (s)",
+            y: "constraint violation (m)",
+        };
+        chart(
             &dir.join(&name),
-            &Labels {
-                title: &title,
-                x: "time (s)",
-                y: "constraint violation (m)",
-            },
-            &over_time(|o| &o.measurements.violation),
+            &Panel::new(labels, over_time(|o| &o.measurements.violation)).log_y(),
         )?;
         files.push(name);
     }
@@ -211,7 +208,7 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
                 })
             })
             .collect();
-        let series = [
+        let series = vec![
             Series::line("reference (DOP853)", reference),
             Series::line(
                 format!("{}, dt = {:.0e} s", best.config.series_label(), best.config.dt),
@@ -220,12 +217,8 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
         ];
         let name = format!("{stem}_path.png");
         let title = format!("Scene {}: {what}", scene.label());
-        let labels = Labels { title: &title, x, y };
-        if equal {
-            path_view(&dir.join(&name), &labels, &series)?;
-        } else {
-            linear(&dir.join(&name), &labels, &series, false)?;
-        }
+        let panel = Panel::new(Labels { title: &title, x, y }, series);
+        chart(&dir.join(&name), &if equal { panel.equal_aspect() } else { panel })?;
         files.push(name);
     }
     Ok(files)

@@ -4,6 +4,8 @@
 //! The pipeline, one module per stage: [`sweep`] (configurations, running one) → [`measure`] (metrics
 //! against the `reference` crate) → [`markdown`] (the report), [`figures`] (the plots, drawn by
 //! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
+//!
+//! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
 
 pub mod cli;
 pub mod csv;
@@ -13,4 +15,6 @@ pub mod markdown;
 pub mod measure;
 pub mod mujoco;
 pub mod plot;
+pub mod scene_file;
+pub mod scene_job;
 pub mod sweep;

@@ -4,6 +4,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 
+use dynamics::simulate::Sample;
 use reference::SceneId;
 
 use crate::mujoco;
@@ -12,7 +13,8 @@ use crate::sweep::{AlgebraKind, Config, Outcome, RunError};
 /// A run's result as the report sees it.
 pub type RunResult = (Config, Result<Outcome, RunError>);
 
-fn scientific(value: f64) -> String {
+/// A number for a table: two significant digits, or a plain 0.
+pub fn scientific(value: f64) -> String {
     if value == 0.0 {
         "0".to_string()
     } else {
@@ -21,11 +23,10 @@ fn scientific(value: f64) -> String {
 }
 
 /// The largest orientation (rad) and position (m) difference over the samples of two runs.
-pub fn agreement(first: &Outcome, second: &Outcome) -> (f64, f64) {
+pub fn agreement(first: &[Sample], second: &[Sample]) -> (f64, f64) {
     first
-        .samples
         .iter()
-        .zip(&second.samples)
+        .zip(second)
         .fold((0.0f64, 0.0f64), |(angle, distance), (a, b)| {
             (
                 angle.max(a.orientation.angle_to(&b.orientation)),
@@ -94,7 +95,7 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
             continue;
         };
         let Ok(cga) = result else { continue };
-        let (angle, distance) = agreement(cga, pga);
+        let (angle, distance) = agreement(&cga.samples, &pga.samples);
         let label = format!(
             "{}, dt = {:.0e}",
             config.series_label().trim_start_matches("CGA, "),

@@ -1,5 +1,5 @@
 //! The charts render to PNG files with text (axis labels, legends) from the embedded font.
-use report::plot::{linear_log, log_log, path_view, Labels, Series};
+use report::plot::{chart, figure, Labels, Panel, Series};
 
 #[test]
 fn charts_render() {
@@ -18,19 +18,30 @@ fn charts_render() {
         x: "CPU per simulated second (s)",
         y: "orientation error at T (rad)",
     };
-    log_log(&dir.join("wp.png"), &labels, &[curve.clone(), mujoco]).unwrap();
-    linear_log(
+    chart(
+        &dir.join("wp.png"),
+        &Panel::new(labels.clone(), vec![curve, mujoco]).log_x().log_y(),
+    )
+    .unwrap();
+    let drift = Series::line("drift", vec![(0.0, 1e-16), (5.0, 1e-12), (10.0, 1e-10)]);
+    chart(
         &dir.join("drift.png"),
-        &labels,
-        &[Series::line("drift", vec![(0.0, 1e-16), (5.0, 1e-12), (10.0, 1e-10)])],
+        &Panel::new(labels.clone(), vec![drift.clone()]).log_y(),
     )
     .unwrap();
     let circle: Vec<(f64, f64)> = (0..100)
         .map(|k| (k as f64 * 0.0628).cos())
         .zip((0..100).map(|k| (k as f64 * 0.0628).sin()))
         .collect();
-    path_view(&dir.join("path.png"), &labels, &[Series::line("rod end", circle)]).unwrap();
-    for name in ["wp.png", "drift.png", "path.png"] {
+    let path = Panel::new(labels.clone(), vec![Series::line("rod end", circle)]).equal_aspect();
+    chart(&dir.join("path.png"), &path).unwrap();
+    figure(
+        &dir.join("figure.png"),
+        "Two panels",
+        &[path, Panel::new(labels, vec![drift]).log_y()],
+    )
+    .unwrap();
+    for name in ["wp.png", "drift.png", "path.png", "figure.png"] {
         let size = std::fs::metadata(dir.join(name)).unwrap().len();
         assert!(size > 10_000, "{name} is {size} bytes");
     }

@@ -77,7 +77,7 @@ fn shortened_job_matches_the_references() {
         let Some((_, Ok(pga))) = summary.results.iter().find(|(c, _)| *c == twin) else {
             continue;
         };
-        let (angle, distance) = agreement(result.as_ref().unwrap(), pga);
+        let (angle, distance) = agreement(&result.as_ref().unwrap().samples, &pga.samples);
         assert!(
             angle < 1e-10 && distance < 1e-10,
             "{config:?}: CGA and PGA differ by {angle} rad, {distance} m"

@@ -1,0 +1,298 @@
+//! Running a scene file (`--scene-file`, [`crate::scene_file`]): the scene in each requested algebra, then
+//! its trajectories (CSV), energy and constraint-violation plots and `summary.md` in the output folder.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use dynamics::constraints::Stabilisation;
+use dynamics::integrate::Integrator;
+use dynamics::simulate::Sample;
+use dynamics::{Cga, Pga};
+
+use crate::csv;
+use crate::markdown::{agreement, scientific};
+use crate::plot::{chart, Labels, Panel, PlotError, Series};
+use crate::scene_file::{CheckedGeometry, FileAlgebra, SceneFile, SceneFileError};
+use crate::sweep::AlgebraKind;
+
+/// Why a scene file's run or output failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneJobError {
+    #[error(transparent)]
+    Scene(#[from] SceneFileError),
+    #[error("cannot write {path}: {source}")]
+    Write { path: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+}
+
+/// The run in one algebra, with what the summary states about it.
+#[derive(Clone, Debug)]
+pub struct AlgebraRun {
+    pub algebra: AlgebraKind,
+    pub samples: Vec<Sample>,
+    /// Stepping time divided by the simulated time (s/s).
+    pub cpu_per_simulated_second: f64,
+    /// Stepping time per step (s).
+    pub time_per_step: f64,
+    /// The energy change per sample, |E(t) − E₀| relative to |E₀| (absolute, in J, if E₀ = 0).
+    pub energy_change: Vec<f64>,
+    /// The largest constraint violation per sample (m).
+    pub violation: Vec<f64>,
+}
+
+impl AlgebraRun {
+    pub fn max_energy_change(&self) -> f64 {
+        self.energy_change.iter().copied().fold(0.0, f64::max)
+    }
+
+    pub fn max_violation(&self) -> f64 {
+        self.violation.iter().copied().fold(0.0, f64::max)
+    }
+}
+
+/// What the job wrote.
+#[derive(Clone, Debug)]
+pub struct SceneJobSummary {
+    pub runs: Vec<AlgebraRun>,
+    /// Every file written, `summary.md` last.
+    pub files: Vec<PathBuf>,
+}
+
+fn run_in<A: FileAlgebra>(
+    algebra: AlgebraKind,
+    scene: &SceneFile,
+    geometries: &[CheckedGeometry],
+) -> Result<AlgebraRun, SceneFileError> {
+    let simulation = scene.simulate::<A>()?;
+    let duration = scene.schedule()?.duration();
+    let stepping = simulation.stepping_time.as_secs_f64();
+    let initial_energy = simulation.samples.first().map_or(0.0, |s| s.energy);
+    let scale = if initial_energy == 0.0 {
+        1.0
+    } else {
+        initial_energy.abs()
+    };
+    let energy_change = simulation
+        .samples
+        .iter()
+        .map(|s| (s.energy - initial_energy).abs() / scale)
+        .collect();
+    let violation = simulation
+        .samples
+        .iter()
+        .map(|s| geometries.iter().map(|g| g.violation(s)).fold(0.0, f64::max))
+        .collect();
+    Ok(AlgebraRun {
+        algebra,
+        cpu_per_simulated_second: stepping / duration,
+        time_per_step: stepping / simulation.steps.max(1) as f64,
+        energy_change,
+        violation,
+        samples: simulation.samples,
+    })
+}
+
+/// Loads the scene file at `path`, runs it and writes the output into `output`.
+pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, SceneJobError> {
+    let scene = SceneFile::load(path)?;
+    let geometries = scene.constraint_geometries()?;
+    let runs = scene
+        .algebra
+        .algebras()
+        .into_iter()
+        .map(|algebra| match algebra {
+            AlgebraKind::Pga => run_in::<Pga>(algebra, &scene, &geometries),
+            AlgebraKind::Cga => run_in::<Cga>(algebra, &scene, &geometries),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let write_error = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| SceneJobError::Write { path, source }
+    };
+    std::fs::create_dir_all(output).map_err(write_error(output))?;
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+    let title = scene.title.clone().unwrap_or_else(|| stem.to_owned());
+    let mut files = Vec::new();
+    for run in &runs {
+        let csv_path = output.join(format!("{stem}_{}.csv", run.algebra.name().to_lowercase()));
+        csv::write(&csv_path, &run.samples).map_err(write_error(&csv_path))?;
+        files.push(csv_path);
+    }
+
+    let over_time = |values: fn(&AlgebraRun) -> &[f64]| -> Vec<Series> {
+        runs.iter()
+            .map(|run| {
+                let points = run.samples.iter().zip(values(run)).map(|(s, &v)| (s.t, v)).collect();
+                Series::line(run.algebra.name(), points)
+            })
+            .collect()
+    };
+    // Relative to E₀ unless it is zero (every run starts from the same state, so the same E₀).
+    let relative = runs
+        .first()
+        .and_then(|r| r.samples.first())
+        .is_some_and(|s| s.energy != 0.0);
+    let energy_title = format!("{title}: energy change, dt = {:e} s", scene.dt);
+    let energy_axis = if relative {
+        "|E(t) − E₀| / |E₀|"
+    } else {
+        "|E(t) − E₀| (J)"
+    };
+    let energy_path = output.join(format!("{stem}_energy.png"));
+    let labels = Labels::new(&energy_title, "time (s)", energy_axis);
+    chart(
+        &energy_path,
+        &Panel::new(labels, over_time(|r| &r.energy_change)).log_y(),
+    )?;
+    files.push(energy_path);
+    if !scene.constraints.is_empty() {
+        let violation_title = format!("{title}: constraint violation, dt = {:e} s", scene.dt);
+        let violation_path = output.join(format!("{stem}_violation.png"));
+        let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation (m)");
+        chart(
+            &violation_path,
+            &Panel::new(labels, over_time(|r| &r.violation)).log_y(),
+        )?;
+        files.push(violation_path);
+    }
+
+    let summary_path = output.join("summary.md");
+    let file_names: Vec<String> = files
+        .iter()
+        .filter_map(|f| f.file_name().and_then(|n| n.to_str()).map(str::to_owned))
+        .collect();
+    let setup = Setup {
+        scene: &scene,
+        path,
+        title: &title,
+        stabilisation: scene.stabilisation()?,
+        relative_energy: relative,
+    };
+    let text = summary(&setup, &runs, &file_names);
+    std::fs::write(&summary_path, text).map_err(write_error(&summary_path))?;
+    files.push(summary_path);
+    Ok(SceneJobSummary { runs, files })
+}
+
+/// What `summary.md` says about the scene besides the runs.
+struct Setup<'a> {
+    scene: &'a SceneFile,
+    path: &'a Path,
+    title: &'a str,
+    stabilisation: Stabilisation,
+    /// Whether the energy change is relative to |E₀| (else in J).
+    relative_energy: bool,
+}
+
+/// Items joined by commas, or "none".
+fn listed(items: Vec<String>) -> String {
+    if items.is_empty() {
+        "none".to_owned()
+    } else {
+        items.join(", ")
+    }
+}
+
+/// `summary.md`: the setup, then per algebra the energy change, the largest violation and the CPU time.
+fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
+    let Setup { scene, path, title, .. } = *setup;
+    let mut out = String::new();
+    let constraints: Vec<String> = scene
+        .constraints
+        .iter()
+        .map(|c| {
+            format!(
+                "{} by {}",
+                c.geometry.kind(),
+                dynamics::scenes::Formulation::from(c.formulation).name()
+            )
+        })
+        .collect();
+    let _ = writeln!(out, "# {title}\n");
+    let _ = writeln!(
+        out,
+        "From `{}`: forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
+        path.display(),
+        listed(scene.forces.iter().map(|f| f.kind().to_owned()).collect()),
+        listed(constraints),
+        Integrator::from(scene.integrator).name(),
+        scene.dt,
+        scene.duration,
+        scene.sample_interval,
+        match setup.stabilisation {
+            _ if scene.constraints.is_empty() => String::new(),
+            Stabilisation::Projection { .. } => ", stabilised by projection".to_owned(),
+            Stabilisation::Baumgarte { alpha, beta } => format!(", stabilised by Baumgarte (α = {alpha}, β = {beta})"),
+            Stabilisation::None => ", without stabilisation".to_owned(),
+        },
+    );
+    let _ = writeln!(
+        out,
+        "| algebra | energy change at T | largest energy change | largest constraint violation (m) | CPU per \
+         simulated second (s) | µs per step |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    for run in runs {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {:.2} |",
+            run.algebra.name(),
+            scientific(run.energy_change.last().copied().unwrap_or(0.0)),
+            scientific(run.max_energy_change()),
+            if scene.constraints.is_empty() {
+                "–".to_owned()
+            } else {
+                scientific(run.max_violation())
+            },
+            scientific(run.cpu_per_simulated_second),
+            run.time_per_step * 1e6,
+        );
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "Energy change: {}.",
+        if setup.relative_energy {
+            "|E(t) − E₀| / |E₀|"
+        } else {
+            "|E(t) − E₀| in J (E₀ = 0)"
+        }
+    );
+    if scene.conservative() {
+        let _ = writeln!(
+            out,
+            "Every force has a potential, so the energy change is the integrator's drift."
+        );
+    } else {
+        let _ = writeln!(
+            out,
+            "A constant force or couple does work, so the energy change is physical, not only drift."
+        );
+    }
+    let _ = writeln!(
+        out,
+        "The violation is the largest distance of a constrained body point from where it must be (for axis \
+         joints also of the point 1 m along the body axis). CPU time is the stepping alone.\n"
+    );
+    if let [first, second] = runs {
+        let (angle, distance) = agreement(&first.samples, &second.samples);
+        let _ = writeln!(
+            out,
+            "{} vs {}: largest orientation difference {} rad, largest position difference {} m.\n",
+            first.algebra.name(),
+            second.algebra.name(),
+            scientific(angle),
+            scientific(distance)
+        );
+    }
+    for file in files {
+        if file.ends_with(".png") {
+            let _ = writeln!(out, "![{file}]({file})\n");
+        } else {
+            let _ = writeln!(out, "Trajectory: [{file}]({file}) (columns: {}).\n", csv::HEADER);
+        }
+    }
+    out
+}

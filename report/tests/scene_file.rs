@@ -1,0 +1,293 @@
+//! Scene files: the shipped heavy top runs as the built-in scene 3a, a file runs end to end into its output
+//! folder, and bad files fail with messages that name what is wrong.
+
+use std::path::PathBuf;
+
+use dynamics::constraints::{simulate_constrained, Stabilisation};
+use dynamics::integrate::Method;
+use dynamics::scenes::{build, Formulation, SceneAlgebra};
+use dynamics::simulate::Schedule;
+use dynamics::{Cga, Pga};
+use reference::SceneId;
+use report::markdown::agreement;
+use report::scene_file::{AlgebraChoice, FileAlgebra, SceneFile};
+use report::scene_job::run_scene_file;
+
+fn heavy_top_path() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml")
+}
+
+fn heavy_top_text() -> String {
+    std::fs::read_to_string(heavy_top_path()).expect("scenes/heavy_top.toml is readable")
+}
+
+/// The largest orientation (rad) and position (m) difference between the file's run and the built-in
+/// scene 3a run with the same integrator and step.
+fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, formulation: Formulation) -> (f64, f64) {
+    let from_file = scene.simulate::<A>().expect("the file runs");
+    let builtin = build::<A>(SceneId::TopCusp, formulation, Stabilisation::PROJECTION).expect("scene 3a builds");
+    let schedule = Schedule::new(scene.dt, builtin.duration).expect("scene 3a's schedule");
+    let builtin =
+        simulate_constrained(&builtin.system, builtin.initial, Method::Rk4, &schedule).expect("scene 3a runs");
+    assert_eq!(from_file.samples.len(), builtin.samples.len());
+    agreement(&from_file.samples, &builtin.samples)
+}
+
+#[test]
+fn heavy_top_file_runs_as_the_builtin_scene_3a() {
+    let scene = SceneFile::load(&heavy_top_path()).expect("scenes/heavy_top.toml parses");
+    assert_eq!(scene.algebra, AlgebraChoice::Both);
+    assert_eq!((scene.dt, scene.duration), (1e-3, 10.0));
+    assert_eq!(scene.constraints.len(), 1);
+    // The same top by pinning its tip instead of a ball joint by virtual power.
+    let pinned =
+        SceneFile::parse(&heavy_top_text().replace("formulation = \"virtual_power\"", "formulation = \"pinning\""))
+            .expect("the pinned variant parses");
+    // The file writes the initial position rounded to 15 digits and the centre-of-mass velocity as zero, where
+    // scene 3a computes them (ω × c is 1e-16, not 0); both states are projected onto the constraint, so they
+    // differ by round-off, which the top amplifies over 10 s to at most 4.1e-13 rad and 3.1e-14 m (measured,
+    // all four runs). The bounds are 5 times that, for other machines' round-off.
+    for (scene, formulation) in [(&scene, Formulation::VirtualPower), (&pinned, Formulation::Pinning)] {
+        for (algebra, (angle, distance)) in [
+            ("PGA", difference_from_scene_3a::<Pga>(scene, formulation)),
+            ("CGA", difference_from_scene_3a::<Cga>(scene, formulation)),
+        ] {
+            assert!(
+                angle < 2e-12 && distance < 1.5e-13,
+                "{algebra}, {}: the file's run differs from scene 3a by {angle:e} rad, {distance:e} m",
+                formulation.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_scene_file_writes_trajectories_plots_and_summary() {
+    let dir = std::env::temp_dir().join("report-scene-file");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("short_top.toml");
+    std::fs::write(&file, heavy_top_text().replace("duration = 10.0", "duration = 1.0")).unwrap();
+    let output = dir.join("out");
+    let summary = run_scene_file(&file, &output).expect("the scene runs");
+    assert_eq!(summary.runs.len(), 2);
+    for run in &summary.runs {
+        assert_eq!(run.samples.len(), 101);
+        assert!(run.max_violation() < 1e-12, "violation {}", run.max_violation());
+        assert!(
+            run.max_energy_change() < 1e-9,
+            "energy change {}",
+            run.max_energy_change()
+        );
+    }
+    for name in [
+        "short_top_pga.csv",
+        "short_top_cga.csv",
+        "short_top_energy.png",
+        "short_top_violation.png",
+    ] {
+        let size = std::fs::metadata(output.join(name)).map(|m| m.len()).unwrap_or(0);
+        assert!(size > 10_000, "{name}: {size} bytes");
+    }
+    let text = std::fs::read_to_string(output.join("summary.md")).unwrap();
+    assert!(text.starts_with("# Heavy top, SCENES.md scene 3a"), "{text}");
+    let pga_row = format!(
+        "| PGA | {:.1e} | {:.1e} |",
+        summary.runs[0].energy_change.last().unwrap(),
+        summary.runs[0].max_energy_change()
+    );
+    assert!(text.contains(&pga_row), "{pga_row} not in\n{text}");
+    assert!(text.contains("PGA vs CGA: largest orientation difference"), "{text}");
+}
+
+/// A small valid scene: a rod hanging from a ball joint.
+const VALID: &str = r#"
+dt = 1e-3
+duration = 0.1
+[body]
+mass = 1.0
+shape = { kind = "rod", length = 1.0, axial_moment = 1e-3 }
+[initial]
+position = [0.0, 0.0, -0.5]
+[[forces]]
+kind = "gravity"
+[[constraints]]
+kind = "ball_joint"
+body_point = [0.0, 0.0, 0.5]
+world_point = [0.0, 0.0, 0.0]
+"#;
+
+/// The message of the error parsing `VALID` with `from` replaced by `to`.
+fn error_with(from: &str, to: &str) -> String {
+    assert!(VALID.contains(from), "{from}");
+    match SceneFile::parse(&VALID.replacen(from, to, 1)) {
+        Ok(_) => panic!("replacing {from} by {to} should fail"),
+        Err(error) => error.to_string(),
+    }
+}
+
+fn assert_mentions(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(message.contains(part), "{message:?} should mention {part:?}");
+    }
+}
+
+#[test]
+fn the_valid_scene_parses() {
+    let scene = SceneFile::parse(VALID).expect("valid");
+    assert_eq!(scene.algebra, AlgebraChoice::Both);
+}
+
+#[test]
+fn bad_files_fail_with_clear_messages() {
+    let cases: &[(&str, &str, &[&str])] = &[
+        ("dt = 1e-3", "dt = [", &["TOML parse error at line 3", "expected value"]),
+        (
+            "kind = \"rod\"",
+            "kind = \"pyramid\"",
+            &["line 6", "unknown variant `pyramid`", "`cone`"],
+        ),
+        ("mass = 1.0\n", "", &["missing field `mass`"]),
+        ("duration = 0.1", "duraton = 0.1", &["unknown field `duraton`"]),
+        ("axial_moment = 1e-3 }", "}", &["missing field `axial_moment`"]),
+        (
+            "dt = 1e-3",
+            "dt = -1e-3",
+            &["dt, duration, sample_interval", "step must be positive", "-0.001"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 3e-3",
+            &["the step 0.003 does not divide the sample interval 0.01"],
+        ),
+        (
+            "duration = 0.1",
+            "duration = 0.105",
+            &["does not divide the duration 0.105"],
+        ),
+        ("mass = 1.0", "mass = 0.0", &["body: mass must be positive", "0"]),
+        (
+            "[initial]",
+            "principal_moments = [1.0, 1.0, 1.0]\n[initial]",
+            &["body: give `shape` or `principal_moments`, not both"],
+        ),
+        (
+            "shape = {",
+            "# shape = {",
+            &["body: needs a `shape` or `principal_moments`"],
+        ),
+        (
+            "shape = { kind = \"rod\", length = 1.0, axial_moment = 1e-3 }",
+            "principal_moments = [1.0, 1.0, 3.0]",
+            &["triangle inequality"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, nan, -0.5]",
+            &["initial.position", "not finite"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\norientation = { axis = [0.0, 0.0, 0.0], angle = 1.0 }",
+            &["initial.orientation.axis: has no direction"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\norientation = { degrees = 30.0, quaternion = [1.0, 0.0, 0.0, 0.0] }",
+            &["initial.orientation: give `axis` with either `angle` (rad) or `degrees`, or a `quaternion`"],
+        ),
+        (
+            "kind = \"gravity\"",
+            "kind = \"magnetism\"",
+            &["unknown variant `magnetism`", "`couple`"],
+        ),
+        (
+            "kind = \"ball_joint\"",
+            "kind = \"weld\"",
+            &["unknown variant `weld`", "`point_on_circle`"],
+        ),
+        ("world_point =", "world_pont =", &["unknown field `world_pont`"]),
+        (
+            "body_point = [0.0, 0.0, 0.5]",
+            "body_point = [0.0, 0.5]",
+            &["invalid length 2"],
+        ),
+        (
+            "kind = \"ball_joint\"",
+            "kind = \"ball_joint\"\nformulation = \"glue\"",
+            &["unknown variant `glue`", "`pinning`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nintegrator = \"euler\"",
+            &["unknown variant `euler`", "`rkmk4-body`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nintegrator = \"strang\"",
+            &["integrator: Strang is a splitting method"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nbaumgarte = { alpha = 20.0, beta = 20.0 }",
+            &["baumgarte: gains apply only with stabilisation = \"baumgarte\""],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = -1.0, beta = 20.0 }",
+            &["Baumgarte gains must be finite and non-negative"],
+        ),
+        (
+            "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
+            "kind = \"hinge\"\nbody_point = [0.0, 0.0, 0.5]\nbody_axis = [0.0, 0.0, 0.0]\n\
+             world_point = [0.0, 0.0, 0.0]\nworld_axis = [0.0, 1.0, 0.0]",
+            &["constraint 1 (hinge): body_axis: has no direction"],
+        ),
+        (
+            "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
+            "kind = \"point_on_sphere\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, -0.5]\n\
+             centre = [0.0, 0.0, 0.0]\nradius = 1.0",
+            &["constraint 1 (point on sphere): pinning needs a sphere, which PGA does not have"],
+        ),
+        (
+            "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
+            "kind = \"point_on_circle\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, -0.5]\n\
+             centre = [0.0, 0.0, 0.0]\nradius = 1.0\nnormal = [0.0, 0.0, 1.0]",
+            &["constraint 1 (point on circle): pinning needs a circle, which PGA does not have"],
+        ),
+        (
+            "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
+            "kind = \"point_on_sphere\"\nbody_point = [0.0, 0.0, -0.5]\ncentre = [0.0, 0.0, 0.0]\nradius = -1.0",
+            &["constraint 1 (point on sphere): radius: must be positive and finite, got -1"],
+        ),
+    ];
+    for (from, to, parts) in cases {
+        assert_mentions(&error_with(from, to), parts);
+    }
+}
+
+#[test]
+fn pinning_on_a_sphere_runs_in_cga_alone() {
+    let text = VALID.replace(
+        "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
+        "kind = \"point_on_sphere\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.5]\n\
+         centre = [0.0, 0.0, 0.0]\nradius = 0.5",
+    );
+    let text = format!(
+        "algebra = \"cga\"\n{}",
+        text.replace("[0.0, 0.0, -0.5]", "[0.5, 0.0, -0.5]")
+    );
+    let scene = SceneFile::parse(&text).expect("CGA has spheres");
+    let run = scene.simulate::<Cga>().expect("runs");
+    let geometry = scene.constraint_geometries().unwrap();
+    let worst = run.samples.iter().map(|s| geometry[0].violation(s)).fold(0.0, f64::max);
+    assert!(worst < 1e-12, "violation {worst}");
+}
+
+#[test]
+fn reading_a_missing_file_fails_with_the_reason() {
+    let message = SceneFile::load(&PathBuf::from("/nonexistent/scene.toml"))
+        .unwrap_err()
+        .to_string();
+    assert_mentions(&message, &["cannot read the file"]);
+}
