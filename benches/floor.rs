@@ -14,11 +14,13 @@
 //! cargo bench --bench floor
 //! ```
 
-use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3};
+
+mod common;
+use common::{assert_close, time_batch, Random, BATCH};
 
 ga_macros::algebra! {
     /// PGA Cl(3,0,1), e0 first.
@@ -68,33 +70,6 @@ ga_macros::algebra! {
             Multivector = all;
         }
         ops = [geometric, sandwich, transform];
-    }
-}
-
-const BATCH: usize = 1024;
-
-/// SplitMix64, so that every run times the same inputs.
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    fn isometry(&mut self) -> Isometry3<f64> {
-        let axis = Vector3::new(self.next(), self.next(), self.next());
-        let rotation = UnitQuaternion::from_scaled_axis(axis * 3.0);
-        let translation = Translation3::new(10.0 * self.next(), 10.0 * self.next(), 10.0 * self.next());
-        Isometry3::from_parts(translation, rotation)
-    }
-
-    fn point(&mut self) -> Point3<f64> {
-        Point3::new(10.0 * self.next(), 10.0 * self.next(), 10.0 * self.next())
     }
 }
 
@@ -186,29 +161,6 @@ impl DualQuaternion {
     }
 }
 
-fn assert_close(got: &[f64], expected: &[f64], what: &str) {
-    let error = got.iter().zip(expected).map(|(g, e)| (g - e).abs()).fold(0.0, f64::max);
-    assert!(error < 1e-9, "{what}: got {got:?}, expected {expected:?}");
-}
-
-/// Times `operation` over the batch, writing into a reused output buffer.
-fn time_batch<In: Copy, Out: Copy>(
-    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
-    name: &str,
-    inputs: &[In],
-    operation: impl Fn(In) -> Out,
-) {
-    let mut outputs = vec![operation(inputs[0]); inputs.len()];
-    group.bench_function(name, |bencher| {
-        bencher.iter(|| {
-            for (output, &input) in outputs.iter_mut().zip(black_box(inputs)) {
-                *output = operation(input);
-            }
-            black_box(&mut outputs);
-        })
-    });
-}
-
 fn motor_times_motor(c: &mut Criterion) {
     let mut random = Random(11);
     let isometries: Vec<(Isometry3<f64>, Isometry3<f64>)> =
@@ -284,7 +236,7 @@ fn motor_on_point(c: &mut Criterion) {
 
 fn null_cga_against_pga(c: &mut Criterion) {
     let mut random = Random(13);
-    let mut array = || std::array::from_fn(|_| random.next());
+    let mut array = || random.array();
     let pga_motors: Vec<(pga::Motor, pga::Motor)> = (0..BATCH)
         .map(|_| (pga::Motor::from_array(array()), pga::Motor::from_array(array())))
         .collect();

@@ -12,11 +12,13 @@
 //! cargo bench --bench products
 //! ```
 
-use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion};
+
+mod common;
+use common::{assert_close, time_batch, Random, BATCH};
+use nalgebra::{Isometry3, Point3};
 
 ga_macros::algebra! {
     /// PGA Cl(3,0,1), e0 first.
@@ -48,38 +50,6 @@ ga_macros::algebra! {
 }
 
 use pga::Sandwich;
-
-const BATCH: usize = 1024;
-
-/// SplitMix64: a tiny deterministic generator, so that every run times the same inputs.
-struct Random(u64);
-
-impl Random {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [−1, 1).
-    fn signed_unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    fn array<const N: usize>(&mut self) -> [f64; N] {
-        std::array::from_fn(|_| self.signed_unit())
-    }
-
-    /// A rotation about a random axis and a translation within [−10, 10)³.
-    fn isometry(&mut self) -> Isometry3<f64> {
-        let [w, x, y, z] = self.array();
-        let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
-        let [tx, ty, tz] = self.array::<3>().map(|t| 10.0 * t);
-        Isometry3::from_parts(Translation3::new(tx, ty, tz), rotation)
-    }
-}
 
 /// The PGA motor of an isometry: translator × rotor (rotate first, then translate).
 fn motor_of(isometry: &Isometry3<f64>) -> pga::Motor {
@@ -235,31 +205,8 @@ impl DualQuaternion {
     }
 }
 
-fn assert_close(got: &[f64], expected: &[f64], what: &str) {
-    let error = got.iter().zip(expected).map(|(g, e)| (g - e).abs()).fold(0.0, f64::max);
-    assert!(error < 1e-9, "{what}: got {got:?}, expected {expected:?}");
-}
-
 fn quat_array(q: Quat) -> [f64; 4] {
     [q.w, q.x, q.y, q.z]
-}
-
-/// Times `operation` over every input of the batch, writing into a reused output buffer.
-fn time_batch<In: Copy, Out: Copy>(
-    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
-    name: &str,
-    inputs: &[In],
-    operation: impl Fn(In) -> Out,
-) {
-    let mut outputs = vec![operation(inputs[0]); inputs.len()];
-    group.bench_function(name, |bencher| {
-        bencher.iter(|| {
-            for (output, &input) in outputs.iter_mut().zip(black_box(inputs)) {
-                *output = operation(input);
-            }
-            black_box(&mut outputs);
-        })
-    });
 }
 
 fn motor_product(c: &mut Criterion) {
@@ -310,9 +257,8 @@ fn motor_product(c: &mut Criterion) {
 
 fn point_transform(c: &mut Criterion) {
     let mut random = Random(2);
-    let isometries: Vec<(Isometry3<f64>, Point3<f64>)> = (0..BATCH)
-        .map(|_| (random.isometry(), Point3::from(random.array::<3>().map(|x| 10.0 * x))))
-        .collect();
+    let isometries: Vec<(Isometry3<f64>, Point3<f64>)> =
+        (0..BATCH).map(|_| (random.isometry(), random.point())).collect();
     let generated: Vec<(pga::Motor, pga::Point)> =
         isometries.iter().map(|(m, p)| (motor_of(m), pga_point(p))).collect();
     let baseline: Vec<(DualQuaternion, DualQuaternion)> = generated

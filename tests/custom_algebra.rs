@@ -217,7 +217,7 @@ impl AlgebraUnderTest {
             .filter(|&(i, j)| indices[i] > indices[j])
             .count();
         let mask = indices.iter().fold(0, |mask, i| mask | 1 << i);
-        (mask, if inversions % 2 == 0 { 1.0 } else { -1.0 })
+        (mask, if inversions.is_multiple_of(2) { 1.0 } else { -1.0 })
     }
 
     fn dense<T: Fields>(&self, value: T) -> Vec<f64> {

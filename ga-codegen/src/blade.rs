@@ -20,7 +20,7 @@ pub fn reorder_sign(a: BladeMask, b: BladeMask) -> i64 {
         swaps += (shifted & b).count_ones();
         shifted >>= 1;
     }
-    if swaps % 2 == 0 {
+    if swaps.is_multiple_of(2) {
         1
     } else {
         -1
@@ -151,7 +151,7 @@ impl BladeNaming {
         let inversions = (0..indices.len())
             .flat_map(|i| (i + 1..indices.len()).map(move |j| (i, j)))
             .filter(|&(i, j)| indices[i] > indices[j]);
-        let sign = if inversions.count() % 2 == 0 { 1 } else { -1 };
+        let sign = if inversions.count().is_multiple_of(2) { 1 } else { -1 };
         Ok((mask, sign))
     }
 

@@ -125,7 +125,7 @@ pub struct Rules<'a> {
 
 /// `(−1)^count` as a rational.
 fn parity(count: u32) -> Rational64 {
-    if count % 2 == 0 {
+    if count.is_multiple_of(2) {
         Rational64::one()
     } else {
         -Rational64::one()

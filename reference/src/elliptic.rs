@@ -155,11 +155,11 @@ mod tests {
     /// Incomplete integral F(φ | m) = ∫₀^φ dθ / √(1 − m sin²θ) by composite Simpson: an independent
     /// (slow, quadrature) route to the amplitude, so sn(F(φ)) = sin φ tests the AGM algorithm.
     fn incomplete_integral_by_simpson(phi: f64, m: f64) -> f64 {
-        let intervals = 20_000;
+        let intervals: u32 = 20_000;
         let h = phi / intervals as f64;
         let integrand = |theta: f64| 1.0 / (1.0 - m * theta.sin().powi(2)).sqrt();
         let interior: f64 = (1..intervals)
-            .map(|j| if j % 2 == 1 { 4.0 } else { 2.0 } * integrand(j as f64 * h))
+            .map(|j| if j.is_multiple_of(2) { 2.0 } else { 4.0 } * integrand(j as f64 * h))
             .sum();
         h / 3.0 * (integrand(0.0) + interior + integrand(phi))
     }
