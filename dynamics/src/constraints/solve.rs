@@ -87,7 +87,7 @@ fn dot(a: &[f64; 6], b: &Vector6<f64>) -> f64 {
 /// Cholesky solve of a Gram matrix whose leading `n×n` block is filled (the rest identity), checking that
 /// its pivots stay above `tolerance²` × the largest diagonal entry (pivots scale like squared singular values).
 fn solve_gram(gram: Matrix6<f64>, rhs: Vector6<f64>, n: usize, tolerance: f64) -> Result<Vector6<f64>, SolveFailure> {
-    let largest = (0..n).map(|i| gram[(i, i)]).fold(0.0, f64::max);
+    let largest = (0..n.min(6)).map(|i| gram[(i, i)]).fold(0.0, f64::max);
     let deficient = |pivot: f64| SolveFailure::RankDeficient {
         singular_value: pivot.max(0.0).sqrt(),
         largest: largest.sqrt(),
@@ -148,18 +148,33 @@ pub fn kinetic_metric(
             }));
     }
     let scale = metric.map(|h| 1.0 / h.sqrt());
-    let mut normal = Matrix6::zeros();
-    let mut projected = Vector6::zeros();
+    // Σ g gᵀ accumulated on the upper triangle only (the products are symmetric, so the mirror is exact).
+    let mut upper = [[0.0; 6]; 6];
+    let mut projected = [0.0; 6];
     let mut rhs_squared = 0.0;
     for (row, &r) in rows.iter().zip(rhs) {
-        let g = Vector6::from(row.jacobian).component_mul(&scale);
-        normal += g * g.transpose();
-        projected += g * r;
+        let g: [f64; 6] = std::array::from_fn(|i| row.jacobian[i] * scale[i]);
+        for i in 0..6 {
+            for j in i..6 {
+                upper[i][j] += g[i] * g[j];
+            }
+            projected[i] += g[i] * r;
+        }
         rhs_squared += r * r;
     }
+    let normal = Matrix6::from_fn(|i, j| if i <= j { upper[i][j] } else { upper[j][i] });
+    let projected = Vector6::from(projected);
     let (eigenvalues, eigenvectors) = symmetric_eigen(normal);
+    // Indices by decreasing eigenvalue (a stable insertion sort: the same order as a stable library sort,
+    // without its call overhead on 6 entries).
     let mut order: [usize; 6] = std::array::from_fn(|i| i);
-    order.sort_by(|&i, &j| eigenvalues[j].total_cmp(&eigenvalues[i]));
+    for end in 1..6 {
+        let mut k = end;
+        while k > 0 && eigenvalues[order[k]].total_cmp(&eigenvalues[order[k - 1]]).is_gt() {
+            order.swap(k, k - 1);
+            k -= 1;
+        }
+    }
     let largest = eigenvalues[order[0]];
     let kept = eigenvalues[order[rank.min(6) - 1]];
     if rank > 6 || !(largest > 0.0 && kept > settings.rank_tolerance.powi(2) * largest) {
@@ -265,8 +280,15 @@ pub fn symmetric_eigen(matrix: Matrix6<f64>) -> (Vector6<f64>, Matrix6<f64>) {
                 // The rotation by angle φ with tan φ = t zeroing a_pq: cot 2φ = (a_qq − a_pp)/(2 a_pq), t the smaller
                 // root of t² + 2t cot 2φ − 1 = 0.
                 let theta = (a[(q, q)] - a[(p, p)]) / (2.0 * apq);
-                let t = theta.signum() / (theta.abs() + theta.hypot(1.0));
-                let c = 1.0 / t.hypot(1.0);
+                // √(θ² + 1) without libm's (slow) hypot: θ² overflows only beyond 1e154, where √ ≈ |θ|.
+                let root = if theta.abs() < 1e150 {
+                    (theta * theta + 1.0).sqrt()
+                } else {
+                    theta.abs()
+                };
+                let t = theta.signum() / (theta.abs() + root);
+                // |t| ≤ 1, so t² + 1 cannot overflow.
+                let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
                 for k in 0..6 {
                     let (akp, akq) = (a[(k, p)], a[(k, q)]);

@@ -265,11 +265,12 @@ impl<A: Algebra> ConstrainedBody<A> {
     }
 
     /// The rows of all constraints at this state, each constraint's checked for finiteness and capacity.
-    fn rows(&self, kinematics: &Kinematics<A>) -> Result<RowBuffer, ConstraintError> {
-        let mut rows = RowBuffer::new();
+    /// Fills `rows` (cleared first) in place: the buffer is a few kilobytes, so it is not returned by value.
+    fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
+        rows.clear();
         for constraint in &self.constraints {
             let start = rows.len();
-            constraint.rows(kinematics, &mut rows)?;
+            constraint.rows(kinematics, rows)?;
             let name = || constraint.name().to_owned();
             if rows.requested() > MAX_ROWS {
                 return Err(ConstraintError::TooManyRows {
@@ -285,7 +286,7 @@ impl<A: Algebra> ConstrainedBody<A> {
                 });
             }
         }
-        Ok(rows)
+        Ok(())
     }
 
     /// Turns a solve failure into an error naming the constraint responsible: for lost rank, the first
@@ -339,7 +340,8 @@ impl<A: Algebra> ConstrainedBody<A> {
             return Ok((rates, zero));
         }
         let kinematics = Kinematics::new(t, state.motor, body_velocity);
-        let rows = self.rows(&kinematics)?;
+        let mut rows = RowBuffer::new();
+        self.rows(&kinematics, &mut rows)?;
         let metric = self.metric();
         // ẍ = H⁻¹(g + y) with g the wrench coordinates of Ḃ×Ω_b + S_b (SPEC §5).
         let drive = A::commutator(body_velocity, body_momentum) + kinematics.to_body(external);
@@ -405,7 +407,8 @@ impl<A: Algebra> ConstrainedBody<A> {
     /// The largest position and velocity residuals at this state.
     pub fn violation(&self, t: f64, state: &State<A>) -> Result<Violation, ConstraintError> {
         let kinematics = Kinematics::new(t, state.motor, state.body_velocity(&self.body));
-        let rows = self.rows(&kinematics)?;
+        let mut rows = RowBuffer::new();
+        self.rows(&kinematics, &mut rows)?;
         Ok(rows.rows().iter().fold(Violation::default(), |v, row| Violation {
             position: v.position.max(row.position_residual.map_or(0.0, f64::abs)),
             velocity: v.velocity.max(row.velocity_residual.abs()),
@@ -436,6 +439,7 @@ impl<A: Algebra> ConstrainedBody<A> {
         let metric = self.metric();
         let position_level = self.constraints.iter().all(|c| c.has_position_residual());
         let mut steps = 0;
+        let mut rows = RowBuffer::new();
         // Gauss–Newton steps while the position residuals exceed round-off, then the velocity projection
         // with the rows of the final configuration (usually the first evaluation: one per step).
         loop {
@@ -443,7 +447,7 @@ impl<A: Algebra> ConstrainedBody<A> {
                 .body
                 .velocity::<A>(A::transform_screw(A::reverse(motor), state.momentum));
             let kinematics = Kinematics::new(t, motor, body_velocity);
-            let rows = self.rows(&kinematics)?;
+            self.rows(&kinematics, &mut rows)?;
             let off_manifold = rows
                 .rows()
                 .iter()
