@@ -21,6 +21,23 @@ pub struct ScrewCoordinates {
     pub t: Vector3<f64>,
 }
 
+impl ScrewCoordinates {
+    /// From `[a₁, a₂, a₃, b₁, b₂, b₃]`, the layout of the algebras' `const fn` coordinate maps.
+    #[inline]
+    pub fn from_array([a1, a2, a3, b1, b2, b3]: [f64; 6]) -> Self {
+        ScrewCoordinates {
+            l: Vector3::new(a1, a2, a3),
+            t: Vector3::new(b1, b2, b3),
+        }
+    }
+
+    /// `[a₁, a₂, a₃, b₁, b₂, b₃]`.
+    #[inline]
+    pub fn to_array(&self) -> [f64; 6] {
+        [self.l.x, self.l.y, self.l.z, self.t.x, self.t.y, self.t.z]
+    }
+}
+
 /// Coordinates of a motor `s + Σ aᵢlᵢ + Σ bᵢtᵢ + cΠ` in the 8-dimensional motor subalgebra
 /// (the dual quaternions, SPEC §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

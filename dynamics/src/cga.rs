@@ -82,16 +82,12 @@ impl Algebra for Cga {
 
     #[inline]
     fn screw(c: ScrewCoordinates) -> Bivector {
-        bivector_from_coordinates([c.l.x, c.l.y, c.l.z, c.t.x, c.t.y, c.t.z])
+        bivector_from_coordinates(c.to_array())
     }
 
     #[inline]
     fn screw_coordinates(s: Bivector) -> ScrewCoordinates {
-        let [a1, a2, a3, b1, b2, b3] = bivector_coordinates(s);
-        ScrewCoordinates {
-            l: Vector3::new(a1, a2, a3),
-            t: Vector3::new(b1, b2, b3),
-        }
+        ScrewCoordinates::from_array(bivector_coordinates(s))
     }
 
     #[inline]

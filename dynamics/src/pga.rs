@@ -69,16 +69,12 @@ impl Algebra for Pga {
 
     #[inline]
     fn screw(c: ScrewCoordinates) -> Line {
-        line_from_coordinates([c.l.x, c.l.y, c.l.z, c.t.x, c.t.y, c.t.z])
+        line_from_coordinates(c.to_array())
     }
 
     #[inline]
     fn screw_coordinates(s: Line) -> ScrewCoordinates {
-        let [a1, a2, a3, b1, b2, b3] = line_coordinates(s);
-        ScrewCoordinates {
-            l: Vector3::new(a1, a2, a3),
-            t: Vector3::new(b1, b2, b3),
-        }
+        ScrewCoordinates::from_array(line_coordinates(s))
     }
 
     #[inline]
