@@ -38,6 +38,18 @@ impl ScrewCoordinates {
     }
 }
 
+impl Add for ScrewCoordinates {
+    type Output = ScrewCoordinates;
+
+    #[inline]
+    fn add(self, other: ScrewCoordinates) -> ScrewCoordinates {
+        ScrewCoordinates {
+            l: self.l + other.l,
+            t: self.t + other.t,
+        }
+    }
+}
+
 /// Coordinates of a motor `s + Σ aᵢlᵢ + Σ bᵢtᵢ + cΠ` in the 8-dimensional motor subalgebra
 /// (the dual quaternions, SPEC §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

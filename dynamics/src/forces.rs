@@ -68,14 +68,26 @@ impl<A: Algebra> Force<A> {
 
     /// The world wrench on `body` in `state` at time `t`.
     pub fn wrench(&self, body: &Body, t: f64, state: &State<A>) -> A::Screw {
+        self.wrench_at(body, t, state.motor, || state.momentum)
+    }
+
+    /// [`Force::wrench`] for a body at `motor` whose world momentum is computed only if a custom force
+    /// asks for it (a caller holding the body momentum saves a sandwich).
+    pub fn wrench_at(&self, body: &Body, t: f64, motor: A::Motor, momentum: impl FnOnce() -> A::Screw) -> A::Screw {
         match self {
             Force::Gravity { acceleration } => {
-                let centre = A::position(A::transform_point(state.motor, A::point(Vector3::zeros())));
+                let centre = A::position(A::transform_point(motor, A::point(Vector3::zeros())));
                 force_line::<A>(body.mass * acceleration, centre)
             }
             Force::Line { force, point } => force_line::<A>(*force, *point),
             Force::Couple { moment } => couple::<A>(*moment),
-            Force::Custom(function) => function(t, state),
+            Force::Custom(function) => function(
+                t,
+                &State {
+                    motor,
+                    momentum: momentum(),
+                },
+            ),
         }
     }
 

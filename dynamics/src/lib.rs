@@ -29,7 +29,7 @@ pub use cga::Cga;
 pub use constraints::{ConstrainedBody, ConstraintError, Stabilisation};
 pub use forces::Force;
 pub use integrate::{step, step_free_body, step_splitting, Integrator, KineticSplitting, Method, SplittingMethod};
-pub use motion::{Dynamics, FreeBody, Rates};
+pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, simulate_free_body, Schedule, Simulation, SimulationError};
 pub use state::{State, WorldVelocity};

@@ -4,7 +4,7 @@
 //! Ω_b = ~R Ω R,  Ḃ = M⁻¹[Ω_b],  dR/dt = −½ R Ḃ,  dΩ/dt = W_world (+ R F ~R for a reaction F)
 //! ```
 
-use crate::algebra::Algebra;
+use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::body::Body;
 use crate::forces::Force;
 use crate::motor;
@@ -26,10 +26,33 @@ impl<A: Algebra> Rates<A> {
     }
 }
 
+/// The rates in the body frame, for integrators that carry the body momentum `Ω_b = ~RΩR` within a step:
+/// `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) with `W_b = ~R W R` the body view of the resultant wrench.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyRates<A: Algebra> {
+    pub body_velocity: A::Screw,
+    pub body_wrench: A::Screw,
+}
+
 /// A system the integrators can step: its rates, and what to do after each step.
 pub trait Dynamics<A: Algebra> {
     /// Ḃ and dΩ/dt at time `t`.
     fn rates(&self, t: f64, state: &State<A>) -> Rates<A>;
+
+    /// Ḃ and `W_b` at time `t` for the motor R and body momentum `Ω_b`. By default the world state
+    /// `(R, RΩ_b~R)` goes through [`Dynamics::rates`] and the wrench comes back to the body frame (two
+    /// sandwiches); systems that work in the body frame anyway override it.
+    fn body_rates(&self, t: f64, motor: A::Motor, body_momentum: A::Screw) -> BodyRates<A> {
+        let world = State {
+            motor,
+            momentum: to_world::<A>(motor, body_momentum),
+        };
+        let rates = self.rates(t, &world);
+        BodyRates {
+            body_velocity: rates.body_velocity,
+            body_wrench: body_wrench::<A>(motor, rates.momentum_rate),
+        }
+    }
 
     /// Called after every step: by default, renormalise the motor (SPEC §2, §10). Constrained
     /// systems also project onto the constraint manifold here.
@@ -42,6 +65,43 @@ pub trait Dynamics<A: Algebra> {
 
     /// Total energy (kinetic + potential), for diagnostics.
     fn energy(&self, state: &State<A>) -> f64;
+}
+
+/// `a = ⟨R~R⟩₀ = s² + |l|²` of a motor: the factor by which the sandwich `RX~R` scales a screw (SPEC §2,
+/// `R~R = a + bΠ`).
+pub(crate) fn sandwich_scale<A: Algebra>(motor: A::Motor) -> f64 {
+    let c = A::motor_coordinates(motor);
+    c.scalar * c.scalar + c.l.norm_squared()
+}
+
+/// The screw with `x`'s coordinates: a projection onto span{lᵢ, tᵢ}. In CGA each tᵢ spans two blades
+/// (`eᵢ4 + eᵢ5`, SPEC §1.2); round-off makes their coefficients differ, an `eᵢ∧n0` component that the next
+/// sandwich with a motor at distance c multiplies by ~c². Projecting after each sandwich keeps a world ↔ body
+/// round trip at ~ε c³ instead of ε c⁴ (measured: 1.7e-13 instead of 3e-12 at 10 m, 8.5e-11 instead of 5e-8
+/// at 100 m; PGA 2e-15 and 2e-14). In PGA it is a copy.
+pub(crate) fn project<A: Algebra>(x: A::Screw) -> A::Screw {
+    A::screw(A::screw_coordinates(x))
+}
+
+/// The body view `~RΩR` of a world screw, divided by the sandwich scale (see [`rkmk4_body_momentum`]).
+pub(crate) fn to_body<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
+    project::<A>(A::transform_screw(A::reverse(motor), world) * (1.0 / sandwich_scale::<A>(motor)))
+}
+
+/// The world view `RΩ_b~R` of a body screw, divided by the sandwich scale.
+pub(crate) fn to_world<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw {
+    project::<A>(A::transform_screw(motor, body) * (1.0 / sandwich_scale::<A>(motor)))
+}
+
+/// The body view `~RWR` of a world wrench; a free body's wrench is exactly zero, and skipping its sandwich
+/// saves four sandwiches per generic step.
+pub(crate) fn body_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
+    let zero = A::screw(ScrewCoordinates::default());
+    if world == zero {
+        zero
+    } else {
+        to_body::<A>(motor, world)
+    }
 }
 
 /// One rigid body under external forces, no constraints.

@@ -84,15 +84,16 @@ fn far_offset(distance: f64) -> Vector3<f64> {
 /// the momentum each step rounds the world angular momentum c ⨯ p (~1e4) and so loses ~1e-12 per step
 /// (orientation 4.3e-7 instead of 3.8e-10 at the origin). Measured (orientation rad, position m, energy):
 /// RK4 2.1e-8, 1.3e-9, 9.0e-11; RKMK4 1.3e-7, 5.1e-10, 6.0e-11; RKMK4-body 4.3e-7, 4.7e-8, 8.8e-11;
-/// Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7, 3.0e-10, 1.3e-10. The orientations (except Strang's),
+/// RKMK6-body (the same round trip) 5.3e-7, 1.4e-10, 1.1e-10; Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7, 3.0e-10, 1.3e-10. The orientations (except Strang's),
 /// the splittings' positions and RKMK4-body's energy differ from their values at the origin, so they are
 /// round-off: margins of 10 on those.
 #[test]
 fn pga_far_from_the_origin() {
-    let bounds = [
+    let bounds: [(f64, f64, f64); Integrator::ALL.len()] = [
         (2e-7, 3e-9, 2.5e-10),
         (1.3e-6, 1.2e-9, 1.5e-10),
         (4.5e-6, 1e-7, 1e-9),
+        (5.5e-6, 4.5e-10, 3.5e-10),
         (8e-5, 2e-9, 3e-6),
         (1.2e-6, 3e-9, 3e-10),
     ];
@@ -107,16 +108,17 @@ fn pga_far_from_the_origin() {
 /// multiplies by c² again. `State::new` and the integrators project sandwiched momenta back onto the span,
 /// which keeps it at ~ε c³ per sandwich. Measured at 100 m (orientation rad, position m, energy): RK4 1.3e-7,
 /// 1.2e-9, 9.1e-11; RKMK4 1.1e-7, 5.2e-10, 8.3e-11; RKMK4-body 4.7e-6, 4.6e-8, 1.3e-9 (it sandwiches the
-/// momentum twice per step); Strang 3.7e-5, 1.6e-10, 1.2e-6 (its truncation error); Yoshida4 2.1e-7,
+/// momentum twice per step); RKMK6-body 2.1e-5, 1.2e-9, 1.9e-9 (likewise); Strang 3.7e-5, 1.6e-10, 1.2e-6 (its truncation error); Yoshida4 2.1e-7,
 /// 1.7e-10, 1.3e-10: PGA gets 8e-8 rad for RK4. Bounds: 10× these. At 1e4 m (ε c³ ≈ 2e-4) the orientation
 /// is lost for RKMK4-body (3.1 rad) and degraded for the rest (RK4 1.6e-2, Yoshida4 0.32 rad), so it is not
 /// asserted; position (1.4e-4 m) and energy (at most 2.1e-3) are, with a margin of 10.
 #[test]
 fn cga_far_from_the_origin() {
-    let near = [
+    let near: [(f64, f64, f64); Integrator::ALL.len()] = [
         (1.3e-6, 1.2e-8, 9.1e-10),
         (1.1e-6, 5.2e-9, 8.3e-10),
         (4.7e-5, 4.6e-7, 1.3e-8),
+        (2.2e-4, 1.3e-8, 1.9e-8),
         (3.7e-4, 1.6e-9, 1.2e-5),
         (2.1e-6, 1.7e-9, 1.3e-9),
     ];
@@ -131,13 +133,16 @@ fn cga_far_from_the_origin() {
 /// Scene 1 spun up 100×: ω₀ = (10, 1000, 0) rad/s, v₀ = (100, 50, 0) m/s, dt = 1e-5, 0.1 s. The same motion
 /// on a time axis compressed 100× (and the same hω per step) must give scene 1's errors at dt = 1e-3,
 /// as measured: orientation RK4 8.0e-8, RKMK4 8.4e-8, RKMK4-body 2.9e-10 (PGA) / 1.8e-9 (CGA, round-off:
-/// margin 10), Strang 3.7e-5, Yoshida4 3.6e-8 rad; the splittings keep the line to 3.4e-13 m.
+/// margin 10), RKMK6-body 1.2e-10 (PGA) / 1.0e-9 (CGA, round-off: margin 10), Strang 3.7e-5, Yoshida4
+/// 3.6e-8 rad; the splittings keep the line to 3.4e-13 m.
 fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
     let body_orientation = if A::NAME == Cga::NAME { 1.8e-8 } else { 1.2e-9 };
-    let bounds = [
+    let sixth_order_orientation = if A::NAME == Cga::NAME { 1.1e-8 } else { 4e-10 };
+    let bounds: [(f64, f64, f64); Integrator::ALL.len()] = [
         (2e-7, 3e-9, 2e-10),
         (2e-7, 1.2e-9, 1.5e-10),
         (body_orientation, 1e-7, 1.5e-11),
+        (sixth_order_orientation, 1e-11, 2e-11),
         (8e-5, 1e-12, 3e-6),
         (8e-8, 1e-12, 2.5e-10),
     ];

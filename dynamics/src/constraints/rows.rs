@@ -1,6 +1,8 @@
 //! The scalar rows every constraint reduces to (see the module docs of [`crate::constraints`]), and a
 //! fixed-capacity buffer for them, so an evaluation of the equations of motion does not allocate.
 
+use arrayvec::ArrayVec;
+
 /// The most rows one system can have: a CGA hinge pinned as an OPNS line (10 coefficients) and a point
 /// (5) needs 15; twice that leaves room for several pins.
 pub const MAX_ROWS: usize = 32;
@@ -32,22 +34,12 @@ impl ConstraintRow {
 }
 
 /// Up to [`MAX_ROWS`] rows. Rows pushed beyond the capacity are counted, not stored, and reported by the
-/// system as [`crate::constraints::ConstraintError::TooManyRows`].
-#[derive(Clone, Debug)]
+/// system as [`crate::constraints::ConstraintError::TooManyRows`]. The storage is not initialised until rows
+/// are pushed: an evaluation creates a buffer at every stage, and zeroing 32 rows cost 14% of a step.
+#[derive(Clone, Debug, Default)]
 pub struct RowBuffer {
-    rows: [ConstraintRow; MAX_ROWS],
-    len: usize,
+    rows: ArrayVec<ConstraintRow, MAX_ROWS>,
     requested: usize,
-}
-
-impl Default for RowBuffer {
-    fn default() -> Self {
-        RowBuffer {
-            rows: [ConstraintRow::default(); MAX_ROWS],
-            len: 0,
-            requested: 0,
-        }
-    }
 }
 
 impl RowBuffer {
@@ -59,16 +51,14 @@ impl RowBuffer {
     #[inline]
     pub fn push(&mut self, row: ConstraintRow) {
         self.requested += 1;
-        if self.len < MAX_ROWS {
-            self.rows[self.len] = row;
-            self.len += 1;
-        }
+        // Full: only counted.
+        let _ = self.rows.try_push(row);
     }
 
     /// The stored rows.
     #[inline]
     pub fn rows(&self) -> &[ConstraintRow] {
-        &self.rows[..self.len]
+        &self.rows
     }
 
     /// How many rows were pushed, including any beyond the capacity.
@@ -77,15 +67,15 @@ impl RowBuffer {
     }
 
     pub fn len(&self) -> usize {
-        self.len
+        self.rows.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.len == 0
+        self.rows.is_empty()
     }
 
     pub fn clear(&mut self) {
-        self.len = 0;
+        self.rows.clear();
         self.requested = 0;
     }
 }
