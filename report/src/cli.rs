@@ -43,6 +43,7 @@ pub enum IntegratorName {
     Rk4,
     Rkmk4,
     Rkmk4Body,
+    Rkmk6Body,
     Strang,
     Yoshida4,
 }
@@ -53,6 +54,7 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rk4 => Integrator::General(Method::Rk4),
             IntegratorName::Rkmk4 => Integrator::General(Method::Rkmk4),
             IntegratorName::Rkmk4Body => Integrator::General(Method::Rkmk4Body),
+            IntegratorName::Rkmk6Body => Integrator::General(Method::Rkmk6Body),
             IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
             IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
         }

@@ -5,10 +5,59 @@
 
 use reference::SceneId;
 
+use crate::measure::Measurements;
+
 /// (dt, error) points and the time per step (s).
 pub struct Anchor {
     pub points: [(f64, f64); 3],
     pub time_per_step: f64,
+}
+
+impl Anchor {
+    /// MuJoCo's error at dt = 1e-3, the accuracy at which the report compares costs.
+    pub fn reference_error(&self) -> f64 {
+        self.points[1].1
+    }
+
+    /// MuJoCo's CPU per simulated second at dt = 1e-3 (s/s).
+    pub fn reference_cost(&self) -> f64 {
+        self.time_per_step / self.points[1].0
+    }
+}
+
+/// The error measure of the anchors: end orientation (rad), except the circle scene's end position (m).
+pub fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
+    match scene {
+        SceneId::RodOnCircle | SceneId::RodOnSphere => measurements.position_end,
+        _ => measurements.orientation_end,
+    }
+}
+
+/// The CPU per simulated second at which a work-precision series first reaches `target` error: interpolated
+/// linearly in log–log between the two runs that bracket it (a fixed-step method's error is a power of its
+/// cost), the cheapest run's cost if that already reaches it, None if no run does. `points` are
+/// (CPU per simulated second, error).
+pub fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    let mut sorted: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(cost, error)| *cost > 0.0 && error.is_finite())
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = *sorted.first()?;
+    if first.1 <= target {
+        return Some(first.0);
+    }
+    sorted.windows(2).find_map(|pair| {
+        let ((cheap, coarse), (dear, fine)) = (pair[0], pair[1]);
+        (coarse > target && fine <= target).then(|| {
+            if fine <= 0.0 {
+                return dear;
+            }
+            let fraction = (coarse / target).ln() / (coarse / fine).ln();
+            (cheap.ln() + fraction * (dear / cheap).ln()).exp()
+        })
+    })
 }
 
 pub fn anchor(scene: SceneId) -> Option<Anchor> {
@@ -42,4 +91,22 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
             .map(|&(dt, error)| (a.time_per_step / dt, error))
             .collect()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cost_at_error_interpolates_log_log() {
+        // error = cost⁻⁴: 1e-4 at cost 10, 1e-8 at cost 100; 1e-6 lies halfway in log, at cost √1000.
+        let points = [(100.0, 1e-8), (10.0, 1e-4)];
+        let cost = cost_at_error(&points, 1e-6).unwrap();
+        assert!((cost - 1000f64.sqrt()).abs() < 1e-9, "{cost}");
+        assert_eq!(cost_at_error(&points, 1e-3), Some(10.0));
+        assert_eq!(cost_at_error(&points, 1e-9), None);
+        // The first crossing from the cheap end counts, not a later one past a round-off floor.
+        let floored = [(10.0, 1e-4), (100.0, 1e-8), (1000.0, 2e-8)];
+        assert!((cost_at_error(&floored, 1e-6).unwrap() - 1000f64.sqrt()).abs() < 1e-9);
+    }
 }

@@ -84,12 +84,13 @@ fn dot(a: &[f64; 6], b: &Vector6<f64>) -> f64 {
     a.iter().zip(b.iter()).map(|(x, y)| x * y).sum()
 }
 
-/// Cholesky solve of the leading `n×n` block of a Gram matrix (`n` ≤ 6; the rest of the result is zero),
-/// checking that its pivots stay above `tolerance²` × the largest diagonal entry (pivots scale like squared
-/// singular values). The block is factored at its own fixed size, so the loops unroll: a 3-row ball joint
-/// does not pay for a padded 6×6 factorisation. (nalgebra's `Cholesky` on the same fixed-size blocks, with
-/// its two triangular solves, took 20% of a constrained PGA step, measured with perf; this is the textbook
-/// algorithm, Golub & Van Loan §4.2, at a third of that.)
+/// Solve of the leading `n×n` block of a Gram matrix (`n` ≤ 6; the rest of the result is zero) by its
+/// `L D Lᵀ` factorisation (Cholesky without square roots), checking that the pivots `D_jj` stay above
+/// `tolerance²` × the largest diagonal entry (pivots scale like squared singular values). The block is
+/// factored at its own fixed size, so the loops unroll: a 3-row ball joint does not pay for a padded 6×6
+/// factorisation. (nalgebra's `Cholesky` on the same fixed-size blocks, with its two triangular solves, took
+/// 20% of a constrained PGA step, measured with perf: the chain of square roots and divisions dominates at
+/// these sizes, and this is the textbook algorithm, Golub & Van Loan §4.1, with one division per column.)
 fn solve_gram(gram: Matrix6<f64>, rhs: Vector6<f64>, n: usize, tolerance: f64) -> Result<Vector6<f64>, SolveFailure> {
     match n {
         0 => Ok(Vector6::zeros()),
@@ -108,30 +109,31 @@ fn solve_gram_block<const N: usize>(
     tolerance: f64,
 ) -> Result<Vector6<f64>, SolveFailure> {
     let largest = (0..N).map(|i| gram[(i, i)]).fold(0.0, f64::max);
-    // G = L Lᵀ, column by column; the pivot of column j is L_jj². The reciprocals of the diagonal turn the
-    // divisions of the elimination and both triangular solves into multiplications (one division per column).
+    // G = L D Lᵀ with unit lower L, column by column; `scaled[i][k]` = L_ik D_kk.
     let mut lower = [[0.0; N]; N];
+    let mut scaled = [[0.0; N]; N];
     let mut reciprocal = [0.0; N];
     for j in 0..N {
-        let pivot = gram[(j, j)] - (0..j).map(|k| lower[j][k] * lower[j][k]).sum::<f64>();
+        let pivot = gram[(j, j)] - (0..j).map(|k| lower[j][k] * scaled[j][k]).sum::<f64>();
         if !(largest > 0.0 && pivot > tolerance * tolerance * largest) {
             return Err(SolveFailure::RankDeficient {
                 singular_value: pivot.max(0.0).sqrt(),
                 largest: largest.max(0.0).sqrt(),
             });
         }
-        reciprocal[j] = 1.0 / pivot.sqrt();
+        reciprocal[j] = 1.0 / pivot;
         for i in j + 1..N {
-            lower[i][j] = (gram[(i, j)] - (0..j).map(|k| lower[i][k] * lower[j][k]).sum::<f64>()) * reciprocal[j];
+            scaled[i][j] = gram[(i, j)] - (0..j).map(|k| scaled[i][k] * lower[j][k]).sum::<f64>();
+            lower[i][j] = scaled[i][j] * reciprocal[j];
         }
     }
-    // L z = rhs, then Lᵀ x = z.
+    // L z = rhs, D w = z, Lᵀ x = w.
     let mut x = Vector6::zeros();
     for i in 0..N {
-        x[i] = (rhs[i] - (0..i).map(|k| lower[i][k] * x[k]).sum::<f64>()) * reciprocal[i];
+        x[i] = rhs[i] - (0..i).map(|k| lower[i][k] * x[k]).sum::<f64>();
     }
     for i in (0..N).rev() {
-        x[i] = (x[i] - (i + 1..N).map(|k| lower[k][i] * x[k]).sum::<f64>()) * reciprocal[i];
+        x[i] = x[i] * reciprocal[i] - (i + 1..N).map(|k| lower[k][i] * x[k]).sum::<f64>();
     }
     Ok(x)
 }

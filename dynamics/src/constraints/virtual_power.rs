@@ -380,7 +380,7 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
 
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
         self.wrenches(kinematics, |w| {
-            let body = A::screw_coordinates(kinematics.to_body(w.wrench));
+            let body = kinematics.to_body_coordinates(&A::screw_coordinates(w.wrench));
             // Wrench coordinates (τ; f) pair with velocity coordinates (ω; v) to the power (SPEC §3).
             let jacobian = [body.t.x, body.t.y, body.t.z, body.l.x, body.l.y, body.l.z];
             let power: f64 = jacobian
