@@ -51,11 +51,17 @@ pub fn from_pose<A: Algebra>(position: Vector3<f64>, rotation: &UnitQuaternion<f
 
 /// The position and orientation of a motor: the image of the origin (SPEC §2), and the rotor part
 /// (its scalar and lᵢ coefficients; the N-terms never touch them) as a unit quaternion.
+///
+/// The image of the origin comes from the motor's coordinates, `c = −2(s t + p l − l⨯t) / (s² + |l|²)`
+/// (the translation of `T(c) R`, divided by the sandwich's scale `⟨R~R⟩₀`), not from a sandwich of a point:
+/// the same in both algebras, and in CGA it avoids a 16 × 5-blade sandwich per call (10% of a constrained
+/// CGA step). `tests::pose_is_the_image_of_the_origin` checks it against the sandwich.
 pub fn pose<A: Algebra>(motor: A::Motor) -> (Vector3<f64>, UnitQuaternion<f64>) {
-    let origin = A::transform_point(motor, A::point(Vector3::zeros()));
     let c = A::motor_coordinates(motor);
+    let scale = c.scalar * c.scalar + c.l.norm_squared();
+    let position = (c.scalar * c.t + c.pseudoscalar * c.l - c.l.cross(&c.t)) * (-2.0 / scale);
     let rotation = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(c.scalar, -c.l.x, -c.l.y, -c.l.z));
-    (A::position(origin), rotation)
+    (position, rotation)
 }
 
 /// Projects onto the motor subalgebra and normalises: with `K = R~R = a + bΠ`,
@@ -77,4 +83,31 @@ pub fn normalise<A: Algebra>(motor: A::Motor) -> A::Motor {
 pub fn norm_error<A: Algebra>(motor: A::Motor) -> f64 {
     let norm = A::motor_coordinates(A::compose(motor, A::reverse(motor)));
     (norm.scalar - 1.0).abs().max(norm.pseudoscalar.abs())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Cga, Pga};
+
+    /// The coordinate formula of [`pose`] is the image of the origin under the sandwich, for unit and for
+    /// scaled motors, in both algebras.
+    fn pose_is_the_image_of_the_origin<A: Algebra>() {
+        for (k, scale) in [1.0, 1.0 + 1e-9, 0.5].into_iter().enumerate() {
+            let rotation = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -1.1, 0.7) * (k as f64 + 1.0));
+            let position = Vector3::new(1.5, -2.0, 0.25) * (k as f64 + 0.5);
+            let motor = from_pose::<A>(position, &rotation) * scale;
+            let sandwich = A::position(A::transform_point(motor, A::point(Vector3::zeros())));
+            let (ours, orientation) = pose::<A>(motor);
+            assert!((ours - sandwich).norm() < 1e-13, "{} {ours} vs {sandwich}", A::NAME);
+            assert!((ours - position).norm() < 1e-13);
+            assert!(orientation.angle_to(&rotation) < 1e-15);
+        }
+    }
+
+    #[test]
+    fn pose_is_the_image_of_the_origin_in_both_algebras() {
+        pose_is_the_image_of_the_origin::<Pga>();
+        pose_is_the_image_of_the_origin::<Cga>();
+    }
 }
