@@ -242,6 +242,10 @@ pub struct CommutatorForm {
     pub commutator: Expansion,
     /// `a C` (or `C ~a`): right-hand variable `k` is the `k`-th blade of `commutator`.
     pub product: Expansion,
+    /// For a unit versor, the blades of `a C` (or `C ~a`) outside `outputs`: `x + a C` is the sandwich,
+    /// which keeps `x`'s grades, so these bilinear forms vanish whenever `a ~a = 1` — relations the
+    /// lowering may use (see [`crate::program::lower_commutator_form`]). Empty for any versor.
+    pub vanishing: Expansion,
 }
 
 /// Expands the sandwich of `operand` by `versor` in commutator form, keeping the `outputs` blades.
@@ -288,6 +292,8 @@ pub fn commutator_form(
             for &(blade, c) in product.terms() {
                 if outputs.contains(&blade) {
                     form.product.add(blade, &[lhs(i), rhs(k)], c * signs);
+                } else if norm == Norm::Unit {
+                    form.vanishing.add(blade, &[lhs(i), rhs(k)], c * signs);
                 }
             }
         }
