@@ -20,7 +20,7 @@
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::exponential::exp;
 use crate::forces::Force;
-use crate::motion::{body_wrench, to_body, to_world, Dynamics, FreeBody, Rates};
+use crate::motion::{to_body, to_world, Dynamics, FreeBody, Rates};
 use crate::state::State;
 
 /// A general integration method: valid for any [`Dynamics`].
@@ -183,16 +183,13 @@ pub fn step_free_body<A: Algebra>(method: Method, system: &FreeBody<A>, t: f64, 
         Method::Rk4 | Method::Rkmk4 | Method::Rkmk6Body => step(method, system, t, state, dt),
         Method::Rkmk4Body => {
             let next = rkmk4_body_momentum(t, state, dt, |at, stage, body_momentum| {
-                let velocity = system.body.velocity::<A>(body_momentum);
+                // A force-free body's rates do not depend on the stage's motor: skip computing it.
                 if system.forces.is_empty() {
+                    let velocity = system.body.velocity::<A>(body_momentum);
                     return (velocity, A::screw(ScrewCoordinates::default()));
                 }
-                let motor = stage.motor();
-                let world = State {
-                    motor,
-                    momentum: to_world::<A>(motor, body_momentum),
-                };
-                (velocity, body_wrench::<A>(motor, system.external_wrench(at, &world)))
+                let rates = system.body_rates(at, stage.motor(), body_momentum);
+                (rates.body_velocity, rates.body_wrench)
             });
             system.after_step(t + dt, next)
         }

@@ -141,6 +141,25 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
         }
     }
 
+    /// `Ḃ = M⁻¹[Ω_b]` straight from the body momentum, and a force-free body's zero wrench without a sandwich.
+    fn body_rates(&self, t: f64, motor: A::Motor, body_momentum: A::Screw) -> BodyRates<A> {
+        let body_velocity = self.body.velocity::<A>(body_momentum);
+        if self.forces.is_empty() {
+            return BodyRates {
+                body_velocity,
+                body_wrench: A::screw(ScrewCoordinates::default()),
+            };
+        }
+        let world = State {
+            motor,
+            momentum: to_world::<A>(motor, body_momentum),
+        };
+        BodyRates {
+            body_velocity,
+            body_wrench: body_wrench::<A>(motor, self.external_wrench(t, &world)),
+        }
+    }
+
     fn energy(&self, state: &State<A>) -> f64 {
         state.kinetic_energy(&self.body)
             + self
