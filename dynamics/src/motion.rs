@@ -67,30 +67,15 @@ pub trait Dynamics<A: Algebra> {
     fn energy(&self, state: &State<A>) -> f64;
 }
 
-/// `a = ⟨R~R⟩₀ = s² + |l|²` of a motor: the factor by which the sandwich `RX~R` scales a screw (SPEC §2,
-/// `R~R = a + bΠ`).
-pub(crate) fn sandwich_scale<A: Algebra>(motor: A::Motor) -> f64 {
-    let c = A::motor_coordinates(motor);
-    c.scalar * c.scalar + c.l.norm_squared()
-}
-
-/// The screw with `x`'s coordinates: a projection onto span{lᵢ, tᵢ}. In CGA each tᵢ spans two blades
-/// (`eᵢ4 + eᵢ5`, SPEC §1.2); round-off makes their coefficients differ, an `eᵢ∧n0` component that the next
-/// sandwich with a motor at distance c multiplies by ~c². Projecting after each sandwich keeps a world ↔ body
-/// round trip at ~ε c³ instead of ε c⁴ (measured: 1.7e-13 instead of 3e-12 at 10 m, 8.5e-11 instead of 5e-8
-/// at 100 m; PGA 2e-15 and 2e-14). In PGA it is a copy.
-pub(crate) fn project<A: Algebra>(x: A::Screw) -> A::Screw {
-    A::screw(A::screw_coordinates(x))
-}
-
-/// The body view `~RΩR` of a world screw, divided by the sandwich scale (see [`rkmk4_body_momentum`]).
+/// The body view `~RΩR` of a world screw, through the motor's rigid map on screw coordinates
+/// ([`motor::ScrewFrame`]).
 pub(crate) fn to_body<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
-    project::<A>(A::transform_screw(A::reverse(motor), world) * (1.0 / sandwich_scale::<A>(motor)))
+    A::screw(motor::ScrewFrame::of::<A>(motor).to_body(&A::screw_coordinates(world)))
 }
 
-/// The world view `RΩ_b~R` of a body screw, divided by the sandwich scale.
+/// The world view `RΩ_b~R` of a body screw.
 pub(crate) fn to_world<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw {
-    project::<A>(A::transform_screw(motor, body) * (1.0 / sandwich_scale::<A>(motor)))
+    A::screw(motor::ScrewFrame::of::<A>(motor).to_world(&A::screw_coordinates(body)))
 }
 
 /// The body view `~RWR` of a world wrench; a free body's wrench is exactly zero, and skipping its sandwich

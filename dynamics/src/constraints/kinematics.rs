@@ -2,10 +2,10 @@
 //! (to move objects between frames, SPEC §2), the body velocity Ḃ (SPEC §3) and, for the force-line
 //! constraints of virtual power (SPEC §6), world positions and velocities of body points.
 
-use nalgebra::{Rotation3, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::motor;
+use crate::motor::ScrewFrame;
 
 /// The body's configuration and velocity at time `t`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,10 +21,8 @@ pub struct Kinematics<A: Algebra> {
     pub velocity: Vector6<f64>,
     /// Ḃ_w = R Ḃ ~R, world frame (SPEC §3).
     pub world_velocity: A::Screw,
-    /// World position of the centre of mass.
-    pub position: Vector3<f64>,
-    /// Rotation body → world.
-    pub rotation: Rotation3<f64>,
+    /// Position of the centre of mass and rotation body → world, with the motor's map on screw coordinates.
+    pub frame: ScrewFrame,
     /// Angular velocity, world axes.
     pub angular_velocity: Vector3<f64>,
     /// Centre-of-mass velocity, world axes.
@@ -34,53 +32,38 @@ pub struct Kinematics<A: Algebra> {
 impl<A: Algebra> Kinematics<A> {
     /// The kinematics of a body with motor `motor` moving with body velocity `body_velocity`.
     pub fn new(t: f64, motor: A::Motor, body_velocity: A::Screw) -> Self {
-        let (position, orientation) = motor::pose::<A>(motor);
-        let rotation = orientation.to_rotation_matrix();
+        let frame = ScrewFrame::of::<A>(motor);
         let ScrewCoordinates { l: omega, t: v } = A::screw_coordinates(body_velocity);
-        let angular_velocity = rotation * omega;
-        let linear_velocity = rotation * v;
+        let angular_velocity = frame.rotation * omega;
+        let linear_velocity = frame.rotation * v;
         Kinematics {
             t,
             motor,
             reverse: A::reverse(motor),
             body_velocity,
             velocity: Vector6::new(omega.x, omega.y, omega.z, v.x, v.y, v.z),
-            // The world coordinates of Ḃ (see `to_world_coordinates`), without a second rotation.
+            // The world coordinates of Ḃ (see `ScrewFrame::to_world`), without a second rotation.
             world_velocity: A::screw(ScrewCoordinates {
                 l: angular_velocity,
-                t: linear_velocity + position.cross(&angular_velocity),
+                t: linear_velocity + frame.position.cross(&angular_velocity),
             }),
-            position,
-            rotation,
+            frame,
             angular_velocity,
             linear_velocity,
         }
     }
 
-    /// The coordinates of `~R X R` from those of a world screw X: `(l, t) ↦ (Qᵀl, Qᵀ(t − c⨯l))` with Q the
-    /// rotation and c the position of R. The sandwich is this linear map on span{lᵢ, tᵢ} (SPEC §1.4: a force f
-    /// through a has `l = f`, `t = a⨯f`, and moves with its line); applied through the 3×3 rotation built once
-    /// per evaluation, it costs 24 multiplies instead of a motor sandwich (PGA ~70, CGA several hundred), and
-    /// in CGA it does not pass through the `½|x|²` terms that make sandwiches lose accuracy far from the
-    /// origin. `kinematics::tests` checks it against the sandwich.
+    /// The coordinates of `~R X R` from those of a world screw X ([`ScrewFrame::to_body`]: 24 multiplies
+    /// instead of a motor sandwich).
     #[inline]
     pub fn to_body_coordinates(&self, world: &ScrewCoordinates) -> ScrewCoordinates {
-        ScrewCoordinates {
-            l: self.rotation.inverse_transform_vector(&world.l),
-            t: self
-                .rotation
-                .inverse_transform_vector(&(world.t - self.position.cross(&world.l))),
-        }
+        self.frame.to_body(world)
     }
 
-    /// The coordinates of `R X ~R` from those of a body screw: `(l, t) ↦ (Ql, Qt + c⨯Ql)`.
+    /// The coordinates of `R X ~R` from those of a body screw.
     #[inline]
     pub fn to_world_coordinates(&self, body: &ScrewCoordinates) -> ScrewCoordinates {
-        let l = self.rotation * body.l;
-        ScrewCoordinates {
-            l,
-            t: self.rotation * body.t + self.position.cross(&l),
-        }
+        self.frame.to_world(body)
     }
 
     /// `~R X R`: the body view of a world screw.
@@ -98,19 +81,19 @@ impl<A: Algebra> Kinematics<A> {
     /// World position of the body point at `body_point` (body coordinates, from the centre of mass).
     #[inline]
     pub fn world_point(&self, body_point: &Vector3<f64>) -> Vector3<f64> {
-        self.position + self.rotation * body_point
+        self.frame.position + self.frame.rotation * body_point
     }
 
     /// World direction of a body direction.
     #[inline]
     pub fn world_direction(&self, body_direction: &Vector3<f64>) -> Vector3<f64> {
-        self.rotation * body_direction
+        self.frame.rotation * body_direction
     }
 
     /// World velocity of the body point at `body_point`: `v + ω ⨯ (a − c)`.
     #[inline]
     pub fn world_point_velocity(&self, body_point: &Vector3<f64>) -> Vector3<f64> {
-        self.linear_velocity + self.angular_velocity.cross(&(self.rotation * body_point))
+        self.linear_velocity + self.angular_velocity.cross(&(self.frame.rotation * body_point))
     }
 }
 
@@ -119,9 +102,9 @@ mod tests {
     use nalgebra::UnitQuaternion;
 
     use super::*;
-    use crate::{Cga, Pga};
+    use crate::{motor, Cga, Pga};
 
-    /// The coordinate maps equal the sandwiches `~RXR` and `RX~R` on screws, in both algebras.
+    /// The coordinate maps ([`ScrewFrame`]) equal the sandwiches `~RXR` and `RX~R` on screws, in both algebras.
     fn coordinate_maps_are_the_sandwich<A: Algebra>(tolerance: f64) {
         let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
         let mut next = || {

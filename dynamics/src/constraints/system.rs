@@ -342,6 +342,7 @@ impl<A: Algebra> ConstrainedBody<A> {
                 + match force {
                     Force::Gravity { acceleration } => ScrewCoordinates {
                         l: kinematics
+                            .frame
                             .rotation
                             .inverse_transform_vector(&(self.body.mass * acceleration)),
                         t: Vector3::zeros(),
