@@ -30,7 +30,7 @@ pub struct Variable {
 /// The highest degree of any expansion: the sandwich is cubic.
 const MAX_DEGREE: usize = 3;
 
-/// A product of at most [`MAX_DEGREE`] variables, sorted (so `a₁a₂` and `a₂a₁` are the same
+/// A product of at most `MAX_DEGREE` (3) variables, sorted (so `a₁a₂` and `a₂a₁` are the same
 /// monomial). Stored inline, since a big expansion builds millions of them, and ordered by a packed
 /// key (degree, then the factors lexicographically) for fast map lookups; it dereferences to its
 /// factors.

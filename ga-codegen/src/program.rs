@@ -369,9 +369,9 @@ pub fn lower(expansion: &Expansion, names: &Names) -> Program {
 /// Lowers the commutator form of a sandwich, `N x + a C` (see [`CommutatorForm`]): the blades of
 /// `N` and `C` that the outputs read become locals, then the outputs sum their products with the
 /// operand and the versor. For a unit versor, whose `a C` has vanishing blades, the bilinear part is also
-/// tried in paired form (see [`PairedProducts`]) under every pairing of versor fields with commutator
+/// tried in paired form (see `PairedProducts`) under every pairing of versor fields with commutator
 /// blades and every subset of its pairs; the program with the fewest multiplies within an operation budget
-/// wins (see [`PAIRING_BUDGET_PERCENT`]).
+/// wins (see `PAIRING_BUDGET_PERCENT`).
 pub fn lower_commutator_form(form: &CommutatorForm, names: &Names) -> Program {
     let plain = lower_commutator_form_with(form, names, None);
     if form.vanishing.outputs.is_empty() {

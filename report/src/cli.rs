@@ -103,7 +103,7 @@ pub struct Options {
     /// Simulated time in seconds for every scene (default: each scene's T from SCENES.md).
     #[arg(long)]
     pub duration: Option<f64>,
-    /// Output folder (default: out, or out/<file name> with --scene-file).
+    /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).
     #[arg(long)]
     pub output: Option<PathBuf>,
     /// Run the scene described in this TOML file (README, "Scene files") instead of the sweep: writes its
