@@ -387,6 +387,7 @@ pub fn lower_commutator_form(form: &CommutatorForm, names: &Names) -> Program {
         return plain;
     }
     let budget = operations(plain.cost()) * (100 + PAIRING_BUDGET_PERCENT) / 100;
+    let mut best_rank = rank(plain.cost(), budget);
     let mut best = plain;
     for permutation in permutations(commutator.len()) {
         let pairing: BTreeMap<usize, usize> = versor
@@ -407,8 +408,9 @@ pub fn lower_commutator_form(form: &CommutatorForm, names: &Names) -> Program {
                 .collect();
             let paired = PairedProducts::new(&outputs, &relations, &pairing, &allowed);
             let program = lower_commutator_form_with(form, names, Some(&paired));
-            if rank(program.cost(), budget) < rank(best.cost(), budget) {
-                best = program;
+            let program_rank = rank(program.cost(), budget);
+            if program_rank < best_rank {
+                (best, best_rank) = (program, program_rank);
             }
         }
     }
@@ -533,14 +535,8 @@ impl PairedProducts {
             };
             let eliminate = |pieces: &mut BTreeMap<Piece, Rational64>| {
                 if let Some(c) = pieces.remove(&pivot) {
-                    for (&piece, &r) in &relation {
-                        if piece != pivot {
-                            let entry = pieces.entry(piece).or_default();
-                            *entry -= c * r / pivot_coefficient;
-                            if entry.is_zero() {
-                                pieces.remove(&piece);
-                            }
-                        }
+                    for (&piece, &r) in relation.iter().filter(|(&piece, _)| piece != pivot) {
+                        accumulate(pieces, piece, -c * r / pivot_coefficient);
                     }
                 }
             };
@@ -580,13 +576,6 @@ impl PairedProducts {
         allowed: &BTreeSet<(usize, usize)>,
     ) -> BTreeMap<Piece, Rational64> {
         let mut pieces: BTreeMap<Piece, Rational64> = BTreeMap::new();
-        let add = |pieces: &mut BTreeMap<Piece, Rational64>, piece: Piece, c: Rational64| {
-            let entry = pieces.entry(piece).or_default();
-            *entry += c;
-            if entry.is_zero() {
-                pieces.remove(&piece);
-            }
-        };
         let mut done: BTreeSet<(usize, usize)> = BTreeSet::new();
         for (&(i, k), &alpha) in form {
             if done.contains(&(i, k)) {
@@ -594,7 +583,7 @@ impl PairedProducts {
             }
             done.insert((i, k));
             if pairing.get(&i) == Some(&k) {
-                add(&mut pieces, Piece::Diagonal { versor: i }, alpha);
+                accumulate(&mut pieces, Piece::Diagonal { versor: i }, alpha);
                 continue;
             }
             // The transpose of aᵢ C_π(j) is aⱼ C_π(i).
@@ -612,7 +601,7 @@ impl PairedProducts {
                     let (first, second) = (i.min(j), i.max(j));
                     // (aᵢ − aⱼ) is stored as (a_first − a_second): flip α when i is the second.
                     let scale = if difference && i > j { -alpha } else { alpha };
-                    add(
+                    accumulate(
                         &mut pieces,
                         Piece::Pair {
                             first,
@@ -621,10 +610,10 @@ impl PairedProducts {
                         },
                         scale,
                     );
-                    add(&mut pieces, Piece::Diagonal { versor: i }, -alpha);
-                    add(&mut pieces, Piece::Diagonal { versor: j }, -beta);
+                    accumulate(&mut pieces, Piece::Diagonal { versor: i }, -alpha);
+                    accumulate(&mut pieces, Piece::Diagonal { versor: j }, -beta);
                 }
-                _ => add(
+                _ => accumulate(
                     &mut pieces,
                     Piece::Plain {
                         versor: i,
@@ -635,6 +624,15 @@ impl PairedProducts {
             }
         }
         pieces
+    }
+}
+
+/// Adds `c · piece`, dropping the piece when its coefficient cancels to zero.
+fn accumulate(pieces: &mut BTreeMap<Piece, Rational64>, piece: Piece, c: Rational64) {
+    let entry = pieces.entry(piece).or_default();
+    *entry += c;
+    if entry.is_zero() {
+        pieces.remove(&piece);
     }
 }
 

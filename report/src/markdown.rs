@@ -121,7 +121,7 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
 /// The configurations of one scene ranked by their CPU per simulated second at MuJoCo's error at dt = 1e-3
 /// (see [`mujoco::cost_at_error`]): (label, cost, the cheapest measured run that reaches it as (dt, error,
 /// cost)). Only configurations that reach it.
-fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<(String, f64, (f64, f64, f64))> {
+fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
     let Some(anchor) = mujoco::anchor(scene) else {
         return Vec::new();
     };
@@ -136,7 +136,7 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<(String, f6
                 .push((config.dt, error, outcome.cpu_per_simulated_second));
         }
     }
-    let mut ranked: Vec<(String, f64, (f64, f64, f64))> = series
+    let mut ranked: Vec<Ranked> = series
         .into_iter()
         .filter_map(|(label, points)| {
             let curve: Vec<(f64, f64)> = points.iter().map(|&(_, error, cost)| (cost, error)).collect();
@@ -153,14 +153,17 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<(String, f6
     ranked
 }
 
+/// A configuration's label, its CPU per simulated second at MuJoCo's error and its cheapest run that meets
+/// that error as (dt, error, CPU per simulated second).
+type Ranked = (String, f64, (f64, f64, f64));
+
 /// Per anchored scene, the cheapest configuration at MuJoCo's accuracy and the ratio of the costs.
-fn mujoco_summary(out: &mut String, results: &[RunResult]) {
+fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>) {
     let mut rows = Vec::new();
     for scene in SceneId::ALL {
-        let runs: Vec<&RunResult> = results.iter().filter(|(c, _)| c.scene == scene).collect();
         let (Some(anchor), Some((label, cost, (dt, error, measured)))) = (
             mujoco::anchor(scene),
-            costs_at_mujoco_error(scene, &runs).into_iter().next(),
+            rankings.get(&scene).and_then(|ranked| ranked.first()),
         ) else {
             continue;
         };
@@ -168,10 +171,10 @@ fn mujoco_summary(out: &mut String, results: &[RunResult]) {
             "| {} | {} | {label} | {} | {:.1}× | {dt:.0e}: {} at {} |",
             scene.label(),
             scientific(anchor.reference_error()),
-            scientific(cost),
+            scientific(*cost),
             anchor.reference_cost() / cost,
-            scientific(error),
-            scientific(measured),
+            scientific(*error),
+            scientific(*measured),
         ));
     }
     if rows.is_empty() {
@@ -211,9 +214,16 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
          time. Energy drift is |E(T) − E₀| / E_scale (SCENES.md). Constrained scenes use the stabilisation chosen \
          for the sweep; \"virtual power\" and \"pinning\" are the two constraint formulations (SPEC §6, §7–§9).\n"
     );
-    mujoco_summary(&mut out, results);
-    for scene in SceneId::ALL {
-        let runs: Vec<&RunResult> = results.iter().filter(|(c, _)| c.scene == scene).collect();
+    let runs_by_scene: Vec<(SceneId, Vec<&RunResult>)> = SceneId::ALL
+        .into_iter()
+        .map(|scene| (scene, results.iter().filter(|(c, _)| c.scene == scene).collect()))
+        .collect();
+    let rankings: HashMap<SceneId, Vec<Ranked>> = runs_by_scene
+        .iter()
+        .map(|(scene, runs)| (*scene, costs_at_mujoco_error(*scene, runs)))
+        .collect();
+    mujoco_summary(&mut out, &rankings);
+    for (scene, runs) in runs_by_scene {
         if runs.is_empty() {
             continue;
         }
@@ -235,7 +245,7 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
                 anchor.time_per_step * 1e6,
                 points.join(", ")
             );
-            let ranked = costs_at_mujoco_error(scene, &runs);
+            let ranked = &rankings[&scene];
             if !ranked.is_empty() {
                 let _ = writeln!(
                     out,
