@@ -12,10 +12,10 @@
 
 use std::error::Error;
 
-use dynamics::constraints::{simulate_constrained, Stabilisation};
-use dynamics::scenes::{build, Formulation, SceneAlgebra, SceneError};
+use dynamics::constraints::Stabilisation;
 use dynamics::{Cga, Method, Pga, Schedule};
-use reference::{trajectory_errors, SceneConstraint, SceneId, Trajectory};
+use reference::{trajectory_errors, SceneConstraint, SceneId};
+use scenarios::{build, Formulation, SceneAlgebra, SceneError};
 
 /// The largest violation of a scene's constraint over the samples (0 for a free body).
 fn violation(constraint: &SceneConstraint, samples: &[reference::Sample]) -> f64 {
@@ -49,19 +49,10 @@ fn row<A: SceneAlgebra>(id: SceneId, formulation: Formulation, method: Method, d
         Err(error) => return Err(error.into()),
     };
     let schedule = Schedule::new(dt, scene.duration)?;
-    let simulation = simulate_constrained(&scene.system, scene.initial, method, &schedule)?;
-    let samples: Vec<reference::Sample> = simulation
-        .samples
-        .iter()
-        .map(|s| reference::Sample {
-            t: s.t,
-            position: s.position,
-            orientation: s.orientation,
-            velocity: s.velocity,
-            angular_velocity: s.angular_velocity,
-        })
-        .collect();
-    let errors = trajectory_errors(&id.reference_trajectory()?, &Trajectory::new(samples.clone())?)?;
+    let simulation = dynamics::simulate(&scene.system, &[scene.initial], method, &schedule)?;
+    let trajectory = scenarios::trajectory(simulation.body(0))?;
+    let samples = trajectory.samples();
+    let errors = trajectory_errors(&id.reference_trajectory()?, &trajectory)?;
     let (error, unit) = match id {
         SceneId::RodOnSphere | SceneId::RodOnCircle => (errors.end_position, "m"),
         _ => (errors.end_orientation, "rad"),
@@ -70,7 +61,7 @@ fn row<A: SceneAlgebra>(id: SceneId, formulation: Formulation, method: Method, d
     println!(
         "| {} | {} | {} | {} | {dt:.0e} | {:.2} | {:.2} | {error:.1e} {unit} | {:.1e} |",
         id.label(),
-        if scene.system.constraints().is_empty() {
+        if scene.system.joint_count() == 0 {
             "free"
         } else {
             formulation.name()
@@ -79,7 +70,7 @@ fn row<A: SceneAlgebra>(id: SceneId, formulation: Formulation, method: Method, d
         method.name(),
         per_step * 1e6,
         per_step / dt * 1e3,
-        violation(&scene.parameters.constraint, &samples),
+        violation(&scene.parameters.constraint, samples),
     );
     Ok(())
 }

@@ -10,19 +10,19 @@
 mod output;
 
 use dynamics::constraints::Stabilisation;
-use dynamics::scenes::{build, Formulation, SceneAlgebra};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
 use output::run;
 use reference::SceneId;
 use report::plot::{figure, Labels, Panel, Series};
+use scenarios::{build, Formulation, SceneAlgebra};
 
 fn simulate<A: SceneAlgebra>(folder: &std::path::Path) -> output::Result<Simulation<A>> {
     let scene = build::<A>(SceneId::Cuboid, Formulation::VirtualPower, Stabilisation::None)?;
     let simulation = run(&scene.system, scene.initial, 1e-3, scene.duration)?;
     report::csv::write(
         &folder.join(format!("dzhanibekov_{}.csv", A::NAME.to_lowercase())),
-        &simulation.samples,
+        simulation.body(0),
     )?;
     Ok(simulation)
 }
@@ -32,28 +32,28 @@ fn main() -> output::Result<()> {
     let pga = simulate::<Pga>(&folder)?;
     let cga = simulate::<Cga>(&folder)?;
     let difference = pga
-        .samples
+        .body(0)
         .iter()
-        .zip(&cga.samples)
+        .zip(cga.body(0))
         .map(|(p, c)| p.orientation.angle_to(&c.orientation))
         .fold(0.0, f64::max);
     println!("PGA vs CGA: max orientation difference {difference:.1e} rad");
 
     let body_rates: Vec<Vector3<f64>> = pga
-        .samples
+        .body(0)
         .iter()
         .map(|s| s.orientation.inverse() * s.angular_velocity)
         .collect();
     let component = |i: usize, name: &str| {
         Series::line(
             name,
-            pga.samples.iter().zip(&body_rates).map(|(s, w)| (s.t, w[i])).collect(),
+            pga.body(0).iter().zip(&body_rates).map(|(s, w)| (s.t, w[i])).collect(),
         )
     };
     // The centre of the +y face (1 m out along the intermediate axis) seen from the centre of mass: it turns
     // over at every flip.
     let face_centre: Vec<(f64, f64)> = pga
-        .samples
+        .body(0)
         .iter()
         .map(|s| {
             let offset = s.orientation * Vector3::y();

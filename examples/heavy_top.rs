@@ -11,13 +11,13 @@
 mod output;
 
 use dynamics::constraints::Stabilisation;
-use dynamics::scenes::{build, Formulation, SceneAlgebra};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
 use output::{run, traced};
 use reference::scenes::HEAVY_TOP_VALUES;
 use reference::SceneId;
 use report::plot::{figure, Labels, Panel, Series};
+use scenarios::{build, Formulation, SceneAlgebra};
 
 /// The centre of the cone's base: on the axis, h/4 = 0.25 m beyond the centre of mass (the tip is 0.75 m
 /// before it).
@@ -37,14 +37,14 @@ fn simulate<A: SceneAlgebra>(
             "heavy_top_{name}_{formulation_name}_{}.csv",
             A::NAME.to_lowercase()
         )),
-        &simulation.samples,
+        simulation.body(0),
     )?;
     Ok(simulation)
 }
 
 fn tilt(simulation: &Simulation<Pga>) -> Vec<(f64, f64)> {
     simulation
-        .samples
+        .body(0)
         .iter()
         .map(|s| {
             let axis = s.orientation * Vector3::z();
@@ -61,9 +61,9 @@ fn main() -> output::Result<()> {
             let pga = simulate::<Pga>(id, formulation, &folder)?;
             let cga = simulate::<Cga>(id, formulation, &folder)?;
             let difference = pga
-                .samples
+                .body(0)
                 .iter()
-                .zip(&cga.samples)
+                .zip(cga.body(0))
                 .map(|(p, c)| p.orientation.angle_to(&c.orientation))
                 .fold(0.0, f64::max);
             println!(

@@ -10,8 +10,8 @@
 
 mod output;
 
-use dynamics::constraints::{pinning, ConstrainedBody, PinningAlgebra, Stabilisation};
-use dynamics::{Body, Cga, Force, Pga, Simulation, State};
+use dynamics::constraints::{pinning, PinningAlgebra, Stabilisation};
+use dynamics::{Body, Cga, Force, Mechanism, Pga, Simulation, State};
 use nalgebra::{UnitQuaternion, Vector3};
 use output::{run, traced};
 use report::plot::{figure, Labels, Panel, Series};
@@ -26,7 +26,7 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
     // The hinge axis is world y through the origin; in the body it is R₀⁻¹ e_y = e_y.
     let axis = (HINGE_END, orientation.inverse() * Vector3::y());
     let world = (Vector3::zeros(), Vector3::y());
-    let system = ConstrainedBody::<A>::new(rod).with_force(Force::gravity());
+    let system = Mechanism::<A>::single(rod).with_force(Force::gravity());
     let system = if hinge {
         system.with_constraint(pinning::hinge::<A>("hinge (line + point)", axis, world)?)?
     } else {
@@ -42,12 +42,14 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
         Vector3::new(0.0, 0.3, 0.0),
     );
     // The hinge forbids the slide: projecting the initial state removes it (SPEC §10).
-    let initial = system.project(0.0, &initial)?;
+    let mut initial = [initial];
+    system.project(0.0, &mut initial)?;
+    let [initial] = initial;
     let simulation = run(&system, initial, 1e-3, 4.0)?;
     let name = if hinge { "hinge" } else { "line" };
     report::csv::write(
         &folder.join(format!("pendulum_{name}_{}.csv", A::NAME.to_lowercase())),
-        &simulation.samples,
+        simulation.body(0),
     )?;
     Ok(simulation)
 }
@@ -59,9 +61,9 @@ fn main() -> output::Result<()> {
     for (name, pga) in [("line", &line), ("hinge", &hinge)] {
         let cga = simulate::<Cga>(name == "hinge", &folder)?;
         let difference = pga
-            .samples
+            .body(0)
             .iter()
-            .zip(&cga.samples)
+            .zip(cga.body(0))
             .map(|(p, c)| (p.position - c.position).norm())
             .fold(0.0, f64::max);
         println!("{name}: PGA vs CGA max position difference {difference:.1e} m");
@@ -69,7 +71,7 @@ fn main() -> output::Result<()> {
     let side_view = |simulation: &Simulation<Pga>| traced(simulation, FREE_END).iter().map(|p| (p.x, p.z)).collect();
     let slide = |simulation: &Simulation<Pga>| {
         simulation
-            .samples
+            .body(0)
             .iter()
             .zip(traced(simulation, FREE_END))
             .map(|(s, p)| (s.t, p.y))

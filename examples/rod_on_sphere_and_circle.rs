@@ -11,12 +11,12 @@
 mod output;
 
 use dynamics::constraints::Stabilisation;
-use dynamics::scenes::{build, Formulation, SceneAlgebra, SceneError};
 use dynamics::{Cga, Pga, Simulation};
 use nalgebra::Vector3;
 use output::{run, traced};
 use reference::SceneId;
 use report::plot::{figure, Labels, Panel, Series};
+use scenarios::{build, Formulation, SceneAlgebra, SceneError};
 
 /// The constrained rod end P, body coordinates.
 const END: Vector3<f64> = Vector3::new(0.0, 0.0, 0.5);
@@ -40,7 +40,7 @@ fn simulate<A: SceneAlgebra>(
             "rod_on_{name}_{formulation_name}_{}.csv",
             A::NAME.to_lowercase()
         )),
-        &simulation.samples,
+        simulation.body(0),
     )?;
     let violation = traced(&simulation, END)
         .iter()
@@ -71,7 +71,7 @@ fn main() -> output::Result<()> {
             };
             if formulation == Formulation::VirtualPower {
                 let end = traced(&cga, END);
-                let centre: Vec<Vector3<f64>> = cga.samples.iter().map(|s| s.position).collect();
+                let centre: Vec<Vector3<f64>> = cga.body(0).iter().map(|s| s.position).collect();
                 curves_top.push(Series::line("rod end P", end.iter().map(|p| (p.x, p.y)).collect()));
                 curves_top.push(Series::line(
                     "centre of mass",

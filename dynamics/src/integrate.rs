@@ -1,16 +1,17 @@
-//! Fixed-step integrators for the state `[R, Ω]` (SPEC §5, §10).
+//! Fixed-step integrators for the state of N rigid bodies, one `[R, Ω]` per body (SPEC §5, §10).
 //!
 //! Two families:
-//! * [`Method`]: general methods, valid for any [`Dynamics`] (free or constrained), stepped with [`step`]
-//!   (or [`step_free_body`], a faster path for free bodies): the paper's RK4 on `(R, Ω)` as vectors plus
-//!   renormalisation, and RKMK4, a Lie-group Runge–Kutta method that moves R only by motor products with
-//!   exponentials of screws, with the momentum in the world frame or (RKMK4-body) in the body frame.
+//! * [`Method`]: general methods, valid for any [`Dynamics`] (free bodies, constrained bodies, mechanisms):
+//!   the paper's RK4 on `(R, Ω)` as vectors plus renormalisation, and Runge–Kutta–Munthe-Kaas (RKMK) methods
+//!   that move each R only by motor products with exponentials of screws, with the momentum in the world
+//!   frame (RKMK4) or in the body frame (RKMK4-body, RKMK6-body). Every body takes the same stages, so a
+//!   mechanism advances on the product of its bodies' motor groups and each motor stays an exact motor.
 //! * [`SplittingMethod`]: Hamiltonian splittings of a free body ([`KineticSplitting`], built from a
-//!   [`FreeBody`] whose forces allow it), stepped with [`step_splitting`]. Every sub-step is the exact flow
-//!   of one piece of the Hamiltonian, so for a free or gravitating body the energy error stays bounded
-//!   over long times instead of drifting.
+//!   [`FreeBody`] whose forces allow it). Every sub-step is the exact flow of one piece of the Hamiltonian,
+//!   so for a free or gravitating body the energy error stays bounded over long times instead of drifting.
 //!
-//! [`Integrator`] names any of them, for sweeps over all methods.
+//! [`Integrator`] names any of them; a [`Stepper`] takes steps of one integrator on one system, with its
+//! buffers made once (a step allocates nothing).
 //!
 //! All steps are fixed. Adaptive stepping would go in `crate::simulate`'s loop, which owns the step size:
 //! an embedded error estimate (e.g. RK4 step doubling, or Strang against Yoshida4) would choose `dt` per
@@ -18,9 +19,10 @@
 //! work-precision sweeps fix `dt`, so that is not implemented.
 
 use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::constraints::ConstraintError;
 use crate::exponential::exp;
 use crate::forces::Force;
-use crate::motion::{to_body, to_world, Dynamics, FreeBody, Rates};
+use crate::motion::{to_body, to_world, BodyRates, Dynamics, FreeBody, Rates};
 use crate::state::State;
 
 /// A general integration method: valid for any [`Dynamics`].
@@ -38,7 +40,7 @@ pub enum Method {
     /// methods) `Ḃ = M⁻¹[~RΩR]` inherits R's error, which the Dzhanibekov flips amplify: on scene 1 at
     /// dt = 1e-3 this method's orientation error is about 100× smaller than RK4's or RKMK4's (see
     /// `examples/free_body_accuracy.rs`). The world momentum is conserved only to the truncation error.
-    /// [`step_free_body`] has a faster path for free bodies.
+    /// A force-free body skips the stages' motors ([`Dynamics::rates_depend_on_motors`]).
     Rkmk4Body,
     /// The body-momentum scheme of [`Method::Rkmk4Body`] on Butcher's 7-stage explicit Runge–Kutta method of
     /// order 6 (J. C. Butcher, 1964), with `dexp⁻¹` truncated after its `ad⁴` term: 7 evaluations per step
@@ -144,106 +146,264 @@ impl From<SplittingMethod> for Integrator {
 
 /// Why a system cannot be integrated by splitting.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SplittingError {
     /// A kick `Ω ← Ω + h W` is the exact flow of `dΩ/dt = W` only if W does not depend on Ω (nor on
     /// time within the step); a custom force may depend on both.
     #[error("force {index} is a custom force, which may depend on the momentum; splitting needs forces of the configuration only")]
     CustomForce { index: usize },
+    /// The splittings are written for one free body (its kinetic energy splits into exact rotations).
+    #[error("splitting methods integrate a single free body, not a constrained body or a mechanism")]
+    NotAFreeBody,
 }
 
-/// One step of `method` from `(t, state)` to `t + dt`, followed by [`Dynamics::after_step`].
-pub fn step<A: Algebra, D: Dynamics<A> + ?Sized>(
-    method: Method,
-    dynamics: &D,
-    t: f64,
-    state: &State<A>,
-    dt: f64,
-) -> State<A> {
-    let next = match method {
-        Method::Rk4 => rk4(dynamics, t, state, dt),
-        Method::Rkmk4 => rkmk4(dynamics, t, state, dt),
-        Method::Rkmk4Body | Method::Rkmk6Body => {
-            body_momentum_step(method, t, state, dt, |at, stage, body_momentum| {
-                let rates = dynamics.body_rates(at, stage.motor(), body_momentum);
-                (rates.body_velocity, rates.body_wrench)
-            })
+/// Why a step failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum StepError {
+    /// The state does not have one entry per body of the system.
+    #[error("the state has {got} bodies, the system has {expected}")]
+    BodyCount { expected: usize, got: usize },
+    #[error(transparent)]
+    Splitting(#[from] SplittingError),
+    /// An evaluation of the equations of motion (or the projection after the step) failed; the error names the
+    /// joints or constraints involved.
+    #[error("at t = {t}: {error}")]
+    Constraint { t: f64, error: ConstraintError },
+}
+
+/// Steps of one integrator on one system. It owns the buffers of the stages and the system's workspace, so a
+/// step allocates nothing; make one per run (or per thread).
+pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
+    dynamics: &'a D,
+    integrator: Integrator,
+    splitting: Option<KineticSplitting<'a, A>>,
+    workspace: D::Workspace,
+    buffers: Buffers<A>,
+}
+
+/// The per-body buffers of a step, sized once for the system.
+struct Buffers<A: Algebra> {
+    /// The state being advanced (copied back into the caller's slice only if the step succeeds).
+    next: Vec<State<A>>,
+    /// A stage's states (world-momentum methods).
+    stage: Vec<State<A>>,
+    rates: Vec<Rates<A>>,
+    body_rates: Vec<BodyRates<A>>,
+    /// A stage's motors and body momenta (body-momentum methods).
+    motors: Vec<A::Motor>,
+    momenta: Vec<A::Screw>,
+    /// The body momenta at the start of the step.
+    start_momenta: Vec<A::Screw>,
+    /// A stage's Lie-algebra offsets σ (the stage motors are `R₀ exp(σ)`).
+    sigmas: Vec<A::Screw>,
+    /// Per stage and body, stage-major: `(dR/dt, dΩ/dt)` (RK4), or the Lie-algebra slopes σ-increments and
+    /// momentum slopes (RKMK).
+    derivatives: Vec<Derivative<A>>,
+    slopes: Vec<A::Screw>,
+    momentum_slopes: Vec<A::Screw>,
+}
+
+impl<A: Algebra> Buffers<A> {
+    fn new(bodies: usize) -> Self {
+        let zero_screw = A::screw(ScrewCoordinates::default());
+        let zero_motor = A::motor(Default::default());
+        let state = State {
+            motor: zero_motor,
+            momentum: zero_screw,
+        };
+        let stages = BUTCHER_6.b.len();
+        Buffers {
+            next: vec![state; bodies],
+            stage: vec![state; bodies],
+            rates: vec![
+                Rates {
+                    body_velocity: zero_screw,
+                    momentum_rate: zero_screw,
+                };
+                bodies
+            ],
+            body_rates: vec![
+                BodyRates {
+                    body_velocity: zero_screw,
+                    body_wrench: zero_screw,
+                };
+                bodies
+            ],
+            motors: vec![zero_motor; bodies],
+            momenta: vec![zero_screw; bodies],
+            start_momenta: vec![zero_screw; bodies],
+            sigmas: vec![zero_screw; bodies],
+            derivatives: vec![
+                Derivative {
+                    motor: zero_motor,
+                    momentum: zero_screw,
+                };
+                4 * bodies
+            ],
+            slopes: vec![zero_screw; stages * bodies],
+            momentum_slopes: vec![zero_screw; stages * bodies],
         }
-    };
-    dynamics.after_step(t + dt, next)
+    }
 }
 
-/// One step of a general method for a free body: as [`step`], except that the body-momentum methods skip
-/// the stage motors (an exponential and a motor product each) when the body has no forces, since its rates
-/// do not depend on them (the same method, equal up to round-off: measured 0.20 instead of 0.30 µs per
-/// RKMK4-body step for PGA on scene 1).
-pub fn step_free_body<A: Algebra>(method: Method, system: &FreeBody<A>, t: f64, state: &State<A>, dt: f64) -> State<A> {
-    match method {
-        Method::Rk4 | Method::Rkmk4 => step(method, system, t, state, dt),
-        Method::Rkmk4Body | Method::Rkmk6Body => {
-            let next = body_momentum_step(method, t, state, dt, |at, stage, body_momentum| {
-                // A force-free body's rates do not depend on the stage's motor: skip computing it.
-                if system.forces.is_empty() {
-                    let velocity = system.body.velocity::<A>(body_momentum);
-                    return (velocity, A::screw(ScrewCoordinates::default()));
-                }
-                let rates = system.body_rates(at, stage.motor(), body_momentum);
-                (rates.body_velocity, rates.body_wrench)
+impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
+    /// A stepper of `integrator` on `dynamics`; splitting methods need a single free body with forces of the
+    /// configuration only.
+    pub fn new(dynamics: &'a D, integrator: impl Into<Integrator>) -> Result<Self, StepError> {
+        let integrator = integrator.into();
+        let splitting = match integrator {
+            Integrator::General(_) => None,
+            Integrator::Splitting(_) => {
+                let free = dynamics.as_free_body().ok_or(SplittingError::NotAFreeBody)?;
+                Some(KineticSplitting::new(free)?)
+            }
+        };
+        Ok(Stepper {
+            dynamics,
+            integrator,
+            splitting,
+            workspace: dynamics.workspace(),
+            buffers: Buffers::new(dynamics.body_count()),
+        })
+    }
+
+    pub fn integrator(&self) -> Integrator {
+        self.integrator
+    }
+
+    pub fn dynamics(&self) -> &'a D {
+        self.dynamics
+    }
+
+    /// The system's workspace, for evaluations between steps.
+    pub fn workspace(&mut self) -> &mut D::Workspace {
+        &mut self.workspace
+    }
+
+    /// One step from `(t, states)` to `t + dt`, followed by [`Dynamics::after_step`]. On an error the states are
+    /// left as they were before the step.
+    pub fn step(&mut self, t: f64, states: &mut [State<A>], dt: f64) -> Result<(), StepError> {
+        let expected = self.dynamics.body_count();
+        if states.len() != expected {
+            return Err(StepError::BodyCount {
+                expected,
+                got: states.len(),
             });
-            system.after_step(t + dt, next)
         }
+        let dynamics = self.dynamics;
+        let workspace = &mut self.workspace;
+        let buffers = &mut self.buffers;
+        let mut next = std::mem::take(&mut buffers.next);
+        next.copy_from_slice(states);
+        let result = match (self.integrator, &self.splitting) {
+            (Integrator::General(Method::Rk4), _) => rk4(dynamics, t, &mut next, dt, buffers, workspace),
+            (Integrator::General(Method::Rkmk4), _) => rkmk4(dynamics, t, &mut next, dt, buffers, workspace),
+            (Integrator::General(Method::Rkmk4Body), _) => {
+                rkmk4_body_momentum(dynamics, t, &mut next, dt, buffers, workspace)
+            }
+            (Integrator::General(Method::Rkmk6Body), _) => {
+                rkmk_body_momentum(&BUTCHER_6, dynamics, t, &mut next, dt, buffers, workspace)
+            }
+            (Integrator::Splitting(method), Some(splitting)) => {
+                next[0] = step_splitting(method, splitting, t, &next[0], dt);
+                Ok(())
+            }
+            (Integrator::Splitting(_), None) => {
+                buffers.next = next;
+                return Err(SplittingError::NotAFreeBody.into());
+            }
+        }
+        .and_then(|()| dynamics.after_step(t + dt, &mut next, workspace));
+        if result.is_ok() {
+            states.copy_from_slice(&next);
+        }
+        buffers.next = next;
+        result.map_err(|error| StepError::Constraint { t, error })
     }
 }
 
-/// A step of a body-momentum method ([`Method::Rkmk4Body`] or [`Method::Rkmk6Body`]) with the given stage rates.
-fn body_momentum_step<A: Algebra>(
-    method: Method,
-    t: f64,
-    y: &State<A>,
-    dt: f64,
-    body_rates: impl Fn(f64, &Stage<'_, A>, A::Screw) -> (A::Screw, A::Screw),
-) -> State<A> {
-    match method {
-        Method::Rkmk6Body => rkmk_body_momentum(&BUTCHER_6, t, y, dt, body_rates),
-        _ => rkmk4_body_momentum(t, y, dt, body_rates),
-    }
-}
-
-/// The time derivative `(dR/dt, dΩ/dt)` of `(R, Ω)` at one state.
+/// The time derivative `(dR/dt, dΩ/dt)` of `(R, Ω)` of one body at one state.
+#[derive(Clone, Copy)]
 struct Derivative<A: Algebra> {
     motor: A::Motor,
     momentum: A::Screw,
 }
 
-fn derivative<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, state: &State<A>) -> Derivative<A> {
-    let rates: Rates<A> = dynamics.rates(t, state);
-    Derivative {
-        motor: rates.motor_rate(state.motor),
-        momentum: rates.momentum_rate,
+/// `(dR/dt, dΩ/dt)` of every body at `states`, into `out`.
+fn derivatives<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    t: f64,
+    states: &[State<A>],
+    rates: &mut [Rates<A>],
+    out: &mut [Derivative<A>],
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    dynamics.rates(t, states, rates, workspace)?;
+    for ((slope, rate), state) in out.iter_mut().zip(rates.iter()).zip(states) {
+        *slope = Derivative {
+            motor: rate.motor_rate(state.motor),
+            momentum: rate.momentum_rate,
+        };
+    }
+    Ok(())
+}
+
+/// `stage = y + h·k` for every body.
+fn advance<A: Algebra>(stage: &mut [State<A>], y: &[State<A>], slopes: &[Derivative<A>], h: f64) {
+    for ((stage, state), slope) in stage.iter_mut().zip(y).zip(slopes) {
+        *stage = State {
+            motor: state.motor + slope.motor * h,
+            momentum: state.momentum + slope.momentum * h,
+        };
     }
 }
 
-/// `y + h·k`.
-fn advance<A: Algebra>(state: &State<A>, slope: &Derivative<A>, h: f64) -> State<A> {
-    State {
-        motor: state.motor + slope.motor * h,
-        momentum: state.momentum + slope.momentum * h,
-    }
-}
-
-fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, y: &State<A>, dt: f64) -> State<A> {
+/// Classic RK4 on every body's (R, Ω) as vectors.
+fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    t: f64,
+    y: &mut [State<A>],
+    dt: f64,
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = y.len();
     let half = 0.5 * dt;
-    let k1 = derivative(dynamics, t, y);
-    let k2 = derivative(dynamics, t + half, &advance(y, &k1, half));
-    let k3 = derivative(dynamics, t + half, &advance(y, &k2, half));
-    let k4 = derivative(dynamics, t + dt, &advance(y, &k3, dt));
+    let Buffers {
+        stage,
+        rates,
+        derivatives: k,
+        ..
+    } = buffers;
+    let (k1, rest) = k.split_at_mut(n);
+    let (k2, rest) = rest.split_at_mut(n);
+    let (k3, k4) = rest.split_at_mut(n);
+    derivatives(dynamics, t, y, rates, k1, workspace)?;
+    advance(stage, y, k1, half);
+    derivatives(dynamics, t + half, stage, rates, k2, workspace)?;
+    advance(stage, y, k2, half);
+    derivatives(dynamics, t + half, stage, rates, k3, workspace)?;
+    advance(stage, y, k3, dt);
+    derivatives(dynamics, t + dt, stage, rates, k4, workspace)?;
     let sixth = dt / 6.0;
-    State {
-        motor: y.motor + (k1.motor + k2.motor * 2.0 + k3.motor * 2.0 + k4.motor) * sixth,
-        momentum: y.momentum + (k1.momentum + k2.momentum * 2.0 + k3.momentum * 2.0 + k4.momentum) * sixth,
+    for (i, state) in y.iter_mut().enumerate() {
+        *state = State {
+            motor: state.motor + (k1[i].motor + k2[i].motor * 2.0 + k3[i].motor * 2.0 + k4[i].motor) * sixth,
+            momentum: state.momentum
+                + (k1[i].momentum + k2[i].momentum * 2.0 + k3[i].momentum * 2.0 + k4[i].momentum) * sixth,
+        };
     }
+    Ok(())
 }
 
-/// RKMK4 for `dR/dt = R ξ` with `ξ = −½Ḃ` (SPEC §3) and `dΩ/dt = W`.
+/// The Lie bracket `[X, Y] = XY − YX`, twice the commutator product of SPEC §1.1.
+#[inline]
+fn bracket<A: Algebra>(x: A::Screw, y: A::Screw) -> A::Screw {
+    A::commutator(x, y) * 2.0
+}
+
+/// RKMK4 for `dR/dt = R ξ` with `ξ = −½Ḃ` (SPEC §3) and `dΩ/dt = W`, body by body.
 ///
 /// With `R = R₀ exp(σ)`, σ obeys `dσ/dt = dexp⁻¹_{−σ}(ξ) = ξ + ½[σ, ξ] + …` (`[X, Y] = XY − YX`, twice the
 /// commutator product of SPEC §1.1). Classic RK4 on σ, with `dexp⁻¹` truncated to the terms that matter at
@@ -256,53 +416,112 @@ fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, y: &State<A>, 
 /// ```
 ///
 /// Ω lives in a vector space, where the commutators vanish and the stages are classic RK4's.
-fn rkmk4<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, y: &State<A>, dt: f64) -> State<A> {
+fn rkmk4<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    t: f64,
+    y: &mut [State<A>],
+    dt: f64,
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = y.len();
     let half = 0.5 * dt;
-    // k = h ξ = −½ h Ḃ, and the Lie bracket [X, Y] = 2 X × Y.
-    let algebra_step = |rates: &Rates<A>| rates.body_velocity * (-0.5 * dt);
-    let bracket = |x: A::Screw, y: A::Screw| A::commutator(x, y) * 2.0;
-    let stage = |sigma: A::Screw, momentum: A::Screw| State::<A> {
-        motor: A::compose(y.motor, exp::<A>(sigma)),
-        momentum,
-    };
-
-    let r1 = dynamics.rates(t, y);
-    let k1 = algebra_step(&r1);
-    let r2 = dynamics.rates(t + half, &stage(k1 * 0.5, y.momentum + r1.momentum_rate * half));
-    let k2 = algebra_step(&r2);
-    let r3 = dynamics.rates(
-        t + half,
-        &stage(k2 * 0.5 + bracket(k1, k2) * 0.125, y.momentum + r2.momentum_rate * half),
-    );
-    let k3 = algebra_step(&r3);
-    let r4 = dynamics.rates(t + dt, &stage(k3, y.momentum + r3.momentum_rate * dt));
-    let k4 = algebra_step(&r4);
-
-    let sigma = (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (1.0 / 6.0) + bracket(k1, k4) * (1.0 / 12.0);
-    let momentum_rate = r1.momentum_rate + r2.momentum_rate * 2.0 + r3.momentum_rate * 2.0 + r4.momentum_rate;
-    stage(sigma, y.momentum + momentum_rate * (dt / 6.0))
-}
-
-/// The motor of a body-momentum method's stage, `R₀ exp(σ)`, computed only if asked for: a force-free
-/// body's rates do not depend on it, so [`step_free_body`] skips the stages' exponentials and motor products.
-struct Stage<'a, A: Algebra> {
-    start: &'a A::Motor,
-    /// None for the first stage (σ = 0).
-    sigma: Option<A::Screw>,
-}
-
-impl<A: Algebra> Stage<'_, A> {
-    fn motor(&self) -> A::Motor {
-        match self.sigma {
-            None => *self.start,
-            Some(sigma) => A::compose(*self.start, exp::<A>(sigma)),
+    // Stage s: rates at `stage`, then kₛ = −½hḂ and the momentum rate, stored at [s n + i].
+    let evaluate = |s: usize, at: f64, buffers: &mut Buffers<A>, workspace: &mut D::Workspace, first: bool| {
+        let Buffers {
+            stage,
+            rates,
+            slopes,
+            momentum_slopes,
+            ..
+        } = buffers;
+        dynamics.rates(at, if first { &*y } else { &*stage }, rates, workspace)?;
+        for (i, rate) in rates.iter().enumerate() {
+            slopes[s * n + i] = rate.body_velocity * (-0.5 * dt);
+            momentum_slopes[s * n + i] = rate.momentum_rate;
         }
+        Ok::<(), ConstraintError>(())
+    };
+    // The stage `R₀ exp(σ)`, `Ω₀ + h dΩ` from the σ buffer and momentum slope s.
+    let set_stage = |buffers: &mut Buffers<A>, s: usize, h: f64| {
+        let slopes = &buffers.momentum_slopes[s * n..(s + 1) * n];
+        for (((stage, start), &sigma), &slope) in
+            buffers.stage.iter_mut().zip(y.iter()).zip(&buffers.sigmas).zip(slopes)
+        {
+            *stage = State {
+                motor: A::compose(start.motor, exp::<A>(sigma)),
+                momentum: start.momentum + slope * h,
+            };
+        }
+    };
+    evaluate(0, t, buffers, workspace, true)?;
+    for i in 0..n {
+        buffers.sigmas[i] = buffers.slopes[i] * 0.5;
     }
+    set_stage(buffers, 0, half);
+    evaluate(1, t + half, buffers, workspace, false)?;
+    for i in 0..n {
+        let (k1, k2) = (buffers.slopes[i], buffers.slopes[n + i]);
+        buffers.sigmas[i] = k2 * 0.5 + bracket::<A>(k1, k2) * 0.125;
+    }
+    set_stage(buffers, 1, half);
+    evaluate(2, t + half, buffers, workspace, false)?;
+    for i in 0..n {
+        buffers.sigmas[i] = buffers.slopes[2 * n + i];
+    }
+    set_stage(buffers, 2, dt);
+    evaluate(3, t + dt, buffers, workspace, false)?;
+    let (k, m) = (&buffers.slopes, &buffers.momentum_slopes);
+    for (i, state) in y.iter_mut().enumerate() {
+        let (k1, k2, k3, k4) = (k[i], k[n + i], k[2 * n + i], k[3 * n + i]);
+        let sigma = (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (1.0 / 6.0) + bracket::<A>(k1, k4) * (1.0 / 12.0);
+        let momentum_rate = m[i] + m[n + i] * 2.0 + m[2 * n + i] * 2.0 + m[3 * n + i];
+        *state = State {
+            motor: A::compose(state.motor, exp::<A>(sigma)),
+            momentum: state.momentum + momentum_rate * (dt / 6.0),
+        };
+    }
+    Ok(())
 }
 
-/// [`Method::Rkmk4Body`]: the RKMK4 stages of [`rkmk4`] for R, classic RK4 stages for the body momentum
-/// `Ω_b`, with `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). `body_rates(t, stage, Ω_b)` returns `(Ḃ, W_b)` at a
-/// stage: the stages' R are exact motors, so any system can be handed the world state `(R, RΩ_b~R)`.
+/// One stage of a body-momentum method: the body rates at the stage motors `R₀ exp(σᵢ)` (σ from
+/// `buffers.sigmas`; the start motors for the first stage, and for systems whose rates do not depend on the
+/// motors, which skips an exponential and a motor product per body) and the body momenta `buffers.momenta`;
+/// stores `k = −½hḂ` and `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) of body i at `[s n + i]`.
+fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    (s, at, dt): (usize, f64, f64),
+    y: &[State<A>],
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = y.len();
+    let skip_motors = s == 0 || !dynamics.rates_depend_on_motors();
+    for ((motor, start), &sigma) in buffers.motors.iter_mut().zip(y).zip(&buffers.sigmas) {
+        *motor = if skip_motors {
+            start.motor
+        } else {
+            A::compose(start.motor, exp::<A>(sigma))
+        };
+    }
+    dynamics.body_rates(
+        at,
+        &buffers.motors,
+        &buffers.momenta,
+        &mut buffers.body_rates,
+        workspace,
+    )?;
+    for (i, (rates, &momentum)) in buffers.body_rates.iter().zip(&buffers.momenta).enumerate() {
+        let velocity = rates.body_velocity;
+        buffers.slopes[s * n + i] = velocity * (-0.5 * dt);
+        buffers.momentum_slopes[s * n + i] = A::commutator(velocity, momentum) + rates.body_wrench;
+    }
+    Ok(())
+}
+
+/// [`Method::Rkmk4Body`]: the RKMK4 stages of [`rkmk4`] for every R, classic RK4 stages for the body momenta
+/// `Ω_b`, with `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). The stages' R are exact motors, so any system can be
+/// handed the world state `(R, RΩ_b~R)`.
 ///
 /// The state carries the world momentum, so every step converts it to the body frame and back, through the
 /// motor's map on screw coordinates ([`crate::motor::ScrewFrame`]). That map is the sandwich divided by
@@ -311,39 +530,51 @@ impl<A: Algebra> Stage<'_, A> {
 /// steps, measured on scene 1). In CGA the map also avoids the sandwiches' `½|x|²` round-off: at 100 m the
 /// orientation error of this method on scene 1 fell from 4.7e-6 to 2.1e-9 rad, and at 1e4 m from total loss
 /// to 1.6e-4 rad (`tests/hard_cases.rs`).
-fn rkmk4_body_momentum<A: Algebra>(
+fn rkmk4_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
     t: f64,
-    y: &State<A>,
+    y: &mut [State<A>],
     dt: f64,
-    body_rates: impl Fn(f64, &Stage<'_, A>, A::Screw) -> (A::Screw, A::Screw),
-) -> State<A> {
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = y.len();
     let half = 0.5 * dt;
-    let bracket = |x: A::Screw, y: A::Screw| A::commutator(x, y) * 2.0;
-    let stage = |sigma: Option<A::Screw>| Stage { start: &y.motor, sigma };
-    // (k = −½hḂ, dΩ_b/dt) at a stage.
-    let evaluate = |at: f64, stage: Stage<'_, A>, body_momentum: A::Screw| {
-        let (velocity, wrench) = body_rates(at, &stage, body_momentum);
-        (velocity * (-0.5 * dt), A::commutator(velocity, body_momentum) + wrench)
-    };
-
-    let momentum = to_body::<A>(y.motor, y.momentum);
-    let (k1, m1) = evaluate(t, stage(None), momentum);
-    let (k2, m2) = evaluate(t + half, stage(Some(k1 * 0.5)), momentum + m1 * half);
-    let (k3, m3) = evaluate(
-        t + half,
-        stage(Some(k2 * 0.5 + bracket(k1, k2) * 0.125)),
-        momentum + m2 * half,
-    );
-    let (k4, m4) = evaluate(t + dt, stage(Some(k3)), momentum + m3 * dt);
-
-    let sigma = (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (1.0 / 6.0) + bracket(k1, k4) * (1.0 / 12.0);
-    let next = stage(Some(sigma)).motor();
-    State {
-        motor: next,
-        momentum: to_world::<A>(next, momentum + (m1 + m2 * 2.0 + m3 * 2.0 + m4) * (dt / 6.0)),
+    for (start, state) in buffers.start_momenta.iter_mut().zip(y.iter()) {
+        *start = to_body::<A>(state.motor, state.momentum);
     }
-}
+    // Stage s + 1 starts from momentum slope s over h, with σ from `sigma(k₁, k₂, k₃)` of body i.
+    let prepare = |buffers: &mut Buffers<A>, s: usize, h: f64, sigma: fn(&[A::Screw], usize, usize) -> A::Screw| {
+        for i in 0..n {
+            buffers.momenta[i] = buffers.start_momenta[i] + buffers.momentum_slopes[s * n + i] * h;
+            buffers.sigmas[i] = sigma(&buffers.slopes, n, i);
+        }
+    };
+    buffers.momenta.copy_from_slice(&buffers.start_momenta);
+    body_stage(dynamics, (0, t, dt), y, buffers, workspace)?;
+    prepare(buffers, 0, half, |k, _, i| k[i] * 0.5);
+    body_stage(dynamics, (1, t + half, dt), y, buffers, workspace)?;
+    prepare(buffers, 1, half, |k, n, i| {
+        k[n + i] * 0.5 + bracket::<A>(k[i], k[n + i]) * 0.125
+    });
+    body_stage(dynamics, (2, t + half, dt), y, buffers, workspace)?;
+    prepare(buffers, 2, dt, |k, n, i| k[2 * n + i]);
+    body_stage(dynamics, (3, t + dt, dt), y, buffers, workspace)?;
 
+    let (k, m) = (&buffers.slopes, &buffers.momentum_slopes);
+    for (i, state) in y.iter_mut().enumerate() {
+        let (k1, k2, k3, k4) = (k[i], k[n + i], k[2 * n + i], k[3 * n + i]);
+        let sigma = (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (1.0 / 6.0) + bracket::<A>(k1, k4) * (1.0 / 12.0);
+        let motor = A::compose(state.motor, exp::<A>(sigma));
+        let momentum =
+            buffers.start_momenta[i] + (m[i] + m[n + i] * 2.0 + m[2 * n + i] * 2.0 + m[3 * n + i]) * (dt / 6.0);
+        *state = State {
+            motor,
+            momentum: to_world::<A>(motor, momentum),
+        };
+    }
+    Ok(())
+}
 /// An explicit Runge–Kutta tableau with `S` stages: `a` strictly lower triangular, weights `b`, nodes `c`.
 struct Tableau<const S: usize> {
     a: [[f64; S]; S],
@@ -407,49 +638,60 @@ fn dexp_inverse<A: Algebra>(sigma: A::Screw, k: A::Screw, order: u32) -> A::Scre
     result
 }
 
-/// A body-momentum Runge–Kutta–Munthe-Kaas step ([`Method::Rkmk6Body`]) on any explicit tableau: stage i
-/// evaluates the rates at `R₀ exp(σᵢ)`, `σᵢ = Σⱼ aᵢⱼ Kⱼ`, and turns `kᵢ = −½hḂᵢ` into `Kᵢ = dexp⁻¹_{−σᵢ}(kᵢ)`
-/// (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic stages of
-/// `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of the new
-/// motor. `body_rates(t, stage, Ω_b)` returns `(Ḃ, W_b)` at the stage's motor `R₀ exp(σᵢ)`.
-fn rkmk_body_momentum<A: Algebra, const S: usize>(
+/// A body-momentum Runge–Kutta–Munthe-Kaas step ([`Method::Rkmk6Body`]) on any explicit tableau, body by body:
+/// stage i evaluates the rates at `R₀ exp(σᵢ)`, `σᵢ = Σⱼ aᵢⱼ Kⱼ`, and turns `kᵢ = −½hḂᵢ` into
+/// `Kᵢ = dexp⁻¹_{−σᵢ}(kᵢ)` (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic
+/// stages of `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of
+/// the new motor.
+fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     tableau: &Tableau<S>,
+    dynamics: &D,
     t: f64,
-    y: &State<A>,
+    y: &mut [State<A>],
     dt: f64,
-    body_rates: impl Fn(f64, &Stage<'_, A>, A::Screw) -> (A::Screw, A::Screw),
-) -> State<A> {
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = y.len();
     let zero = A::screw(ScrewCoordinates::default());
-    let momentum = to_body::<A>(y.motor, y.momentum);
-    let mut algebra_slopes = [zero; S];
-    let mut momentum_slopes = [zero; S];
-    for i in 0..S {
-        let (sigma, stage_momentum) = (0..i).fold((zero, momentum), |(sigma, m), j| {
-            let a = tableau.a[i][j];
-            (sigma + algebra_slopes[j] * a, m + momentum_slopes[j] * (a * dt))
+    for (start, state) in buffers.start_momenta.iter_mut().zip(y.iter()) {
+        *start = to_body::<A>(state.motor, state.momentum);
+    }
+    for s in 0..S {
+        for b in 0..n {
+            let (sigma, momentum) = (0..s).fold((zero, buffers.start_momenta[b]), |(sigma, m), j| {
+                let a = tableau.a[s][j];
+                (
+                    sigma + buffers.slopes[j * n + b] * a,
+                    m + buffers.momentum_slopes[j * n + b] * (a * dt),
+                )
+            });
+            buffers.sigmas[b] = sigma;
+            buffers.momenta[b] = momentum;
+        }
+        body_stage(dynamics, (s, t + tableau.c[s] * dt, dt), y, buffers, workspace)?;
+        if s > 0 {
+            for b in 0..n {
+                let slope = &mut buffers.slopes[s * n + b];
+                *slope = dexp_inverse::<A>(buffers.sigmas[b], *slope, tableau.order);
+            }
+        }
+    }
+    for (b, state) in y.iter_mut().enumerate() {
+        let (sigma, momentum) = (0..S).fold((zero, buffers.start_momenta[b]), |(sigma, m), s| {
+            let weight = tableau.b[s];
+            (
+                sigma + buffers.slopes[s * n + b] * weight,
+                m + buffers.momentum_slopes[s * n + b] * (weight * dt),
+            )
         });
-        let stage = Stage {
-            start: &y.motor,
-            sigma: (i > 0).then_some(sigma),
+        let motor = A::compose(state.motor, exp::<A>(sigma));
+        *state = State {
+            motor,
+            momentum: to_world::<A>(motor, momentum),
         };
-        let (velocity, wrench) = body_rates(t + tableau.c[i] * dt, &stage, stage_momentum);
-        let slope = velocity * (-0.5 * dt);
-        algebra_slopes[i] = if i == 0 {
-            slope
-        } else {
-            dexp_inverse::<A>(sigma, slope, tableau.order)
-        };
-        momentum_slopes[i] = A::commutator(velocity, stage_momentum) + wrench;
     }
-    let (sigma, momentum) = (0..S).fold((zero, momentum), |(sigma, m), i| {
-        let b = tableau.b[i];
-        (sigma + algebra_slopes[i] * b, m + momentum_slopes[i] * (b * dt))
-    });
-    let next = A::compose(y.motor, exp::<A>(sigma));
-    State {
-        motor: next,
-        momentum: to_world::<A>(next, momentum),
-    }
+    Ok(())
 }
 
 /// A [`FreeBody`] checked to admit a splitting integrator: its Hamiltonian is the kinetic energy
@@ -493,15 +735,15 @@ impl<'a, A: Algebra> KineticSplitting<'a, A> {
     }
 }
 
-/// One step of a splitting method from `(t, state)` to `t + dt`, followed by [`Dynamics::after_step`].
-pub fn step_splitting<A: Algebra>(
+/// One step of a splitting method from `(t, state)` to `t + dt` (the stepper then calls [`Dynamics::after_step`]).
+fn step_splitting<A: Algebra>(
     method: SplittingMethod,
     splitting: &KineticSplitting<'_, A>,
     t: f64,
     state: &State<A>,
     dt: f64,
 ) -> State<A> {
-    let next = match method {
+    match method {
         SplittingMethod::Strang => strang(splitting, t, *state, dt),
         SplittingMethod::Yoshida4 => {
             // w₁ = 1/(2 − ∛2), w₀ = 1 − 2w₁ (Yoshida 1990): the order-3 error terms of the three
@@ -513,8 +755,7 @@ pub fn step_splitting<A: Algebra>(
             let second = strang(splitting, t + outer * dt, first, inner * dt);
             strang(splitting, t + (outer + inner) * dt, second, outer * dt)
         }
-    };
-    splitting.system.after_step(t + dt, next)
+    }
 }
 
 /// Kick ½h, drift h, kick ½h. The forces are time-independent (custom forces are excluded), so the kicks'

@@ -1,16 +1,21 @@
-//! The equations of motion (SPEC §5), and the interface integrators step through.
+//! The equations of motion (SPEC §5) and the interface the integrators step: a system of N rigid bodies.
 //!
 //! ```text
 //! Ω_b = ~R Ω R,  Ḃ = M⁻¹[Ω_b],  dR/dt = −½ R Ḃ,  dΩ/dt = W_world (+ R F ~R for a reaction F)
 //! ```
+//!
+//! A system's state is one [`State`] per body; the integrators advance every body with the same method, so
+//! the state lives on the product of the bodies' motor groups (each motor stays an exact motor in the
+//! Lie-group methods).
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::body::Body;
+use crate::constraints::ConstraintError;
 use crate::forces::Force;
 use crate::motor;
 use crate::state::State;
 
-/// What the integrators need at one state: the body-frame velocity Ḃ (so `dR/dt = −½RḂ`, and Lie
+/// What the integrators need of one body at one state: the body-frame velocity Ḃ (so `dR/dt = −½RḂ`, and Lie
 /// group methods can use Ḃ directly) and the world momentum rate `dΩ/dt`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rates<A: Algebra> {
@@ -26,45 +31,76 @@ impl<A: Algebra> Rates<A> {
     }
 }
 
-/// The rates in the body frame, for integrators that carry the body momentum `Ω_b = ~RΩR` within a step:
-/// `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) with `W_b = ~R W R` the body view of the resultant wrench.
+/// The rates of one body in its own frame, for integrators that carry the body momentum `Ω_b = ~RΩR` within a
+/// step: `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) with `W_b = ~R W R` the body view of the resultant wrench.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyRates<A: Algebra> {
     pub body_velocity: A::Screw,
     pub body_wrench: A::Screw,
 }
 
-/// A system the integrators can step: its rates, and what to do after each step.
+/// A system of rigid bodies the integrators can step: its rates, and what to do after each step. Every slice
+/// holds one entry per body, in the system's body order.
 pub trait Dynamics<A: Algebra> {
-    /// Ḃ and dΩ/dt at time `t`.
-    fn rates(&self, t: f64, state: &State<A>) -> Rates<A>;
+    /// Scratch memory of an evaluation (the reaction solve's buffers), made once per run so that steps do not
+    /// allocate.
+    type Workspace: Send;
 
-    /// Ḃ and `W_b` at time `t` for the motor R and body momentum `Ω_b`. By default the world state
-    /// `(R, RΩ_b~R)` goes through [`Dynamics::rates`] and the wrench comes back to the body frame (two
-    /// sandwiches); systems that work in the body frame anyway override it.
-    fn body_rates(&self, t: f64, motor: A::Motor, body_momentum: A::Screw) -> BodyRates<A> {
-        let world = State {
-            motor,
-            momentum: to_world::<A>(motor, body_momentum),
-        };
-        let rates = self.rates(t, &world);
-        BodyRates {
-            body_velocity: rates.body_velocity,
-            body_wrench: body_wrench::<A>(motor, rates.momentum_rate),
-        }
-    }
+    /// A fresh workspace for this system.
+    fn workspace(&self) -> Self::Workspace;
 
-    /// Called after every step: by default, renormalise the motor (SPEC §2, §10). Constrained
-    /// systems also project onto the constraint manifold here.
-    fn after_step(&self, _t: f64, state: State<A>) -> State<A> {
-        State {
-            motor: motor::normalise::<A>(state.motor),
-            momentum: state.momentum,
+    /// The number of bodies.
+    fn body_count(&self) -> usize;
+
+    /// The mass properties of body `index`.
+    fn body(&self, index: usize) -> &Body;
+
+    /// Ḃ and dΩ/dt of every body at time `t`, or why the reaction could not be found.
+    fn rates(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        rates: &mut [Rates<A>],
+        workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError>;
+
+    /// Ḃ and `W_b` of every body at time `t`, from the motors and the body momenta `Ω_b`.
+    fn body_rates(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        body_momenta: &[A::Screw],
+        rates: &mut [BodyRates<A>],
+        workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError>;
+
+    /// Called after every step: by default, renormalise the motors (SPEC §2, §10). Constrained systems also
+    /// project onto the constraint manifold here.
+    fn after_step(
+        &self,
+        _t: f64,
+        states: &mut [State<A>],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError> {
+        for state in states {
+            state.motor = motor::normalise::<A>(state.motor);
         }
+        Ok(())
     }
 
     /// Total energy (kinetic + potential), for diagnostics.
-    fn energy(&self, state: &State<A>) -> f64;
+    fn energy(&self, states: &[State<A>]) -> f64;
+
+    /// Whether [`Dynamics::body_rates`] reads the motors. A force-free body's rates do not, so the body-momentum
+    /// integrators skip computing the motors of their stages (an exponential and a motor product each).
+    fn rates_depend_on_motors(&self) -> bool {
+        true
+    }
+
+    /// The system as a single free body, if it is one (the splitting integrators need its structure).
+    fn as_free_body(&self) -> Option<&FreeBody<A>> {
+        None
+    }
 }
 
 /// The body view `~RΩR` of a world screw, through the motor's rigid map on screw coordinates
@@ -80,7 +116,7 @@ pub(crate) fn to_world<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw 
 
 /// The body view `~RWR` of a world wrench; a free body's wrench is exactly zero, and skipping its sandwich
 /// saves four sandwiches per generic step.
-pub(crate) fn body_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
+fn body_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
     let zero = A::screw(ScrewCoordinates::default());
     if world == zero {
         zero
@@ -115,11 +151,10 @@ impl<A: Algebra> FreeBody<A> {
             total + force.wrench(&self.body, t, state)
         })
     }
-}
 
-impl<A: Algebra> Dynamics<A> for FreeBody<A> {
+    /// The rates of the body at one state (a free body's cannot fail).
     #[inline]
-    fn rates(&self, t: f64, state: &State<A>) -> Rates<A> {
+    pub fn rates_at(&self, t: f64, state: &State<A>) -> Rates<A> {
         Rates {
             body_velocity: state.body_velocity(&self.body),
             momentum_rate: self.external_wrench(t, state),
@@ -127,7 +162,8 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
     }
 
     /// `Ḃ = M⁻¹[Ω_b]` straight from the body momentum, and a force-free body's zero wrench without a sandwich.
-    fn body_rates(&self, t: f64, motor: A::Motor, body_momentum: A::Screw) -> BodyRates<A> {
+    #[inline]
+    fn body_rates_of(&self, t: f64, motor: A::Motor, body_momentum: A::Screw) -> BodyRates<A> {
         let body_velocity = self.body.velocity::<A>(body_momentum);
         if self.forces.is_empty() {
             return BodyRates {
@@ -145,12 +181,61 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
         }
     }
 
-    fn energy(&self, state: &State<A>) -> f64 {
+    fn state_energy(&self, state: &State<A>) -> f64 {
         state.kinetic_energy(&self.body)
             + self
                 .forces
                 .iter()
                 .map(|f| f.potential_energy(&self.body, state))
                 .sum::<f64>()
+    }
+}
+
+impl<A: Algebra> Dynamics<A> for FreeBody<A> {
+    type Workspace = ();
+
+    fn workspace(&self) {}
+
+    fn body_count(&self) -> usize {
+        1
+    }
+
+    fn body(&self, _index: usize) -> &Body {
+        &self.body
+    }
+
+    #[inline]
+    fn rates(&self, t: f64, states: &[State<A>], rates: &mut [Rates<A>], _: &mut ()) -> Result<(), ConstraintError> {
+        for (rate, state) in rates.iter_mut().zip(states) {
+            *rate = self.rates_at(t, state);
+        }
+        Ok(())
+    }
+
+    #[inline]
+    fn body_rates(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        body_momenta: &[A::Screw],
+        rates: &mut [BodyRates<A>],
+        _: &mut (),
+    ) -> Result<(), ConstraintError> {
+        for ((rate, &motor), &momentum) in rates.iter_mut().zip(motors).zip(body_momenta) {
+            *rate = self.body_rates_of(t, motor, momentum);
+        }
+        Ok(())
+    }
+
+    fn energy(&self, states: &[State<A>]) -> f64 {
+        states.iter().map(|state| self.state_energy(state)).sum()
+    }
+
+    fn rates_depend_on_motors(&self) -> bool {
+        !self.forces.is_empty()
+    }
+
+    fn as_free_body(&self) -> Option<&FreeBody<A>> {
+        Some(self)
     }
 }

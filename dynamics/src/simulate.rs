@@ -1,9 +1,10 @@
-//! Running a system over time and recording it on the reference scenes' sample grid (SCENES.md: every
-//! 0.01 s, at times `k · 0.01`).
+//! Running a system of rigid bodies over time and recording every body on a sample grid (by default every
+//! 0.01 s, the grid of the reference scenes, at times `k · 0.01`).
 //!
 //! A [`Schedule`] fixes the step and checks that it divides the sample interval, so every sample falls on a
 //! step and nothing is interpolated (interpolation would add errors far above the references' ~1e-11 rad
-//! floor). The loop allocates once (the sample vector) and measures the CPU time of the stepping alone, for
+//! floor). [`simulate`] is the one entry point, for free bodies, constrained bodies and mechanisms, with any
+//! [`Integrator`]; it allocates once (the samples) and measures the CPU time of the stepping alone, for
 //! work-precision comparisons.
 
 use std::time::{Duration, Instant};
@@ -11,12 +12,12 @@ use std::time::{Duration, Instant};
 use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::algebra::Algebra;
-use crate::integrate::{step, step_free_body, step_splitting, Integrator, KineticSplitting, Method, SplittingError};
-use crate::motion::{Dynamics, FreeBody};
+use crate::integrate::{Integrator, StepError, Stepper};
+use crate::motion::Dynamics;
 use crate::state::State;
 
-/// The sample interval of the reference scenes (s).
-pub const SAMPLE_INTERVAL: f64 = reference::scenes::SAMPLE_INTERVAL;
+/// The default sample interval (s), that of the reference scenes.
+pub const SAMPLE_INTERVAL: f64 = 0.01;
 
 /// The most samples a run records (120 bytes each: 1.2 GB at this limit).
 pub const MAX_SAMPLES: usize = 10_000_000;
@@ -27,6 +28,7 @@ const DIVISIBILITY_TOLERANCE: f64 = 1e-9;
 
 /// Why a simulation could not run or did not finish.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SimulationError {
     #[error("{name} must be positive and finite, got {value}")]
     NotPositive { name: &'static str, value: f64 },
@@ -41,8 +43,12 @@ pub enum SimulationError {
     TooLong,
     #[error("the state is no longer finite at t = {t} (the step is too large for this system)")]
     NonFinite { t: f64 },
+    /// The initial state does not have one entry per body of the system.
+    #[error("the initial state has {got} bodies, the system has {expected}")]
+    BodyCount { expected: usize, got: usize },
+    /// A step failed (a reaction that could not be solved names its joints), or the integrator does not apply.
     #[error(transparent)]
-    Splitting(#[from] SplittingError),
+    Step(#[from] StepError),
 }
 
 /// A fixed-step schedule: `intervals` sample intervals, each of `steps_per_sample` steps.
@@ -130,7 +136,8 @@ impl Schedule {
     }
 }
 
-/// One recorded instant, in the reference files' terms (SCENES.md "Files") plus the energy.
+/// One recorded instant of one body, in the reference files' terms (SCENES.md "Files") plus the system's
+/// energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
     pub t: f64,
@@ -142,37 +149,30 @@ pub struct Sample {
     pub velocity: Vector3<f64>,
     /// Angular velocity, world frame.
     pub angular_velocity: Vector3<f64>,
-    /// [`Dynamics::energy`].
+    /// [`Dynamics::energy`] of the whole system.
     pub energy: f64,
 }
 
 /// A finished run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Simulation<A: Algebra> {
-    pub samples: Vec<Sample>,
-    pub final_state: State<A>,
+    /// The samples of each body: `bodies[i][k]` is body i at sample k.
+    pub bodies: Vec<Vec<Sample>>,
+    pub final_state: Vec<State<A>>,
     pub steps: usize,
     /// CPU (wall) time spent stepping, excluding the recording of samples.
     pub stepping_time: Duration,
 }
 
 impl<A: Algebra> Simulation<A> {
-    /// The samples as a reference trajectory (without the energies), for the metrics of the `reference`
-    /// crate. The sample times always increase, so this fails only on an empty record, which `simulate`
-    /// never returns.
-    pub fn trajectory(&self) -> Result<reference::Trajectory, reference::TrajectoryError> {
-        reference::Trajectory::new(
-            self.samples
-                .iter()
-                .map(|s| reference::Sample {
-                    t: s.t,
-                    position: s.position,
-                    orientation: s.orientation,
-                    velocity: s.velocity,
-                    angular_velocity: s.angular_velocity,
-                })
-                .collect(),
-        )
+    /// The samples of body `index` (the only body of a single-body system is 0).
+    pub fn body(&self, index: usize) -> &[Sample] {
+        &self.bodies[index]
+    }
+
+    /// The system's energy at each sample.
+    pub fn energies(&self) -> impl Iterator<Item = f64> + '_ {
+        self.bodies[0].iter().map(|s| s.energy)
     }
 
     /// Stepping time per step.
@@ -181,18 +181,21 @@ impl<A: Algebra> Simulation<A> {
     }
 }
 
-/// The sample of `state` at `t`: pose from the motor (SPEC §2), velocities from the body velocity Ḃ of the
-/// system's rates turned into world axes.
-fn sample<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, state: &State<A>) -> Sample {
-    let (position, orientation) = state.pose();
-    let velocity = A::screw_coordinates(dynamics.rates(t, state).body_velocity);
-    Sample {
-        t,
-        position,
-        orientation,
-        velocity: orientation * velocity.t,
-        angular_velocity: orientation * velocity.l,
-        energy: dynamics.energy(state),
+/// Appends the sample of every body at `t`: pose from the motor (SPEC §2), velocities from the body velocity
+/// `Ḃ = M⁻¹[~RΩR]` turned into world axes.
+fn record<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, states: &[State<A>], bodies: &mut [Vec<Sample>]) {
+    let energy = dynamics.energy(states);
+    for (index, (state, samples)) in states.iter().zip(bodies).enumerate() {
+        let (position, orientation) = state.pose();
+        let velocity = A::screw_coordinates(state.body_velocity(dynamics.body(index)));
+        samples.push(Sample {
+            t,
+            position,
+            orientation,
+            velocity: orientation * velocity.t,
+            angular_velocity: orientation * velocity.l,
+            energy,
+        });
     }
 }
 
@@ -205,68 +208,48 @@ fn is_finite<A: Algebra>(state: &State<A>) -> bool {
         && momentum.l.iter().chain(momentum.t.iter()).all(|x| x.is_finite())
 }
 
-/// The loop shared by all integrators: `advance(t, state, dt)` takes one step.
-fn run<A: Algebra, D: Dynamics<A> + ?Sized>(
+/// Runs any system — a [`crate::FreeBody`], or a [`crate::Mechanism`] of one or more bodies with joints — from
+/// `initial` (one state per body) with `integrator` on `schedule`. Splitting methods apply to a single free
+/// body. Fails with the first step that fails (its error names the joints involved and the time) or when the
+/// state stops being finite.
+pub fn simulate<A: Algebra, D: Dynamics<A> + ?Sized>(
     dynamics: &D,
-    initial: State<A>,
+    initial: &[State<A>],
+    integrator: impl Into<Integrator>,
     schedule: &Schedule,
-    mut advance: impl FnMut(f64, &State<A>, f64) -> State<A>,
 ) -> Result<Simulation<A>, SimulationError> {
+    let expected = dynamics.body_count();
+    if initial.len() != expected {
+        return Err(SimulationError::BodyCount {
+            expected,
+            got: initial.len(),
+        });
+    }
+    let mut stepper = Stepper::new(dynamics, integrator)?;
     let dt = schedule.dt();
-    let mut samples = Vec::with_capacity(schedule.sample_count());
-    samples.push(sample(dynamics, 0.0, &initial));
-    let mut state = initial;
+    let mut bodies: Vec<Vec<Sample>> = (0..expected)
+        .map(|_| Vec::with_capacity(schedule.sample_count()))
+        .collect();
+    record(dynamics, 0.0, initial, &mut bodies);
+    let mut state = initial.to_vec();
     let mut stepping_time = Duration::ZERO;
     for interval in 0..schedule.intervals {
         let start_time = schedule.sample_time(interval);
         let clock = Instant::now();
         for k in 0..schedule.steps_per_sample {
-            state = advance(start_time + k as f64 * dt, &state, dt);
+            stepper.step(start_time + k as f64 * dt, &mut state, dt)?;
         }
         stepping_time += clock.elapsed();
         let t = schedule.sample_time(interval + 1);
-        if !is_finite(&state) {
+        if !state.iter().all(is_finite) {
             return Err(SimulationError::NonFinite { t });
         }
-        samples.push(sample(dynamics, t, &state));
+        record(dynamics, t, &state, &mut bodies);
     }
     Ok(Simulation {
-        samples,
+        bodies,
         final_state: state,
         steps: schedule.step_count(),
         stepping_time,
     })
-}
-
-/// Runs any system with a general method.
-pub fn simulate<A: Algebra, D: Dynamics<A> + ?Sized>(
-    dynamics: &D,
-    initial: State<A>,
-    method: Method,
-    schedule: &Schedule,
-) -> Result<Simulation<A>, SimulationError> {
-    run(dynamics, initial, schedule, |t, state, dt| {
-        step(method, dynamics, t, state, dt)
-    })
-}
-
-/// Runs a free body with any integrator (general methods through [`step_free_body`]); splitting methods need
-/// forces of the configuration only.
-pub fn simulate_free_body<A: Algebra>(
-    system: &FreeBody<A>,
-    initial: State<A>,
-    integrator: Integrator,
-    schedule: &Schedule,
-) -> Result<Simulation<A>, SimulationError> {
-    match integrator {
-        Integrator::General(method) => run(system, initial, schedule, |t, state, dt| {
-            step_free_body(method, system, t, state, dt)
-        }),
-        Integrator::Splitting(method) => {
-            let splitting = KineticSplitting::new(system)?;
-            run(system, initial, schedule, |t, state, dt| {
-                step_splitting(method, &splitting, t, state, dt)
-            })
-        }
-    }
 }

@@ -9,7 +9,7 @@
 mod common;
 
 use common::Random;
-use dynamics::{Algebra, Body, Dynamics, Force, FreeBody, ScrewCoordinates, State};
+use dynamics::{Algebra, Body, Force, FreeBody, ScrewCoordinates, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Step of the central differences, balancing their truncation error (∝ ε²: 7.7e-9 at ε = 1e-5) against
@@ -62,7 +62,7 @@ fn random_case<A: Algebra>(random: &mut Random) -> Case<A> {
 
 /// The state reached from `state` by following the GA rates linearly for `h`.
 fn follow<A: Algebra>(system: &FreeBody<A>, state: &State<A>, h: f64) -> State<A> {
-    let rates = system.rates(0.0, state);
+    let rates = system.rates_at(0.0, state);
     State {
         motor: state.motor + rates.motor_rate(state.motor) * h,
         momentum: state.momentum + rates.momentum_rate * h,
@@ -70,7 +70,7 @@ fn follow<A: Algebra>(system: &FreeBody<A>, state: &State<A>, h: f64) -> State<A
 }
 
 fn body_velocity<A: Algebra>(system: &FreeBody<A>, state: &State<A>) -> ScrewCoordinates {
-    A::screw_coordinates(system.rates(0.0, state).body_velocity)
+    A::screw_coordinates(system.rates_at(0.0, state).body_velocity)
 }
 
 fn relative(error: Vector3<f64>, scale: Vector3<f64>) -> f64 {

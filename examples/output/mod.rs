@@ -8,8 +8,7 @@
 use std::error::Error;
 use std::path::PathBuf;
 
-use dynamics::constraints::{simulate_constrained, ConstrainedBody, ConstrainedSimulationError};
-use dynamics::{Algebra, Method, Schedule, Simulation, State};
+use dynamics::{simulate, Algebra, Mechanism, Method, Schedule, Simulation, SimulationError, State};
 use nalgebra::Vector3;
 
 pub type Result<T> = std::result::Result<T, Box<dyn Error>>;
@@ -23,19 +22,18 @@ pub fn output_folder() -> Result<PathBuf> {
 
 /// Runs a system with RK4, sampled every 0.01 s.
 pub fn run<A: Algebra>(
-    system: &ConstrainedBody<A>,
+    system: &Mechanism<A>,
     initial: State<A>,
     dt: f64,
     duration: f64,
-) -> std::result::Result<Simulation<A>, ConstrainedSimulationError> {
-    let schedule = Schedule::new(dt, duration).map_err(ConstrainedSimulationError::from)?;
-    simulate_constrained(system, initial, Method::Rk4, &schedule)
+) -> std::result::Result<Simulation<A>, SimulationError> {
+    simulate(system, &[initial], Method::Rk4, &Schedule::new(dt, duration)?)
 }
 
-/// The world positions of a body point (body coordinates) over a run.
+/// The world positions of a point of a single-body run's body (body coordinates).
 pub fn traced(simulation: &Simulation<impl Algebra>, body_point: Vector3<f64>) -> Vec<Vector3<f64>> {
     simulation
-        .samples
+        .body(0)
         .iter()
         .map(|s| s.position + s.orientation * body_point)
         .collect()

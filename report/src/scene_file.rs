@@ -11,14 +11,13 @@ use std::path::Path;
 use std::sync::Arc;
 
 use dynamics::constraints::{
-    linear, pinning, simulate_constrained, ConstrainedBody, Constraint, ConstraintError, PinningAlgebra, Stabilisation,
-    VirtualPower,
+    linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower,
 };
 use dynamics::integrate::Integrator;
-use dynamics::scenes::Formulation;
-use dynamics::simulate::{simulate_free_body, Sample, Schedule, SimulationError, SAMPLE_INTERVAL};
-use dynamics::{Algebra, Body, BodyError, Cga, Force, FreeBody, Pga, Simulation, State};
+use dynamics::simulate::{simulate, Sample, Schedule, SimulationError, SAMPLE_INTERVAL};
+use dynamics::{Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Simulation, State};
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
+use scenarios::Formulation;
 use serde::Deserialize;
 
 use crate::cli::{IntegratorName, StabilisationName};
@@ -41,6 +40,8 @@ pub enum SceneFileError {
     Schedule(SimulationError),
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    #[error(transparent)]
+    Mechanism(#[from] MechanismError),
     #[error(
         "constraint {name}: pinning needs a {object}, which {algebra} does not have; write \
          formulation = \"virtual_power\", or algebra = \"cga\""
@@ -663,7 +664,7 @@ impl CheckedGeometry {
 
 /// A system ready to run in one algebra, and its initial state on the constraints.
 pub struct SceneSystem<A: Algebra> {
-    pub system: ConstrainedBody<A>,
+    pub system: Mechanism<A>,
     pub initial: State<A>,
 }
 
@@ -672,18 +673,20 @@ const INITIAL_PROJECTIONS: usize = 20;
 
 /// The initial state on the constraints (SPEC §10). A file's state may start centimetres off them, further
 /// than one projection's two Gauss–Newton steps reach, so it is projected again while that still helps.
-fn project_initial<A: Algebra>(system: &ConstrainedBody<A>, state: &State<A>) -> Result<State<A>, SceneFileError> {
-    let mut state = system.project(0.0, state)?;
+fn project_initial<A: Algebra>(system: &Mechanism<A>, state: &State<A>) -> Result<State<A>, SceneFileError> {
+    let mut state = [*state];
+    system.project(0.0, &mut state)?;
     let mut residual = system.violation(0.0, &state)?.position;
     for _ in 1..INITIAL_PROJECTIONS {
-        let next = system.project(0.0, &state)?;
+        let mut next = state;
+        system.project(0.0, &mut next)?;
         let next_residual = system.violation(0.0, &next)?.position;
         if next_residual >= residual {
             break;
         }
         (state, residual) = (next, next_residual);
     }
-    Ok(state)
+    Ok(state[0])
 }
 
 impl SceneFile {
@@ -741,7 +744,7 @@ impl SceneFile {
     /// The system in algebra `A` and its initial state, projected onto the constraints.
     pub fn system<A: FileAlgebra>(&self) -> Result<SceneSystem<A>, SceneFileError> {
         let body = self.body.body()?;
-        let mut system = ConstrainedBody::<A>::new(body);
+        let mut system = Mechanism::<A>::single(body);
         for (index, force) in self.forces.iter().enumerate() {
             system = system.with_force(force.force(index + 1)?);
         }
@@ -773,22 +776,15 @@ impl SceneFile {
             algebra: A::NAME,
             message,
         };
-        match Integrator::from(self.integrator) {
-            integrator if self.constraints.is_empty() => {
-                let free = system
-                    .forces
-                    .iter()
-                    .cloned()
-                    .fold(FreeBody::<A>::new(system.body), FreeBody::with_force);
-                simulate_free_body(&free, initial, integrator, &schedule).map_err(|e| failed(e.to_string()))
+        let integrator = Integrator::from(self.integrator);
+        if self.constraints.is_empty() {
+            let mut free = FreeBody::<A>::new(self.body.body()?);
+            for (index, force) in self.forces.iter().enumerate() {
+                free = free.with_force(force.force(index + 1)?);
             }
-            Integrator::General(method) => {
-                simulate_constrained(&system, initial, method, &schedule).map_err(|e| failed(e.to_string()))
-            }
-            Integrator::Splitting(method) => Err(failed(format!(
-                "{} is a splitting method, which runs bodies without constraints only",
-                method.name()
-            ))),
+            simulate(&free, &[initial], integrator, &schedule).map_err(|e| failed(e.to_string()))
+        } else {
+            simulate(&system, &[initial], integrator, &schedule).map_err(|e| failed(e.to_string()))
         }
     }
 

@@ -64,22 +64,21 @@ fn run_in<A: FileAlgebra>(
     scene: &SceneFile,
     geometries: &[CheckedGeometry],
 ) -> Result<AlgebraRun, SceneFileError> {
-    let simulation = scene.simulate::<A>()?;
+    let mut simulation = scene.simulate::<A>()?;
+    let samples = simulation.bodies.swap_remove(0);
     let duration = scene.schedule()?.duration();
     let stepping = simulation.stepping_time.as_secs_f64();
-    let initial_energy = simulation.samples.first().map_or(0.0, |s| s.energy);
+    let initial_energy = samples.first().map_or(0.0, |s| s.energy);
     let scale = if initial_energy == 0.0 {
         1.0
     } else {
         initial_energy.abs()
     };
-    let energy_change = simulation
-        .samples
+    let energy_change = samples
         .iter()
         .map(|s| (s.energy - initial_energy).abs() / scale)
         .collect();
-    let violation = simulation
-        .samples
+    let violation = samples
         .iter()
         .map(|s| geometries.iter().map(|g| g.violation(s)).fold(0.0, f64::max))
         .collect();
@@ -89,7 +88,7 @@ fn run_in<A: FileAlgebra>(
         time_per_step: stepping / simulation.steps.max(1) as f64,
         energy_change,
         violation,
-        samples: simulation.samples,
+        samples,
     })
 }
 
@@ -206,7 +205,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             format!(
                 "{} by {}",
                 c.geometry.kind(),
-                dynamics::scenes::Formulation::from(c.formulation).name()
+                scenarios::Formulation::from(c.formulation).name()
             )
         })
         .collect();

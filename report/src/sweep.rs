@@ -1,12 +1,12 @@
 //! The configurations of the sweep (scene × algebra × formulation × integrator × step) and running one.
 
-use dynamics::constraints::{simulate_constrained, Stabilisation};
+use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method};
-use dynamics::scenes::{self, Formulation, SceneAlgebra};
-use dynamics::simulate::{simulate_free_body, Sample, Schedule};
+use dynamics::simulate::{simulate, Sample, Schedule};
 use dynamics::{Body, Cga, Force, FreeBody, Pga};
 use nalgebra::Vector3;
 use reference::{SceneConstraint, SceneId};
+use scenarios::{Formulation, SceneAlgebra};
 
 use crate::measure::{measure, Measurements};
 
@@ -141,7 +141,7 @@ pub struct Outcome {
 #[derive(Clone, Debug, thiserror::Error)]
 pub enum RunError {
     #[error("scene: {0}")]
-    Scene(#[from] scenes::SceneError),
+    Scene(#[from] scenarios::SceneError),
     #[error("simulation: {0}")]
     Simulation(String),
     #[error("metrics: {0}")]
@@ -158,10 +158,10 @@ pub fn run(config: &Config) -> Result<Outcome, RunError> {
 
 fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
     let schedule = Schedule::new(config.dt, config.duration).map_err(|e| RunError::Simulation(e.to_string()))?;
-    let simulation = match config.formulation {
+    let mut simulation = match config.formulation {
         None => {
             // The free body runs as a `FreeBody`, where every integrator (splittings included) applies.
-            let scene = scenes::build::<A>(config.scene, Formulation::Pinning, config.stabilisation)?;
+            let scene = scenarios::build::<A>(config.scene, Formulation::Pinning, config.stabilisation)?;
             let parameters = &scene.parameters;
             let body = Body::new(parameters.mass, parameters.principal_moments)
                 .map_err(|e| RunError::Simulation(e.to_string()))?;
@@ -171,29 +171,24 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
                     acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
                 });
             }
-            simulate_free_body(&system, scene.initial, config.integrator, &schedule)
+            simulate(&system, &[scene.initial], config.integrator, &schedule)
                 .map_err(|e| RunError::Simulation(e.to_string()))?
         }
         Some(formulation) => {
-            let scene = scenes::build::<A>(config.scene, formulation, config.stabilisation)?;
-            let Integrator::General(method) = config.integrator else {
-                return Err(RunError::Simulation(
-                    "splitting methods apply to free bodies only".into(),
-                ));
-            };
-            simulate_constrained(&scene.system, scene.initial, method, &schedule)
+            let scene = scenarios::build::<A>(config.scene, formulation, config.stabilisation)?;
+            simulate(&scene.system, &[scene.initial], config.integrator, &schedule)
                 .map_err(|e| RunError::Simulation(e.to_string()))?
         }
     };
     let stepping = simulation.stepping_time.as_secs_f64();
-    let trajectory = simulation.trajectory().map_err(|e| RunError::Metrics(e.to_string()))?;
+    let trajectory = scenarios::trajectory(simulation.body(0)).map_err(|e| RunError::Metrics(e.to_string()))?;
     let measurements = measure(config, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
     Ok(Outcome {
         config: *config,
         cpu_per_simulated_second: stepping / schedule.duration(),
         time_per_step: stepping / simulation.steps.max(1) as f64,
         measurements,
-        samples: simulation.samples,
+        samples: simulation.bodies.swap_remove(0),
     })
 }
 

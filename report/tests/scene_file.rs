@@ -3,15 +3,15 @@
 
 use std::path::PathBuf;
 
-use dynamics::constraints::{simulate_constrained, Stabilisation};
+use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Method;
-use dynamics::scenes::{build, Formulation, SceneAlgebra};
 use dynamics::simulate::Schedule;
 use dynamics::{Cga, Pga};
 use reference::SceneId;
 use report::markdown::agreement;
 use report::scene_file::{AlgebraChoice, FileAlgebra, SceneFile};
 use report::scene_job::run_scene_file;
+use scenarios::{build, Formulation, SceneAlgebra};
 
 fn heavy_top_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml")
@@ -28,9 +28,9 @@ fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, fo
     let builtin = build::<A>(SceneId::TopCusp, formulation, Stabilisation::PROJECTION).expect("scene 3a builds");
     let schedule = Schedule::new(scene.dt, builtin.duration).expect("scene 3a's schedule");
     let builtin =
-        simulate_constrained(&builtin.system, builtin.initial, Method::Rk4, &schedule).expect("scene 3a runs");
-    assert_eq!(from_file.samples.len(), builtin.samples.len());
-    agreement(&from_file.samples, &builtin.samples)
+        dynamics::simulate(&builtin.system, &[builtin.initial], Method::Rk4, &schedule).expect("scene 3a runs");
+    assert_eq!(from_file.body(0).len(), builtin.body(0).len());
+    agreement(from_file.body(0), builtin.body(0))
 }
 
 #[test]
@@ -280,7 +280,7 @@ fn pinning_on_a_sphere_runs_in_cga_alone() {
     let scene = SceneFile::parse(&text).expect("CGA has spheres");
     let run = scene.simulate::<Cga>().expect("runs");
     let geometry = scene.constraint_geometries().unwrap();
-    let worst = run.samples.iter().map(|s| geometry[0].violation(s)).fold(0.0, f64::max);
+    let worst = run.body(0).iter().map(|s| geometry[0].violation(s)).fold(0.0, f64::max);
     assert!(worst < 1e-12, "violation {worst}");
 }
 

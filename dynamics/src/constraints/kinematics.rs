@@ -1,6 +1,9 @@
 //! The state of the body at one evaluation, in the forms the constraints need: the motor and its reverse
 //! (to move objects between frames, SPEC §2), the body velocity Ḃ (SPEC §3) and, for the force-line
 //! constraints of virtual power (SPEC §6), world positions and velocities of body points.
+//!
+//! "World" is the constraint's reference frame: the world for a body held by the world, or another body's
+//! frame for a joint between two bodies, whose kinematics are then the relative ones (docs/mechanisms.md §M2).
 
 use nalgebra::{Vector3, Vector6};
 
@@ -32,7 +35,11 @@ pub struct Kinematics<A: Algebra> {
 impl<A: Algebra> Kinematics<A> {
     /// The kinematics of a body with motor `motor` moving with body velocity `body_velocity`.
     pub fn new(t: f64, motor: A::Motor, body_velocity: A::Screw) -> Self {
-        let frame = ScrewFrame::of::<A>(motor);
+        Self::with_frame(t, motor, ScrewFrame::of::<A>(motor), body_velocity)
+    }
+
+    /// [`Kinematics::new`] with the motor's frame already computed.
+    pub fn with_frame(t: f64, motor: A::Motor, frame: ScrewFrame, body_velocity: A::Screw) -> Self {
         let ScrewCoordinates { l: omega, t: v } = A::screw_coordinates(body_velocity);
         let angular_velocity = frame.rotation * omega;
         let linear_velocity = frame.rotation * v;

@@ -1,10 +1,11 @@
-//! Constraints on one rigid body (SPEC §6–§10): by virtual power, by pinning multivectors, parametric paths
-//! and linear functions of them, solved for the reaction wrench at every evaluation of the equations of motion.
+//! Constraints (SPEC §6–§9): by virtual power, by pinning multivectors, parametric paths and linear functions of
+//! them. Each is written for one body against a reference frame — the world, or, as a joint of a
+//! [`crate::Mechanism`], another body — and evaluated at every evaluation of the equations of motion.
 //!
 //! # One formulation for all of them
 //!
 //! Every constraint here reduces, at one state, to scalar **rows** in the body velocity coordinates
-//! `x = (ω; v)` of Ḃ (SPEC §3) — see [`ConstraintRow`]:
+//! `x = (ω; v)` of Ḃ (SPEC §3; for a joint, the velocity relative to the reference) — see [`ConstraintRow`]:
 //!
 //! * a velocity residual `ė = a·x + s(t)`, linear in x with the Jacobian row `a`;
 //! * its rate along the motion `ë = a·ẍ + b`, where `ẍ` are the coordinates of B̈ and b (the *bias*) collects
@@ -14,16 +15,9 @@
 //! Virtual power (§6): `ė = ⟨Ḃ ∧ T_b⟩_Π`, so `a` holds the wrench coordinates `(τ; f)` of `T_b = ~R T R`.
 //! Pinning (§7–§9): `ė = A[Ḃ × V_b + V̇_b] − U̇`, one row per multivector coefficient, column j of `a` holding
 //! `A[Ḃⱼ × V_b]` for the basis velocity Ḃⱼ. With `B̈ = M⁻¹[Ḃ×Ω_b + S + F]` (SPEC §5), i.e.
-//! `ẍ = H⁻¹(g + y)` in wrench coordinates, the acceleration condition `ë = 0` becomes the linear system
-//! `a·H⁻¹y = −a·H⁻¹g − b` for the reaction y (SPEC §6 and §7.1, with `C = −A H⁻¹`), solved in
-//! [`solve`] in the kinetic metric with the constraint's known rank.
-//!
-//! # Errors
-//!
-//! [`crate::Dynamics::rates`] cannot fail, so a [`ConstrainedBody`] offers fallible versions
-//! ([`ConstrainedBody::try_rates`], [`ConstrainedBody::try_step`], [`simulate_constrained`]) and, when driven
-//! through the infallible trait (e.g. by [`crate::integrate::step`]), records the first failure — then
-//! continues without the reaction, so no NaN enters the state — for [`ConstrainedBody::take_error`].
+//! `ẍ = H⁻¹(g + y)` in wrench coordinates, the acceleration condition `ë = 0` becomes a linear system for the
+//! reaction y (SPEC §6 and §7.1), which [`crate::mechanism`] solves for all joints of a system at once in the
+//! kinetic metric, each joint with its known rank.
 
 mod kinematics;
 pub mod linear;
@@ -31,9 +25,7 @@ pub mod objects;
 pub mod paths;
 pub mod pinning;
 mod rows;
-pub mod solve;
 pub mod stabilise;
-mod system;
 pub mod virtual_power;
 
 use std::sync::Arc;
@@ -44,9 +36,7 @@ pub use objects::{Coefficients, Pinnable, PinningAlgebra};
 pub use paths::{Path, PathPoint};
 pub use pinning::Pin;
 pub use rows::{ConstraintRow, RowBuffer, MAX_ROWS};
-pub use solve::SolverSettings;
 pub use stabilise::Stabilisation;
-pub use system::{simulate_constrained, ConstrainedBody, ConstrainedSimulationError, ReactionModel, Violation};
 pub use virtual_power::VirtualPower;
 
 use crate::algebra::Algebra;

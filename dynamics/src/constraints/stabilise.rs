@@ -7,12 +7,10 @@
 //! * **Projection** after each step: normalise R, then Gauss–Newton steps on the position,
 //!   `δ = −H⁻¹Aᵀ(AH⁻¹Aᵀ)⁺_r e`, `R ← normalise(R exp(−½δ))` (the motion with body velocity δ for unit time),
 //!   then the velocity projection in the kinetic metric, `x ← x − H⁻¹Aᵀ(AH⁻¹Aᵀ)⁺_r ė`. Both are the
-//!   kinetic-metric solve of [`crate::constraints::solve`] with right-hand sides `−e` and `−ė`.
+//!   kinetic-metric reaction solve of [`crate::mechanism`] with right-hand sides `−e` and `−ė`, for all the
+//!   bodies of a mechanism at once.
 
-use nalgebra::Vector6;
-
-use crate::constraints::rows::{ConstraintRow, MAX_ROWS};
-use crate::constraints::solve::{kinetic_metric, Consistency, SolveFailure, SolverSettings};
+use crate::constraints::rows::ConstraintRow;
 
 /// How a constrained system is kept on its constraint manifold.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,48 +52,4 @@ impl Stabilisation {
             _ => 0.0,
         }
     }
-}
-
-/// The kinetic-metric velocity-coordinate change `H⁻¹y` whose first-order effect on the residuals
-/// `residual(row)` cancels them.
-fn correction(
-    rows: &[ConstraintRow],
-    residual: impl Fn(&ConstraintRow) -> f64,
-    rank: usize,
-    metric: &Vector6<f64>,
-    settings: &SolverSettings,
-) -> Result<Vector6<f64>, SolveFailure> {
-    let mut rhs = [0.0; MAX_ROWS];
-    for (r, row) in rhs.iter_mut().zip(rows) {
-        *r = -residual(row);
-    }
-    let y = kinetic_metric(
-        rows,
-        &rhs[..rows.len().min(MAX_ROWS)],
-        rank,
-        metric,
-        settings,
-        Consistency::Skip,
-    )?;
-    Ok(y.component_div(metric))
-}
-
-/// The Gauss–Newton step δ (velocity coordinates) on the position residuals.
-pub(crate) fn position_correction(
-    rows: &[ConstraintRow],
-    rank: usize,
-    metric: &Vector6<f64>,
-    settings: &SolverSettings,
-) -> Result<Vector6<f64>, SolveFailure> {
-    correction(rows, |row| row.position_residual.unwrap_or(0.0), rank, metric, settings)
-}
-
-/// The kinetic-metric velocity projection Δx on the velocity residuals.
-pub(crate) fn velocity_correction(
-    rows: &[ConstraintRow],
-    rank: usize,
-    metric: &Vector6<f64>,
-    settings: &SolverSettings,
-) -> Result<Vector6<f64>, SolveFailure> {
-    correction(rows, |row| row.velocity_residual, rank, metric, settings)
 }

@@ -26,7 +26,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::paths::{Fixed, Path, PathPoint};
+use crate::constraints::paths::{Fixed, FunctionPath, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 use crate::forces::{couple, force_line};
@@ -51,10 +51,11 @@ pub type WrenchPath<A> = Arc<dyn Fn(f64) -> (<A as Algebra>::Screw, <A as Algebr
 
 #[derive(Clone)]
 enum Wrenches<A: Algebra> {
-    /// Forces along e₁, e₂, e₃ at the body point; residual a − p.
+    /// Forces along e₁, e₂, e₃ at the body point; residual a − p(t). A moving pivot prescribes the power
+    /// `ṗₖ` of force k (the body point must move with it).
     Ball {
         body_point: Vector3<f64>,
-        world_point: Vector3<f64>,
+        pivot: Arc<dyn Path<Vector3<f64>>>,
     },
     /// The ball joint's three forces, or (`axial_force: false`) only the two normal to the axis, plus two
     /// couples normal to the axis.
@@ -121,7 +122,23 @@ impl<A: Algebra> VirtualPower<A> {
             name: name.into(),
             wrenches: Wrenches::Ball {
                 body_point,
-                world_point,
+                pivot: Arc::new(Fixed(world_point)),
+            },
+        }
+    }
+
+    /// A driven ball joint: the body point stays at a pivot moving along `pivot(t)` (value, velocity,
+    /// acceleration, world or reference frame). The pivot's motion does work: force k's velocity condition is
+    /// `⟨Ḃ ∧ T_bk⟩_Π = ṗₖ`, the prescribed power of the driven motion (SPEC §14.1). Rank 3.
+    pub fn driven_ball_joint<F>(name: impl Into<String>, body_point: Vector3<f64>, pivot: F) -> Self
+    where
+        F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
+    {
+        VirtualPower {
+            name: name.into(),
+            wrenches: Wrenches::Ball {
+                body_point,
+                pivot: Arc::new(FunctionPath(pivot)),
             },
         }
     }
@@ -254,15 +271,17 @@ impl<A: Algebra> VirtualPower<A> {
             }
         };
         match &self.wrenches {
-            Wrenches::Ball {
-                body_point,
-                world_point,
-            } => {
+            Wrenches::Ball { body_point, pivot } => {
                 let a = kinematics.world_point(body_point);
                 let velocity = kinematics.world_point_velocity(body_point);
+                let p = pivot.at(kinematics.t);
                 for k in 0..3 {
                     let direction = Vector3::ith(k, 1.0);
-                    emit(force_at(direction, a, velocity, a[k] - world_point[k]));
+                    emit(ConstraintWrench {
+                        prescribed_power: p.rate[k],
+                        prescribed_power_rate: p.acceleration[k],
+                        ..force_at(direction, a, velocity, a[k] - p.value[k])
+                    });
                 }
             }
             Wrenches::Axis {

@@ -4,8 +4,8 @@
 //! Every tolerance is a measured value (quoted next to it) times a margin of 3–10, so a regression of the
 //! method (a wrong sign, a lost term, a plain pseudo-inverse) fails while round-off and platform noise do not.
 
-use dynamics::constraints::{simulate_constrained, ConstrainedBody, Stabilisation};
-use dynamics::scenes::{build, Formulation, Scene, SceneAlgebra};
+use dynamics::constraints::Stabilisation;
+use dynamics::{simulate, Mechanism, StepError, Stepper};
 use dynamics::{Algebra, Cga, Dynamics, Method, Pga, Schedule, State};
 use nalgebra::Vector3;
 use reference::scenes::{HEAVY_TOP_VALUES, PENDULUM_VALUES, TOP_INITIAL_TILT};
@@ -13,6 +13,7 @@ use reference::{
     constraint_violations, nutation_features, pendulum_period, steady_precession_features, trajectory_errors, SceneId,
     Trajectory,
 };
+use scenarios::{build, Formulation, Scene, SceneAlgebra};
 
 /// The run of a scene, as a reference-crate trajectory, with the energies and the final state.
 struct Run<A: Algebra> {
@@ -32,9 +33,9 @@ fn run_for<A: SceneAlgebra>(
 ) -> Run<A> {
     let scene = build::<A>(id, formulation, stabilisation).unwrap();
     let schedule = Schedule::new(dt, duration).unwrap();
-    let simulation = simulate_constrained(&scene.system, scene.initial, method, &schedule).unwrap();
+    let simulation = simulate(&scene.system, &[scene.initial], method, &schedule).unwrap();
     let samples = simulation
-        .samples
+        .body(0)
         .iter()
         .map(|s| reference::Sample {
             t: s.t,
@@ -46,8 +47,8 @@ fn run_for<A: SceneAlgebra>(
         .collect();
     Run {
         trajectory: Trajectory::new(samples).unwrap(),
-        energies: simulation.samples.iter().map(|s| s.energy).collect(),
-        last: simulation.final_state,
+        energies: simulation.energies().collect(),
+        last: simulation.final_state[0],
         scene,
     }
 }
@@ -325,26 +326,29 @@ fn drift_grows_without_stabilisation_and_projection_holds_it() {
 fn drifting_circle(offset: f64, steps: usize) -> (f64, Result<(), dynamics::constraints::ConstraintError>) {
     let scene = build::<Cga>(SceneId::RodOnCircle, Formulation::Pinning, Stabilisation::None).unwrap();
     // Move the body off the circle keeping its body velocity (so the velocity constraint still holds).
-    let body = scene.system.body;
+    let body = *scene.system.body(0);
     let velocity = scene.initial.body_velocity(&body);
     let motor = Cga::compose(
         dynamics::motor::translator::<Cga>(Vector3::new(offset, 0.0, offset)),
         scene.initial.motor,
     );
-    let mut state = State::<Cga> {
+    let mut states = [State::<Cga> {
         motor,
         momentum: Cga::transform_screw(motor, body.momentum::<Cga>(velocity)),
-    };
+    }];
     let dt = 2e-2;
     let mut worst: f64 = 0.0;
+    let mut stepper = Stepper::new(&scene.system, Method::Rk4).unwrap();
     for k in 0..steps {
-        match scene.system.try_step(Method::Rk4, k as f64 * dt, &state, dt) {
-            Ok(next) => state = next,
-            Err(error) => return (worst, Err(error)),
+        match stepper.step(k as f64 * dt, &mut states, dt) {
+            Ok(()) => {}
+            Err(StepError::Constraint { error, .. }) => return (worst, Err(error)),
+            Err(error) => panic!("{error}"),
         }
+        let state = states[0];
         let motor = Cga::motor_coordinates(state.motor);
         assert!(motor.scalar.is_finite() && motor.l.iter().chain(motor.t.iter()).all(|x| x.is_finite()));
-        assert!(scene.system.energy(&state).is_finite());
+        assert!(scene.system.energy(&states).is_finite());
         let p = state.world_point(Vector3::new(0.0, 0.0, 0.5));
         worst = worst.max((p.norm() - 0.5).abs()).max(p.z.abs());
     }
@@ -379,7 +383,7 @@ fn circle_with_large_drift_fails_cleanly() {
 fn reactions_agree_and_hold_the_weight() {
     for formulation in Formulation::ALL {
         let scene = build::<Pga>(SceneId::Pendulum, formulation, Stabilisation::None).unwrap();
-        let reaction = Pga::screw_coordinates(scene.system.reaction_wrench(0.0, &scene.initial).unwrap());
+        let reaction = Pga::screw_coordinates(scene.system.reactions(0.0, &[scene.initial]).unwrap()[0]);
         // Released horizontally from rest: the pivot carries m g (1 − 3/4) = g/4 upwards (I_p = mL²/3,
         // angular acceleration 3g/2L, com acceleration 3g/4).
         assert!(
@@ -394,10 +398,10 @@ fn reactions_agree_and_hold_the_weight() {
 #[test]
 fn a_body_without_constraints_is_free() {
     let scene = build::<Pga>(SceneId::Cuboid, Formulation::Pinning, Stabilisation::PROJECTION).unwrap();
-    let free = ConstrainedBody::<Pga>::new(scene.system.body);
-    let rates = free.try_rates(0.0, &scene.initial).unwrap();
-    assert_eq!(rates, scene.system.try_rates(0.0, &scene.initial).unwrap());
-    assert_eq!(Pga::screw_coordinates(rates.momentum_rate), Default::default());
+    let free = Mechanism::<Pga>::single(*scene.system.body(0));
+    let rates = free.rates_at(0.0, &[scene.initial]).unwrap();
+    assert_eq!(rates, scene.system.rates_at(0.0, &[scene.initial]).unwrap());
+    assert_eq!(Pga::screw_coordinates(rates[0].momentum_rate), Default::default());
 }
 
 /// End orientation (rad; scene 4: end centre-of-mass position, m) of a full-length run with projection.

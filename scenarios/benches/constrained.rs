@@ -2,16 +2,16 @@
 //! algebra, formulation and general integrator, from a state one second into the scene. MuJoCo 4.0's RK4 step
 //! on the same scenes and machine took 3.9–4.8 µs (the issue tracker's anchors).
 //!
-//! `cargo bench -p dynamics --bench constrained [-- FILTER]`, e.g. `-- PGA` for PGA only.
+//! `cargo bench -p scenarios --bench constrained [-- FILTER]`, e.g. `-- PGA` for PGA only.
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynamics::constraints::Stabilisation;
-use dynamics::scenes::{build, Formulation, SceneAlgebra, SceneError};
-use dynamics::{Cga, Method, Pga};
+use dynamics::{Cga, Method, Pga, Stepper};
 use reference::SceneId;
+use scenarios::{build, Formulation, SceneAlgebra, SceneError};
 
 const SCENES: [SceneId; 4] = [
     SceneId::Pendulum,
@@ -30,16 +30,20 @@ fn bench_algebra<A: SceneAlgebra>(c: &mut Criterion) {
                 Err(error) => panic!("scene {} does not build: {error}", id.label()),
             };
             let system = &scene.system;
-            let mut state = scene.initial;
+            let mut state = [scene.initial];
+            let mut stepper = Stepper::new(system, Method::Rk4).expect("a general method");
             for k in 0..1000 {
-                state = system
-                    .try_step(Method::Rk4, k as f64 * dt, &state, dt)
-                    .expect("the scene runs");
+                stepper.step(k as f64 * dt, &mut state, dt).expect("the scene runs");
             }
             let mut group = c.benchmark_group(format!("{}/{}/{}", A::NAME, id.label(), formulation.name()));
             for method in Method::ALL {
+                let mut stepper = Stepper::new(system, method).expect("a general method");
                 group.bench_function(method.name(), |b| {
-                    b.iter(|| system.try_step(method, black_box(1.0), black_box(&state), black_box(dt)))
+                    b.iter(|| {
+                        let mut states = state;
+                        stepper.step(black_box(1.0), &mut states, black_box(dt)).unwrap();
+                        states
+                    })
                 });
             }
             group.finish();

@@ -2,7 +2,7 @@
 //! error at T = 10 s against the reference trajectory, energy drift, flip-time error, and CPU time per step
 //! and per simulated second; then the comparison with the anchor, and classic RK4 on (q, ω_body) for contrast.
 //!
-//! `cargo run --release -p dynamics --example free_body_accuracy`
+//! `cargo run --release -p scenarios --example free_body_accuracy`
 //!
 //! The anchor (task brief): MuJoCo 4.0 RK4 takes 4.3 µs/step and reaches 2e-10 rad orientation error at
 //! dt = 1e-3, i.e. 4.3 ms CPU per simulated second; the target is ≥ 10× less CPU per simulated second at
@@ -10,7 +10,7 @@
 
 use std::time::Instant;
 
-use dynamics::{simulate_free_body, Algebra, Body, Cga, FreeBody, Integrator, Pga, Schedule, State};
+use dynamics::{simulate, Algebra, Body, Cga, FreeBody, Integrator, Pga, Schedule, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use reference::{flip_time_error, flip_times, trajectory_errors, SceneId, SceneParameters, Trajectory};
 
@@ -43,17 +43,17 @@ fn table<A: Algebra>(scene: &SceneParameters, reference: &Trajectory, rows: &mut
             let schedule = Schedule::new(dt, scene.duration).expect("dt divides 0.01");
             // Best of three for the timing: the machine may be shared.
             let runs: Vec<_> = (0..3)
-                .map(|_| simulate_free_body(&system, initial, integrator, &schedule))
+                .map(|_| simulate(&system, &[initial], integrator, &schedule))
                 .collect::<Result<_, _>>()
                 .expect("scene 1 runs");
             let run = runs.iter().min_by_key(|r| r.stepping_time).expect("three runs");
-            let simulated = run.trajectory().expect("samples with increasing times");
+            let simulated = scenarios::trajectory(run.body(0)).expect("samples with increasing times");
             let errors = trajectory_errors(reference, &simulated).expect("same grid");
             let flips = flip_times(&simulated, &scene.principal_moments);
             let flip_error =
                 flip_time_error(&flips, &reference::scenes::CUBOID_VALUES.flip_instants).unwrap_or(f64::NAN);
             let energy = run
-                .samples
+                .body(0)
                 .iter()
                 .map(|s| (s.energy - e0).abs() / e0)
                 .fold(0.0, f64::max);

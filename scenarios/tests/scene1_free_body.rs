@@ -12,7 +12,7 @@ mod common;
 
 use common::{cuboid, trajectory};
 use dynamics::simulate::{Sample, Simulation};
-use dynamics::{simulate_free_body, Algebra, Cga, Integrator, Method, Pga, Schedule, SplittingMethod, State};
+use dynamics::{simulate, Algebra, Cga, Integrator, Method, Pga, Schedule, SplittingMethod, State};
 use nalgebra::Vector3;
 use reference::scenes::CUBOID_VALUES;
 use reference::{flip_time_error, flip_times, trajectory_errors, SceneId, Trajectory};
@@ -125,7 +125,7 @@ const YOSHIDA4: Bounds = Bounds {
 fn run<A: Algebra>(integrator: Integrator, initial: State<A>, duration: f64, dt: f64) -> Simulation<A> {
     let scene = cuboid::<A>();
     let schedule = Schedule::new(dt, duration).expect("dt divides 0.01 and the duration");
-    simulate_free_body(&scene.system, initial, integrator, &schedule).expect("scene 1 runs")
+    simulate(&scene.system, &[initial], integrator, &schedule).expect("scene 1 runs")
 }
 
 /// World momentum (p, L about the origin) from a sample, classically: p = m v, L = R I Rᵀ ω + c ⨯ p.
@@ -143,7 +143,7 @@ fn max_over(samples: &[Sample], error: impl Fn(&Sample) -> f64) -> f64 {
 fn check<A: Algebra>(integrator: Integrator, bounds: &Bounds) {
     let scene = cuboid::<A>();
     let simulation = run::<A>(integrator, scene.initial, scene.scene.duration, DT);
-    let samples = &simulation.samples;
+    let samples = simulation.body(0);
     let simulated = trajectory(&simulation);
     let reference = SceneId::Cuboid
         .reference_trajectory()
@@ -186,7 +186,7 @@ fn check<A: Algebra>(integrator: Integrator, bounds: &Bounds) {
     assert!(momentum < bounds.momentum, "momentum change {momentum:.2e}");
     assert!(line < bounds.line, "distance from the straight line {line:.2e}");
     if bounds.exact_momentum {
-        assert_eq!(simulation.final_state.momentum, scene.initial.momentum);
+        assert_eq!(simulation.final_state[0].momentum, scene.initial.momentum);
     }
 }
 
@@ -260,7 +260,7 @@ fn algebras_agree_on_scene_1() {
         let pga = run::<Pga>(integrator, pga.initial, pga.scene.duration, DT);
         let cga = run::<Cga>(integrator, cga.initial, cga.scene.duration, DT);
         let (mut orientation, mut position) = (0.0f64, 0.0f64);
-        for (p, c) in pga.samples.iter().zip(&cga.samples) {
+        for (p, c) in pga.body(0).iter().zip(cga.body(0)) {
             orientation = orientation.max(p.orientation.angle_to(&c.orientation));
             position = position.max((p.position - c.position).norm());
         }
@@ -287,9 +287,9 @@ fn algebras_agree_at_the_origin() {
         let pga = run::<Pga>(integrator, pga_initial, 10.0, DT);
         let cga = run::<Cga>(integrator, cga_initial, 10.0, DT);
         let orientation = pga
-            .samples
+            .body(0)
             .iter()
-            .zip(&cga.samples)
+            .zip(cga.body(0))
             .map(|(p, c)| p.orientation.angle_to(&c.orientation))
             .fold(0.0, f64::max);
         println!(
@@ -316,7 +316,7 @@ fn algebras_agree_at_the_origin() {
 /// 4th order: 1.8e-2, 1.0e-3, 5.9e-5 rad at dt = 2e-3, 1e-3, 5e-4). The splittings translate exactly and
 /// RKMK4-body keeps the angular momentum in the body frame, so neither couples.
 /// CGA, 490 m from the origin by the end, adds its ½|x|² round-off (`cga_far_from_the_origin` in
-/// hard_cases.rs) where the momentum is sandwiched: RK4 and RKMK4 as PGA; RKMK4-body (both paths) 9.9e-9,
+/// hard_cases.rs) where the momentum is sandwiched: RK4 and RKMK4 as PGA; RKMK4-body (as a free body and as a one-body mechanism) 9.9e-9,
 /// 1.5e-6, 6.0e-9 and RKMK6-body 3.7e-8, 1.8e-11, 6.4e-9, which move the momentum through
 /// `motor::ScrewFrame` instead; Strang 3.7e-5, 1.2e-8, 1.2e-6; Yoshida4 7.3e-7, 1.1e-8, 7.5e-9.
 /// Margins: 2–3 on the truncation errors, 10 on those set by round-off (the orientation of RKMK4-body and
@@ -355,9 +355,9 @@ fn thrown_under_gravity<A: Algebra>() {
         .reference_trajectory()
         .expect("embedded reference parses");
     let check = |name: &str, run: Simulation<A>, (orientation, parabola, energy): (f64, f64, f64)| {
-        let e0 = run.samples[0].energy;
+        let e0 = run.body(0)[0].energy;
         let (mut worst_orientation, mut worst_parabola, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);
-        for (sample, expected) in run.samples.iter().zip(reference.samples()) {
+        for (sample, expected) in run.body(0).iter().zip(reference.samples()) {
             let fall = Vector3::new(
                 0.0,
                 0.0,
@@ -377,11 +377,13 @@ fn thrown_under_gravity<A: Algebra>() {
         assert!(worst_energy < energy, "{name}: {worst_energy:.2e}");
     };
     for (integrator, bound) in Integrator::ALL.into_iter().zip(bounds) {
-        let run = simulate_free_body(&system, scene.initial, integrator, &schedule).expect("the throw runs");
+        let run = simulate(&system, &[scene.initial], integrator, &schedule).expect("the throw runs");
         check(integrator.name(), run, bound);
     }
-    let generic = dynamics::simulate(&system, scene.initial, Method::Rkmk4Body, &schedule).expect("the throw runs");
-    check("RKMK4-body (generic path)", generic, generic_bounds);
+    // The same body as a one-body mechanism (the general evaluation every mechanism takes).
+    let mechanism = dynamics::Mechanism::single(system.body).with_force(dynamics::Force::gravity());
+    let generic = simulate(&mechanism, &[scene.initial], Method::Rkmk4Body, &schedule).expect("the throw runs");
+    check("RKMK4-body (one-body mechanism)", generic, generic_bounds);
 }
 
 for_both_algebras!(

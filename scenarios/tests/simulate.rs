@@ -1,5 +1,6 @@
 //! The simulation loop: schedules land on the reference sample times or are refused, the record matches the
-//! state it samples, splitting refuses what it cannot integrate, and a blow-up is reported.
+//! state it samples, splitting refuses what it cannot integrate, a state of the wrong size is refused, and a
+//! blow-up is reported.
 
 mod common;
 
@@ -9,7 +10,8 @@ use common::cuboid;
 use dynamics::integrate::SplittingError;
 use dynamics::simulate::SAMPLE_INTERVAL;
 use dynamics::{
-    simulate, simulate_free_body, step, Algebra, Force, Integrator, Method, Schedule, SimulationError, SplittingMethod,
+    simulate, Algebra, Force, Integrator, Mechanism, Method, Schedule, SimulationError, SplittingMethod, StepError,
+    Stepper,
 };
 use nalgebra::Vector3;
 use reference::SceneId;
@@ -63,10 +65,10 @@ fn schedules_land_on_the_reference_sample_times() {
 fn the_record_matches_the_state<A: Algebra>() {
     let scene = cuboid::<A>();
     let schedule = Schedule::new(1e-3, 0.5).expect("1e-3 divides 0.01");
-    let run = simulate(&scene.system, scene.initial, Method::Rk4, &schedule).expect("scene 1 runs");
-    assert_eq!(run.samples.len(), 51);
+    let run = simulate(&scene.system, &[scene.initial], Method::Rk4, &schedule).expect("scene 1 runs");
+    assert_eq!(run.body(0).len(), 51);
     assert_eq!(run.steps, 500);
-    let first = &run.samples[0];
+    let first = &run.body(0)[0];
     let start = scene.scene.initial_state();
     assert_eq!(first.t, 0.0);
     assert!((first.position - start.position).norm() < 1e-15);
@@ -75,22 +77,20 @@ fn the_record_matches_the_state<A: Algebra>() {
     assert!((first.angular_velocity - start.angular_velocity).norm() < 1e-14);
     assert!((first.energy - scene.scene.initial_energy).abs() < 1e-12);
 
-    let mut state = scene.initial;
+    let mut states = [scene.initial];
+    let mut stepper = Stepper::new(&scene.system, Method::Rk4).expect("a general method");
     for k in 0..schedule.step_count() {
-        state = step(
-            Method::Rk4,
-            &scene.system,
-            k as f64 * schedule.dt(),
-            &state,
-            schedule.dt(),
-        );
+        stepper
+            .step(k as f64 * schedule.dt(), &mut states, schedule.dt())
+            .expect("a free body steps");
     }
+    let [state] = states;
     assert_eq!(
-        (run.final_state.motor, run.final_state.momentum),
+        (run.final_state[0].motor, run.final_state[0].momentum),
         (state.motor, state.momentum)
     );
     let (position, orientation) = state.pose();
-    let last = run.samples.last().expect("51 samples");
+    let last = run.body(0).last().expect("51 samples");
     assert_eq!((last.position, last.orientation), (position, orientation));
 }
 
@@ -102,12 +102,37 @@ fn splitting_refuses_custom_forces<A: Algebra>() {
     let schedule = Schedule::new(1e-3, 0.1).expect("1e-3 divides 0.01");
     for method in SplittingMethod::ALL {
         assert_eq!(
-            simulate_free_body(&system, scene.initial, Integrator::Splitting(method), &schedule).err(),
-            Some(SimulationError::Splitting(SplittingError::CustomForce { index: 1 }))
+            simulate(&system, &[scene.initial], Integrator::Splitting(method), &schedule).err(),
+            Some(SimulationError::Step(StepError::Splitting(
+                SplittingError::CustomForce { index: 1 }
+            )))
         );
     }
     for method in Method::ALL {
-        assert!(simulate_free_body(&system, scene.initial, Integrator::General(method), &schedule).is_ok());
+        assert!(simulate(&system, &[scene.initial], Integrator::General(method), &schedule).is_ok());
+    }
+    // A one-body mechanism is integrated by the general methods only.
+    let mechanism = Mechanism::<A>::single(scene.body);
+    assert_eq!(
+        simulate(&mechanism, &[scene.initial], SplittingMethod::Strang, &schedule).err(),
+        Some(SimulationError::Step(StepError::Splitting(
+            SplittingError::NotAFreeBody
+        )))
+    );
+}
+
+/// The initial state needs one entry per body.
+fn a_state_of_the_wrong_size_is_refused<A: Algebra>() {
+    let scene = cuboid::<A>();
+    let schedule = Schedule::new(1e-3, 0.1).expect("1e-3 divides 0.01");
+    for states in [vec![], vec![scene.initial; 2]] {
+        assert_eq!(
+            simulate(&scene.system, &states, Method::Rk4, &schedule).err(),
+            Some(SimulationError::BodyCount {
+                expected: 1,
+                got: states.len()
+            })
+        );
     }
 }
 
@@ -121,7 +146,7 @@ fn a_blow_up_is_reported<A: Algebra>() {
     let schedule = Schedule::new(1e-3, 1.0).expect("1e-3 divides 0.01");
     for method in Method::ALL {
         assert_eq!(
-            simulate(&system, scene.initial, method, &schedule).err(),
+            simulate(&system, &[scene.initial], method, &schedule).err(),
             Some(SimulationError::NonFinite {
                 t: 25.0 * SAMPLE_INTERVAL
             })
@@ -132,5 +157,6 @@ fn a_blow_up_is_reported<A: Algebra>() {
 for_both_algebras!(
     the_record_matches_the_state,
     splitting_refuses_custom_forces,
+    a_state_of_the_wrong_size_is_refused,
     a_blow_up_is_reported
 );

@@ -1,4 +1,4 @@
-//! The reference scenes of SCENES.md (built from the GA-independent [`mod@reference`] parameters) as constrained
+//! The single-body reference scenes of SCENES.md (built from the GA-independent [`mod@reference`] parameters) as
 //! systems with their initial states, per algebra and per constraint formulation: one place for tests,
 //! examples and sweeps over scenes × integrators × step sizes.
 //!
@@ -17,14 +17,10 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 use reference::{SceneConstraint, SceneId, SceneParameters};
 
-use crate::algebra::Algebra;
-use crate::body::{Body, BodyError};
-use crate::cga::Cga;
-use crate::constraints::ConstrainedBody;
-use crate::constraints::{linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower};
-use crate::forces::Force;
-use crate::pga::Pga;
-use crate::state::State;
+use dynamics::constraints::{
+    linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower,
+};
+use dynamics::{Algebra, Body, BodyError, Cga, Force, Mechanism, MechanismError, Pga, State};
 
 /// How a scene's constraint is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -59,6 +55,8 @@ pub enum SceneError {
     Body(#[from] BodyError),
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    #[error(transparent)]
+    Mechanism(#[from] MechanismError),
 }
 
 /// An algebra in which the scenes can be built. Only CGA can pin a point to a sphere or a circle.
@@ -112,14 +110,14 @@ impl SceneAlgebra for Cga {
     }
 }
 
-/// A scene ready to run: the system, its initial state (projected onto the constraint manifold, SPEC §10) and
-/// how long SCENES.md runs it.
+/// A scene ready to run: the system (a single body held by the world: a [`Mechanism`] of one body), its initial
+/// state (projected onto the constraint manifold, SPEC §10) and how long SCENES.md runs it.
 #[derive(Clone, Debug)]
 pub struct Scene<A: Algebra> {
     pub id: SceneId,
     pub formulation: Formulation,
     pub parameters: SceneParameters,
-    pub system: ConstrainedBody<A>,
+    pub system: Mechanism<A>,
     pub initial: State<A>,
     pub duration: f64,
 }
@@ -214,7 +212,7 @@ pub fn build<A: SceneAlgebra>(
 ) -> Result<Scene<A>, SceneError> {
     let parameters = id.parameters();
     let body = Body::new(parameters.mass, parameters.principal_moments)?;
-    let mut system = ConstrainedBody::<A>::new(body);
+    let mut system = Mechanism::<A>::single(body);
     if parameters.gravity != 0.0 {
         system = system.with_force(Force::Gravity {
             acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
@@ -231,7 +229,9 @@ pub fn build<A: SceneAlgebra>(
         parameters.initial_body_angular_velocity,
         parameters.initial_com_velocity,
     );
-    let initial = system.project(0.0, &initial)?;
+    let mut initial = [initial];
+    system.project(0.0, &mut initial)?;
+    let [initial] = initial;
     Ok(Scene {
         id,
         formulation,

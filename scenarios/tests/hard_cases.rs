@@ -10,8 +10,8 @@ use common::cuboid;
 use dynamics::exponential::{exp, log};
 use dynamics::motor::{self, norm_error};
 use dynamics::{
-    simulate_free_body, step, Algebra, Cga, Dynamics, FreeBody, Integrator, Method, Rates, Schedule, ScrewCoordinates,
-    SplittingMethod, State,
+    simulate, Algebra, BodyRates, Cga, ConstraintError, Dynamics, FreeBody, Integrator, Method, Rates, Schedule,
+    ScrewCoordinates, SplittingMethod, State, Stepper,
 };
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 use reference::SceneId;
@@ -38,7 +38,7 @@ fn scene_1_errors<A: Algebra>(integrator: Integrator, offset: Vector3<f64>, spee
     );
     let schedule = Schedule::with_sample_interval(dt / speed_up, 10.0 / speed_up, 0.01 / speed_up)
         .expect("the step divides the interval");
-    let run = simulate_free_body(&scene.system, initial, integrator, &schedule).expect("the run finishes");
+    let run = simulate(&scene.system, &[initial], integrator, &schedule).expect("the run finishes");
     let reference = SceneId::Cuboid
         .reference_trajectory()
         .expect("embedded reference parses");
@@ -48,7 +48,7 @@ fn scene_1_errors<A: Algebra>(integrator: Integrator, offset: Vector3<f64>, spee
         position: 0.0,
         energy: 0.0,
     };
-    for (sample, expected) in run.samples.iter().zip(reference.samples()) {
+    for (sample, expected) in run.body(0).iter().zip(reference.samples()) {
         errors.orientation = errors
             .orientation
             .max(sample.orientation.angle_to(&expected.orientation));
@@ -157,16 +157,39 @@ fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
 struct Unnormalised<A: Algebra>(FreeBody<A>);
 
 impl<A: Algebra> Dynamics<A> for Unnormalised<A> {
-    fn rates(&self, t: f64, state: &State<A>) -> Rates<A> {
-        self.0.rates(t, state)
+    type Workspace = ();
+
+    fn workspace(&self) {}
+
+    fn body_count(&self) -> usize {
+        1
     }
 
-    fn after_step(&self, _t: f64, state: State<A>) -> State<A> {
-        state
+    fn body(&self, index: usize) -> &dynamics::Body {
+        self.0.body(index)
     }
 
-    fn energy(&self, state: &State<A>) -> f64 {
-        self.0.energy(state)
+    fn rates(&self, t: f64, states: &[State<A>], rates: &mut [Rates<A>], _: &mut ()) -> Result<(), ConstraintError> {
+        self.0.rates(t, states, rates, &mut ())
+    }
+
+    fn body_rates(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        momenta: &[A::Screw],
+        rates: &mut [BodyRates<A>],
+        _: &mut (),
+    ) -> Result<(), ConstraintError> {
+        self.0.body_rates(t, motors, momenta, rates, &mut ())
+    }
+
+    fn after_step(&self, _t: f64, _states: &mut [State<A>], _: &mut ()) -> Result<(), ConstraintError> {
+        Ok(())
+    }
+
+    fn energy(&self, states: &[State<A>]) -> f64 {
+        self.0.energy(states)
     }
 }
 
@@ -186,22 +209,27 @@ fn a_million_rk4_steps<A: Algebra>() {
         )
     };
     let initial = at_rest(&scene.scene);
-    let energy = scene.system.energy(&initial);
-    let (mut state, mut worst_norm, mut worst_energy) = (initial, 0.0f64, 0.0f64);
+    let energy = scene.system.energy(&[initial]);
+    let (mut state, mut worst_norm, mut worst_energy) = ([initial], 0.0f64, 0.0f64);
     let dt = 1e-3;
+    let mut stepper = Stepper::new(&scene.system, Method::Rk4).expect("a general method");
     for k in 0..1_000_000 {
-        state = step(Method::Rk4, &scene.system, k as f64 * dt, &state, dt);
-        worst_norm = worst_norm.max(norm_error::<A>(state.motor));
+        stepper.step(k as f64 * dt, &mut state, dt).expect("a free body steps");
+        worst_norm = worst_norm.max(norm_error::<A>(state[0].motor));
         if k % 1000 == 999 {
             worst_energy = worst_energy.max((scene.system.energy(&state) - energy).abs() / energy);
         }
     }
     let unnormalised = Unnormalised(scene.system.clone());
-    let mut drifting = initial;
+    let mut drifting = [initial];
+    let mut stepper = Stepper::new(&unnormalised, Method::Rk4).expect("a general method");
     for k in 0..2000 {
-        drifting = step(Method::Rk4, &unnormalised, k as f64 * 0.01, &drifting, 0.01);
+        stepper
+            .step(k as f64 * 0.01, &mut drifting, 0.01)
+            .expect("a free body steps");
     }
-    let drift = norm_error::<A>(drifting.motor);
+    let drift = norm_error::<A>(drifting[0].motor);
+    let state = state[0];
     println!(
         "{}: 1e6 RK4 steps: max |R~R − 1| {worst_norm:.1e}, energy {worst_energy:.2e}; unnormalised drift {drift:.1e}",
         A::NAME
@@ -224,18 +252,18 @@ fn splitting_energy_stays_bounded<A: Algebra>() {
         scene.scene.initial_body_angular_velocity,
         Vector3::zeros(),
     );
-    let energy = scene.system.energy(&initial);
+    let energy = scene.system.energy(&[initial]);
     let schedule = Schedule::with_sample_interval(1e-2, 1000.0, 1.0).expect("1e-2 divides 1 s");
     // The largest energy error in the first and in the last 100 s.
     let first_and_last = |integrator: Integrator| {
-        let run = simulate_free_body(&scene.system, initial, integrator, &schedule).expect("the run finishes");
+        let run = simulate(&scene.system, &[initial], integrator, &schedule).expect("the run finishes");
         let drift = |samples: &[dynamics::simulate::Sample]| {
             samples
                 .iter()
                 .map(|s| (s.energy - energy).abs() / energy)
                 .fold(0.0, f64::max)
         };
-        (drift(&run.samples[..=100]), drift(&run.samples[900..]))
+        (drift(&run.body(0)[..=100]), drift(&run.body(0)[900..]))
     };
     let (strang_first, strang_last) = first_and_last(Integrator::Splitting(SplittingMethod::Strang));
     let (rk4_first, rk4_last) = first_and_last(Integrator::General(Method::Rk4));

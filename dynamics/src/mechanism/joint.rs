@@ -1,0 +1,268 @@
+//! One joint: a constraint between a body and its reference (the world or another body), evaluated in the
+//! relative kinematics of the two (docs/mechanisms.md §M2).
+//!
+//! Every constraint of [`crate::constraints`] is written for one body against a fixed "world". Between two
+//! moving bodies, body b against its reference body a, the same constraint holds with a's frame as the world:
+//! the relative motor `M = ~R_a R_b` (b's frame → a's frame) and the relative body velocity
+//! `Ḃ_rel = Ḃ_b − ~M Ḃ_a M` (b relative to a, in b's frame) give the constraint's rows unchanged, each a
+//! covector `a` with `ė = a·x_rel`. Two things change:
+//!
+//! * the rate of the relative velocity has an extra term, `dḂ_rel/dt = B̈_b − ~M B̈_a M − Ḃ_b × (~M Ḃ_a M)`, so
+//!   each row's bias gains `−a·(Ḃ_b × Ḃ_a')` (with `Ḃ_a' = ~M Ḃ_a M`);
+//! * `x_rel = x_b − Ad x_a`, so the row acts on body b as `a` (in b's frame) and on body a as `−Adᵀa`: the
+//!   same wrench, expressed in a's frame, with the opposite sign — Newton's third law, and by d'Alembert the
+//!   joint's reaction on b is `Σλa`, on a the opposite.
+//!
+//! With the world as reference, `M = R_b` and `Ḃ_a = 0`: the single-body constraint exactly (SPEC §6–§9).
+
+use std::fmt;
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
+use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
+use crate::mechanism::solve::SolverSettings;
+use crate::motor::ScrewFrame;
+
+/// A joint of a mechanism: its constraint, the body it holds and the reference it holds it to.
+#[derive(Clone)]
+pub(crate) struct Joint<A: Algebra> {
+    pub constraint: Arc<dyn Constraint<A>>,
+    pub body: usize,
+    /// None: the world.
+    pub reference: Option<usize>,
+    /// A supplied reaction basis (wrenches in the reference frame, SPEC §7.1 method 2).
+    pub reaction_basis: Option<Vec<A::Screw>>,
+}
+
+impl<A: Algebra> fmt::Debug for Joint<A> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Joint")
+            .field("name", &self.constraint.name())
+            .field("rank", &self.constraint.rank())
+            .field("body", &self.body)
+            .field("reference", &self.reference)
+            .finish()
+    }
+}
+
+/// One body at one evaluation: its kinematics and free acceleration.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BodyKinematics<A: Algebra> {
+    pub kinematics: Kinematics<A>,
+    /// `f = H⁻¹(Ḃ × Ω_b + S_b)` in velocity coordinates `(ω̇; v̇)`: the body's acceleration without reactions
+    /// (zero when only positions and velocities are needed).
+    pub free_acceleration: [f64; 6],
+}
+
+/// A joint's reduced rows at one evaluation.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct JointRows {
+    /// Rows in the body's frame, values: the acceleration condition, −e, −ė.
+    pub reduced: Reduced,
+    /// The same rows acting on the reference body, in its frame (`−Adᵀa`); unused for the world.
+    pub reference_rows: [[f64; 6]; 6],
+    /// The largest |e| and |ė| over the raw rows (for the violation).
+    pub position_residual: f64,
+    pub velocity_residual: f64,
+    /// Whether every row has a position residual.
+    pub has_position: bool,
+}
+
+impl JointRows {
+    /// The reactions `Σ λ_k a_k` of multipliers λ on the body and on the reference (wrench coordinates, each in
+    /// its own frame).
+    pub fn reactions(&self, lambda: &[f64]) -> ([f64; 6], [f64; 6]) {
+        let (mut body, mut reference) = ([0.0; 6], [0.0; 6]);
+        for ((row, reference_row), &l) in self.reduced.rows.iter().zip(&self.reference_rows).zip(lambda) {
+            for (((b, r), a), c) in body.iter_mut().zip(reference.iter_mut()).zip(row).zip(reference_row) {
+                *b += a * l;
+                *r += c * l;
+            }
+        }
+        (body, reference)
+    }
+}
+
+/// Wrench (covector) coordinates `(τ; f)` of screw coordinates `(l = f, t = τ)` and back (SPEC §3: a wrench's
+/// force is its l-part, its moment its t-part, and `(τ; f)` pairs with the velocity `(ω; v)` to the power).
+#[inline]
+fn covector(c: &ScrewCoordinates) -> [f64; 6] {
+    [c.t.x, c.t.y, c.t.z, c.l.x, c.l.y, c.l.z]
+}
+
+#[inline]
+fn wrench(y: &[f64; 6]) -> ScrewCoordinates {
+    ScrewCoordinates {
+        l: Vector3::new(y[3], y[4], y[5]),
+        t: Vector3::new(y[0], y[1], y[2]),
+    }
+}
+
+/// Velocity coordinates `(ω; v)` of screw coordinates `(l = ω, t = v)`.
+#[inline]
+fn velocity_vector(c: &ScrewCoordinates) -> [f64; 6] {
+    [c.l.x, c.l.y, c.l.z, c.t.x, c.t.y, c.t.z]
+}
+
+/// Screw coordinates `(l = ω, t = v)` of velocity coordinates `(ω; v)`.
+#[inline]
+pub(crate) fn velocity_screw(x: &[f64; 6]) -> ScrewCoordinates {
+    ScrewCoordinates {
+        l: Vector3::new(x[0], x[1], x[2]),
+        t: Vector3::new(x[3], x[4], x[5]),
+    }
+}
+
+#[inline]
+fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// What an evaluation of the joint needs besides the bodies.
+pub(crate) struct JointContext<'a> {
+    pub t: f64,
+    pub stabilisation: Stabilisation,
+    pub settings: &'a SolverSettings,
+    /// The bodies' inverse inertias `H⁻¹` (diagonal, velocity coordinates).
+    pub inverse_metric: &'a [[f64; 6]],
+    /// Whether the acceleration condition is wanted (false for the projection, which needs only e and ė).
+    pub dynamics: bool,
+}
+
+impl<A: Algebra> Joint<A> {
+    pub fn name(&self) -> &str {
+        self.constraint.name()
+    }
+
+    /// The joint's reduced rows at the bodies' kinematics, into `out`; `raw` is scratch for the raw rows.
+    pub fn evaluate(
+        &self,
+        context: &JointContext<'_>,
+        bodies: &[BodyKinematics<A>],
+        raw: &mut RowBuffer,
+        out: &mut JointRows,
+    ) -> Result<(), ConstraintError> {
+        let body = &bodies[self.body];
+        // The kinematics of the body relative to its reference; for a body reference also the relative frame,
+        // the correction −a·(Ḃ_b × Ḃ_a') as a velocity vector c, and the reference's free acceleration seen from b.
+        let relative;
+        let (kinematics, frame, correction, reference_acceleration) = match self.reference {
+            None => (&body.kinematics, None, [0.0; 6], [0.0; 6]),
+            Some(r) => {
+                let reference = &bodies[r];
+                let motor = A::compose(reference.kinematics.reverse, body.kinematics.motor);
+                let frame = ScrewFrame::of::<A>(motor);
+                let reference_velocity = frame.to_body(&A::screw_coordinates(reference.kinematics.body_velocity));
+                let relative_velocity = body.kinematics.body_velocity - A::screw(reference_velocity);
+                relative = Kinematics::with_frame(context.t, motor, frame, relative_velocity);
+                let correction = velocity_vector(&A::screw_coordinates(A::commutator(
+                    body.kinematics.body_velocity,
+                    A::screw(reference_velocity),
+                )));
+                let acceleration = if context.dynamics {
+                    velocity_vector(&frame.to_body(&velocity_screw(&reference.free_acceleration)))
+                } else {
+                    [0.0; 6]
+                };
+                (&relative, Some(frame), correction, acceleration)
+            }
+        };
+
+        raw.clear();
+        self.constraint.rows(kinematics, raw)?;
+        if raw.requested() > MAX_ROWS {
+            return Err(ConstraintError::TooManyRows {
+                name: self.name().to_owned(),
+                rows: raw.requested(),
+                capacity: MAX_ROWS,
+            });
+        }
+        if !raw.rows().iter().all(|row| row.is_finite()) {
+            return Err(ConstraintError::NonFinite {
+                name: self.name().to_owned(),
+                t: context.t,
+            });
+        }
+
+        // Per raw row: β = −b − a·(Δf − c) − feedback for the acceleration condition (Δf = f_b − Ad f_a), −e, −ė.
+        let relative_acceleration: [f64; 6] =
+            std::array::from_fn(|k| body.free_acceleration[k] - reference_acceleration[k] - correction[k]);
+        let mut rhs = [[0.0; MAX_ROWS]; RIGHT_HAND_SIDES];
+        let mut scale_squared = 0.0;
+        out.position_residual = 0.0;
+        out.velocity_residual = 0.0;
+        out.has_position = true;
+        for (i, row) in raw.rows().iter().enumerate() {
+            if context.dynamics {
+                let drift = dot(&row.jacobian, &relative_acceleration);
+                let feedback = context.stabilisation.feedback(row);
+                rhs[0][i] = -drift - row.bias - feedback;
+                scale_squared += (drift.abs() + row.bias.abs() + feedback.abs()).powi(2);
+            }
+            let e = row.position_residual.unwrap_or(0.0);
+            out.has_position &= row.position_residual.is_some();
+            rhs[1][i] = -e;
+            rhs[2][i] = -row.velocity_residual;
+            out.position_residual = out.position_residual.max(e.abs());
+            out.velocity_residual = out.velocity_residual.max(row.velocity_residual.abs());
+        }
+
+        let rank = self.constraint.rank();
+        let mut basis = [[0.0; 6]; 6];
+        let basis = self.reaction_basis.as_ref().map(|wrenches| {
+            for (b, w) in basis.iter_mut().zip(wrenches) {
+                let w = A::screw_coordinates(*w);
+                *b = covector(&kinematics.frame.to_body(&w));
+            }
+            &basis[..wrenches.len().min(6)]
+        });
+        reduce(
+            raw.rows(),
+            &rhs,
+            rank,
+            &context.inverse_metric[self.body],
+            basis,
+            context.settings.rank_tolerance,
+            &mut out.reduced,
+        )
+        .map_err(|deficiency| ConstraintError::RankDeficient {
+            names: self.name().to_owned(),
+            rank,
+            singular_value: deficiency.singular_value,
+            largest: deficiency.largest,
+        })?;
+        if context.dynamics {
+            let consistency = crate::mechanism::solve::Consistency::Check {
+                scale: scale_squared.sqrt(),
+            };
+            if consistency.violated(out.reduced.residual_squared, out.reduced.rhs_squared, context.settings) {
+                return Err(ConstraintError::Inconsistent {
+                    names: self.name().to_owned(),
+                    relative_residual: (out.reduced.residual_squared / out.reduced.rhs_squared).sqrt(),
+                });
+            }
+        }
+        if let Some(frame) = frame {
+            for (reference_row, row) in out.reference_rows.iter_mut().zip(&out.reduced.rows[..out.reduced.rank]) {
+                let moved = frame.to_world(&wrench(row));
+                *reference_row = covector(&moved).map(|x| -x);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Wrench coordinates `(τ; f)` as screw coordinates (used to apply reactions).
+#[inline]
+pub(crate) fn wrench_screw(y: &[f64; 6]) -> ScrewCoordinates {
+    wrench(y)
+}
+
+/// The covector (wrench coordinates) of a screw.
+#[inline]
+pub(crate) fn wrench_coordinates(c: &ScrewCoordinates) -> [f64; 6] {
+    covector(c)
+}

@@ -1,0 +1,915 @@
+//! Mechanisms: N rigid bodies under forces, held to each other and to the world by joints, in maximal
+//! coordinates (each body its motor and momentum). The derivation is in `docs/mechanisms.md`; in short:
+//!
+//! * a **joint** is any [`Constraint`] of [`crate::constraints`] — pinned multivectors, linear functions of
+//!   them, parametric paths, virtual power — between a body and its **reference**: the world, or another body,
+//!   whose frame then plays the world's part ([`joint`], §M2). Its rows are reduced to its rank ([`reduce`],
+//!   §M3);
+//! * the reactions solve `J G Jᵀ λ = rhs` in the kinetic metric, `G` the bodies' inverse inertias, by a sparse
+//!   LDLᵀ over a spanning tree of the joints (linear in N for chains and trees) with loop-closing joints
+//!   through a rank-revealing Schur complement ([`solve`], [`topology`], §M4);
+//! * stabilisation by Baumgarte feedback or by projection of the whole system onto the joint manifold after
+//!   each step (§M5).
+//!
+//! A single body held by the world is the case N = 1 ([`Mechanism::single`]): there is no other code path
+//! for constrained bodies.
+
+mod joint;
+mod reduce;
+mod solve;
+mod topology;
+
+use std::collections::HashSet;
+use std::fmt;
+use std::sync::Arc;
+
+use nalgebra::Vector3;
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::body::Body;
+use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation};
+use crate::exponential::exp;
+use crate::forces::Force;
+use crate::motion::{BodyRates, Dynamics, Rates};
+use crate::motor;
+use crate::state::State;
+
+use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
+use solve::{Consistency, SolveFailure, SystemMatrix};
+pub use solve::{SolverSettings, ROUND_OFF};
+use topology::{Side, Slot, Topology};
+
+/// A body of a mechanism, by its index in the order the bodies were added.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyId(usize);
+
+impl BodyId {
+    /// The body's index: its position in states and samples.
+    pub fn index(self) -> usize {
+        self.0
+    }
+}
+
+/// A joint of a mechanism, by its index in the order the joints were added.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct JointId(usize);
+
+impl JointId {
+    pub fn index(self) -> usize {
+        self.0
+    }
+}
+
+/// What a joint holds its body to: the frame in which the constraint's "world" objects are fixed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Reference {
+    World,
+    Body(BodyId),
+}
+
+impl From<BodyId> for Reference {
+    fn from(body: BodyId) -> Self {
+        Reference::Body(body)
+    }
+}
+
+/// Why a mechanism cannot be built as asked.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MechanismError {
+    #[error("two bodies are named {0:?}; names identify bodies in errors and output")]
+    DuplicateBody(String),
+    #[error("a body needs a non-empty name")]
+    EmptyName,
+    #[error("body index {0} is not a body of this mechanism")]
+    UnknownBody(usize),
+    #[error("joint index {0} is not a joint of this mechanism")]
+    UnknownJoint(usize),
+    #[error("joint {joint}: holds body {body} to itself")]
+    SelfJoint { joint: String, body: String },
+    #[error("joint {joint}: a reaction basis needs 1 to 6 finite wrenches, got {count}")]
+    ReactionBasis { joint: String, count: usize },
+    #[error(transparent)]
+    Constraint(#[from] ConstraintError),
+}
+
+/// The largest residuals over the joints at one state: `max |e|` (rows with a position residual) and `max |ė|`.
+/// Units are those of each constraint's residual (metres for a force-line row, multivector coefficients for
+/// pins).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Violation {
+    pub position: f64,
+    pub velocity: f64,
+}
+
+#[derive(Clone, Debug)]
+struct MechanismBody<A: Algebra> {
+    name: String,
+    body: Body,
+    forces: Vec<Force<A>>,
+}
+
+/// N rigid bodies, their forces and the joints between them (see the module docs).
+#[derive(Clone)]
+pub struct Mechanism<A: Algebra> {
+    bodies: Vec<MechanismBody<A>>,
+    joints: Vec<Joint<A>>,
+    stabilisation: Stabilisation,
+    settings: SolverSettings,
+    topology: Topology,
+}
+
+impl<A: Algebra> fmt::Debug for Mechanism<A> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Mechanism")
+            .field("bodies", &self.bodies)
+            .field("joints", &self.joints)
+            .field("stabilisation", &self.stabilisation)
+            .finish()
+    }
+}
+
+impl<A: Algebra> Default for Mechanism<A> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Position residuals below this are round-off: a Gauss–Newton step on them would only add round-off to the
+/// motors (about 50 ulp of the unit-size coefficients of pinned objects, or of metres for force-line rows).
+const POSITION_TOLERANCE: f64 = 1e-14;
+
+/// The scratch of a mechanism's evaluations ([`Dynamics::Workspace`]): made once per run, so an evaluation
+/// does not allocate.
+pub struct MechanismWorkspace<A: Algebra> {
+    bodies: Vec<BodyKinematics<A>>,
+    /// External wrench per body, body coordinates.
+    external: Vec<ScrewCoordinates>,
+    /// Reaction per body, wrench coordinates `(τ; f)`, body frame.
+    reactions: Vec<[f64; 6]>,
+    joints: Vec<JointRows>,
+    raw: RowBuffer,
+    matrix: SystemMatrix,
+    tree: Vec<f64>,
+    loops: Vec<f64>,
+    inverse_metric: Vec<[f64; 6]>,
+    motors: Vec<A::Motor>,
+    momenta: Vec<A::Screw>,
+}
+
+impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("MechanismWorkspace")
+            .field("bodies", &self.bodies.len())
+            .field("joints", &self.joints.len())
+            .finish_non_exhaustive()
+    }
+}
+
+/// Which right-hand side of the reduced rows a solve uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Condition {
+    Acceleration = 0,
+    Position = 1,
+    Velocity = 2,
+}
+
+impl<A: Algebra> Mechanism<A> {
+    /// A mechanism with no bodies, no stabilisation and the default solver settings.
+    pub fn new() -> Self {
+        Mechanism {
+            bodies: Vec::new(),
+            joints: Vec::new(),
+            stabilisation: Stabilisation::None,
+            settings: SolverSettings::default(),
+            topology: Topology::default(),
+        }
+    }
+
+    /// One body, named "body", and nothing else: the constrained single body, with [`Mechanism::with_force`]
+    /// and [`Mechanism::with_constraint`] holding it to the world.
+    pub fn single(body: Body) -> Self {
+        let mut mechanism = Mechanism::new();
+        mechanism.bodies.push(MechanismBody {
+            name: "body".to_owned(),
+            body,
+            forces: Vec::new(),
+        });
+        mechanism.rebuild();
+        mechanism
+    }
+
+    /// Adds a body; its name must be unique (it names the body in errors and output).
+    pub fn add_body(&mut self, name: impl Into<String>, body: Body) -> Result<BodyId, MechanismError> {
+        let name = name.into();
+        if name.is_empty() {
+            return Err(MechanismError::EmptyName);
+        }
+        if self.bodies.iter().any(|b| b.name == name) {
+            return Err(MechanismError::DuplicateBody(name));
+        }
+        self.bodies.push(MechanismBody {
+            name,
+            body,
+            forces: Vec::new(),
+        });
+        self.rebuild();
+        Ok(BodyId(self.bodies.len() - 1))
+    }
+
+    fn check_body(&self, body: BodyId) -> Result<usize, MechanismError> {
+        (body.0 < self.bodies.len())
+            .then_some(body.0)
+            .ok_or(MechanismError::UnknownBody(body.0))
+    }
+
+    /// Adds an external force on a body.
+    pub fn add_force(&mut self, body: BodyId, force: Force<A>) -> Result<(), MechanismError> {
+        let index = self.check_body(body)?;
+        self.bodies[index].forces.push(force);
+        Ok(())
+    }
+
+    /// Adds a joint: `constraint` holds `body` to `reference` — its "body" objects are fixed in `body`, its
+    /// "world" objects in the reference (the world, or another body's frame). Checks the declared rank (1 to 6,
+    /// at most the rows), the row capacity and, with projection, that the constraint has a position residual.
+    pub fn add_joint(
+        &mut self,
+        body: BodyId,
+        reference: impl Into<Reference>,
+        constraint: impl Constraint<A> + 'static,
+    ) -> Result<JointId, MechanismError> {
+        let index = self.check_body(body)?;
+        let reference = match reference.into() {
+            Reference::World => None,
+            Reference::Body(other) => {
+                let other = self.check_body(other)?;
+                if other == index {
+                    return Err(MechanismError::SelfJoint {
+                        joint: constraint.name().to_owned(),
+                        body: self.bodies[index].name.clone(),
+                    });
+                }
+                Some(other)
+            }
+        };
+        let name = constraint.name().to_owned();
+        let (rank, rows) = (constraint.rank(), constraint.row_count());
+        if rank == 0 || rank > rows.min(6) {
+            return Err(ConstraintError::InvalidRank { name, rank, rows }.into());
+        }
+        if rows > crate::constraints::MAX_ROWS {
+            return Err(ConstraintError::TooManyRows {
+                name,
+                rows,
+                capacity: crate::constraints::MAX_ROWS,
+            }
+            .into());
+        }
+        if matches!(self.stabilisation, Stabilisation::Projection { .. }) && !constraint.has_position_residual() {
+            return Err(ConstraintError::NoPositionResidual { name }.into());
+        }
+        self.joints.push(Joint {
+            constraint: Arc::new(constraint),
+            body: index,
+            reference,
+            reaction_basis: None,
+        });
+        self.rebuild();
+        Ok(JointId(self.joints.len() - 1))
+    }
+
+    /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; SPEC §7.1 method 2)
+    /// instead of the span of its rows. Rows the basis cannot express are reported as inconsistent.
+    pub fn set_reaction_basis(&mut self, joint: JointId, wrenches: Vec<A::Screw>) -> Result<(), MechanismError> {
+        let entry = self
+            .joints
+            .get_mut(joint.0)
+            .ok_or(MechanismError::UnknownJoint(joint.0))?;
+        let finite = wrenches.iter().all(|w| {
+            let c = A::screw_coordinates(*w);
+            c.l.iter().chain(c.t.iter()).all(|x| x.is_finite())
+        });
+        if wrenches.is_empty() || wrenches.len() > 6 || !finite {
+            return Err(MechanismError::ReactionBasis {
+                joint: entry.name().to_owned(),
+                count: wrenches.len(),
+            });
+        }
+        // The basis replaces the joint's rank in the solve.
+        entry.reaction_basis = Some(wrenches);
+        self.rebuild();
+        Ok(())
+    }
+
+    /// Chooses the stabilisation; projection needs every joint to have a position residual.
+    pub fn set_stabilisation(&mut self, stabilisation: Stabilisation) -> Result<(), MechanismError> {
+        if let Some(reason) = stabilisation.invalid_reason() {
+            return Err(ConstraintError::InvalidParameter {
+                name: "stabilisation".to_owned(),
+                reason,
+            }
+            .into());
+        }
+        if matches!(stabilisation, Stabilisation::Projection { .. }) {
+            if let Some(joint) = self.joints.iter().find(|j| !j.constraint.has_position_residual()) {
+                return Err(ConstraintError::NoPositionResidual {
+                    name: joint.name().to_owned(),
+                }
+                .into());
+            }
+        }
+        self.stabilisation = stabilisation;
+        Ok(())
+    }
+
+    /// Sets the solver's thresholds.
+    pub fn set_settings(&mut self, settings: SolverSettings) {
+        self.settings = settings;
+    }
+
+    /// [`Mechanism::add_force`] on body 0, builder style (for [`Mechanism::single`]).
+    pub fn with_force(mut self, force: Force<A>) -> Self {
+        if let Some(body) = self.bodies.first_mut() {
+            body.forces.push(force);
+        }
+        self
+    }
+
+    /// [`Mechanism::add_joint`] of body 0 to the world, builder style (for [`Mechanism::single`]).
+    pub fn with_constraint(mut self, constraint: impl Constraint<A> + 'static) -> Result<Self, MechanismError> {
+        self.add_joint(BodyId(0), Reference::World, constraint)?;
+        Ok(self)
+    }
+
+    /// [`Mechanism::set_stabilisation`], builder style.
+    pub fn with_stabilisation(mut self, stabilisation: Stabilisation) -> Result<Self, MechanismError> {
+        self.set_stabilisation(stabilisation)?;
+        Ok(self)
+    }
+
+    /// [`Mechanism::set_reaction_basis`] of the last joint added, builder style.
+    pub fn with_reaction_basis(mut self, wrenches: Vec<A::Screw>) -> Result<Self, MechanismError> {
+        let last = self
+            .joints
+            .len()
+            .checked_sub(1)
+            .ok_or(MechanismError::UnknownJoint(0))?;
+        self.set_reaction_basis(JointId(last), wrenches)?;
+        Ok(self)
+    }
+
+    fn joint_rank(joint: &Joint<A>) -> usize {
+        joint
+            .reaction_basis
+            .as_ref()
+            .map_or(joint.constraint.rank(), |basis| basis.len())
+    }
+
+    fn rebuild(&mut self) {
+        let joints: Vec<(usize, Option<usize>, usize)> = self
+            .joints
+            .iter()
+            .map(|j| (j.body, j.reference, Self::joint_rank(j)))
+            .collect();
+        self.topology = Topology::new(self.bodies.len(), &joints);
+    }
+
+    pub fn stabilisation(&self) -> Stabilisation {
+        self.stabilisation
+    }
+
+    /// The bodies' names, in index order.
+    pub fn body_names(&self) -> impl Iterator<Item = &str> {
+        self.bodies.iter().map(|b| b.name.as_str())
+    }
+
+    /// The body with this name.
+    pub fn body_id(&self, name: &str) -> Option<BodyId> {
+        self.bodies.iter().position(|b| b.name == name).map(BodyId)
+    }
+
+    /// The forces on a body.
+    pub fn forces(&self, body: BodyId) -> &[Force<A>] {
+        self.bodies.get(body.0).map_or(&[], |b| &b.forces)
+    }
+
+    /// The joints' names, in index order.
+    pub fn joint_names(&self) -> impl Iterator<Item = &str> {
+        self.joints.iter().map(|j| j.name())
+    }
+
+    /// The constraint of a joint, the body it holds and its reference.
+    pub fn joint(&self, joint: JointId) -> Option<(&dyn Constraint<A>, BodyId, Reference)> {
+        self.joints.get(joint.0).map(|j| {
+            let reference = j.reference.map_or(Reference::World, |r| Reference::Body(BodyId(r)));
+            (&*j.constraint, BodyId(j.body), reference)
+        })
+    }
+
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// The joints that close loops (the others form a spanning forest of the bodies and the world).
+    pub fn loop_joints(&self) -> impl Iterator<Item = JointId> + '_ {
+        self.topology
+            .slots
+            .iter()
+            .enumerate()
+            .filter(|(_, slot)| matches!(slot, Slot::Loop { .. }))
+            .map(|(j, _)| JointId(j))
+    }
+
+    /// The names of joints, joined for an error message.
+    fn names(&self, joints: impl IntoIterator<Item = usize>) -> String {
+        let mut seen = HashSet::new();
+        joints
+            .into_iter()
+            .filter(|j| seen.insert(*j))
+            .map(|j| self.joints[j].name())
+            .collect::<Vec<_>>()
+            .join(" + ")
+    }
+
+    fn failure(&self, failure: SolveFailure) -> ConstraintError {
+        match failure {
+            SolveFailure::TreeRank {
+                joint,
+                singular_value,
+                largest,
+            } => ConstraintError::RankDeficient {
+                names: self.names([joint]),
+                rank: Self::joint_rank(&self.joints[joint]),
+                singular_value,
+                largest,
+            },
+            SolveFailure::Inconsistent {
+                joint,
+                relative_residual,
+            } => ConstraintError::Inconsistent {
+                names: self.names(std::iter::once(joint).chain(self.topology.cycles[joint].iter().copied())),
+                relative_residual,
+            },
+        }
+    }
+
+    /// The world wrench of the external forces on body `index` (for world-momentum rates: exactly the forces
+    /// of an unconstrained body).
+    fn external_wrench(&self, index: usize, t: f64, state: &State<A>) -> A::Screw {
+        let body = &self.bodies[index];
+        body.forces.iter().fold(A::screw(Default::default()), |total, force| {
+            total + force.wrench(&body.body, t, state)
+        })
+    }
+
+    /// The external wrench on body `index` in its own frame (gravity rotated into it directly).
+    fn external_body_wrench(
+        &self,
+        index: usize,
+        kinematics: &Kinematics<A>,
+        body_momentum: A::Screw,
+    ) -> ScrewCoordinates {
+        let body = &self.bodies[index];
+        body.forces.iter().fold(ScrewCoordinates::default(), |total, force| {
+            total
+                + match force {
+                    Force::Gravity { acceleration } => ScrewCoordinates {
+                        l: kinematics
+                            .frame
+                            .rotation
+                            .inverse_transform_vector(&(body.body.mass * acceleration)),
+                        t: Vector3::zeros(),
+                    },
+                    _ => {
+                        let world = force.wrench_at(&body.body, kinematics.t, kinematics.motor, || {
+                            kinematics.to_world(body_momentum)
+                        });
+                        kinematics.to_body_coordinates(&A::screw_coordinates(world))
+                    }
+                }
+        })
+    }
+
+    /// A workspace for this mechanism.
+    pub fn new_workspace(&self) -> MechanismWorkspace<A> {
+        let zero_motor = motor::identity::<A>();
+        let zero_screw = A::screw(ScrewCoordinates::default());
+        let kinematics = Kinematics::new(0.0, zero_motor, zero_screw);
+        MechanismWorkspace {
+            bodies: vec![
+                BodyKinematics {
+                    kinematics,
+                    free_acceleration: [0.0; 6],
+                };
+                self.bodies.len()
+            ],
+            external: vec![ScrewCoordinates::default(); self.bodies.len()],
+            reactions: vec![[0.0; 6]; self.bodies.len()],
+            joints: vec![JointRows::default(); self.joints.len()],
+            raw: RowBuffer::new(),
+            matrix: SystemMatrix::new(&self.topology),
+            tree: vec![0.0; self.topology.tree_size],
+            loops: vec![0.0; self.topology.loop_size],
+            inverse_metric: self
+                .bodies
+                .iter()
+                .map(|b| {
+                    let (i, m) = (b.body.moments, b.body.mass);
+                    [1.0 / i.x, 1.0 / i.y, 1.0 / i.z, 1.0 / m, 1.0 / m, 1.0 / m]
+                })
+                .collect(),
+            motors: vec![zero_motor; self.bodies.len()],
+            momenta: vec![zero_screw; self.bodies.len()],
+        }
+    }
+
+    /// Every body's kinematics from its motor and body momentum; with `dynamics`, also its external wrench and
+    /// free acceleration `H⁻¹(Ḃ × Ω_b + S_b)` (SPEC §5).
+    fn body_kinematics(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        body_momenta: &[A::Screw],
+        workspace: &mut MechanismWorkspace<A>,
+        dynamics: bool,
+    ) {
+        for (i, entry) in self.bodies.iter().enumerate() {
+            let velocity = entry.body.velocity::<A>(body_momenta[i]);
+            let kinematics = Kinematics::new(t, motors[i], velocity);
+            let mut free_acceleration = [0.0; 6];
+            if dynamics {
+                let external = self.external_body_wrench(i, &kinematics, body_momenta[i]);
+                workspace.external[i] = external;
+                let drive = A::screw_coordinates(A::commutator(velocity, body_momenta[i])) + external;
+                let g = wrench_coordinates(&drive);
+                free_acceleration = std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k]);
+            }
+            workspace.bodies[i] = BodyKinematics {
+                kinematics,
+                free_acceleration,
+            };
+        }
+    }
+
+    /// Every joint's reduced rows at the bodies' kinematics.
+    fn joint_rows(&self, t: f64, workspace: &mut MechanismWorkspace<A>, dynamics: bool) -> Result<(), ConstraintError> {
+        let context = JointContext {
+            t,
+            stabilisation: if dynamics {
+                self.stabilisation
+            } else {
+                Stabilisation::None
+            },
+            settings: &self.settings,
+            inverse_metric: &workspace.inverse_metric,
+            dynamics,
+        };
+        for (joint, rows) in self.joints.iter().zip(workspace.joints.iter_mut()) {
+            joint.evaluate(&context, &workspace.bodies, &mut workspace.raw, rows)?;
+        }
+        Ok(())
+    }
+
+    /// Assembles and factors `K`, solves it for `condition`'s right-hand sides and accumulates the reactions
+    /// `Jᵀλ` per body (wrench coordinates, body frames) into `workspace.reactions`.
+    fn solve_reactions(
+        &self,
+        workspace: &mut MechanismWorkspace<A>,
+        condition: Condition,
+        consistency: Consistency,
+    ) -> Result<(), ConstraintError> {
+        let MechanismWorkspace {
+            joints,
+            matrix,
+            tree,
+            loops,
+            inverse_metric,
+            reactions,
+            ..
+        } = workspace;
+        let rows = |joint: usize, side: Side| -> &[[f64; 6]] {
+            let rows = &joints[joint];
+            match side {
+                Side::Body => &rows.reduced.rows[..rows.reduced.rank],
+                Side::Reference => &rows.reference_rows[..rows.reduced.rank],
+            }
+        };
+        matrix.assemble(&self.topology, inverse_metric, rows);
+        matrix
+            .factor(&self.topology, &self.settings)
+            .map_err(|f| self.failure(f))?;
+        for (j, rows) in joints.iter().enumerate() {
+            let values = &rows.reduced.values[condition as usize][..rows.reduced.rank];
+            let target = match self.topology.slots[j] {
+                Slot::Tree { offset, .. } => &mut tree[offset..offset + values.len()],
+                Slot::Loop { offset } => &mut loops[offset..offset + values.len()],
+            };
+            target.copy_from_slice(values);
+        }
+        matrix
+            .solve(&self.topology, tree, loops, consistency, &self.settings)
+            .map_err(|f| self.failure(f))?;
+        reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
+        for (j, (joint, rows)) in self.joints.iter().zip(joints.iter()).enumerate() {
+            let (on_body, on_reference) = rows.reactions(self.multipliers(j, rows.reduced.rank, tree, loops));
+            add(&mut reactions[joint.body], &on_body);
+            if let Some(r) = joint.reference {
+                add(&mut reactions[r], &on_reference);
+            }
+        }
+        Ok(())
+    }
+
+    /// The equations of motion at the given motors and body momenta: every body's kinematics and reaction
+    /// (docs/mechanisms.md §M4: `K λ = z`, reactions `Jᵀλ`).
+    fn evaluate(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        body_momenta: &[A::Screw],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.body_kinematics(t, motors, body_momenta, workspace, true);
+        if self.joints.is_empty() {
+            workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
+            return Ok(());
+        }
+        self.joint_rows(t, workspace, true)?;
+        // The round-off floor of the loop consistency check: the size of the joints' right-hand sides.
+        let scale = workspace
+            .joints
+            .iter()
+            .flat_map(|rows| rows.reduced.values[0][..rows.reduced.rank].iter())
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
+        self.solve_reactions(workspace, Condition::Acceleration, Consistency::Check { scale })?;
+        for (i, reaction) in workspace.reactions.iter().enumerate() {
+            if !reaction.iter().all(|y| y.is_finite()) {
+                let names = self.names(self.topology.incidences[i].iter().map(|incidence| incidence.joint));
+                return Err(ConstraintError::NonFinite { name: names, t });
+            }
+        }
+        Ok(())
+    }
+
+    /// Joint j's multipliers in the solved tree and loop vectors.
+    fn multipliers<'v>(&self, joint: usize, rank: usize, tree: &'v [f64], loops: &'v [f64]) -> &'v [f64] {
+        match self.topology.slots[joint] {
+            Slot::Tree { offset, .. } => &tree[offset..offset + rank],
+            Slot::Loop { offset } => &loops[offset..offset + rank],
+        }
+    }
+
+    /// The kinetic plus potential energy of the system.
+    pub fn energy(&self, states: &[State<A>]) -> f64 {
+        self.bodies
+            .iter()
+            .zip(states)
+            .map(|(entry, state)| {
+                state.kinetic_energy(&entry.body)
+                    + entry
+                        .forces
+                        .iter()
+                        .map(|f| f.potential_energy(&entry.body, state))
+                        .sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// The total momentum `Σ Ωᵢ` (world frame): linear momentum in the l-part, angular momentum about the world
+    /// origin in the t-part (SPEC §3).
+    pub fn momentum(&self, states: &[State<A>]) -> A::Screw {
+        states
+            .iter()
+            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum)
+    }
+
+    /// The largest position and velocity residuals over the joints at this state.
+    pub fn violation(&self, t: f64, states: &[State<A>]) -> Result<Violation, ConstraintError> {
+        let mut workspace = self.new_workspace();
+        self.position_rows(t, states, &mut workspace)?;
+        Ok(workspace.joints.iter().fold(Violation::default(), |v, rows| Violation {
+            position: v.position.max(rows.position_residual),
+            velocity: v.velocity.max(rows.velocity_residual),
+        }))
+    }
+
+    /// The rates of every body at this state (Ḃ and dΩ/dt), or why the reactions could not be found: the
+    /// evaluation the integrators make, for diagnostics (it allocates a workspace).
+    pub fn rates_at(&self, t: f64, states: &[State<A>]) -> Result<Vec<Rates<A>>, ConstraintError> {
+        let mut workspace = self.new_workspace();
+        let zero = A::screw(ScrewCoordinates::default());
+        let mut rates = vec![
+            Rates {
+                body_velocity: zero,
+                momentum_rate: zero,
+            };
+            states.len()
+        ];
+        Dynamics::rates(self, t, states, &mut rates, &mut workspace)?;
+        Ok(rates)
+    }
+
+    /// The world wrench each joint exerts on its body (its reference receives the opposite), at this state.
+    pub fn reactions(&self, t: f64, states: &[State<A>]) -> Result<Vec<A::Screw>, ConstraintError> {
+        let mut workspace = self.new_workspace();
+        for (i, state) in states.iter().enumerate() {
+            workspace.motors[i] = state.motor;
+            workspace.momenta[i] = crate::motion::to_body::<A>(state.motor, state.momentum);
+        }
+        let (motors, momenta) = (workspace.motors.clone(), workspace.momenta.clone());
+        self.evaluate(t, &motors, &momenta, &mut workspace)?;
+        Ok(self
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, joint)| {
+                let rows = &workspace.joints[j];
+                let lambda = self.multipliers(j, rows.reduced.rank, &workspace.tree, &workspace.loops);
+                let (y, _) = rows.reactions(lambda);
+                let kinematics = &workspace.bodies[joint.body].kinematics;
+                A::screw(kinematics.to_world_coordinates(&wrench_screw(&y)))
+            })
+            .collect())
+    }
+
+    /// The joints' rows (positions and velocities only) at `states`.
+    fn position_rows(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        for (i, state) in states.iter().enumerate() {
+            workspace.motors[i] = state.motor;
+            workspace.momenta[i] = crate::motion::to_body::<A>(state.motor, state.momentum);
+        }
+        let motors = std::mem::take(&mut workspace.motors);
+        let momenta = std::mem::take(&mut workspace.momenta);
+        self.body_kinematics(t, &motors, &momenta, workspace, false);
+        workspace.motors = motors;
+        workspace.momenta = momenta;
+        self.joint_rows(t, workspace, false)
+    }
+
+    /// Projects states onto the joint manifold (SPEC §10, docs/mechanisms.md §M5): normalise every motor,
+    /// Gauss–Newton steps on the positions of the whole system (at most as many as [`Stabilisation::Projection`]
+    /// says, else 2, stopping once the residuals are round-off; skipped if a joint has no position residual),
+    /// then the kinetic-metric velocity projection. Use it on initial conditions, which must satisfy both the
+    /// position and the velocity constraints.
+    pub fn project(&self, t: f64, states: &mut [State<A>]) -> Result<(), ConstraintError> {
+        let iterations = match self.stabilisation {
+            Stabilisation::Projection { position_iterations } => position_iterations,
+            _ => 2,
+        };
+        let mut workspace = self.new_workspace();
+        self.project_with(t, states, iterations, &mut workspace)
+    }
+
+    fn project_with(
+        &self,
+        t: f64,
+        states: &mut [State<A>],
+        iterations: usize,
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        for state in states.iter_mut() {
+            state.motor = motor::normalise::<A>(state.motor);
+        }
+        if self.joints.is_empty() {
+            return Ok(());
+        }
+        let position_level = self.joints.iter().all(|j| j.constraint.has_position_residual());
+        let mut steps = 0;
+        loop {
+            self.position_rows(t, states, workspace)?;
+            let off_manifold = workspace
+                .joints
+                .iter()
+                .any(|rows| rows.position_residual > POSITION_TOLERANCE);
+            if position_level && off_manifold && steps < iterations {
+                // δᵢ = Gᵢ Jᵢᵀλ with K λ = −e; Rᵢ ← Rᵢ exp(−½δᵢ), the motion with body velocity δᵢ for unit time.
+                self.solve_reactions(workspace, Condition::Position, Consistency::Skip)?;
+                for (i, state) in states.iter_mut().enumerate() {
+                    let y = workspace.reactions[i];
+                    let delta: [f64; 6] = std::array::from_fn(|k| y[k] * workspace.inverse_metric[i][k]);
+                    let step = A::screw(velocity_screw(&delta)) * -0.5;
+                    state.motor = motor::normalise::<A>(A::compose(state.motor, exp::<A>(step)));
+                }
+                steps += 1;
+                continue;
+            }
+            // Δxᵢ = Gᵢ Jᵢᵀλ with K λ = −ė: the momentum changes by H Δx = Jᵀλ. Only this (tiny) change goes
+            // through the frame change, not Ω itself: a round trip Ω → Ω_b → Ω every step biases the energy by
+            // about an ulp per step (measured: +1e-15 J per step on a pendulum, 1e-10 rad after 1e5 steps).
+            self.solve_reactions(workspace, Condition::Velocity, Consistency::Skip)?;
+            for (i, state) in states.iter_mut().enumerate() {
+                let change = wrench_screw(&workspace.reactions[i]);
+                let frame = &workspace.bodies[i].kinematics.frame;
+                state.momentum = state.momentum + A::screw(frame.to_world(&change));
+            }
+            return Ok(());
+        }
+    }
+}
+
+/// `total += y` over six coordinates.
+fn add(total: &mut [f64; 6], y: &[f64; 6]) {
+    total.iter_mut().zip(y).for_each(|(t, y)| *t += y);
+}
+
+impl<A: Algebra> Dynamics<A> for Mechanism<A> {
+    type Workspace = MechanismWorkspace<A>;
+
+    fn workspace(&self) -> MechanismWorkspace<A> {
+        self.new_workspace()
+    }
+
+    fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    fn body(&self, index: usize) -> &Body {
+        &self.bodies[index].body
+    }
+
+    /// In the body frames; the world momentum rate is the world external wrench (as for an unconstrained body)
+    /// plus the reaction moved to the world.
+    fn rates(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        rates: &mut [Rates<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        let (mut motors, mut momenta) = (
+            std::mem::take(&mut workspace.motors),
+            std::mem::take(&mut workspace.momenta),
+        );
+        for (i, state) in states.iter().enumerate() {
+            motors[i] = state.motor;
+            // The sandwich `~RΩR`, as the paper's RK4 has it: its stage motors are not unit, and the sandwich
+            // scales by ⟨R~R⟩₀ (the frame map would divide it out and change the method).
+            momenta[i] = state.body_momentum();
+        }
+        let result = self.evaluate(t, &motors, &momenta, workspace);
+        workspace.motors = motors;
+        workspace.momenta = momenta;
+        result?;
+        for (i, (rate, state)) in rates.iter_mut().zip(states).enumerate() {
+            let kinematics = &workspace.bodies[i].kinematics;
+            let reaction = A::screw(kinematics.to_world_coordinates(&wrench_screw(&workspace.reactions[i])));
+            *rate = Rates {
+                body_velocity: kinematics.body_velocity,
+                momentum_rate: self.external_wrench(i, t, state) + reaction,
+            };
+        }
+        Ok(())
+    }
+
+    /// In the body frames throughout: no world momentum is built (unless a custom force asks for it) and the
+    /// reactions are not moved to the world and back.
+    fn body_rates(
+        &self,
+        t: f64,
+        motors: &[A::Motor],
+        body_momenta: &[A::Screw],
+        rates: &mut [BodyRates<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.evaluate(t, motors, body_momenta, workspace)?;
+        for (i, rate) in rates.iter_mut().enumerate() {
+            let total = workspace.external[i] + wrench_screw(&workspace.reactions[i]);
+            *rate = BodyRates {
+                body_velocity: workspace.bodies[i].kinematics.body_velocity,
+                body_wrench: A::screw(total),
+            };
+        }
+        Ok(())
+    }
+
+    fn after_step(
+        &self,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        match self.stabilisation {
+            Stabilisation::Projection { position_iterations } => {
+                self.project_with(t, states, position_iterations, workspace)
+            }
+            _ => {
+                for state in states.iter_mut() {
+                    state.motor = motor::normalise::<A>(state.motor);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn energy(&self, states: &[State<A>]) -> f64 {
+        Mechanism::energy(self, states)
+    }
+}

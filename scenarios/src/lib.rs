@@ -1,0 +1,30 @@
+//! The project's reference scenes as `dynamics` systems: the single-body scenes of the reference set
+//! ([`single_body`]) and the mechanisms ([`mechanisms`]: the double pendulum, the four-bar linkage and the
+//! N-link chain), each in either algebra and either constraint formulation.
+//!
+//! This crate exists so that `dynamics` carries no scene catalogue and no reference data: tests, benchmarks,
+//! examples and the main job build their systems here, from the GA-independent parameters and reference
+//! trajectories of the `reference` crate.
+
+pub mod single_body;
+
+pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
+
+use dynamics::simulate::Sample;
+use reference::{Trajectory, TrajectoryError};
+
+/// One body's samples as a reference trajectory, for the metrics of the `reference` crate.
+pub fn trajectory(samples: &[Sample]) -> Result<Trajectory, TrajectoryError> {
+    Trajectory::new(
+        samples
+            .iter()
+            .map(|s| reference::Sample {
+                t: s.t,
+                position: s.position,
+                orientation: s.orientation,
+                velocity: s.velocity,
+                angular_velocity: s.angular_velocity,
+            })
+            .collect(),
+    )
+}
