@@ -108,6 +108,17 @@ impl ScrewFrame {
         }
     }
 
+    /// The frame of body b seen from body a (`~R_a R_b`, b → a), from the two frames: rotation `Q_aᵀQ_b`, position
+    /// `Q_aᵀ(c_b − c_a)` (36 multiplies, against a motor product and a frame extraction).
+    pub fn relative(reference: &ScrewFrame, body: &ScrewFrame) -> Self {
+        ScrewFrame {
+            rotation: reference.rotation.inverse() * body.rotation,
+            position: reference
+                .rotation
+                .inverse_transform_vector(&(body.position - reference.position)),
+        }
+    }
+
     /// `(l, t) ↦ (Qᵀl, Qᵀ(t − c⨯l))`: the body coordinates of a world screw.
     #[inline]
     pub fn to_body(&self, world: &ScrewCoordinates) -> ScrewCoordinates {

@@ -9,6 +9,8 @@
 //! One module per concept:
 //! * [`scenes`]: the six reference scenes ([`SceneId`]): parameters, embedded reference trajectories, published end
 //!   states and published analytic values;
+//! * [`multibody`]: the mechanisms of MULTIBODY.md (double pendulum, four-bar linkage, N-link chain): parameters,
+//!   initial states from joint coordinates, embedded reference trajectories, joint violations from poses;
 //! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;
 //! * [`analytic`]: the closed forms (Dzhanibekov flips, pendulum, heavy top) that the published values come from;
@@ -36,6 +38,7 @@
 pub mod analytic;
 pub mod elliptic;
 pub mod metrics;
+pub mod multibody;
 pub mod scenes;
 pub mod trajectory;
 

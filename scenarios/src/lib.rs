@@ -6,8 +6,10 @@
 //! examples and the main job build their systems here, from the GA-independent parameters and reference
 //! trajectories of the `reference` crate.
 
+pub mod mechanisms;
 pub mod single_body;
 
+pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
 pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
 
 use dynamics::simulate::Sample;

@@ -18,6 +18,8 @@
 use std::fmt;
 use std::sync::Arc;
 
+use arrayvec::ArrayVec;
+
 use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
@@ -154,7 +156,7 @@ impl<A: Algebra> Joint<A> {
             Some(r) => {
                 let reference = &bodies[r];
                 let motor = A::compose(reference.kinematics.reverse, body.kinematics.motor);
-                let frame = ScrewFrame::of::<A>(motor);
+                let frame = ScrewFrame::relative(&reference.kinematics.frame, &body.kinematics.frame);
                 let reference_velocity = frame.to_body(&A::screw_coordinates(reference.kinematics.body_velocity));
                 let relative_velocity = body.kinematics.body_velocity - A::screw(reference_velocity);
                 relative = Kinematics::with_frame(context.t, motor, frame, relative_velocity);
@@ -190,41 +192,40 @@ impl<A: Algebra> Joint<A> {
         // Per raw row: β = −b − a·(Δf − c) − feedback for the acceleration condition (Δf = f_b − Ad f_a), −e, −ė.
         let relative_acceleration: [f64; 6] =
             std::array::from_fn(|k| body.free_acceleration[k] - reference_acceleration[k] - correction[k]);
-        let mut rhs = [[0.0; MAX_ROWS]; RIGHT_HAND_SIDES];
+        let mut rhs: ArrayVec<[f64; RIGHT_HAND_SIDES], MAX_ROWS> = ArrayVec::new();
         let mut scale_squared = 0.0;
         out.position_residual = 0.0;
         out.velocity_residual = 0.0;
         out.has_position = true;
-        for (i, row) in raw.rows().iter().enumerate() {
+        for row in raw.rows() {
+            let mut acceleration = 0.0;
             if context.dynamics {
                 let drift = dot(&row.jacobian, &relative_acceleration);
                 let feedback = context.stabilisation.feedback(row);
-                rhs[0][i] = -drift - row.bias - feedback;
+                acceleration = -drift - row.bias - feedback;
                 scale_squared += (drift.abs() + row.bias.abs() + feedback.abs()).powi(2);
             }
             let e = row.position_residual.unwrap_or(0.0);
             out.has_position &= row.position_residual.is_some();
-            rhs[1][i] = -e;
-            rhs[2][i] = -row.velocity_residual;
+            rhs.push([acceleration, -e, -row.velocity_residual]);
             out.position_residual = out.position_residual.max(e.abs());
             out.velocity_residual = out.velocity_residual.max(row.velocity_residual.abs());
         }
 
         let rank = self.constraint.rank();
-        let mut basis = [[0.0; 6]; 6];
-        let basis = self.reaction_basis.as_ref().map(|wrenches| {
-            for (b, w) in basis.iter_mut().zip(wrenches) {
-                let w = A::screw_coordinates(*w);
-                *b = covector(&kinematics.frame.to_body(&w));
-            }
-            &basis[..wrenches.len().min(6)]
+        let basis: Option<ArrayVec<[f64; 6], 6>> = self.reaction_basis.as_ref().map(|wrenches| {
+            wrenches
+                .iter()
+                .take(6)
+                .map(|w| covector(&kinematics.frame.to_body(&A::screw_coordinates(*w))))
+                .collect()
         });
         reduce(
             raw.rows(),
             &rhs,
             rank,
             &context.inverse_metric[self.body],
-            basis,
+            basis.as_deref(),
             context.settings.rank_tolerance,
             &mut out.reduced,
         )

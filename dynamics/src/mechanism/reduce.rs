@@ -60,12 +60,12 @@ fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// Reduces `rows` with right-hand sides `rhs[s][i]` (per raw row) to `rank` rows in the metric `inverse_metric`
+/// Reduces `rows` with right-hand sides `rhs[i][s]` (per raw row i) to `rank` rows in the metric `inverse_metric`
 /// (the held body's `H⁻¹` diagonal), or to the span of `basis` (covectors, at most 6) if given; `tolerance` is
 /// the relative singular value below which rows count as dependent.
 pub(crate) fn reduce(
     rows: &[ConstraintRow],
-    rhs: &[[f64; MAX_ROWS]; RIGHT_HAND_SIDES],
+    rhs: &[[f64; RIGHT_HAND_SIDES]],
     rank: usize,
     inverse_metric: &[f64; 6],
     basis: Option<&[[f64; 6]]>,
@@ -88,11 +88,11 @@ pub(crate) fn reduce(
     if basis.is_none() && count == rank {
         for (k, &i) in nonzero.iter().enumerate() {
             out.rows[k] = rows[i].jacobian;
-            for (values, column) in out.values.iter_mut().zip(rhs) {
-                values[k] = column[i];
+            for (values, value) in out.values.iter_mut().zip(rhs[i]) {
+                values[k] = value;
             }
         }
-        out.rhs_squared = nonzero.iter().map(|&i| rhs[0][i] * rhs[0][i]).sum();
+        out.rhs_squared = nonzero.iter().map(|&i| rhs[i][0] * rhs[i][0]).sum();
         return Ok(());
     }
 
@@ -151,11 +151,11 @@ pub(crate) fn reduce(
                 (normal[i][j] - (0..j).map(|k| cholesky[i][k] * cholesky[j][k]).sum::<f64>()) / cholesky[j][j];
         }
     }
-    for (values, column) in out.values.iter_mut().zip(rhs) {
+    for (side, values) in out.values.iter_mut().enumerate() {
         // z = (CᵀC)⁻¹ Cᵀ β by the two triangular solves.
         let mut z = [0.0; 6];
         for (k, zk) in z.iter_mut().enumerate().take(r) {
-            *zk = coefficients.iter().zip(column).map(|(c, b)| c[k] * b).sum();
+            *zk = coefficients.iter().zip(rhs).map(|(c, b)| c[k] * b[side]).sum();
         }
         for i in 0..r {
             z[i] = (z[i] - (0..i).map(|k| cholesky[i][k] * z[k]).sum::<f64>()) / cholesky[i][i];
@@ -165,10 +165,10 @@ pub(crate) fn reduce(
         }
         *values = z;
     }
-    for (c, b) in coefficients.iter().zip(&rhs[0]) {
+    for (c, b) in coefficients.iter().zip(rhs) {
         let fitted: f64 = (0..r).map(|k| c[k] * out.values[0][k]).sum();
-        out.residual_squared += (fitted - b).powi(2);
-        out.rhs_squared += b * b;
+        out.residual_squared += (fitted - b[0]).powi(2);
+        out.rhs_squared += b[0] * b[0];
     }
     Ok(())
 }
@@ -177,7 +177,7 @@ pub(crate) fn reduce(
 fn truncated_kinetic_metric(
     rows: &[ConstraintRow],
     nonzero: &[usize],
-    rhs: &[[f64; MAX_ROWS]; RIGHT_HAND_SIDES],
+    rhs: &[[f64; RIGHT_HAND_SIDES]],
     rank: usize,
     inverse_metric: &[f64; 6],
     tolerance: f64,
@@ -193,8 +193,8 @@ fn truncated_kinetic_metric(
             for b in a..6 {
                 normal[b * 6 + a] += g[a] * g[b];
             }
-            for (p, values) in projected.iter_mut().zip(rhs) {
-                p[a] += g[a] * values[i];
+            for (p, value) in projected.iter_mut().zip(rhs[i]) {
+                p[a] += g[a] * value;
             }
         }
     }
@@ -235,7 +235,7 @@ fn truncated_kinetic_metric(
     }
     // |A' z − β|² = |β|² − Σ_kept (v·A'ᵀβ)²/σ²: what the kept directions do not explain (rows with a zero
     // Jacobian included: their β is unexplained by construction).
-    out.rhs_squared = rows.iter().enumerate().map(|(i, _)| rhs[0][i] * rhs[0][i]).sum();
+    out.rhs_squared = rhs.iter().map(|b| b[0] * b[0]).sum();
     out.residual_squared = (out.rhs_squared - explained).max(0.0);
     Ok(())
 }
@@ -259,10 +259,7 @@ mod tests {
         let rows = [row(a), row(b), row(a.map(|x| 2.0 * x)), row([0.0; 6])];
         // A solution x of a·x = 1, b·x = −2; the rows' values follow from it.
         let x = [0.3, 0.1, -0.8, 0.0, 0.2, -0.4];
-        let mut rhs = [[0.0; MAX_ROWS]; RIGHT_HAND_SIDES];
-        for (i, r) in rows.iter().enumerate() {
-            rhs[0][i] = dot(&r.jacobian, &x);
-        }
+        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = rows.iter().map(|r| [dot(&r.jacobian, &x), 0.0, 0.0]).collect();
         let mut reduced = Reduced::default();
         reduce(
             &rows,
@@ -283,6 +280,7 @@ mod tests {
         // are taken as they are, and the system solve's pivots catch a dependence.)
         let sum: [f64; 6] = std::array::from_fn(|c| a[c] + b[c]);
         let dependent = [row(a), row(b), row(a.map(|x| 2.0 * x)), row(sum)];
+        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = dependent.iter().map(|r| [dot(&r.jacobian, &x), 0.0, 0.0]).collect();
         assert!(reduce(&dependent, &rhs, 3, &[1.0; 6], None, 1e-6, &mut reduced).is_err());
     }
 }

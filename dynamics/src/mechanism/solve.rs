@@ -17,6 +17,8 @@
 //!   right-hand side outside the kept range (the joints demand contradictory accelerations) is an error
 //!   naming the loop's joints.
 
+use arrayvec::ArrayVec;
+
 use crate::mechanism::topology::{Place, Side, Topology};
 
 /// Thresholds of the reaction solve.
@@ -93,8 +95,8 @@ pub(crate) enum SolveFailure {
 /// The assembled and factored system, reused across evaluations (no allocation after the first).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct SystemMatrix {
-    /// The fronts' dense matrices (row-major, full): the assembled K entries, then the factors — L below the
-    /// diagonal of the eliminated columns, D on it.
+    /// The fronts' dense matrices (row-major, lower triangle): the assembled K entries, then the factors — L
+    /// below the diagonal of the eliminated columns, D on it.
     fronts: Vec<f64>,
     /// `K_TL`, tree rows × loop columns, column-major.
     tree_loop: Vec<f64>,
@@ -109,7 +111,19 @@ pub(crate) struct SystemMatrix {
     threshold: f64,
     /// The Jacobi iteration's working copy of the Schur complement.
     loop_work: Vec<f64>,
+    /// Scratch of the factorisation of fronts too large for the specialised code.
+    column: Vec<f64>,
     loop_scratch: Vec<f64>,
+}
+
+/// `add(α, β, a_α · b_β)` for every pair of rows.
+#[inline]
+fn for_each_product(first: &[[f64; 6]], second: &[[f64; 6]], mut add: impl FnMut(usize, usize, f64)) {
+    for (alpha, a) in first.iter().enumerate() {
+        for (beta, b) in second.iter().enumerate() {
+            add(alpha, beta, dot6(a, b));
+        }
+    }
 }
 
 /// `a · b` over six coordinates.
@@ -131,12 +145,14 @@ impl SystemMatrix {
             scaling: vec![0.0; k],
             threshold: 0.0,
             loop_work: vec![0.0; k * k],
+            column: Vec::new(),
             loop_scratch: vec![0.0; k],
         }
     }
 
     /// Assembles `K = J G Jᵀ` body by body: `rows(joint, side)` are a joint's rows as seen by one of its bodies
     /// (covectors on that body's velocity coordinates `(ω; v)`), `inverse_metric[v]` the diagonal of `G_v`.
+    /// Front entries go to the lower triangle only: the factorisation reads nothing else.
     pub fn assemble<'r>(
         &mut self,
         topology: &Topology,
@@ -150,46 +166,68 @@ impl SystemMatrix {
         for (v, incidences) in topology.incidences.iter().enumerate() {
             let g = &inverse_metric[v];
             for (p, first) in incidences.iter().enumerate() {
-                let first_rows = rows(first.joint, first.side);
+                // G-scaled rows of the first joint, once for all its partners.
+                let scaled: ArrayVec<[f64; 6], 6> = rows(first.joint, first.side)
+                    .iter()
+                    .map(|a| std::array::from_fn(|c| a[c] * g[c]))
+                    .collect();
                 for second in &incidences[p..] {
-                    // A joint attaches two different bodies, so at one body the same incidence is the same
-                    // joint: its block is symmetric and written once; a pair of joints is mirrored.
-                    let mirrored = first.joint != second.joint;
                     let second_rows = rows(second.joint, second.side);
-                    for (alpha, a) in first_rows.iter().enumerate() {
-                        let scaled: [f64; 6] = std::array::from_fn(|c| a[c] * g[c]);
-                        for (beta, b) in second_rows.iter().enumerate() {
-                            let value = dot6(&scaled, b);
-                            match (first.place, second.place) {
-                                (
-                                    Place::Front {
-                                        storage,
-                                        size,
-                                        local: i,
-                                        ..
-                                    },
-                                    Place::Front { local: j, .. },
-                                ) => {
-                                    let (i, j) = (i + alpha, j + beta);
-                                    self.fronts[storage + i * size + j] += value;
-                                    if mirrored {
-                                        self.fronts[storage + j * size + i] += value;
+                    // A joint attaches two different bodies, so at one body the same incidence is the same joint:
+                    // its block is symmetric; a pair of joints fills two mirrored blocks.
+                    let same = first.joint == second.joint;
+                    match (first.place, second.place) {
+                        (
+                            Place::Front {
+                                storage,
+                                size,
+                                local: i,
+                                ..
+                            },
+                            Place::Front { local: j, .. },
+                        ) => {
+                            let front = &mut self.fronts[storage..storage + size * size];
+                            if same {
+                                for (alpha, a) in scaled.iter().enumerate() {
+                                    let row = &mut front[(i + alpha) * size + i..=(i + alpha) * size + i + alpha];
+                                    for (x, b) in row.iter_mut().zip(second_rows) {
+                                        *x += dot6(a, b);
                                     }
                                 }
-                                (Place::Front { global, .. }, Place::Loop { offset }) => {
-                                    self.tree_loop[(offset + beta) * n + global + alpha] += value;
+                            } else if i > j {
+                                for (alpha, a) in scaled.iter().enumerate() {
+                                    let at = (i + alpha) * size + j;
+                                    for (x, b) in front[at..at + second_rows.len()].iter_mut().zip(second_rows) {
+                                        *x += dot6(a, b);
+                                    }
                                 }
-                                (Place::Loop { offset }, Place::Front { global, .. }) => {
-                                    self.tree_loop[(offset + alpha) * n + global + beta] += value;
-                                }
-                                (Place::Loop { offset: i }, Place::Loop { offset: j }) => {
-                                    let (i, j) = (i + alpha, j + beta);
-                                    self.loops[j * k + i] += value;
-                                    if mirrored {
-                                        self.loops[i * k + j] += value;
+                            } else {
+                                for (beta, b) in second_rows.iter().enumerate() {
+                                    let at = (j + beta) * size + i;
+                                    for (x, a) in front[at..at + scaled.len()].iter_mut().zip(&scaled) {
+                                        *x += dot6(a, b);
                                     }
                                 }
                             }
+                        }
+                        (Place::Front { global, .. }, Place::Loop { offset }) => {
+                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                                self.tree_loop[(offset + beta) * n + global + alpha] += value
+                            });
+                        }
+                        (Place::Loop { offset }, Place::Front { global, .. }) => {
+                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                                self.tree_loop[(offset + alpha) * n + global + beta] += value
+                            });
+                        }
+                        (Place::Loop { offset: i }, Place::Loop { offset: j }) => {
+                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                                let (r, c) = (i + alpha, j + beta);
+                                self.loops[c * k + r] += value;
+                                if !same {
+                                    self.loops[r * k + c] += value;
+                                }
+                            });
                         }
                     }
                 }
@@ -202,49 +240,27 @@ impl SystemMatrix {
     pub fn factor(&mut self, topology: &Topology, settings: &SolverSettings) -> Result<(), SolveFailure> {
         let tolerance = settings.rank_tolerance * settings.rank_tolerance;
         for front in &topology.fronts {
-            let (size, base) = (front.size(), front.storage);
-            let f = &mut self.fronts[base..base + size * size];
-            for e in 0..front.eliminated {
-                // The pivot against the diagonal as assembled (a positive definite matrix's pivots only shrink).
-                let pivot = f[e * size + e];
-                let largest = (0..front.eliminated).map(|i| f[i * size + i]).fold(0.0, f64::max);
-                if !exceeds(pivot, tolerance * largest.max(f64::MIN_POSITIVE)) {
-                    return Err(SolveFailure::TreeRank {
-                        joint: topology.tree_owner[front.variables[e]],
-                        singular_value: pivot.max(0.0).sqrt(),
-                        largest: largest.max(0.0).sqrt(),
-                    });
-                }
-                let inverse = 1.0 / pivot;
-                for i in e + 1..size {
-                    let l = f[i * size + e] * inverse;
-                    if l != 0.0 {
-                        for j in e + 1..=i {
-                            f[i * size + j] -= l * f[j * size + e];
-                        }
-                    }
-                }
-                for i in e + 1..size {
-                    f[i * size + e] *= inverse;
-                }
-            }
-            // The trailing block (the parent joint's) goes to the parent front, both triangles.
-            if let Some(parent) = front.parent {
+            let size = front.size();
+            let f = &mut self.fronts[front.storage..front.storage + size * size];
+            with_front_size!(size, N => factor_front::<N>(f, front.eliminated, tolerance), {
+                factor_dynamic(f, size, front.eliminated, tolerance, &mut self.column)
+            })
+            .map_err(|(e, pivot, diagonal)| SolveFailure::TreeRank {
+                joint: topology.tree_owner[front.start + e],
+                singular_value: pivot.max(0.0).sqrt(),
+                largest: diagonal.max(0.0).sqrt(),
+            })?;
+            // The trailing block (the parent joint's) goes to the parent front's lower triangle.
+            if let Some((parent, offset)) = front.parent {
+                let m = front.eliminated;
                 let parent_front = &topology.fronts[parent];
-                let offset = parent_front
-                    .variables
-                    .iter()
-                    .position(|&x| x == front.variables[front.eliminated])
-                    .expect("the parent joint is in the parent front");
                 let parent_size = parent_front.size();
-                for i in front.eliminated..size {
-                    for j in front.eliminated..=i {
-                        let value = self.fronts[base + i * size + j];
-                        let (pi, pj) = (offset + i - front.eliminated, offset + j - front.eliminated);
-                        self.fronts[parent_front.storage + pi * parent_size + pj] += value;
-                        if pi != pj {
-                            self.fronts[parent_front.storage + pj * parent_size + pi] += value;
-                        }
+                for i in m..size {
+                    let source = front.storage + i * size + m;
+                    let target = parent_front.storage + (offset + i - m) * parent_size + offset;
+                    for d in 0..=i - m {
+                        let value = self.fronts[source + d];
+                        self.fronts[target + d] += value;
                     }
                 }
             }
@@ -255,32 +271,58 @@ impl SystemMatrix {
         Ok(())
     }
 
-    /// `x ← K_TT⁻¹ x` with the tree factors.
+    /// `x ← K_TT⁻¹ x` with the tree factors. A front's variables are two runs of x: its eliminated ones from
+    /// `start`, its parent's from `parent_start`; they are gathered into a small buffer, solved, scattered back.
     fn solve_tree(&self, topology: &Topology, x: &mut [f64]) {
+        let mut local = [0.0; MAX_FIXED_FRONT];
+        let gather = |front: &crate::mechanism::topology::Front, x: &[f64], local: &mut [f64]| {
+            let m = front.eliminated;
+            local[..m].copy_from_slice(&x[front.start..front.start + m]);
+            local[m..m + front.parent_size]
+                .copy_from_slice(&x[front.parent_start..front.parent_start + front.parent_size]);
+        };
+        let scatter = |front: &crate::mechanism::topology::Front, x: &mut [f64], local: &[f64]| {
+            let m = front.eliminated;
+            x[front.start..front.start + m].copy_from_slice(&local[..m]);
+            x[front.parent_start..front.parent_start + front.parent_size]
+                .copy_from_slice(&local[m..m + front.parent_size]);
+        };
+        let mut dynamic = Vec::new();
         for front in &topology.fronts {
-            let (size, f) = (front.size(), &self.fronts[front.storage..]);
-            for e in 0..front.eliminated {
-                let value = x[front.variables[e]];
-                for i in e + 1..size {
-                    x[front.variables[i]] -= f[i * size + e] * value;
-                }
-            }
+            let size = front.size();
+            let f = &self.fronts[front.storage..front.storage + size * size];
+            let buffer = if size <= MAX_FIXED_FRONT {
+                &mut local[..size]
+            } else {
+                dynamic.resize(size, 0.0);
+                &mut dynamic[..]
+            };
+            gather(front, x, buffer);
+            with_front_size!(size, N => forward::<N>(f, front.eliminated, buffer), {
+                forward_dynamic(f, size, front.eliminated, buffer)
+            });
+            scatter(front, x, buffer);
         }
         for front in &topology.fronts {
-            let (size, f) = (front.size(), &self.fronts[front.storage..]);
+            let size = front.size();
             for e in 0..front.eliminated {
-                x[front.variables[e]] /= f[e * size + e];
+                x[front.start + e] /= self.fronts[front.storage + e * size + e];
             }
         }
         for front in topology.fronts.iter().rev() {
-            let (size, f) = (front.size(), &self.fronts[front.storage..]);
-            for e in (0..front.eliminated).rev() {
-                let mut value = x[front.variables[e]];
-                for i in e + 1..size {
-                    value -= f[i * size + e] * x[front.variables[i]];
-                }
-                x[front.variables[e]] = value;
-            }
+            let size = front.size();
+            let f = &self.fronts[front.storage..front.storage + size * size];
+            let buffer = if size <= MAX_FIXED_FRONT {
+                &mut local[..size]
+            } else {
+                dynamic.resize(size, 0.0);
+                &mut dynamic[..]
+            };
+            gather(front, x, buffer);
+            with_front_size!(size, N => backward::<N>(f, front.eliminated, buffer), {
+                backward_dynamic(f, size, front.eliminated, buffer)
+            });
+            scatter(front, x, buffer);
         }
     }
 
@@ -387,6 +429,180 @@ impl SystemMatrix {
             }
         }
         Ok(())
+    }
+}
+
+/// Fronts up to this size are factored and solved by code specialised to their size (loops unrolled, no bounds
+/// checks): a chain of ball joints has fronts of 6, of hinges 10.
+const MAX_FIXED_FRONT: usize = 12;
+
+/// Runs `$fixed` with the const `$n` equal to `$size` when it is at most [`MAX_FIXED_FRONT`], else `$dynamic`.
+macro_rules! with_front_size {
+    ($size:expr, $n:ident => $fixed:expr, $dynamic:block) => {
+        match $size {
+            1 => {
+                const $n: usize = 1;
+                $fixed
+            }
+            2 => {
+                const $n: usize = 2;
+                $fixed
+            }
+            3 => {
+                const $n: usize = 3;
+                $fixed
+            }
+            4 => {
+                const $n: usize = 4;
+                $fixed
+            }
+            5 => {
+                const $n: usize = 5;
+                $fixed
+            }
+            6 => {
+                const $n: usize = 6;
+                $fixed
+            }
+            7 => {
+                const $n: usize = 7;
+                $fixed
+            }
+            8 => {
+                const $n: usize = 8;
+                $fixed
+            }
+            9 => {
+                const $n: usize = 9;
+                $fixed
+            }
+            10 => {
+                const $n: usize = 10;
+                $fixed
+            }
+            11 => {
+                const $n: usize = 11;
+                $fixed
+            }
+            12 => {
+                const $n: usize = 12;
+                $fixed
+            }
+            _ => $dynamic,
+        }
+    };
+}
+use with_front_size;
+
+/// A front's storage as an `N × N` array.
+fn square<const N: usize>(f: &mut [f64]) -> &mut [[f64; N]; N] {
+    let (rows, _) = f.as_chunks_mut::<N>();
+    (&mut rows[..N])
+        .try_into()
+        .expect("a front's storage holds N × N entries")
+}
+
+fn square_ref<const N: usize>(f: &[f64]) -> &[[f64; N]; N] {
+    let (rows, _) = f.as_chunks::<N>();
+    (&rows[..N]).try_into().expect("a front's storage holds N × N entries")
+}
+
+/// `L D Lᵀ` of a front's first `m` variables, right-looking on the lower triangle, leaving the Schur complement
+/// on the others in the trailing block. A pivot is checked against its own diagonal as assembled (the part of
+/// the variable the earlier ones do not explain: scale-free); a failure returns (variable, pivot, diagonal).
+fn factor_front<const N: usize>(f: &mut [f64], m: usize, tolerance: f64) -> Result<(), (usize, f64, f64)> {
+    let a = square::<N>(f);
+    let diagonal: [f64; N] = std::array::from_fn(|i| a[i][i]);
+    for e in 0..m.min(N) {
+        let pivot = a[e][e];
+        if !exceeds(pivot, tolerance * diagonal[e].max(f64::MIN_POSITIVE)) {
+            return Err((e, pivot, diagonal[e]));
+        }
+        let inverse = 1.0 / pivot;
+        let column: [f64; N] = std::array::from_fn(|i| a[i][e]);
+        for i in e + 1..N {
+            let l = column[i] * inverse;
+            for j in e + 1..=i {
+                a[i][j] -= l * column[j];
+            }
+            a[i][e] = l;
+        }
+    }
+    Ok(())
+}
+
+fn factor_dynamic(
+    f: &mut [f64],
+    size: usize,
+    m: usize,
+    tolerance: f64,
+    scratch: &mut Vec<f64>,
+) -> Result<(), (usize, f64, f64)> {
+    scratch.clear();
+    scratch.extend((0..size).map(|i| f[i * size + i]));
+    scratch.extend((0..size).map(|_| 0.0));
+    let (diagonal, column) = scratch.split_at_mut(size);
+    for e in 0..m {
+        let pivot = f[e * size + e];
+        if !exceeds(pivot, tolerance * diagonal[e].max(f64::MIN_POSITIVE)) {
+            return Err((e, pivot, diagonal[e]));
+        }
+        let inverse = 1.0 / pivot;
+        for (i, c) in column.iter_mut().enumerate().skip(e + 1) {
+            *c = f[i * size + e];
+        }
+        for i in e + 1..size {
+            let l = column[i] * inverse;
+            for (x, c) in f[i * size + e + 1..=i * size + i].iter_mut().zip(&column[e + 1..=i]) {
+                *x -= l * c;
+            }
+            f[i * size + e] = l;
+        }
+    }
+    Ok(())
+}
+
+/// `L y = x` over a front's eliminated variables, and the parent's part of x updated.
+fn forward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
+    let a = square_ref::<N>(f);
+    let x: &mut [f64; N] = x.try_into().expect("N values");
+    for e in 0..m.min(N) {
+        let value = x[e];
+        for i in e + 1..N {
+            x[i] -= a[i][e] * value;
+        }
+    }
+}
+
+fn forward_dynamic(f: &[f64], size: usize, m: usize, x: &mut [f64]) {
+    for e in 0..m {
+        let value = x[e];
+        for i in e + 1..size {
+            x[i] -= f[i * size + e] * value;
+        }
+    }
+}
+
+/// `Lᵀ x = y` over a front's eliminated variables, the parent's already solved.
+fn backward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
+    let a = square_ref::<N>(f);
+    let x: &mut [f64; N] = x.try_into().expect("N values");
+    for e in (0..m.min(N)).rev() {
+        let mut value = x[e];
+        for i in e + 1..N {
+            value -= a[i][e] * x[i];
+        }
+        x[e] = value;
+    }
+}
+
+fn backward_dynamic(f: &[f64], size: usize, m: usize, x: &mut [f64]) {
+    for e in (0..m).rev() {
+        let mut value = x[e];
+        for i in e + 1..size {
+            value -= f[i * size + e] * x[i];
+        }
+        x[e] = value;
     }
 }
 

@@ -54,22 +54,37 @@ pub(crate) enum Place {
     Loop { offset: usize },
 }
 
-/// A dense front: the tree joints eliminated at one vertex, then the vertex's parent joint.
+/// A dense front: the tree joints eliminated at one vertex, then the vertex's parent joint. Its variables are
+/// two contiguous runs of the tree vector: the eliminated joints' rows (`start..start + eliminated`, consecutive
+/// because they are numbered front by front), then the parent joint's (`parent_start..parent_start +
+/// parent_size`, eliminated by a later front, so at higher indices).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Front {
-    /// The tree-vector index of each front variable: the eliminated joints' rows first, then the parent's.
-    pub variables: Vec<usize>,
-    /// How many leading variables are eliminated here.
+    pub start: usize,
     pub eliminated: usize,
-    /// The front receiving this front's Schur complement (where the parent joint is eliminated).
-    pub parent: Option<usize>,
+    pub parent_start: usize,
+    pub parent_size: usize,
+    /// The front receiving this front's Schur complement (where the parent joint is eliminated), and the local
+    /// index of the parent joint's first variable there.
+    pub parent: Option<(usize, usize)>,
     /// Offset of this front's `n × n` matrix in the factor storage.
     pub storage: usize,
 }
 
 impl Front {
     pub fn size(&self) -> usize {
-        self.variables.len()
+        self.eliminated + self.parent_size
+    }
+
+    /// The local index of tree variable `variable` in this front, if it is one of the front's.
+    pub fn local(&self, variable: usize) -> Option<usize> {
+        if (self.start..self.start + self.eliminated).contains(&variable) {
+            Some(variable - self.start)
+        } else if (self.parent_start..self.parent_start + self.parent_size).contains(&variable) {
+            Some(self.eliminated + variable - self.parent_start)
+        } else {
+            None
+        }
     }
 }
 
@@ -176,20 +191,19 @@ impl Topology {
                 continue;
             }
             front_of_vertex[v] = Some(fronts.len());
-            let mut variables = Vec::new();
+            let start = tree_size;
             for &j in &children[v] {
-                let rank = joints[j].2;
                 slots[j] = Slot::Tree {
                     front: fronts.len(),
                     offset: tree_size,
                 };
-                variables.extend(tree_size..tree_size + rank);
-                tree_size += rank;
+                tree_size += joints[j].2;
             }
-            let eliminated = variables.len();
             fronts.push(Front {
-                variables,
-                eliminated,
+                start,
+                eliminated: tree_size - start,
+                parent_start: 0,
+                parent_size: 0,
                 parent: None,
                 storage: 0,
             });
@@ -202,8 +216,11 @@ impl Topology {
             let Slot::Tree { front, offset } = slots[j] else {
                 unreachable!("a parent joint is a tree joint");
             };
-            fronts[f].variables.extend(offset..offset + joints[j].2);
-            fronts[f].parent = Some(front);
+            let local = offset - fronts[front].start;
+            let entry = &mut fronts[f];
+            entry.parent_start = offset;
+            entry.parent_size = joints[j].2;
+            entry.parent = Some((front, local));
         }
         for front in &mut fronts {
             front.storage = storage;
@@ -222,11 +239,7 @@ impl Topology {
         let place = |j: usize, v: usize| match slots[j] {
             Slot::Tree { offset, .. } => {
                 let front = &fronts[front_of_vertex[v + 1].expect("a body with a tree joint has a front")];
-                let local = front
-                    .variables
-                    .iter()
-                    .position(|&x| x == offset)
-                    .expect("a body's tree joints are in its front");
+                let local = front.local(offset).expect("a body's tree joints are in its front");
                 Place::Front {
                     storage: front.storage,
                     size: front.size(),
