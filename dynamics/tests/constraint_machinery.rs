@@ -8,7 +8,7 @@ use dynamics::constraints::objects::cga_circle;
 use dynamics::constraints::paths::{moving_point, Fixed, FunctionPath, TranslatedPath};
 use dynamics::constraints::{
     linear, pinning, Composite, Constraint, ConstraintError, Kinematics, Path, PathPoint, Pinnable, PinningAlgebra,
-    RowBuffer, Stabilisation, VirtualPower,
+    RowBuffer, Stabilisation, VirtualPower, WrenchPoint,
 };
 use dynamics::exponential::exp;
 use dynamics::forces::force_line;
@@ -529,7 +529,7 @@ fn failures_name_the_constraint() {
 
     // User wrenches have no position residual: no projection.
     let wrench = force_line::<Pga>(Vector3::z(), Vector3::zeros());
-    let custom = VirtualPower::<Pga>::from_wrenches("custom", vec![Arc::new(move |_t| (wrench, wrench * 0.0))]);
+    let custom = VirtualPower::<Pga>::from_wrenches("custom", vec![Arc::new(move |_t| WrenchPoint::fixed(wrench))]);
     let refused = Mechanism::<Pga>::single(body())
         .with_constraint(custom)
         .unwrap()

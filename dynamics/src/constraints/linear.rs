@@ -62,6 +62,23 @@ pub fn point_on_plane<A: PinningAlgebra>(
     )
 }
 
+/// The body point `body_point` stays on the world line through `line_point` along `direction`: the point–line
+/// incidence is zero (SPEC §9 table: CGA `P ∧ L`, PGA `L × P`), rank 2, in either algebra.
+pub fn point_on_line<A: PinningAlgebra>(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    (line_point, direction): (Vector3<f64>, Vector3<f64>),
+) -> Pin<A, A::LineObject, A::LineIncidence> {
+    let point = A::point_object(body_point);
+    Pin::linear(
+        name,
+        LinearFunction::new(move |line| A::point_line_incidence(point, line)),
+        Arc::new(Fixed(A::line_object(line_point, direction))),
+        incidence_target(),
+        2,
+    )
+}
+
 /// CGA: the body point stays on the OPNS sphere (centre, radius): `P ∧ S = 0`, a 5-vector, rank 1 (SPEC §9).
 pub fn cga_point_on_sphere(
     name: impl Into<String>,

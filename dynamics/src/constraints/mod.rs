@@ -33,11 +33,11 @@ use std::sync::Arc;
 pub use kinematics::Kinematics;
 pub use linear::LinearFunction;
 pub use objects::{Coefficients, Pinnable, PinningAlgebra};
-pub use paths::{Path, PathPoint};
+pub use paths::{CarriedPath, FunctionPath, MotorPath, MotorPoint, Path, PathPoint, ScrewMotion};
 pub use pinning::Pin;
 pub use rows::{ConstraintRow, RowBuffer, MAX_ROWS};
 pub use stabilise::Stabilisation;
-pub use virtual_power::VirtualPower;
+pub use virtual_power::{VirtualPower, WrenchPath, WrenchPoint};
 
 use crate::algebra::Algebra;
 

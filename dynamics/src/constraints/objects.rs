@@ -110,6 +110,9 @@ pub trait PinningAlgebra: Algebra {
     type PlaneObject: Pinnable<Self>;
     /// The value of `P ∧ X` for a point P and a plane X: a pseudoscalar, zero iff P is on X.
     type Incidence: Coefficients;
+    /// The value of the incidence of a point and a line, zero iff the point is on the line (SPEC §9: CGA
+    /// `P ∧ L`, a 4-vector; PGA `L × P`, a trivector).
+    type LineIncidence: Coefficients;
 
     fn point_object(x: Vector3<f64>) -> Self::PointObject;
     /// The line through `point` along `direction`; with a unit direction it has unit weight.
@@ -118,6 +121,9 @@ pub trait PinningAlgebra: Algebra {
     fn plane_object(normal: Vector3<f64>, offset: f64) -> Self::PlaneObject;
     /// `P ∧ X` (SPEC §9 table: body point on plane).
     fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence;
+    /// The point–line incidence (SPEC §9 table: body point on line; §1.3: a PGA point X is on the line L iff
+    /// `L × X = 0`).
+    fn point_line_incidence(point: Self::PointObject, line: Self::LineObject) -> Self::LineIncidence;
 }
 
 impl PinningAlgebra for Pga {
@@ -125,6 +131,7 @@ impl PinningAlgebra for Pga {
     type LineObject = pga::generated::Line;
     type PlaneObject = pga::generated::Plane;
     type Incidence = pga::generated::Pseudoscalar;
+    type LineIncidence = pga::generated::Point;
 
     fn point_object(x: Vector3<f64>) -> Self::PointObject {
         Pga::point(x)
@@ -147,6 +154,11 @@ impl PinningAlgebra for Pga {
 
     fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence {
         point ^ plane
+    }
+
+    fn point_line_incidence(point: Self::PointObject, line: Self::LineObject) -> Self::LineIncidence {
+        use pga::generated::Commutator;
+        line.commutator(point)
     }
 }
 
@@ -194,6 +206,7 @@ impl PinningAlgebra for Cga {
     type LineObject = cga::generated::Trivector;
     type PlaneObject = cga::generated::Quadvector;
     type Incidence = cga::generated::Pseudoscalar;
+    type LineIncidence = cga::generated::Quadvector;
 
     fn point_object(x: Vector3<f64>) -> Self::PointObject {
         Cga::point(x)
@@ -209,5 +222,9 @@ impl PinningAlgebra for Cga {
 
     fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence {
         point ^ plane
+    }
+
+    fn point_line_incidence(point: Self::PointObject, line: Self::LineObject) -> Self::LineIncidence {
+        point ^ line
     }
 }

@@ -138,3 +138,88 @@ where
 {
     TranslatedPath::new(A::point_object(Vector3::zeros()), position)
 }
+
+/// A prescribed rigid motion at one time: the motor U (body → reference), its body-frame velocity ξ
+/// (`dU/dt = −½Uξ`, SPEC §3) and ξ̇.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotorPoint<A: Algebra> {
+    pub motor: A::Motor,
+    pub velocity: A::Screw,
+    pub acceleration: A::Screw,
+}
+
+/// A prescribed rigid motion U(t), for motor joints (a body's motor relative to its reference follows it).
+pub trait MotorPath<A: Algebra>: Send + Sync {
+    fn at(&self, t: f64) -> MotorPoint<A>;
+}
+
+impl<A: Algebra, F: Fn(f64) -> MotorPoint<A> + Send + Sync> MotorPath<A> for FunctionPath<F> {
+    fn at(&self, t: f64) -> MotorPoint<A> {
+        (self.0)(t)
+    }
+}
+
+/// `U(t) = U₀ exp(−½ θ(t) S)`: a screw motion by the parameter θ(t) (value, rate, acceleration) along the screw S
+/// (a body velocity: with S = l₃, θ turns the body about its z axis; with S = t₁, θ slides it along x), from the
+/// motor U₀. Its body velocity is `ξ = θ̇ S` (S commutes with exp(θS)), so `ξ̇ = θ̈ S`.
+pub struct ScrewMotion<A: Algebra, F> {
+    start: A::Motor,
+    screw: A::Screw,
+    parameter: F,
+}
+
+impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> ScrewMotion<A, F> {
+    pub fn new(start: A::Motor, screw: A::Screw, parameter: F) -> Self {
+        ScrewMotion {
+            start,
+            screw,
+            parameter,
+        }
+    }
+}
+
+impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> MotorPath<A> for ScrewMotion<A, F> {
+    fn at(&self, t: f64) -> MotorPoint<A> {
+        let theta = (self.parameter)(t);
+        MotorPoint {
+            motor: A::compose(
+                self.start,
+                crate::exponential::exp::<A>(self.screw * (-0.5 * theta.value)),
+            ),
+            velocity: self.screw * theta.rate,
+            acceleration: self.screw * theta.acceleration,
+        }
+    }
+}
+
+/// An object X of the body frame carried by a motor path: `V(t) = U X ~U`, and from
+/// `d/dt(R Y ~R) = R(Y × Ḃ + Ẏ)~R` (SPEC §5) applied twice, `V̇ = U(X × ξ)~U`,
+/// `V̈ = U((X × ξ) × ξ + X × ξ̇)~U`: the reference-frame path a motor joint pins the body's X to.
+pub struct CarriedPath<A: Algebra, X> {
+    object: X,
+    path: std::sync::Arc<dyn MotorPath<A>>,
+}
+
+impl<A: Algebra, X: Pinnable<A>> CarriedPath<A, X> {
+    pub fn new(object: X, path: std::sync::Arc<dyn MotorPath<A>>) -> Self {
+        CarriedPath { object, path }
+    }
+}
+
+impl<A: Algebra, X: Pinnable<A>> Path<X> for CarriedPath<A, X> {
+    fn at(&self, t: f64) -> PathPoint<X> {
+        let MotorPoint {
+            motor,
+            velocity,
+            acceleration,
+        } = self.path.at(t);
+        // X × ξ = −ξ × X.
+        let moved = X::screw_commutator(velocity, self.object) * -1.0;
+        let second = X::screw_commutator(velocity, moved) * -1.0 - X::screw_commutator(acceleration, self.object);
+        PathPoint {
+            value: self.object.transformed(motor),
+            rate: moved.transformed(motor),
+            acceleration: second.transformed(motor),
+        }
+    }
+}

@@ -23,7 +23,7 @@ use crate::cga::{generated as cga_types, Cga};
 use crate::constraints::kinematics::Kinematics;
 use crate::constraints::linear::LinearFunction;
 use crate::constraints::objects::{cga_circle, cga_sphere, Coefficients, Pinnable, PinningAlgebra};
-use crate::constraints::paths::{moving_point, Fixed, Path, PathPoint};
+use crate::constraints::paths::{moving_point, CarriedPath, Fixed, MotorPath, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 
@@ -225,6 +225,64 @@ pub fn hinge<A: PinningAlgebra>(
         Arc::new(point::<A>(format!("{name}: point"), body_point, world_point)),
     ];
     Ok(Composite::new(name, parts, 5))
+}
+
+/// A prismatic joint (slider): the body line through `body_point` along `body_axis` pinned to the world line through
+/// `world_point` along `world_axis` (a cylindrical joint), plus the body plane through the point with normal
+/// `body_normal` pinned to the world plane with normal `world_normal` (both normal to their axes, so the plane
+/// contains the line and blocks only the turn about it): the body slides along the axis without turning.
+/// Rank 5 (4 + 1).
+pub fn prismatic<A: PinningAlgebra>(
+    name: impl Into<String>,
+    (body_point, body_axis, body_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
+    (world_point, world_axis, world_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
+) -> Result<Composite<A>, ConstraintError> {
+    let name = name.into();
+    let unit = |what: &str, v: Vector3<f64>| {
+        v.try_normalize(0.0)
+            .filter(|u| u.iter().all(|c| c.is_finite()))
+            .ok_or_else(|| ConstraintError::InvalidParameter {
+                name: name.clone(),
+                reason: format!("{what} {v:?} has no direction"),
+            })
+    };
+    let (body_axis, world_axis) = (unit("body axis", body_axis)?, unit("world axis", world_axis)?);
+    let body_normal = unit("body normal", body_normal - body_axis * body_axis.dot(&body_normal))?;
+    let world_normal = unit(
+        "world normal",
+        world_normal - world_axis * world_axis.dot(&world_normal),
+    )?;
+    let parts: Vec<Arc<dyn Constraint<A>>> = vec![
+        Arc::new(line::<A>(
+            format!("{name}: line"),
+            (body_point, body_axis),
+            (world_point, world_axis),
+        )),
+        Arc::new(plane::<A>(
+            format!("{name}: plane"),
+            (body_normal, body_normal.dot(&body_point)),
+            (world_normal, world_normal.dot(&world_point)),
+        )),
+    ];
+    Ok(Composite::new(name, parts, 5))
+}
+
+/// A motor joint by pinning: the body's motor relative to the reference follows `path` (U(t), SPEC §8). The
+/// body's x and z axes (lines through its origin) are pinned to their images carried by the path
+/// ([`CarriedPath`]): two lines that meet fix all six degrees of freedom. Rank 6.
+pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: Arc<dyn MotorPath<A>>) -> Composite<A> {
+    let name = name.into();
+    let axis = |direction: Vector3<f64>| -> Arc<dyn Constraint<A>> {
+        let line = A::line_object(Vector3::zeros(), direction);
+        Arc::new(Pin::with_paths(
+            format!("{name}: line {direction:?}"),
+            Arc::new(Fixed(line)),
+            Arc::new(CarriedPath::new(line, path.clone())),
+            4,
+        ))
+    };
+    let parts = vec![axis(Vector3::x()), axis(Vector3::z())];
+    Composite::new(name, parts, 6)
 }
 
 /// A body point pinned to a world point moving along `pivot(t)` (value, velocity, acceleration): a driven

@@ -8,7 +8,7 @@
 //! `⟨Ḃ ∧ (Ḃ × T_bk)⟩_Π` vanishes identically because the Π-pairing is invariant under the commutator
 //! (`⟨X ∧ (Z×Y)⟩_Π = −⟨(Z×X) ∧ Y⟩_Π`, and `Ḃ × Ḃ = 0`), and `⟨Ḃ ∧ ~RṪR⟩_Π = ⟨Ḃ_w ∧ Ṫ⟩_Π` is evaluated in
 //! the world frame. The reaction is `F = Σλ_k T_bk` (d'Alembert, E6), which is exactly the kinetic-metric
-//! solution of [`crate::constraints::solve`] for these rows.
+//! solution of the reaction solve ([`crate::mechanism`]) for these rows.
 //!
 //! The wrenches are all *dual* lines `force_line(f, a) = f I₃ − (a∧f) I₃ N` — bivectors in both algebras —
 //! never the OPNS line `A∧V∧n∞` itself (E4). The catalogue places the forces at the constrained body point A
@@ -17,18 +17,21 @@
 //! Baumgarte's β term then apply to virtual power as well (SPEC §10 notes that the bare method has no
 //! position-level residual; [`VirtualPower::from_wrenches`] has none).
 //!
-//! A moving constraint (the sphere with centre c(t)) does work: its velocity condition is `P = s` with the
-//! prescribed power `s = (c − a)·ċ`.
+//! A moving constraint does work: its velocity condition is `P = s` with the prescribed power s of the driven
+//! motion — `(c − a)·ċ` for the sphere with centre c(t), `f·ṗ` for a force f at a pivot moving along p(t), the
+//! path's relative velocity for a motor joint (SPEC §14.1).
 
 use std::sync::Arc;
 
+use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::paths::{Fixed, FunctionPath, Path, PathPoint};
+use crate::constraints::paths::{Fixed, FunctionPath, MotorPath, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
+use crate::exponential::log;
 use crate::forces::{couple, force_line};
 
 /// One constraint wrench at one state.
@@ -46,31 +49,54 @@ pub struct ConstraintWrench<A: Algebra> {
     pub position_residual: Option<f64>,
 }
 
-/// A user wrench `t ↦ (T(t), Ṫ(t))` (world frame, independent of the state).
-pub type WrenchPath<A> = Arc<dyn Fn(f64) -> (<A as Algebra>::Screw, <A as Algebra>::Screw) + Send + Sync>;
+/// A user constraint wrench at one time (SPEC §6, §14.1): `T(t)` and `Ṫ(t)` in the reference frame (the world,
+/// or the reference body's frame for a joint), independent of the state, and the power `s(t)` the constrained
+/// motion must put through it: zero for a fixed constraint, the prescribed power of a driven one (a moving
+/// pivot's forces `f` have power `f·ṗ`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WrenchPoint<A: Algebra> {
+    pub wrench: A::Screw,
+    pub rate: A::Screw,
+    pub power: f64,
+    pub power_rate: f64,
+}
 
+impl<A: Algebra> WrenchPoint<A> {
+    /// A fixed wrench: no rate, no prescribed power.
+    pub fn fixed(wrench: A::Screw) -> Self {
+        let zero = A::screw(ScrewCoordinates::default());
+        WrenchPoint {
+            wrench,
+            rate: zero,
+            power: 0.0,
+            power_rate: 0.0,
+        }
+    }
+}
+
+/// A user wrench as a function of time.
+pub type WrenchPath<A> = Arc<dyn Fn(f64) -> WrenchPoint<A> + Send + Sync>;
+
+/// A body direction whose world (reference-frame) image d must stay normal to the world direction `normal`:
+/// residual `normal·d`, whose rate `normal·(ω⨯d) = ω·(d⨯normal)` is the power of the couple `d⨯normal`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Alignment {
+    body_direction: Vector3<f64>,
+    normal: Vector3<f64>,
+}
+
+// The point joints are the common case: boxing them would add an indirection to every evaluation.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone)]
 enum Wrenches<A: Algebra> {
-    /// Forces along e₁, e₂, e₃ at the body point; residual a − p(t). A moving pivot prescribes the power
-    /// `ṗₖ` of force k (the body point must move with it).
-    Ball {
+    /// Forces along the world directions `forces` at the body point, with residuals `f·(a − p(t))` (a moving
+    /// point p prescribes the power `f·ṗ`), and couples for the alignments: ball (3 forces), hinge (3 forces, 2
+    /// alignments), cylindrical (2 + 2), prismatic (2 + 3), planar (1 + 2), point on plane (1), point on line (2).
+    Point {
         body_point: Vector3<f64>,
-        pivot: Arc<dyn Path<Vector3<f64>>>,
-    },
-    /// The ball joint's three forces, or (`axial_force: false`) only the two normal to the axis, plus two
-    /// couples normal to the axis.
-    Axis {
-        body_point: Vector3<f64>,
-        world_point: Vector3<f64>,
-        body_axis: Vector3<f64>,
-        normals: [Vector3<f64>; 2],
-        axial_force: bool,
-    },
-    /// One force along the plane normal at the body point; residual n·a − δ.
-    Plane {
-        body_point: Vector3<f64>,
-        normal: Vector3<f64>,
-        offset: f64,
+        point: Arc<dyn Path<Vector3<f64>>>,
+        forces: ArrayVec<Vector3<f64>, 3>,
+        alignments: ArrayVec<Alignment, 3>,
     },
     /// One force from the body point towards the centre; residual ½(ρ² − |a − c|²).
     Sphere {
@@ -78,6 +104,8 @@ enum Wrenches<A: Algebra> {
         centre: Arc<dyn Path<Vector3<f64>>>,
         radius: f64,
     },
+    /// The six unit wrenches of the body frame, with the prescribed relative velocity of a motor path.
+    Motor(Arc<dyn MotorPath<A>>),
     /// User wrenches, no position residual.
     Custom(Vec<WrenchPath<A>>),
 }
@@ -115,16 +143,42 @@ fn normals_to(axis: Vector3<f64>) -> [Vector3<f64>; 2] {
     [first, axis.cross(&first)]
 }
 
+/// The coordinate axes e₁, e₂, e₃: the forces of a ball joint.
+fn coordinate_axes() -> ArrayVec<Vector3<f64>, 3> {
+    (0..3).map(|k| Vector3::ith(k, 1.0)).collect()
+}
+
 impl<A: Algebra> VirtualPower<A> {
-    /// Ball joint: the body point `body_point` (body coordinates) stays at `world_point`. Rank 3.
-    pub fn ball_joint(name: impl Into<String>, body_point: Vector3<f64>, world_point: Vector3<f64>) -> Self {
+    fn point_joint(
+        name: String,
+        body_point: Vector3<f64>,
+        point: Arc<dyn Path<Vector3<f64>>>,
+        forces: impl IntoIterator<Item = Vector3<f64>>,
+        alignments: impl IntoIterator<Item = (Vector3<f64>, Vector3<f64>)>,
+    ) -> Self {
         VirtualPower {
-            name: name.into(),
-            wrenches: Wrenches::Ball {
+            name,
+            wrenches: Wrenches::Point {
                 body_point,
-                pivot: Arc::new(Fixed(world_point)),
+                point,
+                forces: forces.into_iter().collect(),
+                alignments: alignments
+                    .into_iter()
+                    .map(|(body_direction, normal)| Alignment { body_direction, normal })
+                    .collect(),
             },
         }
+    }
+
+    /// Ball joint: the body point `body_point` (body coordinates) stays at `world_point`. Rank 3.
+    pub fn ball_joint(name: impl Into<String>, body_point: Vector3<f64>, world_point: Vector3<f64>) -> Self {
+        Self::point_joint(
+            name.into(),
+            body_point,
+            Arc::new(Fixed(world_point)),
+            coordinate_axes(),
+            [],
+        )
     }
 
     /// A driven ball joint: the body point stays at a pivot moving along `pivot(t)` (value, velocity,
@@ -134,13 +188,13 @@ impl<A: Algebra> VirtualPower<A> {
     where
         F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
     {
-        VirtualPower {
-            name: name.into(),
-            wrenches: Wrenches::Ball {
-                body_point,
-                pivot: Arc::new(FunctionPath(pivot)),
-            },
-        }
+        Self::point_joint(
+            name.into(),
+            body_point,
+            Arc::new(FunctionPath(pivot)),
+            coordinate_axes(),
+            [],
+        )
     }
 
     /// Hinge: a ball joint at the point plus two couples normal to the axis, so the body turns only about
@@ -150,7 +204,19 @@ impl<A: Algebra> VirtualPower<A> {
         (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
         (world_point, world_axis): (Vector3<f64>, Vector3<f64>),
     ) -> Result<Self, ConstraintError> {
-        Self::axis_joint(name.into(), (body_point, body_axis), (world_point, world_axis), true)
+        let name = name.into();
+        let (body_axis, world_axis) = (
+            unit(&name, "body axis", body_axis)?,
+            unit(&name, "world axis", world_axis)?,
+        );
+        let normals = normals_to(world_axis);
+        Ok(Self::point_joint(
+            name,
+            body_point,
+            Arc::new(Fixed(world_point)),
+            coordinate_axes(),
+            normals.map(|n| (body_axis, n)),
+        ))
     }
 
     /// Cylindrical joint: two forces normal to the axis at the body point plus two couples normal to the axis,
@@ -160,27 +226,76 @@ impl<A: Algebra> VirtualPower<A> {
         (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
         (world_point, world_axis): (Vector3<f64>, Vector3<f64>),
     ) -> Result<Self, ConstraintError> {
-        Self::axis_joint(name.into(), (body_point, body_axis), (world_point, world_axis), false)
+        let name = name.into();
+        let (body_axis, world_axis) = (
+            unit(&name, "body axis", body_axis)?,
+            unit(&name, "world axis", world_axis)?,
+        );
+        let normals = normals_to(world_axis);
+        Ok(Self::point_joint(
+            name,
+            body_point,
+            Arc::new(Fixed(world_point)),
+            normals,
+            normals.map(|n| (body_axis, n)),
+        ))
     }
 
-    fn axis_joint(
-        name: String,
-        (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
-        (world_point, world_axis): (Vector3<f64>, Vector3<f64>),
-        axial_force: bool,
+    /// Prismatic joint (slider): the body slides along the world axis without turning. The cylindrical joint's
+    /// two forces and two couples, plus a couple about the axis keeping the body direction `body_normal`
+    /// (normal to the body axis) along the world direction `world_normal` (normal to the world axis). Rank 5.
+    pub fn prismatic(
+        name: impl Into<String>,
+        (body_point, body_axis, body_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
+        (world_point, world_axis, world_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
     ) -> Result<Self, ConstraintError> {
-        let body_axis = unit(&name, "body axis", body_axis)?;
-        let world_axis = unit(&name, "world axis", world_axis)?;
-        Ok(VirtualPower {
+        let name = name.into();
+        let (body_axis, world_axis) = (
+            unit(&name, "body axis", body_axis)?,
+            unit(&name, "world axis", world_axis)?,
+        );
+        let body_normal = unit(
+            &name,
+            "body normal",
+            body_normal - body_axis * body_axis.dot(&body_normal),
+        )?;
+        let world_normal = unit(
+            &name,
+            "world normal",
+            world_normal - world_axis * world_axis.dot(&world_normal),
+        )?;
+        // The joint frame: the world normal and the axis's second normal; the body normal must not tilt
+        // towards the second.
+        let second = world_axis.cross(&world_normal);
+        Ok(Self::point_joint(
             name,
-            wrenches: Wrenches::Axis {
-                body_point,
-                world_point,
-                body_axis,
-                normals: normals_to(world_axis),
-                axial_force,
-            },
-        })
+            body_point,
+            Arc::new(Fixed(world_point)),
+            [world_normal, second],
+            [(body_axis, world_normal), (body_axis, second), (body_normal, second)],
+        ))
+    }
+
+    /// Planar joint: the body plane through `body_point` with normal `body_normal` stays on the world plane
+    /// through `world_point` with normal `world_normal`: a force along the normal and two couples keeping the
+    /// normals aligned. Rank 3.
+    pub fn planar(
+        name: impl Into<String>,
+        (body_point, body_normal): (Vector3<f64>, Vector3<f64>),
+        (world_point, world_normal): (Vector3<f64>, Vector3<f64>),
+    ) -> Result<Self, ConstraintError> {
+        let name = name.into();
+        let (body_normal, world_normal) = (
+            unit(&name, "body normal", body_normal)?,
+            unit(&name, "world normal", world_normal)?,
+        );
+        Ok(Self::point_joint(
+            name,
+            body_point,
+            Arc::new(Fixed(world_point)),
+            [world_normal],
+            normals_to(world_normal).map(|n| (body_normal, n)),
+        ))
     }
 
     /// The body point stays on the world plane `{x : normal·x = offset}`. Rank 1.
@@ -192,14 +307,38 @@ impl<A: Algebra> VirtualPower<A> {
         let name = name.into();
         let length = normal.norm();
         let normal = unit(&name, "plane normal", normal)?;
-        Ok(VirtualPower {
+        if !offset.is_finite() {
+            return Err(ConstraintError::InvalidParameter {
+                name,
+                reason: format!("plane offset {offset} is not finite"),
+            });
+        }
+        let on_plane = normal * (offset / length);
+        Ok(Self::point_joint(
             name,
-            wrenches: Wrenches::Plane {
-                body_point,
-                normal,
-                offset: offset / length,
-            },
-        })
+            body_point,
+            Arc::new(Fixed(on_plane)),
+            [normal],
+            [],
+        ))
+    }
+
+    /// The body point stays on the world line through `line_point` along `direction`: two forces normal to the
+    /// line. Rank 2.
+    pub fn point_on_line(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        (line_point, direction): (Vector3<f64>, Vector3<f64>),
+    ) -> Result<Self, ConstraintError> {
+        let name = name.into();
+        let direction = unit(&name, "line direction", direction)?;
+        Ok(Self::point_joint(
+            name,
+            body_point,
+            Arc::new(Fixed(line_point)),
+            normals_to(direction),
+            [],
+        ))
     }
 
     /// The body point stays on the sphere `|a − centre| = radius`. Rank 1.
@@ -249,8 +388,20 @@ impl<A: Algebra> VirtualPower<A> {
         Ok(Composite::new(name, vec![Arc::new(sphere), Arc::new(plane)], 2))
     }
 
-    /// The SPEC's general form: user wrenches `T_k(t)` with their derivatives, static in the body's state.
-    /// Rank = the number of wrenches (they must be independent). No position residual.
+    /// A motor joint: the body's motor relative to the reference follows `path` (U(t) with its body-frame
+    /// velocity ξ and ξ̇). The six unit wrenches of the body frame, each with the prescribed power of the
+    /// driven motion: velocity conditions `x = ξ(t)` on the relative body velocity x, position residuals the
+    /// coordinates of `−2 log(~U M)` (the screw that carries the path's motor U to the relative motor M for unit
+    /// time, zero on the path; its rate is `x − ξ` to first order). Rank 6.
+    pub fn motor_joint(name: impl Into<String>, path: Arc<dyn MotorPath<A>>) -> Self {
+        VirtualPower {
+            name: name.into(),
+            wrenches: Wrenches::Motor(path),
+        }
+    }
+
+    /// The SPEC's general form: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in
+    /// the body's state. Rank = the number of wrenches (they must be independent). No position residual.
     pub fn from_wrenches(name: impl Into<String>, wrenches: Vec<WrenchPath<A>>) -> Self {
         VirtualPower {
             name: name.into(),
@@ -260,72 +411,38 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// The constraint wrenches at this state, in row order.
     pub fn wrenches(&self, kinematics: &Kinematics<A>, mut emit: impl FnMut(ConstraintWrench<A>)) {
-        let force_at = |force: Vector3<f64>, point: Vector3<f64>, point_velocity: Vector3<f64>, residual| {
-            ConstraintWrench {
-                wrench: force_line::<A>(force, point),
-                // d/dt (f, a⨯f) with f constant.
-                rate: couple::<A>(point_velocity.cross(&force)),
-                prescribed_power: 0.0,
-                prescribed_power_rate: 0.0,
-                position_residual: Some(residual),
-            }
-        };
         match &self.wrenches {
-            Wrenches::Ball { body_point, pivot } => {
-                let a = kinematics.world_point(body_point);
-                let velocity = kinematics.world_point_velocity(body_point);
-                let p = pivot.at(kinematics.t);
-                for k in 0..3 {
-                    let direction = Vector3::ith(k, 1.0);
-                    emit(ConstraintWrench {
-                        prescribed_power: p.rate[k],
-                        prescribed_power_rate: p.acceleration[k],
-                        ..force_at(direction, a, velocity, a[k] - p.value[k])
-                    });
-                }
-            }
-            Wrenches::Axis {
+            Wrenches::Point {
                 body_point,
-                world_point,
-                body_axis,
-                normals,
-                axial_force,
+                point,
+                forces,
+                alignments,
             } => {
                 let a = kinematics.world_point(body_point);
                 let velocity = kinematics.world_point_velocity(body_point);
-                if *axial_force {
-                    for k in 0..3 {
-                        let direction = Vector3::ith(k, 1.0);
-                        emit(force_at(direction, a, velocity, a[k] - world_point[k]));
-                    }
-                } else {
-                    for normal in normals {
-                        emit(force_at(*normal, a, velocity, normal.dot(&(a - world_point))));
-                    }
-                }
-                // The world image b of the body axis should stay along the world axis: residuals wⱼ·b for the
-                // two world normals wⱼ. Their rates wⱼ·(ω⨯b) = ω·(b⨯wⱼ) are the powers of the couples b⨯wⱼ
-                // (= the SPEC's couples normal to the axis when b is on the axis).
-                let b = kinematics.world_direction(body_axis);
-                let b_rate = kinematics.angular_velocity.cross(&b);
-                for normal in normals {
+                let p = point.at(kinematics.t);
+                let offset = a - p.value;
+                for force in forces {
                     emit(ConstraintWrench {
-                        wrench: couple::<A>(b.cross(normal)),
-                        rate: couple::<A>(b_rate.cross(normal)),
+                        wrench: force_line::<A>(*force, a),
+                        // d/dt (f, a⨯f) with f constant.
+                        rate: couple::<A>(velocity.cross(force)),
+                        prescribed_power: force.dot(&p.rate),
+                        prescribed_power_rate: force.dot(&p.acceleration),
+                        position_residual: Some(force.dot(&offset)),
+                    });
+                }
+                for alignment in alignments {
+                    let d = kinematics.world_direction(&alignment.body_direction);
+                    let d_rate = kinematics.angular_velocity.cross(&d);
+                    emit(ConstraintWrench {
+                        wrench: couple::<A>(d.cross(&alignment.normal)),
+                        rate: couple::<A>(d_rate.cross(&alignment.normal)),
                         prescribed_power: 0.0,
                         prescribed_power_rate: 0.0,
-                        position_residual: Some(normal.dot(&b)),
+                        position_residual: Some(alignment.normal.dot(&d)),
                     });
                 }
-            }
-            Wrenches::Plane {
-                body_point,
-                normal,
-                offset,
-            } => {
-                let a = kinematics.world_point(body_point);
-                let velocity = kinematics.world_point_velocity(body_point);
-                emit(force_at(*normal, a, velocity, normal.dot(&a) - offset));
             }
             Wrenches::Sphere {
                 body_point,
@@ -353,14 +470,42 @@ impl<A: Algebra> VirtualPower<A> {
                     position_residual: Some(0.5 * (radius * radius - inward.norm_squared())),
                 });
             }
+            Wrenches::Motor(path) => {
+                let prescribed = path.at(kinematics.t);
+                let error = A::screw_coordinates(log::<A>(A::compose(A::reverse(prescribed.motor), kinematics.motor)));
+                let (xi, xi_rate) = (
+                    A::screw_coordinates(prescribed.velocity),
+                    A::screw_coordinates(prescribed.acceleration),
+                );
+                // Unit wrench k of the body frame, in (τ; f) order: couples about the body axes, then forces along
+                // them through the body origin; its world view R T_b ~R has rate R(T_b × Ḃ)~R.
+                for k in 0..6 {
+                    let mut unit = ScrewCoordinates::default();
+                    let (power, power_rate, residual) = if k < 3 {
+                        unit.t[k] = 1.0;
+                        (xi.l[k], xi_rate.l[k], -2.0 * error.l[k])
+                    } else {
+                        unit.l[k - 3] = 1.0;
+                        (xi.t[k - 3], xi_rate.t[k - 3], -2.0 * error.t[k - 3])
+                    };
+                    let body = A::screw(unit);
+                    emit(ConstraintWrench {
+                        wrench: kinematics.to_world(body),
+                        rate: kinematics.to_world(A::commutator(body, kinematics.body_velocity)),
+                        prescribed_power: power,
+                        prescribed_power_rate: power_rate,
+                        position_residual: Some(residual),
+                    });
+                }
+            }
             Wrenches::Custom(wrenches) => {
                 for wrench in wrenches {
-                    let (wrench, rate) = wrench(kinematics.t);
+                    let point = wrench(kinematics.t);
                     emit(ConstraintWrench {
-                        wrench,
-                        rate,
-                        prescribed_power: 0.0,
-                        prescribed_power_rate: 0.0,
+                        wrench: point.wrench,
+                        rate: point.rate,
+                        prescribed_power: point.power,
+                        prescribed_power_rate: point.power_rate,
                         position_residual: None,
                     });
                 }
@@ -380,15 +525,9 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
 
     fn row_count(&self) -> usize {
         match &self.wrenches {
-            Wrenches::Ball { .. } => 3,
-            Wrenches::Axis { axial_force, .. } => {
-                if *axial_force {
-                    5
-                } else {
-                    4
-                }
-            }
-            Wrenches::Plane { .. } | Wrenches::Sphere { .. } => 1,
+            Wrenches::Point { forces, alignments, .. } => forces.len() + alignments.len(),
+            Wrenches::Sphere { .. } => 1,
+            Wrenches::Motor(_) => 6,
             Wrenches::Custom(wrenches) => wrenches.len(),
         }
     }
