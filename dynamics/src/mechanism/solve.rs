@@ -11,23 +11,23 @@
 //!   joint whose own rows are dependent: an error naming it.
 //! * **Loop joints** enter through their Schur complement `S = K_LL − K_LT K_TT⁻¹ K_TL` (`k × k` for k loop
 //!   rows; O(N·k) to form). A closed loop's rows may be redundant — a planar four-bar's 20 hinge rows have
-//!   rank 17 — so S is singular: it is scaled by the loop rows' own size (`K_LL`'s diagonal) and eigen-decomposed
-//!   (Jacobi), eigenvalues below [`SolverSettings::rank_tolerance`]² of the largest are dropped, and the loop multipliers are the
-//!   solution within the kept eigenspace. The multipliers are then not unique, but the reactions `Jᵀλ` are. A
-//!   right-hand side outside the kept range (the joints demand contradictory accelerations) is an error
-//!   naming the loop's joints.
+//!   rank 17 — so S is singular: it is scaled by the loop rows' own size (`K_LL`'s diagonal) and factored
+//!   `L D Lᵀ` with diagonal pivoting (rank-revealing for a positive semi-definite matrix), stopping at pivots below
+//!   [`SolverSettings::rank_tolerance`]² of the largest diagonal; the redundant rows' multipliers are zero. The
+//!   multipliers are then not unique, but the reactions `Jᵀλ` are. A right-hand side outside the kept range (the
+//!   joints demand contradictory accelerations) is an error naming the loop's joints.
 
 use arrayvec::ArrayVec;
 
-use crate::mechanism::topology::{Place, Side, Topology};
+use crate::mechanism::topology::{Front, Place, Side, Topology};
 
 /// Thresholds of the reaction solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolverSettings {
     /// A joint's rows (or a tree pivot) are rank deficient, and loop rows redundant, when their singular value
     /// is below this fraction of the largest (pivots and eigenvalues scale like squared singular values, so
-    /// they are compared with its square). Eigenvalues of normal matrices resolve singular value ratios down
-    /// to ~1e-7, hence 1e-6.
+    /// they are compared with its square). Pivots and eigenvalues of normal matrices resolve singular value
+    /// ratios down to ~1e-7, hence 1e-6.
     pub rank_tolerance: f64,
     /// The acceleration conditions are inconsistent when the solve leaves a residual above this fraction of the
     /// right-hand side (and above round-off, [`ROUND_OFF`]). Off the manifold, incidence constraints are
@@ -102,15 +102,14 @@ pub(crate) struct SystemMatrix {
     tree_loop: Vec<f64>,
     /// `X = K_TT⁻¹ K_TL`, same layout.
     coupling: Vec<f64>,
-    /// `K_LL` (column-major), then the eigenvectors of the scaled Schur complement (columns).
+    /// `K_LL` (column-major, full), then the pivoted `L D Lᵀ` factors of the scaled Schur complement: L below the
+    /// diagonal of the first `loop_rank` columns, D on it, in pivot order.
     loops: Vec<f64>,
-    /// The scaled Schur complement's eigenvalues, and its scaling `1/√(K_LL)_ii`.
-    eigenvalues: Vec<f64>,
+    /// The scaling `1/√(K_LL)_ii` of each loop row.
     scaling: Vec<f64>,
-    /// Eigenvalues at or below this are dropped (redundant loop rows).
-    threshold: f64,
-    /// The Jacobi iteration's working copy of the Schur complement.
-    loop_work: Vec<f64>,
+    /// The loop rows in pivot order, and how many were kept (the rest are redundant).
+    permutation: Vec<usize>,
+    loop_rank: usize,
     /// Scratch of the factorisation of fronts too large for the specialised code.
     column: Vec<f64>,
     loop_scratch: Vec<f64>,
@@ -141,10 +140,9 @@ impl SystemMatrix {
             tree_loop: vec![0.0; n * k],
             coupling: vec![0.0; n * k],
             loops: vec![0.0; k * k],
-            eigenvalues: vec![0.0; k],
             scaling: vec![0.0; k],
-            threshold: 0.0,
-            loop_work: vec![0.0; k * k],
+            permutation: (0..k).collect(),
+            loop_rank: 0,
             column: Vec::new(),
             loop_scratch: vec![0.0; k],
         }
@@ -235,8 +233,8 @@ impl SystemMatrix {
         }
     }
 
-    /// Factors the tree part front by front and, if there are loop joints, eigen-decomposes their scaled Schur
-    /// complement.
+    /// Factors the tree part front by front and, if there are loop joints, their scaled Schur complement by a
+    /// pivoted `L D Lᵀ`.
     pub fn factor(&mut self, topology: &Topology, settings: &SolverSettings) -> Result<(), SolveFailure> {
         let tolerance = settings.rank_tolerance * settings.rank_tolerance;
         for front in &topology.fronts {
@@ -271,37 +269,36 @@ impl SystemMatrix {
         Ok(())
     }
 
-    /// `x ← K_TT⁻¹ x` with the tree factors. A front's variables are two runs of x: its eliminated ones from
-    /// `start`, its parent's from `parent_start`; they are gathered into a small buffer, solved, scattered back.
+    /// `x ← K_TT⁻¹ x` with the tree factors. A front's variables are two runs of x, its eliminated ones from
+    /// `start` and its parent's from `parent_start`: adjacent in a chain (solved in place), otherwise gathered into
+    /// a small buffer and scattered back.
     fn solve_tree(&self, topology: &Topology, x: &mut [f64]) {
         let mut local = [0.0; MAX_FIXED_FRONT];
-        let gather = |front: &crate::mechanism::topology::Front, x: &[f64], local: &mut [f64]| {
-            let m = front.eliminated;
-            local[..m].copy_from_slice(&x[front.start..front.start + m]);
-            local[m..m + front.parent_size]
-                .copy_from_slice(&x[front.parent_start..front.parent_start + front.parent_size]);
-        };
-        let scatter = |front: &crate::mechanism::topology::Front, x: &mut [f64], local: &[f64]| {
-            let m = front.eliminated;
-            x[front.start..front.start + m].copy_from_slice(&local[..m]);
-            x[front.parent_start..front.parent_start + front.parent_size]
-                .copy_from_slice(&local[m..m + front.parent_size]);
-        };
         let mut dynamic = Vec::new();
-        for front in &topology.fronts {
-            let size = front.size();
+        let mut each = |x: &mut [f64], front: &Front, pass: &FrontPass| {
+            let (size, m) = (front.size(), front.eliminated);
             let f = &self.fronts[front.storage..front.storage + size * size];
+            if front.parent_size == 0 || front.parent_start == front.start + m {
+                pass(f, size, m, &mut x[front.start..front.start + size]);
+                return;
+            }
             let buffer = if size <= MAX_FIXED_FRONT {
                 &mut local[..size]
             } else {
                 dynamic.resize(size, 0.0);
                 &mut dynamic[..]
             };
-            gather(front, x, buffer);
-            with_front_size!(size, N => forward::<N>(f, front.eliminated, buffer), {
-                forward_dynamic(f, size, front.eliminated, buffer)
-            });
-            scatter(front, x, buffer);
+            let parent = front.parent_start..front.parent_start + front.parent_size;
+            buffer[..m].copy_from_slice(&x[front.start..front.start + m]);
+            buffer[m..].copy_from_slice(&x[parent.clone()]);
+            pass(f, size, m, buffer);
+            x[front.start..front.start + m].copy_from_slice(&buffer[..m]);
+            x[parent].copy_from_slice(&buffer[m..]);
+        };
+        let forward_pass = |f: &[f64], size: usize, m: usize, x: &mut [f64]| with_front_size!(size, N => forward::<N>(f, m, x), { forward_dynamic(f, size, m, x) });
+        let backward_pass = |f: &[f64], size: usize, m: usize, x: &mut [f64]| with_front_size!(size, N => backward::<N>(f, m, x), { backward_dynamic(f, size, m, x) });
+        for front in &topology.fronts {
+            each(x, front, &forward_pass);
         }
         for front in &topology.fronts {
             let size = front.size();
@@ -310,23 +307,12 @@ impl SystemMatrix {
             }
         }
         for front in topology.fronts.iter().rev() {
-            let size = front.size();
-            let f = &self.fronts[front.storage..front.storage + size * size];
-            let buffer = if size <= MAX_FIXED_FRONT {
-                &mut local[..size]
-            } else {
-                dynamic.resize(size, 0.0);
-                &mut dynamic[..]
-            };
-            gather(front, x, buffer);
-            with_front_size!(size, N => backward::<N>(f, front.eliminated, buffer), {
-                backward_dynamic(f, size, front.eliminated, buffer)
-            });
-            scatter(front, x, buffer);
+            each(x, front, &backward_pass);
         }
     }
 
-    /// `X = K_TT⁻¹ K_TL`, `S = K_LL − K_LT X`, scaled by `K_LL`'s diagonal and eigen-decomposed.
+    /// `X = K_TT⁻¹ K_TL`, `S = K_LL − K_LT X`, scaled by `K_LL`'s diagonal and factored by
+    /// pivoted `L D Lᵀ`, which finds its rank.
     fn factor_loops(&mut self, topology: &Topology, settings: &SolverSettings) {
         let (n, k) = (topology.tree_size, topology.loop_size);
         // A loop joint closes a cycle of tree joints, so there are tree variables whenever there are loop ones.
@@ -357,14 +343,48 @@ impl SystemMatrix {
                 self.loops[j * k + i] *= self.scaling[i] * self.scaling[j];
             }
         }
-        symmetric_eigen(&mut self.loops, &mut self.eigenvalues, &mut self.loop_work, k);
-        let largest = self.eigenvalues.iter().copied().fold(0.0, f64::max);
-        self.threshold = settings.rank_tolerance * settings.rank_tolerance * largest;
+        // L D Lᵀ with diagonal pivoting (the largest remaining pivot first: rank-revealing for a positive
+        // semi-definite matrix), stopping at the first pivot below rank_tolerance² of the largest diagonal.
+        let a = &mut self.loops;
+        let largest = (0..k).map(|i| a[i * k + i]).fold(0.0, f64::max);
+        let threshold = settings.rank_tolerance * settings.rank_tolerance * largest;
+        self.permutation.iter_mut().enumerate().for_each(|(i, p)| *p = i);
+        self.loop_rank = 0;
+        for s in 0..k {
+            let pivot = (s..k)
+                .max_by(|&x, &y| a[x * k + x].total_cmp(&a[y * k + y]))
+                .unwrap_or(s);
+            if !exceeds(a[pivot * k + pivot], threshold) {
+                break;
+            }
+            if pivot != s {
+                // The symmetric swap of rows and columns s and pivot.
+                for c in 0..k {
+                    a.swap(c * k + s, c * k + pivot);
+                }
+                for r in 0..k {
+                    a.swap(s * k + r, pivot * k + r);
+                }
+                self.permutation.swap(s, pivot);
+            }
+            let d = a[s * k + s];
+            for j in s + 1..k {
+                let l = a[s * k + j] / d;
+                for i in s + 1..k {
+                    a[j * k + i] -= l * a[s * k + i];
+                }
+            }
+            for i in s + 1..k {
+                a[s * k + i] /= d;
+                a[i * k + s] = a[s * k + i];
+            }
+            self.loop_rank += 1;
+        }
     }
 
     /// Solves `K λ = rhs` in place: `tree` (tree multipliers, in tree-vector order) and `loops`. With loop
-    /// joints, the loop multipliers are those within the kept eigenspace of the Schur complement, checked for
-    /// consistency.
+    /// joints, the loop multipliers are those of the kept (pivoted) rows of the Schur complement, the redundant
+    /// rows' multipliers zero, checked for consistency.
     pub fn solve(
         &mut self,
         topology: &Topology,
@@ -385,24 +405,21 @@ impl SystemMatrix {
             subtracted += coupling * coupling + *value * *value;
             *value = (*value - coupling) * self.scaling[i];
         }
-        // λ' = Σ_kept v (v·rhs') / μ; the residual is what the dropped directions leave.
+        // The pivoted L D Lᵀ solve on the kept rows; after the forward pass the redundant rows hold what the kept
+        // ones do not explain (zero for consistent conditions), and their multipliers are zero.
         let rhs_squared: f64 = loops.iter().map(|x| x * x).sum();
-        let scratch = &mut self.loop_scratch;
-        scratch.fill(0.0);
-        let mut explained = 0.0;
-        for e in 0..k {
-            let mu = self.eigenvalues[e];
-            if mu <= self.threshold {
-                continue;
-            }
-            let vector = &self.loops[e * k..(e + 1) * k];
-            let component: f64 = vector.iter().zip(loops.iter()).map(|(v, r)| v * r).sum();
-            explained += component * component;
-            for (s, v) in scratch.iter_mut().zip(vector) {
-                *s += v * (component / mu);
+        let (rank, a) = (self.loop_rank, &self.loops);
+        let c = &mut self.loop_scratch;
+        for (slot, &row) in c.iter_mut().zip(&self.permutation) {
+            *slot = loops[row];
+        }
+        for s in 0..rank {
+            let value = c[s];
+            for i in s + 1..k {
+                c[i] -= a[s * k + i] * value;
             }
         }
-        let residual_squared = (rhs_squared - explained).max(0.0);
+        let residual_squared: f64 = c[rank..].iter().map(|x| x * x).sum();
         let scale = match consistency {
             Consistency::Check { scale } => Consistency::Check {
                 scale: scale.max(subtracted.sqrt()),
@@ -410,17 +427,28 @@ impl SystemMatrix {
             Consistency::Skip => Consistency::Skip,
         };
         if scale.violated(residual_squared, rhs_squared, settings) {
-            // Name the loop joint whose rows carry most of the unexplained part.
-            let joint = (0..k)
-                .max_by(|&a, &b| loops[a].abs().total_cmp(&loops[b].abs()))
-                .map_or(0, |i| topology.loop_owner[i]);
+            // Name the loop joint whose redundant row is furthest from consistent.
+            let joint = (rank..k)
+                .max_by(|&x, &y| c[x].abs().total_cmp(&c[y].abs()))
+                .map_or(0, |i| topology.loop_owner[self.permutation[i]]);
             return Err(SolveFailure::Inconsistent {
                 joint,
                 relative_residual: (residual_squared / rhs_squared).sqrt(),
             });
         }
-        for (i, value) in loops.iter_mut().enumerate() {
-            *value = scratch[i] * self.scaling[i];
+        for s in 0..rank {
+            c[s] /= a[s * k + s];
+        }
+        for s in (0..rank).rev() {
+            let mut value = c[s];
+            for i in s + 1..rank {
+                value -= a[s * k + i] * c[i];
+            }
+            c[s] = value;
+        }
+        c[rank..].fill(0.0);
+        for (s, &row) in self.permutation.iter().enumerate() {
+            loops[row] = c[s] * self.scaling[row];
         }
         // λ_T = K_TT⁻¹ rhs_T − X λ_L.
         for (column, &lambda) in loops.iter().enumerate() {
@@ -435,6 +463,9 @@ impl SystemMatrix {
 /// Fronts up to this size are factored and solved by code specialised to their size (loops unrolled, no bounds
 /// checks): a chain of ball joints has fronts of 6, of hinges 10.
 const MAX_FIXED_FRONT: usize = 12;
+
+/// One pass (forward or backward) over a front's factor: `(factor, size, eliminated, variables)`.
+type FrontPass = dyn Fn(&[f64], usize, usize, &mut [f64]);
 
 /// Runs `$fixed` with the const `$n` equal to `$size` when it is at most [`MAX_FIXED_FRONT`], else `$dynamic`.
 macro_rules! with_front_size {

@@ -185,9 +185,9 @@ impl Topology {
         // First pass: offsets of the eliminated joints, front by front.
         let elimination: Vec<usize> = order.iter().rev().copied().collect();
         for &v in &elimination {
-            // A vertex gets a front if it eliminates joints, or if it is a body with a parent joint (its own
-            // contribution to that joint's block passes through it).
-            if children[v].is_empty() && (v == 0 || parent_joint[v].is_none()) {
+            // A vertex gets a front if it eliminates joints. A leaf body's only tree joint is its parent joint,
+            // whose block it adds straight into the front that eliminates that joint.
+            if children[v].is_empty() {
                 continue;
             }
             front_of_vertex[v] = Some(fronts.len());
@@ -237,8 +237,10 @@ impl Topology {
         }
 
         let place = |j: usize, v: usize| match slots[j] {
-            Slot::Tree { offset, .. } => {
-                let front = &fronts[front_of_vertex[v + 1].expect("a body with a tree joint has a front")];
+            Slot::Tree { offset, front } => {
+                // In the body's own front, or for a leaf body (no front) in the front that eliminates its parent
+                // joint.
+                let front = &fronts[front_of_vertex[v + 1].unwrap_or(front)];
                 let local = front.local(offset).expect("a body's tree joints are in its front");
                 Place::Front {
                     storage: front.storage,
@@ -334,9 +336,9 @@ mod tests {
         let topology = Topology::new(3, &joints);
         assert_eq!(topology.loop_size, 0);
         assert_eq!(topology.tree_size, 9);
-        // Fronts: b2 (parent joint 2 only), b1 (eliminates 2, parent 1), b0 (eliminates 1, parent 0), world.
+        // Fronts: b1 (eliminates 2, parent 1), b0 (eliminates 1, parent 0), world; the leaf b2 has none.
         let sizes: Vec<(usize, usize)> = topology.fronts.iter().map(|f| (f.eliminated, f.size())).collect();
-        assert_eq!(sizes, [(0, 3), (3, 6), (3, 6), (3, 3)]);
+        assert_eq!(sizes, [(3, 6), (3, 6), (3, 3)]);
         assert!(topology.cycles.iter().all(Vec::is_empty));
     }
 
@@ -361,8 +363,8 @@ mod tests {
     fn two_joints_between_the_same_bodies_make_a_loop() {
         let joints = [(0, None, 3), (0, None, 2)];
         let topology = Topology::new(1, &joints);
-        // The body's front (its parent joint's contribution) is front 0, the world's (which eliminates it) 1.
-        assert_eq!(topology.slots[0], Slot::Tree { front: 1, offset: 0 });
+        // The body is a leaf: only the world's front, which eliminates its joint.
+        assert_eq!(topology.slots[0], Slot::Tree { front: 0, offset: 0 });
         assert_eq!(topology.slots[1], Slot::Loop { offset: 0 });
         assert_eq!(topology.cycles[1], vec![0]);
     }
