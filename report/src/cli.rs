@@ -10,8 +10,9 @@ use reference::SceneId;
 use serde::Deserialize;
 
 use crate::job::run_job;
+use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
 use crate::scene_job::run_scene_file;
-use crate::sweep::SweepPlan;
+use crate::sweep::{SweepPlan, DEFAULT_STEPS};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SceneName {
@@ -21,17 +22,32 @@ pub enum SceneName {
     TopSteady,
     RodOnSphere,
     RodOnCircle,
+    /// M1 of MULTIBODY.md.
+    DoublePendulum,
+    /// M2 of MULTIBODY.md.
+    FourBar,
+    /// M3 of MULTIBODY.md: cost against N, and 64 links over 10 s.
+    Chain,
 }
 
-impl From<SceneName> for SceneId {
-    fn from(name: SceneName) -> SceneId {
-        match name {
-            SceneName::Cuboid => SceneId::Cuboid,
-            SceneName::Pendulum => SceneId::Pendulum,
-            SceneName::TopCusp => SceneId::TopCusp,
-            SceneName::TopSteady => SceneId::TopSteady,
-            SceneName::RodOnSphere => SceneId::RodOnSphere,
-            SceneName::RodOnCircle => SceneId::RodOnCircle,
+/// A scene name is a single-body scene of the reference set or a mechanism.
+enum Named {
+    SingleBody(SceneId),
+    Mechanism(MechanismKind),
+}
+
+impl SceneName {
+    fn named(self) -> Named {
+        match self {
+            SceneName::Cuboid => Named::SingleBody(SceneId::Cuboid),
+            SceneName::Pendulum => Named::SingleBody(SceneId::Pendulum),
+            SceneName::TopCusp => Named::SingleBody(SceneId::TopCusp),
+            SceneName::TopSteady => Named::SingleBody(SceneId::TopSteady),
+            SceneName::RodOnSphere => Named::SingleBody(SceneId::RodOnSphere),
+            SceneName::RodOnCircle => Named::SingleBody(SceneId::RodOnCircle),
+            SceneName::DoublePendulum => Named::Mechanism(MechanismKind::DoublePendulum),
+            SceneName::FourBar => Named::Mechanism(MechanismKind::FourBar),
+            SceneName::Chain => Named::Mechanism(MechanismKind::Chain),
         }
     }
 }
@@ -91,14 +107,15 @@ impl From<StabilisationName> for Stabilisation {
 #[derive(Debug, Parser)]
 #[command(version, about)]
 pub struct Options {
-    /// Scenes to run (default: all).
+    /// Scenes to run (default: all): the single-body scenes and the mechanisms.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub scenes: Vec<SceneName>,
     /// Integrators (default: all; splittings run on the free body only).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub integrators: Vec<IntegratorName>,
-    /// Step sizes in seconds; each must divide the 0.01 s sample interval.
-    #[arg(long, value_delimiter = ',', default_values_t = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4])]
+    /// Step sizes in seconds; each must divide the 0.01 s sample interval (default: 1e-2, 5e-3, 2e-3, 1e-3,
+    /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4).
+    #[arg(long, value_delimiter = ',')]
     pub steps: Vec<f64>,
     /// Simulated time in seconds for every scene (default: each scene's T from SCENES.md).
     #[arg(long)]
@@ -122,25 +139,43 @@ pub struct Options {
 }
 
 impl Options {
-    /// The sweep these options describe.
-    pub fn plan(&self) -> SweepPlan {
-        let scenes = if self.scenes.is_empty() {
-            SceneId::ALL.to_vec()
-        } else {
-            self.scenes.iter().map(|&s| s.into()).collect()
+    /// The sweep these options describe: the single-body scenes, and the mechanisms.
+    pub fn plan(&self) -> (SweepPlan, MechanismPlan) {
+        let (mut scenes, mut mechanisms) = (Vec::new(), Vec::new());
+        for name in &self.scenes {
+            match name.named() {
+                Named::SingleBody(scene) => scenes.push(scene),
+                Named::Mechanism(kind) => mechanisms.push(kind),
+            }
+        }
+        if self.scenes.is_empty() {
+            scenes = SceneId::ALL.to_vec();
+            mechanisms = MechanismKind::ALL.to_vec();
+        }
+        let steps = |default: &[f64]| {
+            if self.steps.is_empty() {
+                default.to_vec()
+            } else {
+                self.steps.clone()
+            }
         };
         let integrators = if self.integrators.is_empty() {
             crate::sweep::default_integrators()
         } else {
             self.integrators.iter().map(|&i| i.into()).collect()
         };
-        SweepPlan {
+        let plan = SweepPlan {
             scenes,
             integrators,
-            steps: self.steps.clone(),
+            steps: steps(&DEFAULT_STEPS),
             duration: self.duration,
             stabilisation: self.stabilisation.into(),
-        }
+        };
+        let mechanisms = MechanismPlan {
+            mechanisms,
+            steps: steps(&mechanism_sweep::DEFAULT_STEPS),
+        };
+        (plan, mechanisms)
     }
 }
 
@@ -158,11 +193,12 @@ pub fn main() -> ExitCode {
     }
     let started = std::time::Instant::now();
     let output = options.output.clone().unwrap_or_else(|| PathBuf::from("out"));
-    match run_job(&options.plan(), &output, !options.quiet) {
+    let (plan, mechanisms) = options.plan();
+    match run_job(&plan, &mechanisms, &output, !options.quiet) {
         Ok(summary) => {
             println!(
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",
-                summary.results.len(),
+                summary.results.len() + summary.mechanisms.len(),
                 started.elapsed().as_secs_f64(),
                 summary.failures,
                 summary.output.join("report.md").display()

@@ -11,6 +11,8 @@ use reference::SceneId;
 use crate::csv;
 use crate::figures::{self, showcase_step};
 use crate::markdown::{self, RunResult};
+use crate::mechanism_report::mechanism_section;
+use crate::mechanism_sweep::{run_mechanism, MechanismPlan, MechanismResult};
 use crate::plot::PlotError;
 use crate::sweep::{run, Outcome, SweepPlan};
 
@@ -30,6 +32,8 @@ pub enum JobError {
 pub struct JobSummary {
     pub output: PathBuf,
     pub results: Vec<RunResult>,
+    pub mechanisms: Vec<MechanismResult>,
+    /// Failed runs, single bodies and mechanisms.
     pub failures: usize,
 }
 
@@ -40,10 +44,16 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> JobError + '_ {
     }
 }
 
-/// Runs every configuration of `plan` and writes the report into `output`.
-pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<JobSummary, JobError> {
+/// Runs every configuration of `plan` and of `mechanisms` and writes the report into `output`.
+pub fn run_job(
+    plan: &SweepPlan,
+    mechanisms: &MechanismPlan,
+    output: &Path,
+    show_progress: bool,
+) -> Result<JobSummary, JobError> {
     let configs = plan.configurations();
-    if configs.is_empty() {
+    let mechanism_configs = mechanisms.configurations(&plan.integrators, plan.duration, plan.stabilisation);
+    if configs.is_empty() && mechanism_configs.is_empty() {
         return Err(JobError::Empty);
     }
     std::fs::create_dir_all(output).map_err(io(output))?;
@@ -51,7 +61,7 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
     std::fs::create_dir_all(&trajectories).map_err(io(&trajectories))?;
 
     let progress = if show_progress {
-        ProgressBar::new(configs.len() as u64)
+        ProgressBar::new((configs.len() + mechanism_configs.len()) as u64)
     } else {
         ProgressBar::hidden()
     };
@@ -72,7 +82,26 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
             (index, (config, result))
         })
         .collect();
+    // The mechanisms after the single bodies, the longest runs (most steps times most bodies) first.
+    let mut mechanism_order: Vec<usize> = (0..mechanism_configs.len()).collect();
+    let work = |i: usize| {
+        let c = &mechanism_configs[i];
+        c.duration / c.dt * c.id.bodies() as f64
+    };
+    mechanism_order.sort_by(|&a, &b| work(b).total_cmp(&work(a)));
+    let mut mechanism_results: Vec<(usize, MechanismResult)> = mechanism_order
+        .par_iter()
+        .map(|&index| {
+            let config = mechanism_configs[index];
+            let result = run_mechanism(&config);
+            progress.set_message(format!("{} {}", config.id.label(), config.series_label()));
+            progress.inc(1);
+            (index, (config, result))
+        })
+        .collect();
     progress.finish_and_clear();
+    mechanism_results.sort_by_key(|(index, _)| *index);
+    let mechanism_results: Vec<MechanismResult> = mechanism_results.into_iter().map(|(_, r)| r).collect();
     results.sort_by_key(|(index, _)| *index);
     let results: Vec<RunResult> = results.into_iter().map(|(_, r)| r).collect();
 
@@ -105,11 +134,15 @@ pub fn run_job(plan: &SweepPlan, output: &Path, show_progress: bool) -> Result<J
     }
     let threads = rayon::current_num_threads();
     let report_path = output.join("report.md");
-    std::fs::write(&report_path, markdown::report(&results, threads, &figure_files)).map_err(io(&report_path))?;
-    let failures = results.iter().filter(|(_, r)| r.is_err()).count();
+    let mut text = markdown::report(&results, threads, &figure_files);
+    text.push_str(&mechanism_section(output, &mechanism_results)?);
+    std::fs::write(&report_path, text).map_err(io(&report_path))?;
+    let failures = results.iter().filter(|(_, r)| r.is_err()).count()
+        + mechanism_results.iter().filter(|(_, r)| r.is_err()).count();
     Ok(JobSummary {
         output: output.to_path_buf(),
         results,
+        mechanisms: mechanism_results,
         failures,
     })
 }

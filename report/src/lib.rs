@@ -5,6 +5,9 @@
 //! against the `reference` crate) → [`markdown`] (the report), [`figures`] (the plots, drawn by
 //! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
 //!
+//! The mechanisms of MULTIBODY.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
+//! one; measured by `scenarios::mechanism_measures`) → [`mechanism_report`] (their section and plots).
+//!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
 
 pub mod cli;
@@ -13,6 +16,8 @@ pub mod figures;
 pub mod job;
 pub mod markdown;
 pub mod measure;
+pub mod mechanism_report;
+pub mod mechanism_sweep;
 pub mod mujoco;
 pub mod plot;
 pub mod scene_file;

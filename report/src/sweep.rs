@@ -62,6 +62,9 @@ impl Config {
     }
 }
 
+/// The single-body scenes' steps without `--steps`.
+pub const DEFAULT_STEPS: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
+
 /// What the sweep covers.
 #[derive(Clone, Debug)]
 pub struct SweepPlan {

@@ -1,12 +1,14 @@
-//! A shortened main job (every scene, both algebras, both formulations, RK4 at dt = 1e-3, 2 s) whose
-//! report is checked against the references, so the report cannot silently rot.
+//! A shortened main job (every scene and mechanism, both algebras, both formulations, RK4 at dt = 1e-3, 2 s)
+//! whose report is checked against the references, so the report cannot silently rot.
 
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method};
 use reference::SceneId;
 use report::job::run_job;
 use report::markdown::agreement;
+use report::mechanism_sweep::{MechanismKind, MechanismPlan};
 use report::sweep::{AlgebraKind, SweepPlan};
+use scenarios::MechanismId;
 
 #[test]
 fn shortened_job_matches_the_references() {
@@ -19,13 +21,18 @@ fn shortened_job_matches_the_references() {
         duration: Some(2.0),
         stabilisation: Stabilisation::PROJECTION,
     };
-    let summary = run_job(&plan, &output, false).expect("the job writes its output");
+    let mechanisms = MechanismPlan {
+        mechanisms: MechanismKind::ALL.to_vec(),
+        steps: vec![1e-3],
+    };
+    let summary = run_job(&plan, &mechanisms, &output, false).expect("the job writes its output");
     assert_eq!(
         summary.failures,
         0,
         "{:?}",
         summary.results.iter().filter(|(_, r)| r.is_err()).collect::<Vec<_>>()
     );
+    check_mechanisms(&summary.mechanisms);
     // 1 free scene × 2 algebras + 3 hinge/top scenes × 2 algebras × 2 formulations + 2 scene-4 × 3.
     assert_eq!(summary.results.len(), 2 + 12 + 6);
 
@@ -92,6 +99,9 @@ fn shortened_job_matches_the_references() {
             "report lacks {scene:?}"
         );
     }
+    for section in ["### M1 double pendulum", "### M2 four-bar linkage", "### M3 chain"] {
+        assert!(report.contains(section), "report lacks {section}");
+    }
     let (config, outcome) = summary
         .results
         .iter()
@@ -115,4 +125,38 @@ fn shortened_job_matches_the_references() {
         }
     }
     assert!(std::fs::read_dir(output.join("trajectories")).unwrap().count() >= summary.results.len());
+}
+
+/// The mechanisms' runs: M1 and M2 in 2 algebras × 2 formulations, the chain at 7 lengths and the long run in
+/// each algebra.
+fn check_mechanisms(results: &[report::mechanism_sweep::MechanismResult]) {
+    assert_eq!(results.len(), 4 + 4 + 2 * 8);
+    for (config, result) in results {
+        let label = format!("{} {}", config.id.label(), config.series_label());
+        let m = result.as_ref().unwrap_or_else(|e| panic!("{label}: {e}")).measures;
+        // Projection holds every joint at round-off.
+        assert!(m.violation <= 1e-12, "{label}: joint violation {}", m.violation);
+        // Bounds: measured at 2 s (both algebras and formulations) times 5. M1: orientation 2.7e-9 rad,
+        // position 1.3e-9 m, energy 2.4e-9 J; M2: coupler 8.2e-9 m, period 9.9e-10, angles 4.7e-8 rad, energy
+        // 8.4e-8 J; the 64-link chain (RKMK6-body): energy 2.8e-9 J.
+        match config.id {
+            MechanismId::DoublePendulum => {
+                assert!(m.orientation_end.unwrap() < 1.4e-8, "{label}: {m:?}");
+                assert!(m.position_end.unwrap() < 6.5e-9, "{label}: {m:?}");
+                assert!(m.energy_drift < 1.2e-8, "{label}: {m:?}");
+            }
+            MechanismId::FourBar => {
+                let four_bar = m.four_bar.unwrap();
+                assert_eq!(four_bar.revolutions, 2, "{label}");
+                assert!(four_bar.coupler_error < 4.1e-8, "{label}: {m:?}");
+                assert!(four_bar.period_error < 5e-9, "{label}: {m:?}");
+                assert!(four_bar.angle_error < 2.4e-7, "{label}: {m:?}");
+                assert!(m.energy_drift < 4.2e-7, "{label}: {m:?}");
+            }
+            MechanismId::Chain(64) if !config.is_chain_timing() => {
+                assert!(m.energy_drift < 1.4e-8, "{label}: {m:?}");
+            }
+            MechanismId::Chain(_) => {}
+        }
+    }
 }

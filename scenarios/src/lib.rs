@@ -6,9 +6,11 @@
 //! examples and the main job build their systems here, from the GA-independent parameters and reference
 //! trajectories of the `reference` crate.
 
+pub mod mechanism_measures;
 pub mod mechanisms;
 pub mod single_body;
 
+pub use mechanism_measures::{measure as measure_mechanism, MechanismMeasures};
 pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
 pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
 

@@ -40,6 +40,15 @@ impl MechanismId {
         }
     }
 
+    /// The number of bodies.
+    pub fn bodies(self) -> usize {
+        match self {
+            MechanismId::DoublePendulum => 2,
+            MechanismId::FourBar => 3,
+            MechanismId::Chain(n) => n,
+        }
+    }
+
     /// The simulated time of MULTIBODY.md.
     pub fn duration(self) -> f64 {
         match self {

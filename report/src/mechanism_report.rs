@@ -1,0 +1,418 @@
+//! The mechanisms' part of `report.md` and its plots: M1's and M2's work-precision (tables and plots, MuJoCo's
+//! points as markers), the four-bar's revolution period, energy and joint violation per run, and M3's cost per
+//! step against the chain's length beside MuJoCo's and Pinocchio's.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use scenarios::MechanismId;
+
+use crate::markdown::scientific;
+use crate::mechanism_sweep::{MechanismOutcome, MechanismResult, CHAIN_LONG_RUN, CHAIN_TIMING_DURATION};
+use crate::mujoco::{self, cost_at_error};
+use crate::plot::{figure, Labels, Panel, PlotError, Series};
+use crate::sweep::AlgebraKind;
+
+/// M2 is exact when every sample's loop violation is at most this (m), as the mechanisms issue asks.
+const EXACT_LOOP: f64 = 1e-12;
+/// The coupler accuracy (m) at which M2's cost is compared with MuJoCo's (whose soft loop is off by 4.5e-2 m).
+const FOUR_BAR_TARGET: f64 = 1e-9;
+
+/// The successful runs of one mechanism, by series label, each sorted by cost.
+fn series_of(results: &[MechanismResult], id: MechanismId) -> BTreeMap<String, Vec<&MechanismOutcome>> {
+    let mut groups: BTreeMap<String, Vec<&MechanismOutcome>> = BTreeMap::new();
+    for (config, result) in results {
+        if let (true, Ok(outcome)) = (config.id == id, result) {
+            groups.entry(config.series_label()).or_default().push(outcome);
+        }
+    }
+    for runs in groups.values_mut() {
+        runs.sort_by(|a, b| a.cpu_per_simulated_second.total_cmp(&b.cpu_per_simulated_second));
+    }
+    groups
+}
+
+/// The error M1 and M2 are compared by: end orientation (M1, MuJoCo's measure), coupler position (M2).
+fn headline_error(outcome: &MechanismOutcome) -> Option<f64> {
+    match outcome.config.id {
+        MechanismId::FourBar => outcome.measures.four_bar.map(|f| f.coupler_error),
+        _ => outcome.measures.orientation_end,
+    }
+}
+
+/// The series reaching `target` most cheaply (interpolated log–log): (label, CPU per simulated second). For M2
+/// only series whose every run holds the loop exactly count.
+fn cheapest(
+    groups: &BTreeMap<String, Vec<&MechanismOutcome>>,
+    target: f64,
+    algebra: AlgebraKind,
+) -> Option<(String, f64)> {
+    groups
+        .iter()
+        .filter(|(_, runs)| runs.first().is_some_and(|o| o.config.algebra == algebra))
+        .filter(|(_, runs)| {
+            runs.iter()
+                .all(|o| o.config.id != MechanismId::FourBar || o.measures.violation <= EXACT_LOOP)
+        })
+        .filter_map(|(label, runs)| {
+            let points: Vec<(f64, f64)> = runs
+                .iter()
+                .filter_map(|o| Some((o.cpu_per_simulated_second, headline_error(o)?)))
+                .collect();
+            Some((label.clone(), cost_at_error(&points, target)?))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+fn table_header(out: &mut String, columns: &[&str]) {
+    let _ = writeln!(out, "| {} |", columns.join(" | "));
+    let _ = writeln!(out, "|{}|", vec!["---"; columns.len()].join("|"));
+}
+
+/// Every run of M1 or M2: a line per configuration and step.
+fn work_precision_table(out: &mut String, results: &[MechanismResult], id: MechanismId) {
+    let four_bar = id == MechanismId::FourBar;
+    let mut columns = vec!["configuration", "dt (s)", "CPU per simulated s (s)", "µs/step"];
+    if four_bar {
+        columns.extend([
+            "coupler error at T (m)",
+            "largest loop violation (m)",
+            "revolutions",
+            "period error (relative)",
+            "link angles at T (rad)",
+        ]);
+    } else {
+        columns.extend([
+            "orientation error at T (rad)",
+            "position error at T (m)",
+            "largest hinge violation (m)",
+        ]);
+    }
+    columns.push("largest energy drift (J)");
+    table_header(out, &columns);
+    for (config, result) in results.iter().filter(|(c, _)| c.id == id) {
+        let mut row = vec![config.series_label(), format!("{:.0e}", config.dt)];
+        match result {
+            Ok(o) => {
+                let m = &o.measures;
+                row.extend([
+                    scientific(o.cpu_per_simulated_second),
+                    format!("{:.2}", o.time_per_step * 1e6),
+                ]);
+                match (four_bar, m.four_bar) {
+                    (true, Some(f)) => row.extend([
+                        scientific(f.coupler_error),
+                        scientific(m.violation),
+                        f.revolutions.to_string(),
+                        scientific(f.period_error),
+                        scientific(f.angle_error),
+                    ]),
+                    _ => row.extend([
+                        m.orientation_end.map_or("–".into(), scientific),
+                        m.position_end.map_or("–".into(), scientific),
+                        scientific(m.violation),
+                    ]),
+                }
+                row.push(scientific(m.energy_drift));
+            }
+            Err(error) => row.push(format!("failed: {error}")),
+        }
+        let _ = writeln!(out, "| {} |", row.join(" | "));
+    }
+}
+
+/// Per chain length: our time per RK4 step in each algebra beside MuJoCo's and Pinocchio's.
+fn chain_table(out: &mut String, results: &[MechanismResult]) {
+    let time = |n: usize, algebra: AlgebraKind| {
+        results.iter().find_map(|(c, r)| {
+            let timing = c.id == MechanismId::Chain(n) && c.algebra == algebra && c.is_chain_timing();
+            r.as_ref().ok().filter(|_| timing).map(|o| o.time_per_step)
+        })
+    };
+    table_header(
+        out,
+        &[
+            "links N",
+            "PGA µs/step",
+            "CGA µs/step",
+            "MuJoCo ball µs/step",
+            "MuJoCo / PGA",
+            "MuJoCo hinge µs/step",
+            "Pinocchio ABA µs/evaluation",
+            "PGA µs per evaluation per degree of freedom",
+        ],
+    );
+    let micro = |x: Option<f64>| x.map_or("–".into(), |x| format!("{:.2}", x * 1e6));
+    for (&(n, ball), &(_, hinge)) in mujoco::CHAIN_BALL_TIME_PER_STEP
+        .iter()
+        .zip(&mujoco::CHAIN_HINGE_TIME_PER_STEP)
+    {
+        let pga = time(n, AlgebraKind::Pga);
+        let pinocchio = mujoco::PINOCCHIO_CHAIN_EVALUATION
+            .iter()
+            .find(|(m, _)| *m == n)
+            .map(|p| p.1);
+        let _ = writeln!(
+            out,
+            "| {n} | {} | {} | {:.1} | {} | {:.1} | {} | {} |",
+            micro(pga),
+            micro(time(n, AlgebraKind::Cga)),
+            ball * 1e6,
+            pga.map_or("–".into(), |t| format!("{:.1}×", ball / t)),
+            hinge * 1e6,
+            micro(pinocchio),
+            // RK4: four evaluations per step; a ball joint leaves 3 degrees of freedom per link.
+            pga.map_or("–".into(), |t| format!("{:.3}", t * 1e6 / 4.0 / (3 * n) as f64)),
+        );
+    }
+    let ratio = |algebra| Some(time(64, algebra)? / time(8, algebra)?);
+    let _ = writeln!(
+        out,
+        "\nt(64)/t(8): PGA {}, CGA {}; MuJoCo's ball chain {:.0} (its dense mass-matrix factorisation).",
+        ratio(AlgebraKind::Pga).map_or("–".into(), |r| format!("{r:.1}")),
+        ratio(AlgebraKind::Cga).map_or("–".into(), |r| format!("{r:.1}")),
+        mujoco::CHAIN_BALL_TIME_PER_STEP[6].1 / mujoco::CHAIN_BALL_TIME_PER_STEP[3].1
+    );
+}
+
+/// The speed summary: M1 and M2 at MuJoCo's accuracy (or exact), M3 at N = 64.
+fn summary(out: &mut String, results: &[MechanismResult]) {
+    let _ = writeln!(
+        out,
+        "| mechanism | target | algebra | cheapest configuration | its CPU per simulated s (s) | MuJoCo's | MuJoCo's / ours |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let m1 = mujoco::DOUBLE_PENDULUM;
+    let rows = [
+        (
+            MechanismId::DoublePendulum,
+            m1.reference_error(),
+            format!("orientation {:.1e} rad (MuJoCo at dt = 1e-3)", m1.reference_error()),
+            m1.reference_cost(),
+        ),
+        (
+            MechanismId::FourBar,
+            FOUR_BAR_TARGET,
+            format!(
+                "coupler {FOUR_BAR_TARGET:.0e} m, loop ≤ {EXACT_LOOP:.0e} m (MuJoCo: {:.1e} m, loop {:.1e} m)",
+                mujoco::FOUR_BAR_COUPLER_ERROR,
+                mujoco::FOUR_BAR_VIOLATION
+            ),
+            mujoco::FOUR_BAR_TIME_PER_STEP / 1e-3,
+        ),
+    ];
+    for (id, target, what, theirs) in rows {
+        let groups = series_of(results, id);
+        if groups.is_empty() {
+            continue;
+        }
+        for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
+            let (label, ours) =
+                cheapest(&groups, target, algebra).map_or(("none reaches it".to_string(), None), |(l, c)| (l, Some(c)));
+            let _ = writeln!(
+                out,
+                "| {} | {what} | {} | {label} | {} | {} | {} |",
+                id.label(),
+                algebra.name(),
+                ours.map_or("–".into(), scientific),
+                scientific(theirs),
+                ours.map_or("–".into(), |c| format!("{:.1}×", theirs / c)),
+            );
+        }
+    }
+}
+
+/// Work-precision of M1 or M2, one panel per algebra, MuJoCo's points as markers.
+fn work_precision_figure(
+    dir: &Path,
+    results: &[MechanismResult],
+    id: MechanismId,
+    name: &str,
+) -> Result<bool, PlotError> {
+    let groups = series_of(results, id);
+    if groups.is_empty() {
+        return Ok(false);
+    }
+    let (y, mujoco_points): (&str, Vec<(f64, f64)>) = match id {
+        MechanismId::FourBar => (
+            "coupler centre-of-mass error at T (m)",
+            vec![(mujoco::FOUR_BAR_TIME_PER_STEP / 1e-3, mujoco::FOUR_BAR_COUPLER_ERROR)],
+        ),
+        _ => (
+            "orientation error at T (rad)",
+            mujoco::DOUBLE_PENDULUM
+                .points
+                .iter()
+                .map(|&(dt, e)| (mujoco::DOUBLE_PENDULUM.time_per_step / dt, e))
+                .collect(),
+        ),
+    };
+    let titles: Vec<String> = [AlgebraKind::Pga, AlgebraKind::Cga]
+        .iter()
+        .map(|a| format!("{} in {}", id.label(), a.name()))
+        .collect();
+    let panels: Vec<Panel> = [AlgebraKind::Pga, AlgebraKind::Cga]
+        .iter()
+        .zip(&titles)
+        .map(|(&algebra, title)| {
+            let mut series: Vec<Series> = groups
+                .iter()
+                .filter(|(_, runs)| runs[0].config.algebra == algebra)
+                .map(|(label, runs)| {
+                    let points = runs
+                        .iter()
+                        .filter_map(|o| Some((o.cpu_per_simulated_second, headline_error(o)?)))
+                        .collect();
+                    Series {
+                        markers: true,
+                        ..Series::line(label.clone(), points)
+                    }
+                })
+                .collect();
+            series.push(Series {
+                markers_only: true,
+                ..Series::line(
+                    "MuJoCo 4.0 RK4 (measured, dt = 1e-2, 1e-3, 1e-4)",
+                    mujoco_points.clone(),
+                )
+            });
+            Panel::new(Labels::new(title, "CPU per simulated second (s)", y), series)
+                .log_x()
+                .log_y()
+        })
+        .collect();
+    figure(
+        &dir.join(name),
+        &format!("{}: error against CPU time", id.label()),
+        &panels,
+    )?;
+    Ok(true)
+}
+
+/// M3's cost per step against N, log–log, with MuJoCo's and Pinocchio's.
+fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<bool, PlotError> {
+    let ours = |algebra: AlgebraKind| -> Vec<(f64, f64)> {
+        let mut points: Vec<(f64, f64)> = results
+            .iter()
+            .filter(|(c, _)| c.algebra == algebra && c.is_chain_timing())
+            .filter_map(|(c, r)| match (c.id, r) {
+                (MechanismId::Chain(n), Ok(o)) => Some((n as f64, o.time_per_step * 1e6)),
+                _ => None,
+            })
+            .collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        points
+    };
+    let (pga, cga) = (ours(AlgebraKind::Pga), ours(AlgebraKind::Cga));
+    if pga.is_empty() && cga.is_empty() {
+        return Ok(false);
+    }
+    let points =
+        |table: &[(usize, f64)], factor: f64| table.iter().map(|&(n, t)| (n as f64, t * 1e6 * factor)).collect();
+    let series = vec![
+        Series {
+            markers: true,
+            ..Series::line("PGA, ball joints by virtual power, RK4", pga)
+        },
+        Series {
+            markers: true,
+            ..Series::line("CGA, the same", cga)
+        },
+        Series {
+            markers_only: true,
+            ..Series::line(
+                "MuJoCo 4.0 RK4, ball joints",
+                points(&mujoco::CHAIN_BALL_TIME_PER_STEP, 1.0),
+            )
+        },
+        Series {
+            markers_only: true,
+            ..Series::line(
+                "MuJoCo 4.0 RK4, hinges",
+                points(&mujoco::CHAIN_HINGE_TIME_PER_STEP, 1.0),
+            )
+        },
+        Series {
+            markers_only: true,
+            ..Series::line(
+                "Pinocchio ABA × 4 evaluations (MULTIBODY.md)",
+                points(&mujoco::PINOCCHIO_CHAIN_EVALUATION, 4.0),
+            )
+        },
+    ];
+    let panel = Panel::new(
+        Labels::new("M3 chain: cost per RK4 step at dt = 1e-3", "links N", "µs per step"),
+        series,
+    )
+    .log_x()
+    .log_y();
+    figure(&dir.join(name), "M3 chain: cost against the number of links", &[panel])?;
+    Ok(true)
+}
+
+/// The mechanisms' section of `report.md`, writing its plots into `dir`.
+pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<String, PlotError> {
+    let mut out = String::new();
+    if results.is_empty() {
+        return Ok(out);
+    }
+    let _ = writeln!(
+        out,
+        "## Mechanisms (MULTIBODY.md)\n\nSeveral bodies joined by hinges or ball joints, each body its own motor and \
+         momentum, the reactions solved for the whole system in the kinetic metric (docs/mechanisms.md). Errors are \
+         against the GA-independent references of `reference::multibody` (M1: reduced coordinates, DOP853; M2: the \
+         crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}; the chain's \
+         Pinocchio figures are MULTIBODY.md's.\n",
+        mujoco::MECHANISMS_MEASURED
+    );
+    let _ = writeln!(out, "### Speed at MuJoCo's accuracy\n");
+    summary(&mut out, results);
+    for (id, stem, what) in [
+        (MechanismId::DoublePendulum, "m1_double_pendulum", "the two hinges hold"),
+        (
+            MechanismId::FourBar,
+            "m2_four_bar",
+            "the loop (20 hinge rows of rank 17) holds; revolution period against MULTIBODY.md's 0.7906242901366745 s",
+        ),
+    ] {
+        let name = format!("{stem}_work_precision.png");
+        if !work_precision_figure(dir, results, id, &name)? {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "\n### {}: work-precision; {what}\n\n![{name}]({name})\n",
+            id.label()
+        );
+        work_precision_table(&mut out, results, id);
+    }
+    let name = "m3_chain_cost.png";
+    if chain_figure(dir, results, name)? {
+        let _ = writeln!(
+            out,
+            "\n### M3 chain: cost per step against N\n\nRK4 at dt = 1e-3 over {CHAIN_TIMING_DURATION} s, \
+             projection after each step.\n\n![{name}]({name})\n"
+        );
+        chain_table(&mut out, results);
+        let (n, _, dt) = CHAIN_LONG_RUN;
+        for (config, result) in results
+            .iter()
+            .filter(|(c, _)| c.id == MechanismId::Chain(n) && !c.is_chain_timing())
+        {
+            let _ = match result {
+                Ok(o) => writeln!(
+                    out,
+                    "\n{} links, {}, dt = {dt:.0e} s over {} s: largest energy drift {} J, largest joint violation {} m.",
+                    n,
+                    config.series_label(),
+                    config.duration,
+                    scientific(o.measures.energy_drift),
+                    scientific(o.measures.violation)
+                ),
+                Err(error) => writeln!(out, "\n{n} links, {}: failed: {error}", config.series_label()),
+            };
+        }
+    }
+    Ok(out)
+}

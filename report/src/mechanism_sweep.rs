@@ -1,0 +1,186 @@
+//! The mechanisms of the main job (MULTIBODY.md): the configurations of M1 (double pendulum) and M2 (four-bar
+//! linkage) over algebra × joint formulation × integrator × step, the M3 chain's cost per step against its
+//! length, and running one configuration (its measures come from [`scenarios::mechanism_measures`]).
+
+use dynamics::constraints::Stabilisation;
+use dynamics::integrate::{Integrator, Method};
+use dynamics::simulate::{simulate, Schedule};
+use dynamics::{Cga, Pga};
+use reference::multibody::CHAIN_LENGTHS;
+use scenarios::mechanism_measures::{measure, MechanismMeasures};
+use scenarios::{build_mechanism, Formulation, MechanismId, SceneAlgebra};
+
+use crate::sweep::{AlgebraKind, RunError};
+
+/// M3's cost is measured as MuJoCo's is (`chain.py`): RK4 at dt = 1e-3, ball joints (virtual power: three
+/// reaction forces per joint), here over this much simulated time.
+pub const CHAIN_TIMING_DURATION: f64 = 1.0;
+/// M3's long run: the longest chain over MULTIBODY.md's 10 s with the most accurate method, for its energy
+/// drift and joint violation.
+pub const CHAIN_LONG_RUN: (usize, Method, f64) = (64, Method::Rkmk6Body, 1e-3);
+
+/// Which mechanisms the job runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MechanismKind {
+    DoublePendulum,
+    FourBar,
+    Chain,
+}
+
+impl MechanismKind {
+    pub const ALL: [MechanismKind; 3] = [
+        MechanismKind::DoublePendulum,
+        MechanismKind::FourBar,
+        MechanismKind::Chain,
+    ];
+}
+
+/// One mechanism run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MechanismConfig {
+    pub id: MechanismId,
+    pub algebra: AlgebraKind,
+    pub formulation: Formulation,
+    pub method: Method,
+    pub dt: f64,
+    pub duration: f64,
+    pub stabilisation: Stabilisation,
+}
+
+impl MechanismConfig {
+    /// "PGA, pinning, RKMK6-body".
+    pub fn series_label(&self) -> String {
+        format!(
+            "{}, {}, {}",
+            self.algebra.name(),
+            self.formulation.name(),
+            self.method.name()
+        )
+    }
+
+    /// A run of M3 that measures the cost per step (RK4), not the long run's drift.
+    pub fn is_chain_timing(&self) -> bool {
+        matches!(self.id, MechanismId::Chain(_)) && self.method == Method::Rk4
+    }
+}
+
+/// What the mechanism part of the job covers (the integrators, duration and stabilisation are the job's).
+#[derive(Clone, Debug, Default)]
+pub struct MechanismPlan {
+    pub mechanisms: Vec<MechanismKind>,
+    /// Step sizes of the M1 and M2 sweeps.
+    pub steps: Vec<f64>,
+}
+
+/// The M1 and M2 steps without `--steps`: from MuJoCo's coarsest to well past its accuracy at dt = 1e-3 for
+/// the fourth-order methods (the sixth-order one reaches round-off near dt = 2e-3).
+pub const DEFAULT_STEPS: [f64; 6] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4];
+
+impl MechanismPlan {
+    /// Every run: M1 and M2 over algebra × formulation × method × step (splittings apply to free bodies only);
+    /// M3 in both algebras at each chain length of MULTIBODY.md (RK4, dt = 1e-3, for the cost), plus the long
+    /// run. `duration` overrides every mechanism's.
+    pub fn configurations(
+        &self,
+        integrators: &[Integrator],
+        duration: Option<f64>,
+        stabilisation: Stabilisation,
+    ) -> Vec<MechanismConfig> {
+        let methods: Vec<Method> = integrators
+            .iter()
+            .filter_map(|i| match i {
+                Integrator::General(method) => Some(*method),
+                Integrator::Splitting(_) => None,
+            })
+            .collect();
+        let mut configs = Vec::new();
+        for &kind in &self.mechanisms {
+            for algebra in AlgebraKind::ALL {
+                let config = |id: MechanismId, formulation, method, dt, own_duration: f64| MechanismConfig {
+                    id,
+                    algebra,
+                    formulation,
+                    method,
+                    dt,
+                    duration: duration.unwrap_or(own_duration),
+                    stabilisation,
+                };
+                match kind {
+                    MechanismKind::DoublePendulum | MechanismKind::FourBar => {
+                        let id = if kind == MechanismKind::FourBar {
+                            MechanismId::FourBar
+                        } else {
+                            MechanismId::DoublePendulum
+                        };
+                        for formulation in Formulation::ALL {
+                            for &method in &methods {
+                                for &dt in &self.steps {
+                                    configs.push(config(id, formulation, method, dt, id.duration()));
+                                }
+                            }
+                        }
+                    }
+                    MechanismKind::Chain => {
+                        for n in CHAIN_LENGTHS {
+                            let id = MechanismId::Chain(n);
+                            configs.push(config(
+                                id,
+                                Formulation::VirtualPower,
+                                Method::Rk4,
+                                1e-3,
+                                CHAIN_TIMING_DURATION,
+                            ));
+                        }
+                        let (n, method, dt) = CHAIN_LONG_RUN;
+                        let id = MechanismId::Chain(n);
+                        configs.push(config(id, Formulation::VirtualPower, method, dt, id.duration()));
+                    }
+                }
+            }
+        }
+        configs
+    }
+}
+
+/// A finished mechanism run.
+#[derive(Clone, Debug)]
+pub struct MechanismOutcome {
+    pub config: MechanismConfig,
+    /// Stepping time divided by the simulated time (s/s).
+    pub cpu_per_simulated_second: f64,
+    /// Stepping time per step (s).
+    pub time_per_step: f64,
+    pub measures: MechanismMeasures,
+}
+
+pub type MechanismResult = (MechanismConfig, Result<MechanismOutcome, RunError>);
+
+/// Runs one configuration.
+pub fn run_mechanism(config: &MechanismConfig) -> Result<MechanismOutcome, RunError> {
+    match config.algebra {
+        AlgebraKind::Cga => run_in::<Cga>(config),
+        AlgebraKind::Pga => run_in::<Pga>(config),
+    }
+}
+
+fn run_in<A: SceneAlgebra>(config: &MechanismConfig) -> Result<MechanismOutcome, RunError> {
+    // The four-bar is sampled every step, so its revolution times are interpolated to O(dt⁴) (Hermite); the
+    // others every 0.01 s, the references' grid.
+    let sample_interval = match config.id {
+        MechanismId::FourBar => config.dt,
+        _ => 0.01,
+    };
+    let schedule = Schedule::with_sample_interval(config.dt, config.duration, sample_interval)
+        .map_err(|e| RunError::Simulation(e.to_string()))?;
+    let scene = build_mechanism::<A>(config.id, config.formulation, config.stabilisation)?;
+    let run = simulate(&scene.system, &scene.initial, config.method, &schedule)
+        .map_err(|e| RunError::Simulation(e.to_string()))?;
+    let measures = measure(config.id, &run.bodies).map_err(|e| RunError::Metrics(e.to_string()))?;
+    let stepping = run.stepping_time.as_secs_f64();
+    Ok(MechanismOutcome {
+        config: *config,
+        cpu_per_simulated_second: stepping / schedule.duration(),
+        time_per_step: stepping / run.steps.max(1) as f64,
+        measures,
+    })
+}
