@@ -336,7 +336,7 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
         Series {
             markers_only: true,
             ..Series::line(
-                "Pinocchio ABA × 4 evaluations (MULTIBODY.md)",
+                "Pinocchio 4.1 ABA × 4 evaluations",
                 points(&mujoco::PINOCCHIO_CHAIN_EVALUATION, 4.0),
             )
         },
@@ -362,8 +362,7 @@ pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<Stri
         "## Mechanisms (MULTIBODY.md)\n\nSeveral bodies joined by hinges or ball joints, each body its own motor and \
          momentum, the reactions solved for the whole system in the kinetic metric (docs/mechanisms.md). Errors are \
          against the GA-independent references of `reference::multibody` (M1: reduced coordinates, DOP853; M2: the \
-         crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}; the chain's \
-         Pinocchio figures are MULTIBODY.md's.\n",
+         crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}.\n",
         mujoco::MECHANISMS_MEASURED
     );
     let _ = writeln!(out, "### Speed at MuJoCo's accuracy\n");

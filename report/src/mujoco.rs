@@ -1,6 +1,7 @@
-//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; from the project's issue tracker,
-//! measured by the team): orientation error at T (rad; the circle scene: m, reduced coordinates) for
-//! dt = 1e-2, 1e-3, 1e-4, and the CPU time per step. Drawn as reference markers on the work-precision
+//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies from the project's issue
+//! tracker, measured by the team; the mechanisms from MULTIBODY.md's scripts, with the date below): orientation
+//! error at T (rad; the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per
+//! step. Drawn as reference markers on the work-precision
 //! plots: CPU per simulated second = time per step / dt.
 
 use reference::SceneId;
@@ -94,51 +95,52 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
 }
 
 /// Where the mechanisms' MuJoCo and Pinocchio figures below come from, printed beside them in the report.
-pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) measured 2026-11-24 with MULTIBODY.md's scripts on this \
-     project's machine type (2 cores, thread CPU time)";
+pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with MULTIBODY.md's \
+     scripts on this project's machine type (2 cores, thread CPU time), beside `cargo bench -p scenarios --bench \
+     mechanisms`";
 
 /// M1, the double pendulum: MuJoCo's end orientation error (rad) at dt = 1e-2, 1e-3, 1e-4 and its time per step.
 pub const DOUBLE_PENDULUM: Anchor = Anchor {
-    points: [(1e-2, 2.06e-6), (1e-3, 2.22e-10), (1e-4, 2.67e-13)],
-    time_per_step: 4.50e-6,
+    points: [(1e-2, 2.06e-6), (1e-3, 2.22e-10), (1e-4, 2.58e-13)],
+    time_per_step: 6.78e-6,
 };
 
 /// M2, the four-bar, its loop closed by MuJoCo's soft equality `connect`: coupler centre-of-mass error at T (m),
 /// the largest loop violation (m) and the time per step (s), at dt = 1e-3 (the error does not fall with dt).
 pub const FOUR_BAR_COUPLER_ERROR: f64 = 4.45e-2;
-pub const FOUR_BAR_VIOLATION: f64 = 4.4e-4;
-pub const FOUR_BAR_TIME_PER_STEP: f64 = 8.94e-6;
+pub const FOUR_BAR_VIOLATION: f64 = 4.43e-4;
+pub const FOUR_BAR_TIME_PER_STEP: f64 = 14.0e-6;
 
 /// M3: MuJoCo's time per RK4 step (s) at dt = 1e-3 for the chain of N links, ball joints and (about x) hinges.
 pub const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
-    (1, 4.16e-6),
-    (2, 5.12e-6),
-    (4, 7.30e-6),
-    (8, 13.2e-6),
-    (16, 36.2e-6),
-    (32, 148.7e-6),
-    (64, 833.8e-6),
+    (1, 5.1e-6),
+    (2, 6.7e-6),
+    (4, 9.5e-6),
+    (8, 18.3e-6),
+    (16, 53.4e-6),
+    (32, 228.0e-6),
+    (64, 1239.1e-6),
 ];
 pub const CHAIN_HINGE_TIME_PER_STEP: [(usize, f64); 7] = [
-    (1, 3.80e-6),
-    (2, 4.31e-6),
-    (4, 5.25e-6),
-    (8, 7.14e-6),
-    (16, 11.6e-6),
-    (32, 24.5e-6),
-    (64, 73.7e-6),
+    (1, 6.0e-6),
+    (2, 6.8e-6),
+    (4, 6.7e-6),
+    (8, 9.6e-6),
+    (16, 16.1e-6),
+    (32, 36.1e-6),
+    (64, 115.3e-6),
 ];
 
-/// Pinocchio 4.1's articulated-body algorithm on the ball chain, µs per dynamics evaluation (MULTIBODY.md's
-/// table, measured on another day: only its shape and its 0.10 µs per degree of freedom are compared).
+/// Pinocchio 4.1's articulated-body algorithm on the ball chain, s per dynamics evaluation (Python's call
+/// overhead of about 0.15 µs included), measured beside MuJoCo by `pinocchio/chain.py`.
 pub const PINOCCHIO_CHAIN_EVALUATION: [(usize, f64); 7] = [
-    (1, 0.57e-6),
-    (2, 0.86e-6),
-    (4, 1.46e-6),
-    (8, 2.59e-6),
-    (16, 4.96e-6),
-    (32, 9.70e-6),
-    (64, 19.2e-6),
+    (1, 0.68e-6),
+    (2, 1.12e-6),
+    (4, 1.95e-6),
+    (8, 3.81e-6),
+    (16, 7.41e-6),
+    (32, 12.35e-6),
+    (64, 25.04e-6),
 ];
 
 #[cfg(test)]

@@ -110,6 +110,44 @@ struct MechanismBody<A: Algebra> {
 }
 
 /// N rigid bodies, their forces and the joints between them (see the module docs).
+///
+/// A double pendulum: two rods, the first hinged to the world at its top end about world x, the second hinged
+/// to the first's bottom end about the first's body y, released from 1 rad; the hinges hold to round-off.
+///
+/// ```
+/// use std::sync::Arc;
+/// use dynamics::constraints::{Stabilisation, VirtualPower};
+/// use dynamics::{simulate, Body, Force, Mechanism, Method, Pga, Reference, Schedule, State};
+/// use nalgebra::{UnitQuaternion, Vector3};
+///
+/// let rod = Body::cuboid(1.0, Vector3::new(0.1, 0.1, 1.0))?; // 1 kg, 1 m along body z
+/// let (top, bottom) = (Vector3::new(0.0, 0.0, 0.5), Vector3::new(0.0, 0.0, -0.5));
+/// let mut pendulum = Mechanism::<Pga>::new();
+/// let upper = pendulum.add_body("upper", rod)?;
+/// let lower = pendulum.add_body("lower", rod)?;
+/// for body in [upper, lower] {
+///     pendulum.add_force(body, Force::gravity())?;
+/// }
+/// // A hinge: (body point, body axis) of the held body, (point, axis) in the reference's frame.
+/// let hinge_1 = VirtualPower::hinge("hinge 1", (top, Vector3::x()), (Vector3::zeros(), Vector3::x()))?;
+/// let hinge_2 = VirtualPower::hinge("hinge 2", (top, Vector3::y()), (bottom, Vector3::y()))?;
+/// pendulum.add_joint(upper, Reference::World, Arc::new(hinge_1))?;
+/// pendulum.add_joint(lower, upper, Arc::new(hinge_2))?;
+/// pendulum.set_stabilisation(Stabilisation::PROJECTION)?;
+///
+/// // Both rods along the line from the pivot at 1 rad about x, at rest (the projection would correct a
+/// // state that breaks the joints slightly).
+/// let tilt = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.0);
+/// let at = |k: f64| State::new(&rod, tilt * Vector3::new(0.0, 0.0, -k), &tilt, Vector3::zeros(), Vector3::zeros());
+/// let run = simulate(&pendulum, &[at(0.5), at(1.5)], Method::Rkmk6Body, &Schedule::new(2e-3, 2.0)?)?;
+///
+/// let end = run.body(1).last().unwrap();
+/// let lower_top = end.position + end.orientation * top;
+/// let upper_end = run.body(0).last().unwrap();
+/// assert!((lower_top - (upper_end.position + upper_end.orientation * bottom)).norm() < 1e-12);
+/// assert!((end.energy - run.body(1)[0].energy).abs() < 1e-9); // energy of the whole system, J
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone)]
 pub struct Mechanism<A: Algebra> {
     bodies: Vec<MechanismBody<A>>,
