@@ -1,6 +1,11 @@
-//! Scenes described in a TOML file (README, "Scene files"): one body with its shape or inertia, initial pose
-//! and velocities, forces, constraints, algebra, integrator, step and duration, run without writing Rust
-//! (`--scene-file`; the run and its output are in [`crate::scene_job`]).
+//! Scenes described in a TOML file (README, "Scene files"): bodies with their shape or inertia, initial pose
+//! and velocities and forces, joints to the world or between bodies, algebra, integrator, step and duration,
+//! run without writing Rust (`--scene-file`; the run and its output are in [`crate::scene_job`]).
+//!
+//! Two layouts, one system: a single `[body]` with its `[initial]` state, `[[forces]]` and `[[constraints]]`
+//! to the world; or named `[[body]]` entries, each with its `initial` state and `forces`, and `[[joint]]`
+//! entries `between = ["body", "other body" or "world"]`. Both become the same list of bodies and joints
+//! ([`SceneFile::layout`]) and one [`Mechanism`].
 //!
 //! [`SceneFile::parse`] checks everything a run needs, down to building the system in each requested
 //! algebra, so a bad file fails before anything runs, with a message that names the offending entry. The
@@ -15,7 +20,9 @@ use dynamics::constraints::{
 };
 use dynamics::integrate::Integrator;
 use dynamics::simulate::{simulate, Sample, Schedule, SimulationError, SAMPLE_INTERVAL};
-use dynamics::{Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Simulation, State};
+use dynamics::{
+    Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Reference, Simulation, State,
+};
 use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
 use scenarios::Formulation;
 use serde::Deserialize;
@@ -106,13 +113,109 @@ pub struct SceneFile {
     /// Gains for `stabilisation = "baumgarte"` (default α = β = 10, as on the command line).
     #[serde(default)]
     pub baumgarte: Option<BaumgarteGains>,
-    pub body: BodySpec,
+    /// `[body]`, one body, or `[[body]]`, named bodies.
+    pub body: Bodies,
+    /// The single body's initial state.
+    #[serde(default)]
+    pub initial: Option<InitialSpec>,
+    /// The single body's forces.
+    #[serde(default)]
+    pub forces: Vec<ForceSpec>,
+    /// The single body's constraints to the world.
+    #[serde(default)]
+    pub constraints: Vec<ConstraintSpec>,
+    /// Joints between named bodies, or a named body and the world.
+    #[serde(default)]
+    pub joint: Vec<JointSpec>,
+}
+
+/// The `body` key: a table (`[body]`, one body) or an array of tables (`[[body]]`, named bodies). Deserialized
+/// by peeking at which it is, so that toml's messages keep their line and column.
+#[derive(Clone, Debug)]
+pub enum Bodies {
+    One(BodySpec),
+    Named(Vec<NamedBody>),
+}
+
+impl<'de> Deserialize<'de> for Bodies {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Bodies;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a [body] table or [[body]] entries")
+            }
+
+            fn visit_map<M: serde::de::MapAccess<'de>>(self, map: M) -> Result<Bodies, M::Error> {
+                BodySpec::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(Bodies::One)
+            }
+
+            fn visit_seq<S: serde::de::SeqAccess<'de>>(self, seq: S) -> Result<Bodies, S::Error> {
+                Vec::<NamedBody>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq)).map(Bodies::Named)
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
+}
+
+/// A `[[body]]` entry: a name, the body as in `[body]`, its initial state and its forces.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NamedBody {
+    /// Letters, digits, `_` and `-` (it heads CSV columns and names the body in messages).
+    pub name: String,
+    pub mass: f64,
+    #[serde(default)]
+    pub shape: Option<Shape>,
+    #[serde(default)]
+    pub principal_moments: Option<[f64; 3]>,
     #[serde(default)]
     pub initial: InitialSpec,
     #[serde(default)]
     pub forces: Vec<ForceSpec>,
+}
+
+/// A `[[joint]]`: `between = [body, reference]`, the reference another body or `"world"`. The geometry is that
+/// of a constraint, with the held body's points and axes in its body coordinates and the rest (`world_point`,
+/// `world_axis`, also written `reference_point`, `reference_axis`; normals, offsets, centres) in the
+/// reference's: its body coordinates, or the world's.
+#[derive(Clone, Debug, Deserialize)]
+pub struct JointSpec {
+    pub name: String,
+    pub between: [String; 2],
     #[serde(default)]
-    pub constraints: Vec<ConstraintSpec>,
+    pub formulation: FormulationName,
+    #[serde(flatten)]
+    pub geometry: Geometry,
+}
+
+/// A body of the scene, whichever layout it came from.
+#[derive(Clone, Debug)]
+pub struct LayoutBody {
+    pub name: String,
+    pub spec: BodySpec,
+    pub initial: InitialSpec,
+    pub forces: Vec<ForceSpec>,
+}
+
+/// A joint of the scene: its name in messages, its body and reference (`None`: the world) by index.
+#[derive(Clone, Debug)]
+pub struct LayoutJoint {
+    pub name: String,
+    pub body: usize,
+    pub reference: Option<usize>,
+    pub formulation: FormulationName,
+    pub geometry: Geometry,
+}
+
+/// The scene's bodies and joints.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    pub bodies: Vec<LayoutBody>,
+    pub joints: Vec<LayoutJoint>,
+    /// Whether the bodies are named `[[body]]` entries (else the single `[body]`, named "body").
+    pub named: bool,
 }
 
 fn default_integrator() -> IntegratorName {
@@ -252,6 +355,7 @@ pub enum Geometry {
     /// The body point stays at the world point (rank 3).
     BallJoint {
         body_point: [f64; 3],
+        #[serde(alias = "reference_point")]
         world_point: [f64; 3],
     },
     /// The body turns only about the world axis through the world point, where the body point stays
@@ -287,7 +391,9 @@ pub enum Geometry {
 pub struct AxisJoint {
     pub body_point: [f64; 3],
     pub body_axis: [f64; 3],
+    #[serde(alias = "reference_point")]
     pub world_point: [f64; 3],
+    #[serde(alias = "reference_axis")]
     pub world_axis: [f64; 3],
 }
 
@@ -619,8 +725,54 @@ impl ConstraintSpec {
 }
 
 impl CheckedGeometry {
+    /// The geometry with its reference-side points, axes and planes moved from the reference body's frame (at
+    /// its sample) into the world.
+    pub fn in_world(&self, reference: &Sample) -> CheckedGeometry {
+        let point = |p: Vector3<f64>| reference.position + reference.orientation * p;
+        let axis = |a: Vector3<f64>| reference.orientation * a;
+        match *self {
+            CheckedGeometry::Ball {
+                body_point,
+                world_point,
+            } => CheckedGeometry::Ball {
+                body_point,
+                world_point: point(world_point),
+            },
+            CheckedGeometry::Axis { hinge, body, world } => CheckedGeometry::Axis {
+                hinge,
+                body,
+                world: (point(world.0), axis(world.1)),
+            },
+            CheckedGeometry::Plane {
+                body_point,
+                normal,
+                offset,
+            } => {
+                // n·x = d in the reference frame is (Rn)·x_w = d + (Rn)·c in the world.
+                let normal = axis(normal);
+                CheckedGeometry::Plane {
+                    body_point,
+                    normal,
+                    offset: offset + normal.dot(&reference.position),
+                }
+            }
+            CheckedGeometry::Round {
+                body_point,
+                centre,
+                radius,
+                normal,
+            } => CheckedGeometry::Round {
+                body_point,
+                centre: point(centre),
+                radius,
+                normal: normal.map(axis),
+            },
+        }
+    }
+
     /// How far a sample is from satisfying the constraint (m): the body point's distance from where it
-    /// must be; for axis joints also that of the point 1 m further along the body axis.
+    /// must be; for axis joints also that of the point 1 m further along the body axis. World geometry (see
+    /// [`CheckedGeometry::in_world`] for a body reference).
     pub fn violation(&self, sample: &Sample) -> f64 {
         let world = |body_point: Vector3<f64>| sample.position + sample.orientation * body_point;
         match *self {
@@ -662,50 +814,67 @@ impl CheckedGeometry {
     }
 }
 
-/// A system ready to run in one algebra, and its initial state on the constraints.
+/// A system ready to run in one algebra, and its initial state (one per body) on the joints.
 pub struct SceneSystem<A: Algebra> {
     pub system: Mechanism<A>,
-    pub initial: State<A>,
+    pub initial: Vec<State<A>>,
 }
 
 /// At most this many projections of a scene file's initial state (each of at most two Gauss–Newton steps).
 const INITIAL_PROJECTIONS: usize = 20;
 
-/// The initial state on the constraints (SPEC §10). A file's state may start centimetres off them, further
-/// than one projection's two Gauss–Newton steps reach, so it is projected again while that still helps.
-fn project_initial<A: Algebra>(system: &Mechanism<A>, state: &State<A>) -> Result<State<A>, SceneFileError> {
-    let mut state = [*state];
-    system.project(0.0, &mut state)?;
-    let mut residual = system.violation(0.0, &state)?.position;
+/// The initial state on the joints (SPEC §10). A file's state may start centimetres off them, further than one
+/// projection's two Gauss–Newton steps reach, so it is projected again while that still helps.
+fn project_initial<A: Algebra>(system: &Mechanism<A>, states: &[State<A>]) -> Result<Vec<State<A>>, SceneFileError> {
+    let mut states = states.to_vec();
+    system.project(0.0, &mut states)?;
+    let mut residual = system.violation(0.0, &states)?.position;
     for _ in 1..INITIAL_PROJECTIONS {
-        let mut next = state;
+        let mut next = states.clone();
         system.project(0.0, &mut next)?;
         let next_residual = system.violation(0.0, &next)?.position;
         if next_residual >= residual {
             break;
         }
-        (state, residual) = (next, next_residual);
+        (states, residual) = (next, next_residual);
     }
-    Ok(state[0])
+    Ok(states)
 }
 
+/// Scene files larger than this are refused before they are read to the end (the largest shipped one is 5 KiB).
+pub const MAX_FILE_BYTES: u64 = 4 << 20;
+
+/// The name of the world in `between`.
+const WORLD: &str = "world";
+
 impl SceneFile {
-    /// Reads and checks a scene file.
+    /// Reads and checks a scene file (at most [`MAX_FILE_BYTES`]).
     pub fn load(path: &Path) -> Result<SceneFile, SceneFileError> {
-        let text = std::fs::read_to_string(path).map_err(SceneFileError::Read)?;
+        use std::io::Read as _;
+        let file = std::fs::File::open(path).map_err(SceneFileError::Read)?;
+        let mut bytes = Vec::new();
+        file.take(MAX_FILE_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(SceneFileError::Read)?;
+        if bytes.len() as u64 > MAX_FILE_BYTES {
+            return Err(invalid("the file", format!("is larger than {MAX_FILE_BYTES} bytes")));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| invalid("the file", format!("is not UTF-8: {e}")))?;
         SceneFile::parse(&text)
     }
 
-    /// Parses a scene file and checks that it can run: the body, the timing, the integrator and, in every
-    /// requested algebra, the forces, constraints, stabilisation and the projection of the initial state.
+    /// Parses a scene file and checks that it can run: the bodies, the timing, the integrator and, in every
+    /// requested algebra, the forces, joints, stabilisation and the projection of the initial state.
     pub fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
         let scene: SceneFile = toml::from_str(text)?;
         scene.schedule()?;
-        if !scene.constraints.is_empty() && matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)) {
+        let layout = scene.layout()?;
+        let splitting = matches!(Integrator::from(scene.integrator), Integrator::Splitting(_));
+        if splitting && !(layout.joints.is_empty() && layout.bodies.len() == 1) {
             return Err(invalid(
                 "integrator",
                 format!(
-                    "{} is a splitting method, which runs bodies without constraints only",
+                    "{} is a splitting method, which runs one body without constraints only",
                     Integrator::from(scene.integrator).name()
                 ),
             ));
@@ -736,39 +905,181 @@ impl SceneFile {
         }
     }
 
-    /// The name of constraint `index` (from 1) in messages: "1 (hinge)".
-    fn constraint_name(index: usize, constraint: &ConstraintSpec) -> String {
-        format!("{index} ({})", constraint.geometry.kind())
+    /// The bodies and joints, from either layout, with every name resolved.
+    pub fn layout(&self) -> Result<Layout, SceneFileError> {
+        match &self.body {
+            Bodies::One(spec) => {
+                if !self.joint.is_empty() {
+                    return Err(invalid(
+                        "joint",
+                        "[[joint]] entries join named bodies: write the bodies as [[body]] entries with a `name`",
+                    ));
+                }
+                let joints = self
+                    .constraints
+                    .iter()
+                    .enumerate()
+                    .map(|(index, c)| LayoutJoint {
+                        name: format!("{} ({})", index + 1, c.geometry.kind()),
+                        body: 0,
+                        reference: None,
+                        formulation: c.formulation,
+                        geometry: c.geometry.clone(),
+                    })
+                    .collect();
+                Ok(Layout {
+                    bodies: vec![LayoutBody {
+                        name: "body".to_owned(),
+                        spec: spec.clone(),
+                        initial: self.initial.clone().unwrap_or_default(),
+                        forces: self.forces.clone(),
+                    }],
+                    joints,
+                    named: false,
+                })
+            }
+            Bodies::Named(entries) => {
+                if self.initial.is_some() || !self.forces.is_empty() || !self.constraints.is_empty() {
+                    return Err(invalid(
+                        "initial, forces, constraints",
+                        "with [[body]] entries, give each body its `initial` state and `forces` in its entry, and \
+                         the joints as [[joint]] entries",
+                    ));
+                }
+                if entries.is_empty() {
+                    return Err(invalid("body", "needs at least one entry"));
+                }
+                let mut bodies: Vec<LayoutBody> = Vec::with_capacity(entries.len());
+                for entry in entries {
+                    let name = &entry.name;
+                    let valid =
+                        !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+                    if !valid {
+                        return Err(invalid(
+                            format!("body {name:?}"),
+                            "a name is letters, digits, `_` and `-` (it heads the CSV columns)",
+                        ));
+                    }
+                    if name == WORLD || bodies.iter().any(|b| &b.name == name) {
+                        return Err(invalid(
+                            format!("body {name}"),
+                            if name == WORLD {
+                                "\"world\" is the name of the world".to_owned()
+                            } else {
+                                "two bodies have this name".to_owned()
+                            },
+                        ));
+                    }
+                    bodies.push(LayoutBody {
+                        name: name.clone(),
+                        spec: BodySpec {
+                            mass: entry.mass,
+                            shape: entry.shape.clone(),
+                            principal_moments: entry.principal_moments,
+                        },
+                        initial: entry.initial.clone(),
+                        forces: entry.forces.clone(),
+                    });
+                }
+                let index_of = |joint: &str, name: &str| {
+                    bodies.iter().position(|b| b.name == name).ok_or_else(|| {
+                        let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+                        invalid(
+                            format!("joint {joint}: between"),
+                            format!(
+                                "no body named {name:?} (the bodies: {}; or \"world\")",
+                                known.join(", ")
+                            ),
+                        )
+                    })
+                };
+                let mut joints: Vec<LayoutJoint> = Vec::with_capacity(self.joint.len());
+                for spec in &self.joint {
+                    let name = &spec.name;
+                    if joints.iter().any(|j| &j.name == name) {
+                        return Err(invalid(format!("joint {name}"), "two joints have this name"));
+                    }
+                    let [held, reference] = &spec.between;
+                    if held == WORLD {
+                        return Err(invalid(
+                            format!("joint {name}: between"),
+                            "the first is the held body, not the world (write [\"body\", \"world\"])",
+                        ));
+                    }
+                    let body = index_of(name, held)?;
+                    let reference = if reference == WORLD {
+                        None
+                    } else {
+                        Some(index_of(name, reference)?)
+                    };
+                    if reference == Some(body) {
+                        return Err(invalid(
+                            format!("joint {name}: between"),
+                            format!("joins {held} to itself"),
+                        ));
+                    }
+                    joints.push(LayoutJoint {
+                        name: name.clone(),
+                        body,
+                        reference,
+                        formulation: spec.formulation,
+                        geometry: spec.geometry.clone(),
+                    });
+                }
+                Ok(Layout {
+                    bodies,
+                    joints,
+                    named: true,
+                })
+            }
+        }
     }
 
-    /// The system in algebra `A` and its initial state, projected onto the constraints.
+    /// The system in algebra `A` and its initial state, projected onto the joints.
     pub fn system<A: FileAlgebra>(&self) -> Result<SceneSystem<A>, SceneFileError> {
-        let body = self.body.body()?;
-        let mut system = Mechanism::<A>::single(body);
-        for (index, force) in self.forces.iter().enumerate() {
-            system = system.with_force(force.force(index + 1)?);
+        let layout = self.layout()?;
+        let mut system = Mechanism::<A>::new();
+        let mut states = Vec::with_capacity(layout.bodies.len());
+        let mut ids = Vec::with_capacity(layout.bodies.len());
+        for entry in &layout.bodies {
+            let body = entry.spec.body().map_err(|e| named(&layout, &entry.name, e))?;
+            let id = system.add_body(entry.name.clone(), body)?;
+            ids.push(id);
+            for (index, force) in entry.forces.iter().enumerate() {
+                let force = force.force(index + 1).map_err(|e| named(&layout, &entry.name, e))?;
+                system.add_force(id, force)?;
+            }
+            let initial = &entry.initial;
+            let at = |what: &str| format!("{}initial.{what}", prefix(&layout, &entry.name));
+            states.push(State::new(
+                &body,
+                finite(&at("position"), initial.position)?,
+                &initial
+                    .orientation
+                    .rotation()
+                    .map_err(|e| named(&layout, &entry.name, e))?,
+                finite(&at("body_angular_velocity"), initial.body_angular_velocity)?,
+                finite(&at("velocity"), initial.velocity)?,
+            ));
         }
-        for (index, constraint) in self.constraints.iter().enumerate() {
-            system =
-                system.with_constraint(constraint.constraint::<A>(Self::constraint_name(index + 1, constraint))?)?;
+        for joint in &layout.joints {
+            let constraint = ConstraintSpec {
+                formulation: joint.formulation,
+                geometry: joint.geometry.clone(),
+            }
+            .constraint::<A>(joint.name.clone())?;
+            let reference = joint.reference.map_or(Reference::World, |r| Reference::Body(ids[r]));
+            system.add_joint(ids[joint.body], reference, constraint)?;
         }
-        let system = system.with_stabilisation(self.stabilisation()?)?;
-        let initial = &self.initial;
-        let state = State::new(
-            &body,
-            finite("initial.position", initial.position)?,
-            &initial.orientation.rotation()?,
-            finite("initial.body_angular_velocity", initial.body_angular_velocity)?,
-            finite("initial.velocity", initial.velocity)?,
-        );
+        system.set_stabilisation(self.stabilisation()?)?;
         Ok(SceneSystem {
-            initial: project_initial(&system, &state)?,
+            initial: project_initial(&system, &states)?,
             system,
         })
     }
 
-    /// Runs the scene in algebra `A`: a body without constraints as a free body (where every integrator,
-    /// splittings included, applies), otherwise with the constraints.
+    /// Runs the scene in algebra `A`: one body without joints as a free body (where every integrator,
+    /// splittings included, applies), otherwise as the mechanism.
     pub fn simulate<A: FileAlgebra>(&self) -> Result<Simulation<A>, SceneFileError> {
         let SceneSystem { system, initial } = self.system::<A>()?;
         let schedule = self.schedule()?;
@@ -777,28 +1088,64 @@ impl SceneFile {
             message,
         };
         let integrator = Integrator::from(self.integrator);
-        if self.constraints.is_empty() {
-            let mut free = FreeBody::<A>::new(self.body.body()?);
-            for (index, force) in self.forces.iter().enumerate() {
-                free = free.with_force(force.force(index + 1)?);
+        let layout = self.layout()?;
+        match (&layout.bodies[..], layout.joints.is_empty()) {
+            ([only], true) => {
+                let mut free = FreeBody::<A>::new(only.spec.body()?);
+                for (index, force) in only.forces.iter().enumerate() {
+                    free = free.with_force(force.force(index + 1)?);
+                }
+                simulate(&free, &initial, integrator, &schedule).map_err(|e| failed(e.to_string()))
             }
-            simulate(&free, &[initial], integrator, &schedule).map_err(|e| failed(e.to_string()))
-        } else {
-            simulate(&system, &[initial], integrator, &schedule).map_err(|e| failed(e.to_string()))
+            _ => simulate(&system, &initial, integrator, &schedule).map_err(|e| failed(e.to_string())),
         }
     }
 
-    /// The checked geometry of every constraint, to measure violations with.
-    pub fn constraint_geometries(&self) -> Result<Vec<CheckedGeometry>, SceneFileError> {
-        self.constraints
+    /// Per joint: its checked geometry (reference-side values in the reference's frame), its body and its
+    /// reference, to measure violations with.
+    pub fn joint_geometries(&self) -> Result<Vec<(CheckedGeometry, usize, Option<usize>)>, SceneFileError> {
+        self.layout()?
+            .joints
             .iter()
-            .enumerate()
-            .map(|(index, c)| c.geometry.checked(&Self::constraint_name(index + 1, c)))
+            .map(|j| Ok((j.geometry.checked(&j.name)?, j.body, j.reference)))
             .collect()
     }
 
     /// Whether every force has a potential, so the energy is conserved and its change is drift.
-    pub fn conservative(&self) -> bool {
-        self.forces.iter().all(ForceSpec::conservative)
+    pub fn conservative(&self) -> Result<bool, SceneFileError> {
+        Ok(self
+            .layout()?
+            .bodies
+            .iter()
+            .all(|b| b.forces.iter().all(ForceSpec::conservative)))
+    }
+}
+
+/// How a body is named in messages: nothing for the single-body layout (its fields are top-level), else
+/// "body NAME: ".
+fn prefix(layout: &Layout, name: &str) -> String {
+    if !layout.named {
+        String::new()
+    } else {
+        format!("body {name}: ")
+    }
+}
+
+/// An error about a body's entry, with the body's name in front.
+fn named(layout: &Layout, name: &str, error: SceneFileError) -> SceneFileError {
+    let prefix = prefix(layout, name);
+    if prefix.is_empty() {
+        return error;
+    }
+    match error {
+        SceneFileError::Invalid { what, reason } => SceneFileError::Invalid {
+            what: format!("{prefix}{what}"),
+            reason,
+        },
+        SceneFileError::Body(e) => SceneFileError::Invalid {
+            what: format!("body {name}"),
+            reason: e.to_string(),
+        },
+        other => other,
     }
 }

@@ -12,7 +12,7 @@ use dynamics::{Cga, Pga};
 use crate::csv;
 use crate::markdown::{agreement, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
-use crate::scene_file::{CheckedGeometry, FileAlgebra, SceneFile, SceneFileError};
+use crate::scene_file::{CheckedGeometry, FileAlgebra, Layout, SceneFile, SceneFileError};
 use crate::sweep::AlgebraKind;
 
 /// Why a scene file's run or output failed.
@@ -30,16 +30,25 @@ pub enum SceneJobError {
 #[derive(Clone, Debug)]
 pub struct AlgebraRun {
     pub algebra: AlgebraKind,
-    pub samples: Vec<Sample>,
+    /// Every body's samples, `bodies[i][k]`; the energy in each sample is the whole system's.
+    pub bodies: Vec<Vec<Sample>>,
     /// Stepping time divided by the simulated time (s/s).
     pub cpu_per_simulated_second: f64,
     /// Stepping time per step (s).
     pub time_per_step: f64,
-    /// The energy change per sample, |E(t) − E₀| relative to |E₀| (absolute, in J, if E₀ = 0).
+    /// The energy change per sample, |E(t) − E₀| relative to |E₀| (absolute, in J, if |E₀| is below
+    /// [`ABSOLUTE_ENERGY_BELOW`]).
     pub energy_change: Vec<f64>,
-    /// The largest constraint violation per sample (m).
+    /// The largest joint violation per sample (m).
     pub violation: Vec<f64>,
 }
+
+/// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
+/// E₀ = round-off.
+pub const ABSOLUTE_ENERGY_BELOW: f64 = 1e-6;
+
+/// Per joint: its geometry, its body and its reference body (`None`: the world).
+type JointGeometry = (CheckedGeometry, usize, Option<usize>);
 
 impl AlgebraRun {
     pub fn max_energy_change(&self) -> f64 {
@@ -62,14 +71,15 @@ pub struct SceneJobSummary {
 fn run_in<A: FileAlgebra>(
     algebra: AlgebraKind,
     scene: &SceneFile,
-    geometries: &[CheckedGeometry],
+    joints: &[JointGeometry],
 ) -> Result<AlgebraRun, SceneFileError> {
-    let mut simulation = scene.simulate::<A>()?;
-    let samples = simulation.bodies.swap_remove(0);
+    let simulation = scene.simulate::<A>()?;
+    let bodies = simulation.bodies;
+    let samples = &bodies[0];
     let duration = scene.schedule()?.duration();
     let stepping = simulation.stepping_time.as_secs_f64();
     let initial_energy = samples.first().map_or(0.0, |s| s.energy);
-    let scale = if initial_energy == 0.0 {
+    let scale = if initial_energy.abs() < ABSOLUTE_ENERGY_BELOW {
         1.0
     } else {
         initial_energy.abs()
@@ -78,9 +88,16 @@ fn run_in<A: FileAlgebra>(
         .iter()
         .map(|s| (s.energy - initial_energy).abs() / scale)
         .collect();
-    let violation = samples
-        .iter()
-        .map(|s| geometries.iter().map(|g| g.violation(s)).fold(0.0, f64::max))
+    let violation = (0..samples.len())
+        .map(|k| {
+            joints
+                .iter()
+                .map(|(geometry, body, reference)| match reference {
+                    None => geometry.violation(&bodies[*body][k]),
+                    Some(r) => geometry.in_world(&bodies[*r][k]).violation(&bodies[*body][k]),
+                })
+                .fold(0.0, f64::max)
+        })
         .collect();
     Ok(AlgebraRun {
         algebra,
@@ -88,21 +105,22 @@ fn run_in<A: FileAlgebra>(
         time_per_step: stepping / simulation.steps.max(1) as f64,
         energy_change,
         violation,
-        samples,
+        bodies,
     })
 }
 
 /// Loads the scene file at `path`, runs it and writes the output into `output`.
 pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, SceneJobError> {
     let scene = SceneFile::load(path)?;
-    let geometries = scene.constraint_geometries()?;
+    let layout = scene.layout()?;
+    let joints = scene.joint_geometries()?;
     let runs = scene
         .algebra
         .algebras()
         .into_iter()
         .map(|algebra| match algebra {
-            AlgebraKind::Pga => run_in::<Pga>(algebra, &scene, &geometries),
-            AlgebraKind::Cga => run_in::<Cga>(algebra, &scene, &geometries),
+            AlgebraKind::Pga => run_in::<Pga>(algebra, &scene, &joints),
+            AlgebraKind::Cga => run_in::<Cga>(algebra, &scene, &joints),
         })
         .collect::<Result<Vec<_>, _>>()?;
 
@@ -116,23 +134,29 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     let mut files = Vec::new();
     for run in &runs {
         let csv_path = output.join(format!("{stem}_{}.csv", run.algebra.name().to_lowercase()));
-        csv::write(&csv_path, &run.samples).map_err(write_error(&csv_path))?;
+        let written = if layout.named {
+            let names: Vec<&str> = layout.bodies.iter().map(|b| b.name.as_str()).collect();
+            csv::write_bodies(&csv_path, &names, &run.bodies)
+        } else {
+            csv::write(&csv_path, &run.bodies[0])
+        };
+        written.map_err(write_error(&csv_path))?;
         files.push(csv_path);
     }
 
     let over_time = |values: fn(&AlgebraRun) -> &[f64]| -> Vec<Series> {
         runs.iter()
             .map(|run| {
-                let points = run.samples.iter().zip(values(run)).map(|(s, &v)| (s.t, v)).collect();
+                let points = run.bodies[0].iter().zip(values(run)).map(|(s, &v)| (s.t, v)).collect();
                 Series::line(run.algebra.name(), points)
             })
             .collect()
     };
-    // Relative to E₀ unless it is zero (every run starts from the same state, so the same E₀).
+    // Relative to E₀ unless it is (nearly) zero (every run starts from the same state, so the same E₀).
     let relative = runs
         .first()
-        .and_then(|r| r.samples.first())
-        .is_some_and(|s| s.energy != 0.0);
+        .and_then(|r| r.bodies[0].first())
+        .is_some_and(|s| s.energy.abs() >= ABSOLUTE_ENERGY_BELOW);
     let energy_title = format!("{title}: energy change, dt = {:e} s", scene.dt);
     let energy_axis = if relative {
         "|E(t) − E₀| / |E₀|"
@@ -146,7 +170,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         &Panel::new(labels, over_time(|r| &r.energy_change)).log_y(),
     )?;
     files.push(energy_path);
-    if !scene.constraints.is_empty() {
+    if !layout.joints.is_empty() {
         let violation_title = format!("{title}: constraint violation, dt = {:e} s", scene.dt);
         let violation_path = output.join(format!("{stem}_violation.png"));
         let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation (m)");
@@ -164,6 +188,8 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .collect();
     let setup = Setup {
         scene: &scene,
+        layout: &layout,
+        conservative: scene.conservative()?,
         path,
         title: &title,
         stabilisation: scene.stabilisation()?,
@@ -178,6 +204,9 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
 /// What `summary.md` says about the scene besides the runs.
 struct Setup<'a> {
     scene: &'a SceneFile,
+    layout: &'a Layout,
+    /// Whether every force has a potential.
+    conservative: bool,
     path: &'a Path,
     title: &'a str,
     stabilisation: Stabilisation,
@@ -196,32 +225,70 @@ fn listed(items: Vec<String>) -> String {
 
 /// `summary.md`: the setup, then per algebra the energy change, the largest violation and the CPU time.
 fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
-    let Setup { scene, path, title, .. } = *setup;
+    let Setup {
+        scene,
+        layout,
+        path,
+        title,
+        ..
+    } = *setup;
     let mut out = String::new();
-    let constraints: Vec<String> = scene
-        .constraints
+    let body_name = |index: Option<usize>| index.map_or("the world", |i| layout.bodies[i].name.as_str());
+    let constraints: Vec<String> = layout
+        .joints
         .iter()
-        .map(|c| {
-            format!(
+        .map(|j| {
+            let what = format!(
                 "{} by {}",
-                c.geometry.kind(),
-                scenarios::Formulation::from(c.formulation).name()
-            )
+                j.geometry.kind(),
+                scenarios::Formulation::from(j.formulation).name()
+            );
+            if layout.named {
+                format!(
+                    "{} ({what}, {} to {})",
+                    j.name,
+                    body_name(Some(j.body)),
+                    body_name(j.reference)
+                )
+            } else {
+                what
+            }
+        })
+        .collect();
+    let forces: Vec<String> = layout
+        .bodies
+        .iter()
+        .flat_map(|b| {
+            b.forces.iter().map(|f| {
+                if layout.named {
+                    format!("{} on {}", f.kind(), b.name)
+                } else {
+                    f.kind().to_owned()
+                }
+            })
         })
         .collect();
     let _ = writeln!(out, "# {title}\n");
     let _ = writeln!(
         out,
-        "From `{}`: forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
+        "From `{}`: {}forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
         path.display(),
-        listed(scene.forces.iter().map(|f| f.kind().to_owned()).collect()),
+        if layout.named {
+            format!(
+                "bodies: {}; ",
+                listed(layout.bodies.iter().map(|b| b.name.clone()).collect())
+            )
+        } else {
+            String::new()
+        },
+        listed(forces),
         listed(constraints),
         Integrator::from(scene.integrator).name(),
         scene.dt,
         scene.duration,
         scene.sample_interval,
         match setup.stabilisation {
-            _ if scene.constraints.is_empty() => String::new(),
+            _ if layout.joints.is_empty() => String::new(),
             Stabilisation::Projection { .. } => ", stabilised by projection".to_owned(),
             Stabilisation::Baumgarte { alpha, beta } => format!(", stabilised by Baumgarte (α = {alpha}, β = {beta})"),
             Stabilisation::None => ", without stabilisation".to_owned(),
@@ -240,7 +307,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             run.algebra.name(),
             scientific(run.energy_change.last().copied().unwrap_or(0.0)),
             scientific(run.max_energy_change()),
-            if scene.constraints.is_empty() {
+            if layout.joints.is_empty() {
                 "–".to_owned()
             } else {
                 scientific(run.max_violation())
@@ -256,10 +323,10 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         if setup.relative_energy {
             "|E(t) − E₀| / |E₀|"
         } else {
-            "|E(t) − E₀| in J (E₀ = 0)"
+            "|E(t) − E₀| in J (|E₀| < 1e-6 J, where a relative change means nothing)"
         }
     );
-    if scene.conservative() {
+    if setup.conservative {
         let _ = writeln!(
             out,
             "Every force has a potential, so the energy change is the integrator's drift."
@@ -276,7 +343,12 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
          joints also of the point 1 m along the body axis). CPU time is the stepping alone.\n"
     );
     if let [first, second] = runs {
-        let (angle, distance) = agreement(&first.samples, &second.samples);
+        let (angle, distance) = first
+            .bodies
+            .iter()
+            .zip(&second.bodies)
+            .map(|(a, b)| agreement(a, b))
+            .fold((0.0f64, 0.0f64), |(a, d), (x, y)| (a.max(x), d.max(y)));
         let _ = writeln!(
             out,
             "{} vs {}: largest orientation difference {} rad, largest position difference {} m.\n",
@@ -290,7 +362,14 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         if file.ends_with(".png") {
             let _ = writeln!(out, "![{file}]({file})\n");
         } else {
-            let _ = writeln!(out, "Trajectory: [{file}]({file}) (columns: {}).\n", csv::HEADER);
+            let columns = if layout.named {
+                "t, then per body NAME.x, NAME.y, NAME.z (centre of mass, world, m), NAME.qw, NAME.qx, NAME.qy, \
+                 NAME.qz (orientation body → world), then the energy of the whole system (J)"
+                    .to_owned()
+            } else {
+                csv::HEADER.to_owned()
+            };
+            let _ = writeln!(out, "Trajectory: [{file}]({file}) (columns: {columns}).\n");
         }
     }
     out
