@@ -10,7 +10,6 @@ pub mod mechanism_measures;
 pub mod mechanisms;
 pub mod single_body;
 
-pub use mechanism_measures::{measure as measure_mechanism, MechanismMeasures};
 pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
 pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
 
