@@ -5,7 +5,10 @@
 //! Two layouts, one system: a single `[body]` with its `[initial]` state, `[[forces]]` and `[[constraints]]`
 //! to the world; or named `[[body]]` entries, each with its `initial` state and `forces`, and `[[joint]]`
 //! entries `between = ["body", "other body" or "world"]`. Both become the same list of bodies and joints
-//! ([`SceneFile::layout`]) and one [`Mechanism`].
+//! ([`SceneFile::layout`]) and one [`Mechanism`]. A joint is any constraint kind ([`Geometry`]: ball, hinge,
+//! cylindrical, prismatic, planar, point on plane, line, sphere or circle) in either formulation, its body's
+//! side in body coordinates and the rest in its reference's frame. The run's output, its CSV columns included,
+//! is described in [`crate::scene_job`].
 //!
 //! [`SceneFile::parse`] checks everything a run needs, down to building the system in each requested
 //! algebra, so a bad file fails before anything runs, with a message that names the offending entry. The
@@ -19,7 +22,7 @@ use dynamics::constraints::{
     linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower,
 };
 use dynamics::integrate::Integrator;
-use dynamics::simulate::{simulate, Sample, Schedule, SimulationError, SAMPLE_INTERVAL};
+use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::{
     Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Reference, Simulation, State,
 };
@@ -218,6 +221,17 @@ pub struct Layout {
     pub named: bool,
 }
 
+impl Layout {
+    /// Per joint: its checked geometry (reference-side values in the reference's frame), its body and its
+    /// reference, to measure violations with.
+    pub fn joint_geometries(&self) -> Result<Vec<JointGeometry>, SceneFileError> {
+        self.joints
+            .iter()
+            .map(|j| Ok((j.geometry.checked(&j.name)?, j.body, j.reference)))
+            .collect()
+    }
+}
+
 fn default_integrator() -> IntegratorName {
     IntegratorName::Rk4
 }
@@ -363,11 +377,42 @@ pub enum Geometry {
     Hinge(AxisJoint),
     /// The body point slides along and turns about the world axis (rank 4).
     Cylindrical(AxisJoint),
+    /// The body slides along the world axis without turning: a cylindrical joint that also keeps the body
+    /// normal (normal to the body axis) along the world normal (normal to the world axis) (rank 5).
+    Prismatic {
+        body_point: [f64; 3],
+        body_axis: [f64; 3],
+        body_normal: [f64; 3],
+        #[serde(alias = "reference_point")]
+        world_point: [f64; 3],
+        #[serde(alias = "reference_axis")]
+        world_axis: [f64; 3],
+        #[serde(alias = "reference_normal")]
+        world_normal: [f64; 3],
+    },
+    /// The body plane through the body point normal to the body normal stays on the world plane through the
+    /// world point normal to the world normal (rank 3).
+    Planar {
+        body_point: [f64; 3],
+        body_normal: [f64; 3],
+        #[serde(alias = "reference_point")]
+        world_point: [f64; 3],
+        #[serde(alias = "reference_normal")]
+        world_normal: [f64; 3],
+    },
     /// The body point stays on the world plane `normal · x = offset` (rank 1).
     PointOnPlane {
         body_point: [f64; 3],
         normal: [f64; 3],
         offset: f64,
+    },
+    /// The body point stays on the world line through the world point along the world axis (rank 2).
+    PointOnLine {
+        body_point: [f64; 3],
+        #[serde(alias = "reference_point")]
+        world_point: [f64; 3],
+        #[serde(alias = "reference_axis")]
+        world_axis: [f64; 3],
     },
     /// The body point stays on the sphere (rank 1).
     PointOnSphere {
@@ -557,6 +602,21 @@ impl FileAlgebra for Cga {
     }
 }
 
+/// What an axis joint leaves free.
+#[derive(Clone, Copy, Debug)]
+pub enum AxisFreedom {
+    /// Turning about the axis: a hinge.
+    Turn,
+    /// Turning about and sliding along it: a cylindrical joint.
+    TurnAndSlide,
+    /// Sliding along it: a prismatic joint, whose body normal stays along the world normal (unit, normal to
+    /// their axes).
+    Slide {
+        body_normal: Vector3<f64>,
+        world_normal: Vector3<f64>,
+    },
+}
+
 /// A constraint's geometry with every value checked: finite points, unit axes and normals, positive radii.
 #[derive(Clone, Copy, Debug)]
 pub enum CheckedGeometry {
@@ -564,9 +624,20 @@ pub enum CheckedGeometry {
         body_point: Vector3<f64>,
         world_point: Vector3<f64>,
     },
+    /// A body axis (point, unit direction) held on a world axis.
     Axis {
-        hinge: bool,
+        freedom: AxisFreedom,
         body: (Vector3<f64>, Vector3<f64>),
+        world: (Vector3<f64>, Vector3<f64>),
+    },
+    /// A body plane (point, unit normal) held on a world plane.
+    Planar {
+        body: (Vector3<f64>, Vector3<f64>),
+        world: (Vector3<f64>, Vector3<f64>),
+    },
+    /// A body point held on a world line (point, unit direction).
+    Line {
+        body_point: Vector3<f64>,
         world: (Vector3<f64>, Vector3<f64>),
     },
     Plane {
@@ -589,6 +660,9 @@ impl Geometry {
             Geometry::BallJoint { .. } => "ball joint",
             Geometry::Hinge(_) => "hinge",
             Geometry::Cylindrical(_) => "cylindrical joint",
+            Geometry::Prismatic { .. } => "prismatic joint",
+            Geometry::Planar { .. } => "planar joint",
+            Geometry::PointOnLine { .. } => "point on line",
             Geometry::PointOnPlane { .. } => "point on plane",
             Geometry::PointOnSphere { .. } => "point on sphere",
             Geometry::PointOnCircle { .. } => "point on circle",
@@ -599,6 +673,16 @@ impl Geometry {
         let what = |field: &str| format!("constraint {name}: {field}");
         let point = |field: &str, values| finite(&what(field), values);
         let unit = |field: &str, values| direction(&what(field), values).map(Unit::into_inner);
+        // Normal to a unit axis: its component across the axis, which must not vanish.
+        let across = |field: &str, axis: Vector3<f64>, values| {
+            let normal = point(field, values)?;
+            let across = normal - axis * axis.dot(&normal);
+            if across.norm() > 1e-9 * normal.norm() {
+                Ok(across.normalize())
+            } else {
+                Err(invalid(what(field), "is zero or along the axis"))
+            }
+        };
         let round = |body_point, centre, radius, normal| {
             Ok::<_, SceneFileError>(CheckedGeometry::Round {
                 body_point: point("body_point", body_point)?,
@@ -616,7 +700,11 @@ impl Geometry {
                 world_point: point("world_point", *world_point)?,
             },
             Geometry::Hinge(joint) | Geometry::Cylindrical(joint) => CheckedGeometry::Axis {
-                hinge: matches!(self, Geometry::Hinge(_)),
+                freedom: if matches!(self, Geometry::Hinge(_)) {
+                    AxisFreedom::Turn
+                } else {
+                    AxisFreedom::TurnAndSlide
+                },
                 body: (
                     point("body_point", joint.body_point)?,
                     unit("body_axis", joint.body_axis)?,
@@ -625,6 +713,44 @@ impl Geometry {
                     point("world_point", joint.world_point)?,
                     unit("world_axis", joint.world_axis)?,
                 ),
+            },
+            Geometry::Prismatic {
+                body_point,
+                body_axis,
+                body_normal,
+                world_point,
+                world_axis,
+                world_normal,
+            } => {
+                let (body_axis, world_axis) = (unit("body_axis", *body_axis)?, unit("world_axis", *world_axis)?);
+                CheckedGeometry::Axis {
+                    freedom: AxisFreedom::Slide {
+                        body_normal: across("body_normal", body_axis, *body_normal)?,
+                        world_normal: across("world_normal", world_axis, *world_normal)?,
+                    },
+                    body: (point("body_point", *body_point)?, body_axis),
+                    world: (point("world_point", *world_point)?, world_axis),
+                }
+            }
+            Geometry::Planar {
+                body_point,
+                body_normal,
+                world_point,
+                world_normal,
+            } => CheckedGeometry::Planar {
+                body: (point("body_point", *body_point)?, unit("body_normal", *body_normal)?),
+                world: (
+                    point("world_point", *world_point)?,
+                    unit("world_normal", *world_normal)?,
+                ),
+            },
+            Geometry::PointOnLine {
+                body_point,
+                world_point,
+                world_axis,
+            } => CheckedGeometry::Line {
+                body_point: point("body_point", *body_point)?,
+                world: (point("world_point", *world_point)?, unit("world_axis", *world_axis)?),
             },
             Geometry::PointOnPlane {
                 body_point,
@@ -676,12 +802,43 @@ impl ConstraintSpec {
                     Arc::new(VirtualPower::ball_joint(name, body_point, world_point))
                 }
             }
-            CheckedGeometry::Axis { hinge, body, world } => match (hinge, pinned) {
-                (true, true) => Arc::new(pinning::hinge::<A>(name, body, world)?),
-                (true, false) => Arc::new(VirtualPower::hinge(name, body, world)?),
-                (false, true) => Arc::new(pinning::line::<A>(name, body, world)),
-                (false, false) => Arc::new(VirtualPower::cylindrical(name, body, world)?),
+            CheckedGeometry::Axis { freedom, body, world } => match (freedom, pinned) {
+                (AxisFreedom::Turn, true) => Arc::new(pinning::hinge::<A>(name, body, world)?),
+                (AxisFreedom::Turn, false) => Arc::new(VirtualPower::hinge(name, body, world)?),
+                (AxisFreedom::TurnAndSlide, true) => Arc::new(pinning::line::<A>(name, body, world)),
+                (AxisFreedom::TurnAndSlide, false) => Arc::new(VirtualPower::cylindrical(name, body, world)?),
+                (
+                    AxisFreedom::Slide {
+                        body_normal,
+                        world_normal,
+                    },
+                    _,
+                ) => {
+                    let body = (body.0, body.1, body_normal);
+                    let world = (world.0, world.1, world_normal);
+                    if pinned {
+                        Arc::new(pinning::prismatic::<A>(name, body, world)?)
+                    } else {
+                        Arc::new(VirtualPower::prismatic(name, body, world)?)
+                    }
+                }
             },
+            CheckedGeometry::Planar { body, world } => {
+                if pinned {
+                    // The planes {x : n·x = n·p} of the unit normals (pinned planes need normals of one length).
+                    let plane = |(point, normal): (Vector3<f64>, Vector3<f64>)| (normal, normal.dot(&point));
+                    Arc::new(pinning::plane::<A>(name, plane(body), plane(world)))
+                } else {
+                    Arc::new(VirtualPower::planar(name, body, world)?)
+                }
+            }
+            CheckedGeometry::Line { body_point, world } => {
+                if pinned {
+                    Arc::new(linear::point_on_line::<A>(name, body_point, world))
+                } else {
+                    Arc::new(VirtualPower::point_on_line(name, body_point, world)?)
+                }
+            }
             CheckedGeometry::Plane {
                 body_point,
                 normal,
@@ -726,10 +883,10 @@ impl ConstraintSpec {
 
 impl CheckedGeometry {
     /// The geometry with its reference-side points, axes and planes moved from the reference body's frame (at
-    /// its sample) into the world.
-    pub fn in_world(&self, reference: &Sample) -> CheckedGeometry {
-        let point = |p: Vector3<f64>| reference.position + reference.orientation * p;
-        let axis = |a: Vector3<f64>| reference.orientation * a;
+    /// its pose) into the world.
+    pub fn in_world(&self, (position, orientation): &Pose) -> CheckedGeometry {
+        let point = |p: Vector3<f64>| position + orientation * p;
+        let axis = |a: Vector3<f64>| orientation * a;
         match *self {
             CheckedGeometry::Ball {
                 body_point,
@@ -738,9 +895,26 @@ impl CheckedGeometry {
                 body_point,
                 world_point: point(world_point),
             },
-            CheckedGeometry::Axis { hinge, body, world } => CheckedGeometry::Axis {
-                hinge,
+            CheckedGeometry::Axis { freedom, body, world } => CheckedGeometry::Axis {
+                freedom: match freedom {
+                    AxisFreedom::Slide {
+                        body_normal,
+                        world_normal,
+                    } => AxisFreedom::Slide {
+                        body_normal,
+                        world_normal: axis(world_normal),
+                    },
+                    other => other,
+                },
                 body,
+                world: (point(world.0), axis(world.1)),
+            },
+            CheckedGeometry::Planar { body, world } => CheckedGeometry::Planar {
+                body,
+                world: (point(world.0), axis(world.1)),
+            },
+            CheckedGeometry::Line { body_point, world } => CheckedGeometry::Line {
+                body_point,
                 world: (point(world.0), axis(world.1)),
             },
             CheckedGeometry::Plane {
@@ -753,7 +927,7 @@ impl CheckedGeometry {
                 CheckedGeometry::Plane {
                     body_point,
                     normal,
-                    offset: offset + normal.dot(&reference.position),
+                    offset: offset + normal.dot(position),
                 }
             }
             CheckedGeometry::Round {
@@ -770,31 +944,51 @@ impl CheckedGeometry {
         }
     }
 
-    /// How far a sample is from satisfying the constraint (m): the body point's distance from where it
-    /// must be; for axis joints also that of the point 1 m further along the body axis. World geometry (see
+    /// How far a body at `pose` is from satisfying the constraint (m): the body point's distance from where it
+    /// must be; for axis joints also that of the point 1 m further along the body axis, for prismatic and
+    /// planar joints that of the point 1 m along the body normal. World geometry (see
     /// [`CheckedGeometry::in_world`] for a body reference).
-    pub fn violation(&self, sample: &Sample) -> f64 {
-        let world = |body_point: Vector3<f64>| sample.position + sample.orientation * body_point;
+    pub fn violation(&self, (position, orientation): &Pose) -> f64 {
+        let world = |body_point: Vector3<f64>| position + orientation * body_point;
+        // Distance of a world point from a world line (point, unit direction).
+        let off_line = |(on_line, direction): (Vector3<f64>, Vector3<f64>), p: Vector3<f64>| {
+            (p - on_line).cross(&direction).norm()
+        };
         match *self {
             CheckedGeometry::Ball {
                 body_point,
                 world_point,
             } => (world(body_point) - world_point).norm(),
             CheckedGeometry::Axis {
-                hinge,
+                freedom,
                 body,
                 world: line,
             } => {
-                // Distance of a world point from the world axis.
-                let off_axis = |p: Vector3<f64>| (p - line.0).cross(&line.1).norm();
-                let along_axis = off_axis(world(body.0 + body.1));
-                let at_point = if hinge {
-                    (world(body.0) - line.0).norm()
-                } else {
-                    off_axis(world(body.0))
+                let along_axis = off_line(line, world(body.0 + body.1));
+                let at_point = match freedom {
+                    AxisFreedom::Turn => (world(body.0) - line.0).norm(),
+                    AxisFreedom::TurnAndSlide => off_line(line, world(body.0)),
+                    AxisFreedom::Slide {
+                        body_normal,
+                        world_normal,
+                    } => {
+                        // The point 1 m along the body normal stays in the plane of the axis and the world normal.
+                        let off_plane = (world(body.0 + body_normal) - line.0).dot(&line.1.cross(&world_normal));
+                        off_line(line, world(body.0)).max(off_plane.abs())
+                    }
                 };
                 at_point.max(along_axis)
             }
+            CheckedGeometry::Planar { body, world: plane } => {
+                let off_plane = plane.1.dot(&(world(body.0) - plane.0)).abs();
+                // The point 1 m along the body normal from the world normal through the body point.
+                let tilt = (orientation * body.1).cross(&plane.1).norm();
+                off_plane.max(tilt)
+            }
+            CheckedGeometry::Line {
+                body_point,
+                world: line,
+            } => off_line(line, world(body_point)),
             CheckedGeometry::Plane {
                 body_point,
                 normal,
@@ -813,6 +1007,23 @@ impl CheckedGeometry {
         }
     }
 }
+
+/// A body's pose: its centre of mass (world) and its orientation body → world.
+pub type Pose = (Vector3<f64>, UnitQuaternion<f64>);
+
+/// A joint's checked geometry, its body and its reference body (`None`: the world), by index.
+pub type JointGeometry = (CheckedGeometry, usize, Option<usize>);
+
+/// Each joint's violation (m) with the bodies at `poses` (by body index).
+pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> impl Iterator<Item = f64> + 'a {
+    joints.iter().map(|(geometry, body, reference)| match reference {
+        None => geometry.violation(&poses[*body]),
+        Some(r) => geometry.in_world(&poses[*r]).violation(&poses[*body]),
+    })
+}
+
+/// The largest joint violation (m) the projected initial state may keep: more means the joints cannot all hold.
+const INITIAL_VIOLATION_LIMIT: f64 = 1e-9;
 
 /// A system ready to run in one algebra, and its initial state (one per body) on the joints.
 pub struct SceneSystem<A: Algebra> {
@@ -864,7 +1075,8 @@ impl SceneFile {
     }
 
     /// Parses a scene file and checks that it can run: the bodies, the timing, the integrator and, in every
-    /// requested algebra, the forces, joints, stabilisation and the projection of the initial state.
+    /// requested algebra, the forces, joints, stabilisation, the projection of the initial state onto the
+    /// joints and the reaction solve there.
     pub fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
         let scene: SceneFile = toml::from_str(text)?;
         scene.schedule()?;
@@ -1035,7 +1247,8 @@ impl SceneFile {
         }
     }
 
-    /// The system in algebra `A` and its initial state, projected onto the joints.
+    /// The system in algebra `A` and its initial state, projected onto the joints; an error if the joints
+    /// cannot all hold there or their reactions cannot be solved for.
     pub fn system<A: FileAlgebra>(&self) -> Result<SceneSystem<A>, SceneFileError> {
         let layout = self.layout()?;
         let mut system = Mechanism::<A>::new();
@@ -1072,10 +1285,26 @@ impl SceneFile {
             system.add_joint(ids[joint.body], reference, constraint)?;
         }
         system.set_stabilisation(self.stabilisation()?)?;
-        Ok(SceneSystem {
-            initial: project_initial(&system, &states)?,
-            system,
-        })
+        let initial = project_initial(&system, &states)?;
+        // Joints that contradict each other (or a state too far from them) leave the projection off them.
+        let poses: Vec<Pose> = initial.iter().map(State::pose).collect();
+        let joints = layout.joint_geometries()?;
+        if let Some((worst, violation)) = joint_violations(&joints, &poses)
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|(_, violation)| violation.is_nan() || *violation > INITIAL_VIOLATION_LIMIT)
+        {
+            return Err(invalid(
+                format!("joint {}", layout.joints[worst].name),
+                format!(
+                    "cannot hold with the others: projected onto the joints, the initial state still breaks it by \
+                     {violation:.3e} m (the joints contradict each other, or the initial state is too far from them)"
+                ),
+            ));
+        }
+        // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.
+        system.rates_at(0.0, &initial)?;
+        Ok(SceneSystem { initial, system })
     }
 
     /// Runs the scene in algebra `A`: one body without joints as a free body (where every integrator,
@@ -1099,16 +1328,6 @@ impl SceneFile {
             }
             _ => simulate(&system, &initial, integrator, &schedule).map_err(|e| failed(e.to_string())),
         }
-    }
-
-    /// Per joint: its checked geometry (reference-side values in the reference's frame), its body and its
-    /// reference, to measure violations with.
-    pub fn joint_geometries(&self) -> Result<Vec<(CheckedGeometry, usize, Option<usize>)>, SceneFileError> {
-        self.layout()?
-            .joints
-            .iter()
-            .map(|j| Ok((j.geometry.checked(&j.name)?, j.body, j.reference)))
-            .collect()
     }
 
     /// Whether every force has a potential, so the energy is conserved and its change is drift.

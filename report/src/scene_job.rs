@@ -1,5 +1,11 @@
 //! Running a scene file (`--scene-file`, [`crate::scene_file`]): the scene in each requested algebra, then
 //! its trajectories (CSV), energy and constraint-violation plots and `summary.md` in the output folder.
+//!
+//! The trajectory `<stem>_<algebra>.csv` of named `[[body]]` entries has the columns `t`, then per body in file
+//! order `NAME.x, NAME.y, NAME.z` (centre of mass, world, m) and `NAME.qw, NAME.qx, NAME.qy, NAME.qz`
+//! (orientation quaternion, body → world), then `energy` (the whole system's, J); a single `[body]` keeps the
+//! reference files' columns ([`csv::HEADER`]). The summary gives per algebra the energy change and the largest
+//! joint violation over all joints.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -12,7 +18,7 @@ use dynamics::{Cga, Pga};
 use crate::csv;
 use crate::markdown::{agreement, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
-use crate::scene_file::{CheckedGeometry, FileAlgebra, Layout, SceneFile, SceneFileError};
+use crate::scene_file::{joint_violations, FileAlgebra, JointGeometry, Layout, Pose, SceneFile, SceneFileError};
 use crate::sweep::AlgebraKind;
 
 /// Why a scene file's run or output failed.
@@ -46,9 +52,6 @@ pub struct AlgebraRun {
 /// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
 /// E₀ = round-off.
 pub const ABSOLUTE_ENERGY_BELOW: f64 = 1e-6;
-
-/// Per joint: its geometry, its body and its reference body (`None`: the world).
-type JointGeometry = (CheckedGeometry, usize, Option<usize>);
 
 impl AlgebraRun {
     pub fn max_energy_change(&self) -> f64 {
@@ -90,13 +93,8 @@ fn run_in<A: FileAlgebra>(
         .collect();
     let violation = (0..samples.len())
         .map(|k| {
-            joints
-                .iter()
-                .map(|(geometry, body, reference)| match reference {
-                    None => geometry.violation(&bodies[*body][k]),
-                    Some(r) => geometry.in_world(&bodies[*r][k]).violation(&bodies[*body][k]),
-                })
-                .fold(0.0, f64::max)
+            let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
+            joint_violations(joints, &poses).fold(0.0, f64::max)
         })
         .collect();
     Ok(AlgebraRun {
@@ -113,7 +111,7 @@ fn run_in<A: FileAlgebra>(
 pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, SceneJobError> {
     let scene = SceneFile::load(path)?;
     let layout = scene.layout()?;
-    let joints = scene.joint_geometries()?;
+    let joints = layout.joint_geometries()?;
     let runs = scene
         .algebra
         .algebras()
@@ -340,7 +338,8 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     let _ = writeln!(
         out,
         "The violation is the largest distance of a constrained body point from where it must be (for axis \
-         joints also of the point 1 m along the body axis). CPU time is the stepping alone.\n"
+         joints also of the point 1 m along the body axis, for prismatic and planar joints of the point 1 m along \
+         the body normal). CPU time is the stepping alone.\n"
     );
     if let [first, second] = runs {
         let (angle, distance) = first
