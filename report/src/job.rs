@@ -44,6 +44,31 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> JobError + '_ {
     }
 }
 
+/// Runs every configuration in parallel, the most `work` first, and returns (configuration, result) in the
+/// configurations' order.
+fn run_all<C: Copy + Send + Sync, R: Send>(
+    configs: &[C],
+    work: impl Fn(&C) -> f64,
+    run: impl Fn(&C) -> R + Sync,
+    label: impl Fn(&C) -> String + Sync,
+    progress: &ProgressBar,
+) -> Vec<(C, R)> {
+    let mut order: Vec<usize> = (0..configs.len()).collect();
+    order.sort_by(|&a, &b| work(&configs[b]).total_cmp(&work(&configs[a])));
+    let mut results: Vec<(usize, (C, R))> = order
+        .par_iter()
+        .map(|&index| {
+            let config = configs[index];
+            let result = run(&config);
+            progress.set_message(label(&config));
+            progress.inc(1);
+            (index, (config, result))
+        })
+        .collect();
+    results.sort_by_key(|(index, _)| *index);
+    results.into_iter().map(|(_, r)| r).collect()
+}
+
 /// Runs every configuration of `plan` and of `mechanisms` and writes the report into `output`.
 pub fn run_job(
     plan: &SweepPlan,
@@ -69,41 +94,23 @@ pub fn run_job(
         ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, about {eta} left  {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    // The slowest runs (smallest steps) first, so the pool stays busy to the end.
-    let mut order: Vec<usize> = (0..configs.len()).collect();
-    order.sort_by(|&a, &b| (configs[a].dt / configs[a].duration).total_cmp(&(configs[b].dt / configs[b].duration)));
-    let mut results: Vec<(usize, RunResult)> = order
-        .par_iter()
-        .map(|&index| {
-            let config = configs[index];
-            let result = run(&config);
-            progress.set_message(format!("{} {}", config.scene.label(), config.series_label()));
-            progress.inc(1);
-            (index, (config, result))
-        })
-        .collect();
-    // The mechanisms after the single bodies, the longest runs (most steps times most bodies) first.
-    let mut mechanism_order: Vec<usize> = (0..mechanism_configs.len()).collect();
-    let work = |i: usize| {
-        let c = &mechanism_configs[i];
-        c.duration / c.dt * c.id.bodies() as f64
-    };
-    mechanism_order.sort_by(|&a, &b| work(b).total_cmp(&work(a)));
-    let mut mechanism_results: Vec<(usize, MechanismResult)> = mechanism_order
-        .par_iter()
-        .map(|&index| {
-            let config = mechanism_configs[index];
-            let result = run_mechanism(&config);
-            progress.set_message(format!("{} {}", config.id.label(), config.series_label()));
-            progress.inc(1);
-            (index, (config, result))
-        })
-        .collect();
+    // The slowest runs first (smallest steps; for mechanisms, most steps times most bodies), so the pool
+    // stays busy to the end.
+    let results: Vec<RunResult> = run_all(
+        &configs,
+        |c| c.duration / c.dt,
+        run,
+        |c| format!("{} {}", c.scene.label(), c.series_label()),
+        &progress,
+    );
+    let mechanism_results: Vec<MechanismResult> = run_all(
+        &mechanism_configs,
+        |c| c.duration / c.dt * c.id.bodies() as f64,
+        run_mechanism,
+        |c| format!("{} {}", c.id.label(), c.series_label()),
+        &progress,
+    );
     progress.finish_and_clear();
-    mechanism_results.sort_by_key(|(index, _)| *index);
-    let mechanism_results: Vec<MechanismResult> = mechanism_results.into_iter().map(|(_, r)| r).collect();
-    results.sort_by_key(|(index, _)| *index);
-    let results: Vec<RunResult> = results.into_iter().map(|(_, r)| r).collect();
 
     let mut figure_files: HashMap<SceneId, Vec<String>> = HashMap::new();
     for scene in SceneId::ALL {
