@@ -1022,34 +1022,10 @@ pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> i
     })
 }
 
-/// The largest joint violation (m) the projected initial state may keep: more means the joints cannot all hold.
-const INITIAL_VIOLATION_LIMIT: f64 = 1e-9;
-
 /// A system ready to run in one algebra, and its initial state (one per body) on the joints.
 pub struct SceneSystem<A: Algebra> {
     pub system: Mechanism<A>,
     pub initial: Vec<State<A>>,
-}
-
-/// At most this many projections of a scene file's initial state (each of at most two Gauss–Newton steps).
-const INITIAL_PROJECTIONS: usize = 20;
-
-/// The initial state on the joints (SPEC §10). A file's state may start centimetres off them, further than one
-/// projection's two Gauss–Newton steps reach, so it is projected again while that still helps.
-fn project_initial<A: Algebra>(system: &Mechanism<A>, states: &[State<A>]) -> Result<Vec<State<A>>, SceneFileError> {
-    let mut states = states.to_vec();
-    system.project(0.0, &mut states)?;
-    let mut residual = system.violation(0.0, &states)?.position;
-    for _ in 1..INITIAL_PROJECTIONS {
-        let mut next = states.clone();
-        system.project(0.0, &mut next)?;
-        let next_residual = system.violation(0.0, &next)?.position;
-        if next_residual >= residual {
-            break;
-        }
-        (states, residual) = (next, next_residual);
-    }
-    Ok(states)
 }
 
 /// Scene files larger than this are refused before they are read to the end (the largest shipped one is 5 KiB).
@@ -1285,23 +1261,9 @@ impl SceneFile {
             system.add_joint(ids[joint.body], reference, constraint)?;
         }
         system.set_stabilisation(self.stabilisation()?)?;
-        let initial = project_initial(&system, &states)?;
-        // Joints that contradict each other (or a state too far from them) leave the projection off them.
-        let poses: Vec<Pose> = initial.iter().map(State::pose).collect();
-        let joints = layout.joint_geometries()?;
-        if let Some((worst, violation)) = joint_violations(&joints, &poses)
-            .enumerate()
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .filter(|(_, violation)| violation.is_nan() || *violation > INITIAL_VIOLATION_LIMIT)
-        {
-            return Err(invalid(
-                format!("joint {}", layout.joints[worst].name),
-                format!(
-                    "cannot hold with the others: projected onto the joints, the initial state still breaks it by \
-                     {violation:.3e} m (the joints contradict each other, or the initial state is too far from them)"
-                ),
-            ));
-        }
+        // Onto the joints (SPEC §10); joints that cannot hold together are an error naming them.
+        let mut initial = states;
+        system.project(0.0, &mut initial)?;
         // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.
         system.rates_at(0.0, &initial)?;
         Ok(SceneSystem { initial, system })

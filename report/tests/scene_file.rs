@@ -473,7 +473,7 @@ fn contradictory_joints_fail_with_their_names() {
     let unreachable = SceneFile::parse(&with_wrist("[3.0, 0.0, -2.0]")).expect_err("unreachable");
     assert_mentions(
         &unreachable.to_string(),
-        &["joint wrist: cannot hold with the others", "breaks it by"],
+        &["wrist", "cannot hold together", "after projection"],
     );
     // Held where the arm hangs straight, the loop locks at a toggle point: with the upper rod turning, no
     // reaction keeps the joints (the acceleration conditions are inconsistent).

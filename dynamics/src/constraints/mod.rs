@@ -60,6 +60,10 @@ pub enum ConstraintError {
     /// the relative residual `|C y − r| / |r|` exceeds [`SolverSettings::consistency_tolerance`].
     #[error("constraint {names}: inconsistent, relative residual {relative_residual:e} of the reaction solve")]
     Inconsistent { names: String, relative_residual: f64 },
+    /// Projection cannot bring the positions onto these joints together (e.g. one body point held at two
+    /// places): after Gauss–Newton steps their position residual is still this large.
+    #[error("constraint {names}: cannot hold together, position residual {residual:e} after projection")]
+    Unreachable { names: String, residual: f64 },
     /// A constraint produced a non-finite row (e.g. the state or a user path is not finite).
     #[error("constraint {name}: non-finite residual or Jacobian at t = {t}")]
     NonFinite { name: String, t: f64 },

@@ -177,6 +177,14 @@ impl<A: Algebra> Default for Mechanism<A> {
 /// motors (about 50 ulp of the unit-size coefficients of pinned objects, or of metres for force-line rows).
 const POSITION_TOLERANCE: f64 = 1e-14;
 
+/// A position residual still above this after a projection's Gauss–Newton steps means the joints cannot hold
+/// together (a step leaves about 1e-10 before projection and round-off after it; two contradictory joints
+/// leave their whole disagreement): an error, never a run with a broken joint.
+const UNREACHABLE_RESIDUAL: f64 = 1e-6;
+
+/// Gauss–Newton steps at most when projecting initial conditions, which may start far from the joints.
+const INITIAL_PROJECTION_STEPS: usize = 50;
+
 /// The scratch of a mechanism's evaluations ([`Dynamics::Workspace`]): made once per run, so an evaluation
 /// does not allocate.
 pub struct MechanismWorkspace<A: Algebra> {
@@ -794,16 +802,17 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Projects states onto the joint manifold (SPEC §10, docs/mechanisms.md §M5): normalise every motor,
     /// Gauss–Newton steps on the positions of the whole system (at most as many as [`Stabilisation::Projection`]
-    /// says, else 2, stopping once the residuals are round-off; skipped if a joint has no position residual),
-    /// then the kinetic-metric velocity projection. Use it on initial conditions, which must satisfy both the
-    /// position and the velocity constraints.
+    /// says and at least enough to converge from afar, stopping once the residuals are round-off; skipped if a
+    /// joint has no position residual), then the kinetic-metric velocity projection. Use it on initial
+    /// conditions, which must satisfy both the position and the velocity constraints; joints that cannot hold
+    /// together are an error naming them.
     pub fn project(&self, t: f64, states: &mut [State<A>]) -> Result<(), ConstraintError> {
         let iterations = match self.stabilisation {
             Stabilisation::Projection { position_iterations } => position_iterations,
             _ => 2,
         };
         let mut workspace = self.new_workspace();
-        self.project_with(t, states, iterations, &mut workspace)
+        self.project_with(t, states, iterations.max(INITIAL_PROJECTION_STEPS), &mut workspace)
     }
 
     fn project_with(
@@ -838,6 +847,19 @@ impl<A: Algebra> Mechanism<A> {
                 }
                 steps += 1;
                 continue;
+            }
+            let unreachable: Vec<usize> = (0..self.joints.len())
+                .filter(|&j| workspace.joints[j].position_residual > UNREACHABLE_RESIDUAL)
+                .collect();
+            if position_level && !unreachable.is_empty() {
+                let residual = unreachable
+                    .iter()
+                    .map(|&j| workspace.joints[j].position_residual)
+                    .fold(0.0, f64::max);
+                return Err(ConstraintError::Unreachable {
+                    names: self.names(unreachable),
+                    residual,
+                });
             }
             // Δxᵢ = Gᵢ Jᵢᵀλ with K λ = −ė: the momentum changes by H Δx = Jᵀλ. Only this (tiny) change goes
             // through the frame change, not Ω itself: a round trip Ω → Ω_b → Ω every step biases the energy by
