@@ -375,15 +375,17 @@ pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<Stri
             "the loop (20 hinge rows of rank 17) holds; revolution period against MULTIBODY.md's 0.7906242901366745 s",
         ),
     ] {
-        let name = format!("{stem}_work_precision.png");
-        if !work_precision_figure(dir, results, id, &name)? {
+        if !results.iter().any(|(c, _)| c.id == id) {
             continue;
         }
-        let _ = writeln!(
-            out,
-            "\n### {}: work-precision; {what}\n\n![{name}]({name})\n",
-            id.label()
-        );
+        // The table lists failed runs with their reasons, so it is written even when no run succeeded.
+        let name = format!("{stem}_work_precision.png");
+        let figure = if work_precision_figure(dir, results, id, &name)? {
+            format!("![{name}]({name})\n")
+        } else {
+            "No run succeeded.\n".to_owned()
+        };
+        let _ = writeln!(out, "\n### {}: work-precision; {what}\n\n{figure}", id.label());
         work_precision_table(&mut out, results, id);
     }
     let name = "m3_chain_cost.png";
