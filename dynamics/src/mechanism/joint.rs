@@ -71,6 +71,8 @@ pub(crate) struct JointRows {
     pub velocity_residual: f64,
     /// Whether every row has a position residual.
     pub has_position: bool,
+    /// The size of the terms summed into the acceleration conditions: their round-off is this times ε.
+    pub acceleration_scale: f64,
 }
 
 impl JointRows {
@@ -192,6 +194,14 @@ impl<A: Algebra> Joint<A> {
         // Per raw row: β = −b − a·(Δf − c) − feedback for the acceleration condition (Δf = f_b − Ad f_a), −e, −ė.
         let relative_acceleration: [f64; 6] =
             std::array::from_fn(|k| body.free_acceleration[k] - reference_acceleration[k] - correction[k]);
+        // Round-off scales: the drift sums a·(f_b, f_a', c) term by term; the bias is a sum of velocity products
+        // like Ḃ×(Ḃ×V) of size about |ω_rel| times the velocity terms |aₖxₖ| — it can cancel to round-off of
+        // those (a slider turning with its base), so its own size is no measure of its error.
+        let acceleration_sizes: [f64; 6] = std::array::from_fn(|k| {
+            body.free_acceleration[k].abs() + reference_acceleration[k].abs() + correction[k].abs()
+        });
+        let velocity = &kinematics.velocity;
+        let turning_rate = velocity.fixed_rows::<3>(0).norm();
         let mut rhs: ArrayVec<[f64; RIGHT_HAND_SIDES], MAX_ROWS> = ArrayVec::new();
         let mut scale_squared = 0.0;
         out.position_residual = 0.0;
@@ -203,7 +213,12 @@ impl<A: Algebra> Joint<A> {
                 let drift = dot(&row.jacobian, &relative_acceleration);
                 let feedback = context.stabilisation.feedback(row);
                 acceleration = -drift - row.bias - feedback;
-                scale_squared += (drift.abs() + row.bias.abs() + feedback.abs()).powi(2);
+                let (mut drift_size, mut velocity_size) = (0.0, 0.0);
+                for k in 0..6 {
+                    drift_size += row.jacobian[k].abs() * acceleration_sizes[k];
+                    velocity_size += (row.jacobian[k] * velocity[k]).abs();
+                }
+                scale_squared += (drift_size + turning_rate * velocity_size + row.bias.abs() + feedback.abs()).powi(2);
             }
             let e = row.position_residual.unwrap_or(0.0);
             out.has_position &= row.position_residual.is_some();
@@ -235,9 +250,10 @@ impl<A: Algebra> Joint<A> {
             singular_value: deficiency.singular_value,
             largest: deficiency.largest,
         })?;
+        out.acceleration_scale = scale_squared.sqrt();
         if context.dynamics {
             let consistency = crate::mechanism::solve::Consistency::Check {
-                scale: scale_squared.sqrt(),
+                scale: out.acceleration_scale,
             };
             if consistency.violated(out.reduced.residual_squared, out.reduced.rhs_squared, context.settings) {
                 return Err(ConstraintError::Inconsistent {

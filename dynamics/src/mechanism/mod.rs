@@ -682,12 +682,11 @@ impl<A: Algebra> Mechanism<A> {
             return Ok(());
         }
         self.joint_rows(t, workspace, true)?;
-        // The round-off floor of the loop consistency check: the size of the joints' right-hand sides.
+        // The round-off floor of the loop consistency check: the size of the terms in the joints' conditions.
         let scale = workspace
             .joints
             .iter()
-            .flat_map(|rows| rows.reduced.values[0][..rows.reduced.rank].iter())
-            .map(|x| x * x)
+            .map(|rows| rows.acceleration_scale.powi(2))
             .sum::<f64>()
             .sqrt();
         self.solve_reactions(workspace, Condition::Acceleration, Consistency::Check { scale })?;
