@@ -17,8 +17,6 @@
 //!   multipliers are then not unique, but the reactions `Jᵀλ` are. A right-hand side outside the kept range (the
 //!   joints demand contradictory accelerations) is an error naming the loop's joints.
 
-use arrayvec::ArrayVec;
-
 use crate::mechanism::topology::{Front, Place, Side, Topology};
 
 /// Thresholds of the reaction solve.
@@ -164,11 +162,16 @@ impl SystemMatrix {
         for (v, incidences) in topology.incidences.iter().enumerate() {
             let g = &inverse_metric[v];
             for (p, first) in incidences.iter().enumerate() {
-                // G-scaled rows of the first joint, once for all its partners.
-                let scaled: ArrayVec<[f64; 6], 6> = rows(first.joint, first.side)
-                    .iter()
-                    .map(|a| std::array::from_fn(|c| a[c] * g[c]))
-                    .collect();
+                // G-scaled rows of the first joint, once for all its partners (plain loops: this is the hot path
+                // of every evaluation, and iterator adapters here cost more than the products).
+                let first_rows = rows(first.joint, first.side);
+                let mut scaled_rows = [[0.0; 6]; 6];
+                for (scaled, a) in scaled_rows.iter_mut().zip(first_rows) {
+                    for c in 0..6 {
+                        scaled[c] = a[c] * g[c];
+                    }
+                }
+                let scaled = &scaled_rows[..first_rows.len()];
                 for second in &incidences[p..] {
                     let second_rows = rows(second.joint, second.side);
                     // A joint attaches two different bodies, so at one body the same incidence is the same joint:
@@ -187,39 +190,39 @@ impl SystemMatrix {
                             let front = &mut self.fronts[storage..storage + size * size];
                             if same {
                                 for (alpha, a) in scaled.iter().enumerate() {
-                                    let row = &mut front[(i + alpha) * size + i..=(i + alpha) * size + i + alpha];
-                                    for (x, b) in row.iter_mut().zip(second_rows) {
-                                        *x += dot6(a, b);
+                                    let at = (i + alpha) * size + i;
+                                    for (beta, b) in second_rows[..=alpha].iter().enumerate() {
+                                        front[at + beta] += dot6(a, b);
                                     }
                                 }
                             } else if i > j {
                                 for (alpha, a) in scaled.iter().enumerate() {
                                     let at = (i + alpha) * size + j;
-                                    for (x, b) in front[at..at + second_rows.len()].iter_mut().zip(second_rows) {
-                                        *x += dot6(a, b);
+                                    for (beta, b) in second_rows.iter().enumerate() {
+                                        front[at + beta] += dot6(a, b);
                                     }
                                 }
                             } else {
                                 for (beta, b) in second_rows.iter().enumerate() {
                                     let at = (j + beta) * size + i;
-                                    for (x, a) in front[at..at + scaled.len()].iter_mut().zip(&scaled) {
-                                        *x += dot6(a, b);
+                                    for (alpha, a) in scaled.iter().enumerate() {
+                                        front[at + alpha] += dot6(a, b);
                                     }
                                 }
                             }
                         }
                         (Place::Front { global, .. }, Place::Loop { offset }) => {
-                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                            for_each_product(scaled, second_rows, |alpha, beta, value| {
                                 self.tree_loop[(offset + beta) * n + global + alpha] += value
                             });
                         }
                         (Place::Loop { offset }, Place::Front { global, .. }) => {
-                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                            for_each_product(scaled, second_rows, |alpha, beta, value| {
                                 self.tree_loop[(offset + alpha) * n + global + beta] += value
                             });
                         }
                         (Place::Loop { offset: i }, Place::Loop { offset: j }) => {
-                            for_each_product(&scaled, second_rows, |alpha, beta, value| {
+                            for_each_product(scaled, second_rows, |alpha, beta, value| {
                                 let (r, c) = (i + alpha, j + beta);
                                 self.loops[c * k + r] += value;
                                 if !same {
@@ -553,10 +556,11 @@ fn factor_front<const N: usize>(f: &mut [f64], m: usize, tolerance: f64) -> Resu
         let column: [f64; N] = std::array::from_fn(|i| a[i][e]);
         for i in e + 1..N {
             let l = column[i] * inverse;
-            for j in e + 1..=i {
-                a[i][j] -= l * column[j];
+            let row = &mut a[i];
+            for j in e + 1..i + 1 {
+                row[j] -= l * column[j];
             }
-            a[i][e] = l;
+            row[e] = l;
         }
     }
     Ok(())
