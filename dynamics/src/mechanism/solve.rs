@@ -113,6 +113,46 @@ pub(crate) struct SystemMatrix {
     loop_scratch: Vec<f64>,
 }
 
+/// Where the products of two tree joints' rows at one body go in that body's front: joint rows at local
+/// offsets `i` (first) and `j` (second) of a `size × size` lower triangle; `same` for a joint with itself.
+struct Block {
+    size: usize,
+    i: usize,
+    j: usize,
+    same: bool,
+}
+
+impl Block {
+    /// Adds `a_α · b_β` for every pair of rows to the front's lower triangle (inlined, so that rows of
+    /// constant count unroll).
+    #[inline(always)]
+    fn add(&self, front: &mut [f64], first: &[[f64; 6]], second: &[[f64; 6]]) {
+        let Block { size, i, j, same } = *self;
+        if same {
+            for (alpha, a) in first.iter().enumerate() {
+                let at = (i + alpha) * size + i;
+                for (beta, b) in second[..=alpha].iter().enumerate() {
+                    front[at + beta] += dot6(a, b);
+                }
+            }
+        } else if i > j {
+            for (alpha, a) in first.iter().enumerate() {
+                let at = (i + alpha) * size + j;
+                for (beta, b) in second.iter().enumerate() {
+                    front[at + beta] += dot6(a, b);
+                }
+            }
+        } else {
+            for (beta, b) in second.iter().enumerate() {
+                let at = (j + beta) * size + i;
+                for (alpha, a) in first.iter().enumerate() {
+                    front[at + alpha] += dot6(a, b);
+                }
+            }
+        }
+    }
+}
+
 /// `add(α, β, a_α · b_β)` for every pair of rows.
 #[inline]
 fn for_each_product(first: &[[f64; 6]], second: &[[f64; 6]], mut add: impl FnMut(usize, usize, f64)) {
@@ -188,27 +228,13 @@ impl SystemMatrix {
                             Place::Front { local: j, .. },
                         ) => {
                             let front = &mut self.fronts[storage..storage + size * size];
-                            if same {
-                                for (alpha, a) in scaled.iter().enumerate() {
-                                    let at = (i + alpha) * size + i;
-                                    for (beta, b) in second_rows[..=alpha].iter().enumerate() {
-                                        front[at + beta] += dot6(a, b);
-                                    }
-                                }
-                            } else if i > j {
-                                for (alpha, a) in scaled.iter().enumerate() {
-                                    let at = (i + alpha) * size + j;
-                                    for (beta, b) in second_rows.iter().enumerate() {
-                                        front[at + beta] += dot6(a, b);
-                                    }
-                                }
-                            } else {
-                                for (beta, b) in second_rows.iter().enumerate() {
-                                    let at = (j + beta) * size + i;
-                                    for (alpha, a) in scaled.iter().enumerate() {
-                                        front[at + alpha] += dot6(a, b);
-                                    }
-                                }
+                            let block = Block { size, i, j, same };
+                            // Equal ranks (every joint of a chain of one kind) get loops of constant length.
+                            match (scaled.len(), second_rows.len()) {
+                                (3, 3) => block.add(front, &scaled[..3], &second_rows[..3]),
+                                (5, 5) => block.add(front, &scaled[..5], &second_rows[..5]),
+                                (6, 6) => block.add(front, &scaled[..6], &second_rows[..6]),
+                                _ => block.add(front, scaled, second_rows),
                             }
                         }
                         (Place::Front { global, .. }, Place::Loop { offset }) => {
@@ -528,6 +554,40 @@ macro_rules! with_front_size {
 }
 use with_front_size;
 
+/// Runs `$fixed` with the const `$m` equal to `$count` when it is a joint's rank (1 … 6: a chain's fronts
+/// eliminate one child joint, and with the count known the elimination's loops unroll), else `$dynamic`.
+macro_rules! with_joint_rank {
+    ($count:expr, $m:ident => $fixed:expr, $dynamic:block) => {
+        match $count {
+            1 => {
+                const $m: usize = 1;
+                $fixed
+            }
+            2 => {
+                const $m: usize = 2;
+                $fixed
+            }
+            3 => {
+                const $m: usize = 3;
+                $fixed
+            }
+            4 => {
+                const $m: usize = 4;
+                $fixed
+            }
+            5 => {
+                const $m: usize = 5;
+                $fixed
+            }
+            6 => {
+                const $m: usize = 6;
+                $fixed
+            }
+            _ => $dynamic,
+        }
+    };
+}
+
 /// A front's storage as an `N × N` array.
 fn square<const N: usize>(f: &mut [f64]) -> &mut [[f64; N]; N] {
     let (rows, _) = f.as_chunks_mut::<N>();
@@ -545,6 +605,12 @@ fn square_ref<const N: usize>(f: &[f64]) -> &[[f64; N]; N] {
 /// on the others in the trailing block. A pivot is checked against its own diagonal as assembled (the part of
 /// the variable the earlier ones do not explain: scale-free); a failure returns (variable, pivot, diagonal).
 fn factor_front<const N: usize>(f: &mut [f64], m: usize, tolerance: f64) -> Result<(), (usize, f64, f64)> {
+    with_joint_rank!(m, M => eliminate::<N>(f, M, tolerance), { eliminate::<N>(f, m, tolerance) })
+}
+
+/// [`factor_front`]'s elimination; inlined into each call so that a constant `m` unrolls its loops.
+#[inline(always)]
+fn eliminate<const N: usize>(f: &mut [f64], m: usize, tolerance: f64) -> Result<(), (usize, f64, f64)> {
     let a = square::<N>(f);
     let diagonal: [f64; N] = std::array::from_fn(|i| a[i][i]);
     for e in 0..m.min(N) {
@@ -599,6 +665,11 @@ fn factor_dynamic(
 
 /// `L y = x` over a front's eliminated variables, and the parent's part of x updated.
 fn forward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
+    with_joint_rank!(m, M => forward_eliminated::<N>(f, M, x), { forward_eliminated::<N>(f, m, x) })
+}
+
+#[inline(always)]
+fn forward_eliminated<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
     let a = square_ref::<N>(f);
     let x: &mut [f64; N] = x.try_into().expect("N values");
     for e in 0..m.min(N) {
@@ -620,6 +691,11 @@ fn forward_dynamic(f: &[f64], size: usize, m: usize, x: &mut [f64]) {
 
 /// `Lᵀ x = y` over a front's eliminated variables, the parent's already solved.
 fn backward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
+    with_joint_rank!(m, M => backward_eliminated::<N>(f, M, x), { backward_eliminated::<N>(f, m, x) })
+}
+
+#[inline(always)]
+fn backward_eliminated<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
     let a = square_ref::<N>(f);
     let x: &mut [f64; N] = x.try_into().expect("N values");
     for e in (0..m.min(N)).rev() {
