@@ -25,7 +25,7 @@ use nalgebra::Vector3;
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
-use crate::mechanism::solve::SolverSettings;
+use crate::mechanism::solve::{dot6, SolverSettings};
 use crate::motor::ScrewFrame;
 
 /// A joint of a mechanism: its constraint, the body it holds and the reference it holds it to.
@@ -120,11 +120,6 @@ pub(crate) fn velocity_screw(x: &[f64; 6]) -> ScrewCoordinates {
     }
 }
 
-#[inline]
-fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
 /// What an evaluation of the joint needs besides the bodies.
 pub(crate) struct JointContext<'a> {
     pub t: f64,
@@ -194,14 +189,16 @@ impl<A: Algebra> Joint<A> {
         // Per raw row: β = −b − a·(Δf − c) − feedback for the acceleration condition (Δf = f_b − Ad f_a), −e, −ė.
         let relative_acceleration: [f64; 6] =
             std::array::from_fn(|k| body.free_acceleration[k] - reference_acceleration[k] - correction[k]);
-        // Round-off scales: the drift sums a·(f_b, f_a', c) term by term; the bias is a sum of velocity products
-        // like Ḃ×(Ḃ×V) of size about |ω_rel| times the velocity terms |aₖxₖ| — it can cancel to round-off of
-        // those (a slider turning with its base), so its own size is no measure of its error.
-        let acceleration_sizes: [f64; 6] = std::array::from_fn(|k| {
-            body.free_acceleration[k].abs() + reference_acceleration[k].abs() + correction[k].abs()
-        });
+        // Round-off scales, bounds within a small factor (the consistency check only compares with 1e-10 of
+        // them): the drift sums a·(f_b, f_a', c) term by term, at most |a|₁ times their largest coordinate; the
+        // bias is a sum of velocity products like Ḃ×(Ḃ×V), about |ω_rel| times the velocity terms |aₖxₖ| ≤
+        // |a|₁|x|∞ — it can cancel to round-off of those (a slider turning with its base), so its own size is no
+        // measure of its error.
+        let acceleration_size = (0..6)
+            .map(|k| body.free_acceleration[k].abs() + reference_acceleration[k].abs() + correction[k].abs())
+            .fold(0.0, f64::max);
         let velocity = &kinematics.velocity;
-        let turning_rate = velocity.fixed_rows::<3>(0).norm();
+        let term_size = acceleration_size + velocity.fixed_rows::<3>(0).norm() * velocity.amax();
         let mut rhs: ArrayVec<[f64; RIGHT_HAND_SIDES], MAX_ROWS> = ArrayVec::new();
         let mut scale_squared = 0.0;
         out.position_residual = 0.0;
@@ -210,15 +207,12 @@ impl<A: Algebra> Joint<A> {
         for row in raw.rows() {
             let mut acceleration = 0.0;
             if context.dynamics {
-                let drift = dot(&row.jacobian, &relative_acceleration);
+                let drift = dot6(&row.jacobian, &relative_acceleration);
                 let feedback = context.stabilisation.feedback(row);
                 acceleration = -drift - row.bias - feedback;
-                let (mut drift_size, mut velocity_size) = (0.0, 0.0);
-                for k in 0..6 {
-                    drift_size += row.jacobian[k].abs() * acceleration_sizes[k];
-                    velocity_size += (row.jacobian[k] * velocity[k]).abs();
-                }
-                scale_squared += (drift_size + turning_rate * velocity_size + row.bias.abs() + feedback.abs()).powi(2);
+                let a = row.jacobian.map(f64::abs);
+                let row_size = (a[0] + a[1]) + (a[2] + a[3]) + (a[4] + a[5]);
+                scale_squared += (row_size * term_size + row.bias.abs() + feedback.abs()).powi(2);
             }
             let e = row.position_residual.unwrap_or(0.0);
             out.has_position &= row.position_residual.is_some();

@@ -19,7 +19,7 @@
 //!   inconsistency.
 
 use crate::constraints::{ConstraintRow, MAX_ROWS};
-use crate::mechanism::solve::{exceeds, symmetric_eigen};
+use crate::mechanism::solve::{dot6, exceeds, symmetric_eigen};
 
 /// How many right-hand sides a reduction carries: the acceleration condition, the position residual and the
 /// velocity residual (both for the projection).
@@ -53,11 +53,6 @@ impl Default for Reduced {
 pub(crate) struct RankDeficiency {
     pub singular_value: f64,
     pub largest: f64,
-}
-
-#[inline]
-fn dot(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// Reduces `rows` with right-hand sides `rhs[i][s]` (per raw row i) to `rank` rows in the metric `inverse_metric`
@@ -102,14 +97,14 @@ pub(crate) fn reduce(
 
     // The supplied basis, orthonormalised (Gram–Schmidt).
     out.rank = basis.len();
-    let scale = basis.iter().map(|b| dot(b, b)).fold(0.0, f64::max);
+    let scale = basis.iter().map(|b| dot6(b, b)).fold(0.0, f64::max);
     for (k, b) in basis.iter().enumerate() {
         let mut w = *b;
         for q in &out.rows[..k] {
-            let c = dot(&w, q);
+            let c = dot6(&w, q);
             w.iter_mut().zip(q).for_each(|(x, y)| *x -= c * y);
         }
-        let norm = dot(&w, &w);
+        let norm = dot6(&w, &w);
         if !exceeds(norm, tolerance * tolerance * scale) {
             return Err(RankDeficiency {
                 singular_value: norm.max(0.0).sqrt(),
@@ -126,7 +121,7 @@ pub(crate) fn reduce(
     let mut coefficients = [[0.0; 6]; MAX_ROWS];
     for (c, row) in coefficients.iter_mut().zip(rows) {
         for (k, q) in out.rows[..r].iter().enumerate() {
-            c[k] = dot(&row.jacobian, q);
+            c[k] = dot6(&row.jacobian, q);
         }
     }
     let coefficients = &coefficients[..rows.len()];
@@ -229,9 +224,9 @@ fn truncated_kinetic_metric(
         let v: [f64; 6] = std::array::from_fn(|c| normal[e * 6 + c]);
         out.rows[k] = std::array::from_fn(|c| v[c] / scale[c]);
         for (values, p) in out.values.iter_mut().zip(&projected) {
-            values[k] = dot(&v, p) / eigenvalues[e];
+            values[k] = dot6(&v, p) / eigenvalues[e];
         }
-        explained += dot(&v, &projected[0]).powi(2) / eigenvalues[e];
+        explained += dot6(&v, &projected[0]).powi(2) / eigenvalues[e];
     }
     // |A' z − β|² = |β|² − Σ_kept (v·A'ᵀβ)²/σ²: what the kept directions do not explain (rows with a zero
     // Jacobian included: their β is unexplained by construction).
@@ -259,7 +254,7 @@ mod tests {
         let rows = [row(a), row(b), row(a.map(|x| 2.0 * x)), row([0.0; 6])];
         // A solution x of a·x = 1, b·x = −2; the rows' values follow from it.
         let x = [0.3, 0.1, -0.8, 0.0, 0.2, -0.4];
-        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = rows.iter().map(|r| [dot(&r.jacobian, &x), 0.0, 0.0]).collect();
+        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = rows.iter().map(|r| [dot6(&r.jacobian, &x), 0.0, 0.0]).collect();
         let mut reduced = Reduced::default();
         reduce(
             &rows,
@@ -273,14 +268,14 @@ mod tests {
         .unwrap();
         assert_eq!(reduced.rank, 2);
         for k in 0..2 {
-            assert!((dot(&reduced.rows[k], &x) - reduced.values[0][k]).abs() < 1e-14);
+            assert!((dot6(&reduced.rows[k], &x) - reduced.values[0][k]).abs() < 1e-14);
         }
         assert!(reduced.residual_squared < 1e-28);
         // Declaring rank 3 for these rows (two independent ones) fails. (With exactly three nonzero rows the rows
         // are taken as they are, and the system solve's pivots catch a dependence.)
         let sum: [f64; 6] = std::array::from_fn(|c| a[c] + b[c]);
         let dependent = [row(a), row(b), row(a.map(|x| 2.0 * x)), row(sum)];
-        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = dependent.iter().map(|r| [dot(&r.jacobian, &x), 0.0, 0.0]).collect();
+        let rhs: Vec<[f64; RIGHT_HAND_SIDES]> = dependent.iter().map(|r| [dot6(&r.jacobian, &x), 0.0, 0.0]).collect();
         assert!(reduce(&dependent, &rhs, 3, &[1.0; 6], None, 1e-6, &mut reduced).is_err());
     }
 }
