@@ -3,9 +3,11 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Parser, ValueEnum};
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser, ValueEnum};
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method, SplittingMethod};
+use dynamics::Schedule;
 use reference::SceneId;
 use serde::Deserialize;
 
@@ -105,7 +107,7 @@ impl From<StabilisationName> for Stabilisation {
 /// Runs every reference scene in CGA and PGA with each integrator over a sweep of step sizes, and writes a
 /// work-precision report (report.md), PNG plots and the trajectories as CSV.
 #[derive(Debug, Parser)]
-#[command(version, about)]
+#[command(name = "ga-dynamics", version, about)]
 pub struct Options {
     /// Scenes to run (default: all): the single-body scenes and the mechanisms.
     #[arg(long, value_enum, value_delimiter = ',')]
@@ -115,10 +117,10 @@ pub struct Options {
     pub integrators: Vec<IntegratorName>,
     /// Step sizes in seconds; each must divide the 0.01 s sample interval (default: 1e-2, 5e-3, 2e-3, 1e-3,
     /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub steps: Vec<f64>,
     /// Simulated time in seconds for every scene (default: each scene's T from SCENES.md).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub duration: Option<f64>,
     /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).
     #[arg(long)]
@@ -127,7 +129,7 @@ pub struct Options {
     /// trajectories (CSV), energy and constraint-violation plots and summary.md.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "duration", "stabilisation"])]
     pub scene_file: Option<PathBuf>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; at most four per core).
     #[arg(long)]
     pub threads: Option<usize>,
     /// How constrained scenes are kept on their constraint manifold.
@@ -138,7 +140,42 @@ pub struct Options {
     pub quiet: bool,
 }
 
+/// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
+pub const MAX_DURATION: f64 = 1000.0;
+
 impl Options {
+    /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,
+    /// dividing the 0.01 s sample interval, and with `--duration` dividing it into whole samples), the duration
+    /// must be positive and at most [`MAX_DURATION`], the thread count between one and four per core.
+    pub fn validate(&self) -> Result<(), String> {
+        if let Some(duration) = self.duration {
+            if !(duration > 0.0 && duration <= MAX_DURATION) {
+                return Err(format!(
+                    "--duration must be a positive number of seconds, at most {MAX_DURATION}, got {duration}"
+                ));
+            }
+        }
+        let duration = self.duration.unwrap_or(1.0);
+        for &dt in &self.steps {
+            Schedule::new(dt, duration).map_err(|error| format!("--steps {dt}: {error}"))?;
+        }
+        if self.duration.is_some() && self.steps.is_empty() {
+            for dt in DEFAULT_STEPS {
+                Schedule::new(dt, duration).map_err(|error| format!("--duration {duration}: {error}"))?;
+            }
+        }
+        if let Some(threads) = self.threads {
+            let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+            if threads == 0 || threads > 4 * cores {
+                return Err(format!(
+                    "--threads must be between 1 and {} (four per core on this machine), got {threads}",
+                    4 * cores
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The sweep these options describe: the single-body scenes, and the mechanisms.
     pub fn plan(&self) -> (SweepPlan, MechanismPlan) {
         let (mut scenes, mut mechanisms) = (Vec::new(), Vec::new());
@@ -182,6 +219,9 @@ impl Options {
 /// Parses the command line, runs the job (or the scene file) and prints where the output went.
 pub fn main() -> ExitCode {
     let options = Options::parse();
+    if let Err(message) = options.validate() {
+        Options::command().error(ErrorKind::ValueValidation, message).exit();
+    }
     if let Some(path) = &options.scene_file {
         return scene_file_main(path, options.output.as_deref());
     }
@@ -200,10 +240,16 @@ pub fn main() -> ExitCode {
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",
                 summary.results.len() + summary.mechanisms.len(),
                 started.elapsed().as_secs_f64(),
-                summary.failures,
+                summary.failures.len(),
                 summary.output.join("report.md").display()
             );
-            ExitCode::SUCCESS
+            if summary.failures.is_empty() {
+                return ExitCode::SUCCESS;
+            }
+            for failure in &summary.failures {
+                eprintln!("failed: {failure}");
+            }
+            ExitCode::FAILURE
         }
         Err(error) => {
             eprintln!("error: {error}");

@@ -33,8 +33,8 @@ pub struct JobSummary {
     pub output: PathBuf,
     pub results: Vec<RunResult>,
     pub mechanisms: Vec<MechanismResult>,
-    /// Failed runs, single bodies and mechanisms.
-    pub failures: usize,
+    /// Failed runs, single bodies and mechanisms: each run's label and why it failed.
+    pub failures: Vec<String>,
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> JobError + '_ {
@@ -144,8 +144,15 @@ pub fn run_job(
     let mut text = markdown::report(&results, threads, &figure_files);
     text.push_str(&mechanism_section(output, &mechanism_results)?);
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
-    let failures = results.iter().filter(|(_, r)| r.is_err()).count()
-        + mechanism_results.iter().filter(|(_, r)| r.is_err()).count();
+    let single_failures = results.iter().filter_map(|(config, result)| {
+        let error = result.as_ref().err()?;
+        Some(format!("{} {}: {error}", config.scene.label(), config.series_label()))
+    });
+    let mechanism_failures = mechanism_results.iter().filter_map(|(config, result)| {
+        let error = result.as_ref().err()?;
+        Some(format!("{} {}: {error}", config.id.label(), config.series_label()))
+    });
+    let failures = single_failures.chain(mechanism_failures).collect();
     Ok(JobSummary {
         output: output.to_path_buf(),
         results,

@@ -26,12 +26,7 @@ fn shortened_job_matches_the_references() {
         steps: vec![1e-3],
     };
     let summary = run_job(&plan, &mechanisms, &output, false).expect("the job writes its output");
-    assert_eq!(
-        summary.failures,
-        0,
-        "{:?}",
-        summary.results.iter().filter(|(_, r)| r.is_err()).collect::<Vec<_>>()
-    );
+    assert!(summary.failures.is_empty(), "{:?}", summary.failures);
     check_mechanisms(&summary.mechanisms);
     // 1 free scene × 2 algebras + 3 hinge/top scenes × 2 algebras × 2 formulations + 2 scene-4 × 3.
     assert_eq!(summary.results.len(), 2 + 12 + 6);
@@ -159,4 +154,31 @@ fn check_mechanisms(results: &[report::mechanism_sweep::MechanismResult]) {
             MechanismId::Chain(_) => {}
         }
     }
+}
+
+/// Runs that fail are listed with their configuration and reason (the command line prints them and exits with
+/// an error status): a step that does not divide the sample interval fails every run it is given to.
+#[test]
+fn failed_runs_are_named_with_their_reason() {
+    let output = std::env::temp_dir().join("ga-dynamics-failed-runs");
+    let _ = std::fs::remove_dir_all(&output);
+    let plan = SweepPlan {
+        scenes: vec![SceneId::Cuboid],
+        integrators: vec![Integrator::General(Method::Rk4)],
+        steps: vec![1e-3, 3e-3],
+        duration: Some(0.02),
+        stabilisation: Stabilisation::PROJECTION,
+    };
+    let mechanisms = MechanismPlan {
+        mechanisms: vec![MechanismKind::DoublePendulum],
+        steps: vec![3e-3],
+    };
+    let summary = run_job(&plan, &mechanisms, &output, false).expect("the job writes its report");
+    // The cuboid at dt = 3e-3 in both algebras, the double pendulum in both algebras and formulations.
+    assert_eq!(summary.failures.len(), 2 + 4, "{:?}", summary.failures);
+    for failure in &summary.failures {
+        assert!(failure.contains("does not divide the sample interval"), "{failure}");
+    }
+    assert!(summary.failures.iter().any(|f| f.starts_with("1 cuboid")));
+    assert!(summary.failures.iter().any(|f| f.starts_with("M1 double pendulum")));
 }

@@ -1,0 +1,59 @@
+//! The main job's command line refuses what cannot make a job, with a message naming the flag and an error exit
+//! status, before running anything (issue 13: `--steps 0.003` used to end with every run failed and status 0).
+
+use std::process::{Command, Output};
+
+fn job(arguments: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ga-dynamics"))
+        .args(arguments)
+        .args(["--quiet", "--output", env!("CARGO_TARGET_TMPDIR")])
+        .output()
+        .expect("the job binary runs")
+}
+
+#[test]
+fn nonsensical_flags_are_refused_with_a_message() {
+    for (arguments, mentions) in [
+        (
+            &["--steps", "0.003"][..],
+            &["--steps 0.003", "does not divide the sample interval"][..],
+        ),
+        (&["--steps", "0"], &["--steps 0", "positive"]),
+        (&["--steps", "nan"], &["--steps NaN", "positive"]),
+        (&["--steps", "-1e-3"], &["--steps -0.001", "positive"]),
+        (&["--duration", "0"], &["--duration", "positive"]),
+        (&["--duration", "-1"], &["--duration", "got -1"]),
+        (&["--duration", "1e308"], &["--duration", "at most 1000"]),
+        (
+            &["--duration", "0.015"],
+            &["--duration 0.015", "does not divide the duration"],
+        ),
+        (&["--threads", "100000"], &["--threads", "four per core"]),
+        (&["--threads", "0"], &["--threads", "got 0"]),
+    ] {
+        let output = job(arguments);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{arguments:?}: {stderr}");
+        for part in mentions {
+            assert!(stderr.contains(part), "{arguments:?}: {stderr:?} lacks {part:?}");
+        }
+        assert!(
+            output.stdout.is_empty(),
+            "{arguments:?} ran: {}",
+            String::from_utf8_lossy(&output.stdout)
+        );
+    }
+}
+
+#[test]
+fn the_version_names_the_program() {
+    let output = Command::new(env!("CARGO_BIN_EXE_ga-dynamics"))
+        .arg("--version")
+        .output()
+        .expect("the job binary runs");
+    assert!(output.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&output.stdout).trim(),
+        format!("ga-dynamics {}", env!("CARGO_PKG_VERSION"))
+    );
+}
