@@ -13,6 +13,24 @@ use crate::sweep::{AlgebraKind, Config, Outcome, RunError};
 /// A run's result as the report sees it.
 pub type RunResult = (Config, Result<Outcome, RunError>);
 
+/// User text (a scene's title, body and joint names, a path) as inline Markdown that shows as written: line
+/// breaks and other control characters become spaces (no new block, so no heading or list can start), and the
+/// characters that open emphasis, code, links, HTML or table cells are backslash-escaped.
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.push(' ');
+        } else {
+            if matches!(c, '\\' | '`' | '*' | '_' | '[' | ']' | '<' | '>' | '#' | '|') {
+                out.push('\\');
+            }
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// A number for a table: two significant digits, or a plain 0.
 pub fn scientific(value: f64) -> String {
     if value == 0.0 {

@@ -16,7 +16,7 @@ use dynamics::simulate::Sample;
 use dynamics::{Cga, Pga};
 
 use crate::csv;
-use crate::markdown::{agreement, scientific};
+use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
 use crate::scene_file::{joint_violations, FileAlgebra, JointGeometry, Layout, Pose, SceneFile, SceneFileError};
 use crate::sweep::AlgebraKind;
@@ -244,9 +244,9 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             if layout.named {
                 format!(
                     "{} ({what}, {} to {})",
-                    j.name,
-                    body_name(Some(j.body)),
-                    body_name(j.reference)
+                    escape(&j.name),
+                    escape(body_name(Some(j.body))),
+                    escape(body_name(j.reference))
                 )
             } else {
                 what
@@ -259,22 +259,22 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         .flat_map(|b| {
             b.forces.iter().map(|f| {
                 if layout.named {
-                    format!("{} on {}", f.kind(), b.name)
+                    format!("{} on {}", f.kind(), escape(&b.name))
                 } else {
                     f.kind().to_owned()
                 }
             })
         })
         .collect();
-    let _ = writeln!(out, "# {title}\n");
+    let _ = writeln!(out, "# {}\n", escape(title));
     let _ = writeln!(
         out,
-        "From `{}`: {}forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
-        path.display(),
+        "From {}: {}forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
+        escape(&path.display().to_string()),
         if layout.named {
             format!(
                 "bodies: {}; ",
-                listed(layout.bodies.iter().map(|b| b.name.clone()).collect())
+                listed(layout.bodies.iter().map(|b| escape(&b.name)).collect())
             )
         } else {
             String::new()

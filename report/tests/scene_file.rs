@@ -670,3 +670,30 @@ proptest! {
         let _ = SceneFile::parse(&mutated(base, at, &replacement));
     }
 }
+
+/// The title and names are the user's text, shown as written in summary.md: a line break and Markdown in them
+/// cannot start a heading or a table row (it once could: the title was copied in unescaped).
+#[test]
+fn user_text_in_the_summary_is_escaped() {
+    let dir = std::env::temp_dir().join("report-scene-file-escaped");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("top.toml");
+    let text = heavy_top_text()
+        .replace(
+            "title = \"Heavy top, SCENES.md scene 3a\"",
+            "title = \"top\\n# injected heading\\n| a | table |\"",
+        )
+        .replace("duration = 10.0", "duration = 0.1");
+    assert!(text.contains("injected"), "the title line was replaced");
+    std::fs::write(&file, text).unwrap();
+    run_scene_file(&file, &dir.join("out")).expect("the scene runs");
+    let summary = std::fs::read_to_string(dir.join("out").join("summary.md")).unwrap();
+    let headings: Vec<&str> = summary.lines().filter(|line| line.starts_with('#')).collect();
+    assert_eq!(
+        headings,
+        ["# top \\# injected heading \\| a \\| table \\|"],
+        "{summary}"
+    );
+    assert!(!summary.lines().any(|line| line.starts_with("| a |")), "{summary}");
+}
