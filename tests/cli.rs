@@ -57,3 +57,32 @@ fn the_version_names_the_program() {
         format!("ga-dynamics {}", env!("CARGO_PKG_VERSION"))
     );
 }
+
+/// A scene file whose conservative scene's energy drifts far runs, and says so on stderr (status 0: the run
+/// itself succeeded).
+#[test]
+fn a_drifting_scene_file_warns_on_stderr() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-drifting-scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("spinning.toml");
+    std::fs::write(
+        &file,
+        "integrator = \"rk4\"\ndt = 1e-2\nduration = 1.0\n[body]\nmass = 1.0\n\
+         shape = { kind = \"cuboid\", size = [0.1, 0.2, 0.3] }\n[initial]\n\
+         body_angular_velocity = [300.0, 0.1, 0.0]\n",
+    )
+    .unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_ga-dynamics"))
+        .arg("--scene-file")
+        .arg(&file)
+        .arg("--output")
+        .arg(dir.join("out"))
+        .output()
+        .expect("the job binary runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: PGA: the energy of this conservative scene changed"),
+        "{stderr}"
+    );
+}

@@ -278,6 +278,9 @@ fn scene_file_main(path: &Path, output: Option<&Path>) -> ExitCode {
                 "summary, plots and trajectories in {}",
                 output.join("summary.md").display()
             );
+            for warning in &summary.warnings {
+                eprintln!("warning: {warning}");
+            }
             ExitCode::SUCCESS
         }
         Err(error) => {
