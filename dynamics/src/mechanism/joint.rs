@@ -157,14 +157,16 @@ impl<A: Algebra> Joint<A> {
                 let reference_velocity = frame.to_body(&A::screw_coordinates(reference.kinematics.body_velocity));
                 let relative_velocity = body.kinematics.body_velocity - A::screw(reference_velocity);
                 relative = Kinematics::with_frame(context.t, motor, frame, relative_velocity);
-                let correction = velocity_vector(&A::screw_coordinates(A::commutator(
-                    body.kinematics.body_velocity,
-                    A::screw(reference_velocity),
-                )));
-                let acceleration = if context.dynamics {
-                    velocity_vector(&frame.to_body(&velocity_screw(&reference.free_acceleration)))
+                let (correction, acceleration) = if context.dynamics {
+                    (
+                        velocity_vector(&A::screw_coordinates(A::commutator(
+                            body.kinematics.body_velocity,
+                            A::screw(reference_velocity),
+                        ))),
+                        velocity_vector(&frame.to_body(&velocity_screw(&reference.free_acceleration))),
+                    )
                 } else {
-                    [0.0; 6]
+                    ([0.0; 6], [0.0; 6])
                 };
                 (&relative, Some(frame), correction, acceleration)
             }

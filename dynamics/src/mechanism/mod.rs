@@ -864,22 +864,24 @@ impl<A: Algebra> Mechanism<A> {
             .iter()
             .map(|rows| rows.position_residual)
             .fold(0.0, f64::max);
-        if position_level
-            && iterations > 0
-            && drift > position_tolerance
-            && drift <= ONE_STEP_DRIFT
-            && drift * velocity_scale(workspace) <= velocity_tolerance
-        {
-            // The common case after a step: one Gauss–Newton step on the positions and the velocity projection
-            // from one factorisation of K at the step's end. The Gauss–Newton step leaves e = O(|e|²) (round-off
-            // from ONE_STEP_DRIFT down); the velocity projection, made with the rows before the positions moved
-            // by δ, leaves ė = O(|δ| |x|) — about drift × the largest body velocity, hence the condition that
-            // this be within the velocity tolerance. The step is spared a second evaluation and factorisation.
-            // (Without that condition a rod end on a sphere, RK4 at dt = 1e-3, ended 3.5e-9 from the exact
-            // projection's run after 2 s; with it, 2.7e-11.)
+        if position_level && iterations > 0 && drift > position_tolerance && drift <= ONE_STEP_DRIFT {
+            // The common case after a step: one Gauss–Newton step squares a drift this small to round-off, so no
+            // evaluation checks it. The velocity projection can use the rows from before the positions moved by
+            // δ when that leaves ė = O(|δ| |x|) — about drift × the largest body velocity — within the velocity
+            // tolerance: one evaluation and one factorisation for the whole projection. Otherwise (a rod end on
+            // a sphere, RK4 at dt = 1e-3, ended 3.5e-9 from the exact projection's run after 2 s) the rows are
+            // evaluated at the moved positions; K moves only by the drift, so its factors still serve (a chord
+            // step, leaving ė·O(drift)) when every joint's rows are its own rather than a basis the reduction
+            // chose afresh, which could turn between the two evaluations.
             self.factor_system(workspace)?;
             self.solve_factored(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
+            if drift * velocity_scale(workspace) > velocity_tolerance {
+                self.position_rows(t, states, workspace)?;
+                if !workspace.joints.iter().all(|rows| rows.reduced.direct) {
+                    self.factor_system(workspace)?;
+                }
+            }
             self.solve_factored(workspace, Condition::Velocity, Consistency::Skip)?;
             self.change_momenta(states, workspace);
             return Ok(());

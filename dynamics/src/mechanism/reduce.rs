@@ -34,6 +34,9 @@ pub(crate) struct Reduced {
     /// `|C z − β|²` and `|β|²` of the first right-hand side (the acceleration condition).
     pub residual_squared: f64,
     pub rhs_squared: f64,
+    /// Whether the rows are the constraint's own (nonzero) rows, not a basis the reduction chose: then rows
+    /// evaluated at nearby states are nearby, and a factorisation of K from one serves the other.
+    pub direct: bool,
 }
 
 impl Default for Reduced {
@@ -44,6 +47,7 @@ impl Default for Reduced {
             values: [[0.0; 6]; RIGHT_HAND_SIDES],
             residual_squared: 0.0,
             rhs_squared: 0.0,
+            direct: false,
         }
     }
 }
@@ -70,6 +74,7 @@ pub(crate) fn reduce(
     out.rank = rank;
     out.residual_squared = 0.0;
     out.rhs_squared = 0.0;
+    out.direct = false;
     // The rows that constrain anything (a PGA point's e123 row is identically zero).
     let mut nonzero = [0usize; MAX_ROWS];
     let mut count = 0;
@@ -88,6 +93,7 @@ pub(crate) fn reduce(
             }
         }
         out.rhs_squared = nonzero.iter().map(|&i| rhs[i][0] * rhs[i][0]).sum();
+        out.direct = true;
         return Ok(());
     }
 
