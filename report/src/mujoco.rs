@@ -96,7 +96,7 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
 
 /// Where the mechanisms' MuJoCo and Pinocchio figures below come from, printed beside them in the report. (The
 /// M1 and M2 times are those measured beside the benchmark run the README quotes; other runs the same day gave
-/// 5.2–6.8 µs and 12.1–15.6 µs per step: the shared machine varies by a third from hour to hour.)
+/// 5.2–6.8 µs and 11.0–15.6 µs per step: the shared machine varies by a third from hour to hour.)
 pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with MULTIBODY.md's \
      scripts on this project's machine type (2 cores, thread CPU time), beside `cargo bench -p scenarios --bench \
      mechanisms`";
@@ -104,14 +104,14 @@ pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measur
 /// M1, the double pendulum: MuJoCo's end orientation error (rad) at dt = 1e-2, 1e-3, 1e-4 and its time per step.
 pub const DOUBLE_PENDULUM: Anchor = Anchor {
     points: [(1e-2, 2.06e-6), (1e-3, 2.22e-10), (1e-4, 2.58e-13)],
-    time_per_step: 5.32e-6,
+    time_per_step: 5.19e-6,
 };
 
 /// M2, the four-bar, its loop closed by MuJoCo's soft equality `connect`: coupler centre-of-mass error at T (m),
 /// the largest loop violation (m) and the time per step (s), at dt = 1e-3 (the error does not fall with dt).
 pub const FOUR_BAR_COUPLER_ERROR: f64 = 4.45e-2;
 pub const FOUR_BAR_VIOLATION: f64 = 4.43e-4;
-pub const FOUR_BAR_TIME_PER_STEP: f64 = 12.1e-6;
+pub const FOUR_BAR_TIME_PER_STEP: f64 = 11.0e-6;
 
 /// M3: MuJoCo's time per RK4 step (s) at dt = 1e-3 for the chain of N links, ball joints and (about x) hinges.
 pub const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
