@@ -1031,6 +1031,13 @@ pub struct SceneSystem<A: Algebra> {
 /// Scene files larger than this are refused before they are read to the end (the largest shipped one is 5 KiB).
 pub const MAX_FILE_BYTES: u64 = 4 << 20;
 
+/// The most steps a scene file's run takes (per algebra): about a minute for a single body, several for a
+/// chain; a longer run is more likely a typo (`duration = 99990`, `dt = 1e-15`) than a plan.
+pub const MAX_STEPS: usize = 100_000_000;
+
+/// The most samples a scene file's run records (per algebra): every sample is kept for the CSV and the plots.
+pub const MAX_SAMPLES: usize = 1_000_000;
+
 /// The name of the world in `between`.
 const WORLD: &str = "world";
 
@@ -1076,8 +1083,34 @@ impl SceneFile {
         Ok(scene)
     }
 
+    /// The run's steps and samples, within [`MAX_STEPS`] and [`MAX_SAMPLES`].
     pub fn schedule(&self) -> Result<Schedule, SceneFileError> {
-        Schedule::with_sample_interval(self.dt, self.duration, self.sample_interval).map_err(SceneFileError::Schedule)
+        let schedule = Schedule::with_sample_interval(self.dt, self.duration, self.sample_interval)
+            .map_err(SceneFileError::Schedule)?;
+        if schedule.step_count() > MAX_STEPS {
+            return Err(invalid(
+                "dt, duration",
+                format!(
+                    "{} steps ({} s at dt = {:e} s) is more than a scene file runs (at most {MAX_STEPS:e})",
+                    schedule.step_count(),
+                    self.duration,
+                    self.dt
+                ),
+            ));
+        }
+        if schedule.sample_count() > MAX_SAMPLES {
+            return Err(invalid(
+                "duration, sample_interval",
+                format!(
+                    "{} samples ({} s every {} s) is more than a scene file records (at most {MAX_SAMPLES:e}): \
+                     lengthen sample_interval",
+                    schedule.sample_count(),
+                    self.duration,
+                    self.sample_interval
+                ),
+            ));
+        }
+        Ok(schedule)
     }
 
     pub fn stabilisation(&self) -> Result<Stabilisation, SceneFileError> {

@@ -737,3 +737,22 @@ fn a_conservative_scene_whose_energy_drifts_is_flagged() {
         }
     }
 }
+
+/// Runs too long to be meant (a typo in the duration or the step) are refused when the file is read, naming the
+/// fields and the limit, before anything is reserved or run.
+#[test]
+fn runs_too_long_are_refused_with_the_limit() {
+    assert_mentions(
+        &error_with("duration = 0.1", "duration = 99990.0"),
+        &[
+            "duration, sample_interval",
+            "samples",
+            "at most 1e6",
+            "lengthen sample_interval",
+        ],
+    );
+    assert_mentions(
+        &error_with("dt = 1e-3", "dt = 1e-15"),
+        &["dt, duration", "steps", "at most 1e8"],
+    );
+}
