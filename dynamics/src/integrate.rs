@@ -170,6 +170,16 @@ pub enum StepError {
     /// joints or constraints involved.
     #[error("at t = {t}: {error}")]
     Constraint { t: f64, error: ConstraintError },
+    /// The step size is zero, negative, NaN or infinite.
+    #[error("the step must be positive and finite, got dt = {dt}")]
+    InvalidStep { dt: f64 },
+    /// A state given to the step has a NaN or infinite coordinate.
+    #[error("the state given at t = {t} is not finite (body {body})")]
+    NonFiniteInput { t: f64, body: usize },
+    /// The step produced a NaN or infinite state: the step is too large for the motion, or a force or path
+    /// returned NaN. The states are left as they were before the step.
+    #[error("the state is no longer finite at t = {t} (body {body}): the step is too large for this system, or a force is not finite")]
+    NonFinite { t: f64, body: usize },
 }
 
 /// Steps of one integrator on one system. It owns the buffers of the stages and the system's workspace, so a
@@ -291,6 +301,12 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 got: states.len(),
             });
         }
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(StepError::InvalidStep { dt });
+        }
+        if let Some(body) = states.iter().position(|state| !state.is_finite()) {
+            return Err(StepError::NonFiniteInput { t, body });
+        }
         let dynamics = self.dynamics;
         let workspace = &mut self.workspace;
         let buffers = &mut self.buffers;
@@ -315,11 +331,17 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             }
         }
         .and_then(|()| dynamics.after_step(t + dt, &mut next, workspace));
+        let result = result
+            .map_err(|error| StepError::Constraint { t, error })
+            .and_then(|()| match next.iter().position(|state| !state.is_finite()) {
+                Some(body) => Err(StepError::NonFinite { t: t + dt, body }),
+                None => Ok(()),
+            });
         if result.is_ok() {
             states.copy_from_slice(&next);
         }
         buffers.next = next;
-        result.map_err(|error| StepError::Constraint { t, error })
+        result
     }
 }
 

@@ -23,6 +23,16 @@ pub struct WorldVelocity {
 }
 
 impl<A: Algebra> State<A> {
+    /// Whether every coordinate of the motor and the momentum is finite.
+    pub fn is_finite(&self) -> bool {
+        let motor = A::motor_coordinates(self.motor);
+        let momentum = A::screw_coordinates(self.momentum);
+        motor.scalar.is_finite()
+            && motor.pseudoscalar.is_finite()
+            && motor.l.iter().chain(motor.t.iter()).all(|x| x.is_finite())
+            && momentum.l.iter().chain(momentum.t.iter()).all(|x| x.is_finite())
+    }
+
     /// The state of a body at `position` (its centre of mass) with orientation `rotation`, moving
     /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`:
     /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (SPEC §11).

@@ -136,7 +136,8 @@ fn a_state_of_the_wrong_size_is_refused<A: Algebra>() {
     }
 }
 
-/// A state that stops being finite ends the run with the time of the first bad sample.
+/// A state that stops being finite ends the run with the time of the first bad step (the step that first
+/// evaluates the force at t = 0.25 ends there).
 fn a_blow_up_is_reported<A: Algebra>() {
     let scene = cuboid::<A>();
     let explosive = Force::<A>::Custom(Arc::new(|t, _| {
@@ -145,18 +146,42 @@ fn a_blow_up_is_reported<A: Algebra>() {
     let system = scene.system.clone().with_force(explosive);
     let schedule = Schedule::new(1e-3, 1.0).expect("1e-3 divides 0.01");
     for method in Method::ALL {
-        assert_eq!(
-            simulate(&system, &[scene.initial], method, &schedule).err(),
-            Some(SimulationError::NonFinite {
-                t: 25.0 * SAMPLE_INTERVAL
-            })
-        );
+        match simulate(&system, &[scene.initial], method, &schedule) {
+            Err(SimulationError::Step(StepError::NonFinite { t, body: 0 })) => {
+                assert!((t - 25.0 * SAMPLE_INTERVAL).abs() < 1e-12, "{}: t = {t}", method.name());
+            }
+            other => panic!("{}: {:?}", method.name(), other.err()),
+        }
     }
+}
+
+/// A step that is not positive and finite, or a state that is not finite, is refused before anything moves.
+fn bad_steps_and_states_are_refused<A: Algebra>() {
+    let scene = cuboid::<A>();
+    let mut stepper = Stepper::new(&scene.system, Method::Rk4).expect("a general method");
+    for dt in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+        let mut states = [scene.initial];
+        let error = stepper.step(0.0, &mut states, dt).unwrap_err();
+        assert!(matches!(error, StepError::InvalidStep { .. }), "dt = {dt}: {error}");
+        let unchanged = A::motor_coordinates(states[0].motor) == A::motor_coordinates(scene.initial.motor)
+            && A::screw_coordinates(states[0].momentum) == A::screw_coordinates(scene.initial.momentum);
+        assert!(unchanged, "dt = {dt}: the state moved");
+    }
+    let mut broken = scene.initial;
+    broken.momentum = broken.momentum * f64::NAN;
+    let mut states = [broken];
+    let error = stepper.step(0.5, &mut states, 1e-3).unwrap_err();
+    assert!(
+        matches!(error, StepError::NonFiniteInput { t, body: 0 } if t == 0.5),
+        "{error}"
+    );
+    assert!(error.to_string().contains("not finite"), "{error}");
 }
 
 for_both_algebras!(
     the_record_matches_the_state,
     splitting_refuses_custom_forces,
     a_state_of_the_wrong_size_is_refused,
-    a_blow_up_is_reported
+    a_blow_up_is_reported,
+    bad_steps_and_states_are_refused
 );
