@@ -30,7 +30,7 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
     let system = if hinge {
         system.with_constraint(pinning::hinge::<A>("hinge (line + point)", axis, world)?)?
     } else {
-        system.with_constraint(pinning::line::<A>("line (cylindrical joint)", axis, world))?
+        system.with_constraint(pinning::line::<A>("line (cylindrical joint)", axis, world)?)?
     };
     let system = system.with_stabilisation(Stabilisation::PROJECTION)?;
     let centre = -(orientation * HINGE_END);

@@ -444,7 +444,7 @@ fn redundant_joints_run_and_contradictions_are_named() {
         .unwrap();
     let separate = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
-        .with_constraint(pinning::line::<Pga>("line", (tip, Vector3::z()), (pivot, axis)))
+        .with_constraint(pinning::line::<Pga>("line", (tip, Vector3::z()), (pivot, axis)).unwrap())
         .unwrap()
         .with_constraint(pinning::point::<Pga>("point", tip, pivot))
         .unwrap();
@@ -649,4 +649,24 @@ fn joints_that_cannot_hold_together_are_an_error() {
     // Unprojected, the first evaluation already finds the acceleration conditions contradictory.
     let error = dynamics::simulate(&system, &[s], Method::Rk4, &schedule).unwrap_err();
     assert!(error.to_string().contains("there"), "{error}");
+}
+
+/// Lines pinned together must have equal weights: directions of different lengths (the pivot once drifted
+/// 0.25–0.30 m from where it was put), zero or non-finite ones are refused with the reason.
+#[test]
+fn pinned_lines_of_different_weights_are_refused() {
+    let (p, z) = (Vector3::new(0.1, 0.2, 0.3), Vector3::z());
+    for (body, world, reason) in [
+        (z, 2.0 * z, "equal weights"),
+        (z, Vector3::zeros(), "zero"),
+        (z * f64::NAN, z, "finite"),
+    ] {
+        let error = pinning::line::<Pga>("slide", (p, body), (p, world)).unwrap_err();
+        assert!(error.to_string().contains(reason), "{error}");
+        assert!(error.to_string().contains("slide"), "{error}");
+    }
+    // Equal lengths need not be unit, and unit directions up to round-off pass.
+    assert!(pinning::line::<Cga>("slide", (p, 3.0 * z), (p, Vector3::new(0.0, 3.0, 0.0))).is_ok());
+    let tilted = Vector3::new(1.0, 2.0, 3.0).normalize();
+    assert!(pinning::line::<Pga>("slide", (p, tilted), (p, z)).is_ok());
 }

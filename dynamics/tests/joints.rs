@@ -99,7 +99,7 @@ fn cases<A: PinningAlgebra>() -> Vec<Case<A>> {
         },
         Case {
             name: "cylindrical",
-            pinned: Arc::new(pinning::line::<A>("cylindrical", (ON_B, y), (ON_A, y))),
+            pinned: Arc::new(pinning::line::<A>("cylindrical", (ON_B, y), (ON_A, y)).unwrap()),
             by_power: Arc::new(VirtualPower::cylindrical("cylindrical", (ON_B, y), (ON_A, y)).unwrap()),
             start: (turn(y, 0.8), 0.2 * y),
             // B's point stays on A's axis, and the axes stay parallel.

@@ -805,7 +805,7 @@ impl ConstraintSpec {
             CheckedGeometry::Axis { freedom, body, world } => match (freedom, pinned) {
                 (AxisFreedom::Turn, true) => Arc::new(pinning::hinge::<A>(name, body, world)?),
                 (AxisFreedom::Turn, false) => Arc::new(VirtualPower::hinge(name, body, world)?),
-                (AxisFreedom::TurnAndSlide, true) => Arc::new(pinning::line::<A>(name, body, world)),
+                (AxisFreedom::TurnAndSlide, true) => Arc::new(pinning::line::<A>(name, body, world)?),
                 (AxisFreedom::TurnAndSlide, false) => Arc::new(VirtualPower::cylindrical(name, body, world)?),
                 (
                     AxisFreedom::Slide {

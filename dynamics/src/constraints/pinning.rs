@@ -172,18 +172,40 @@ pub fn point<A: PinningAlgebra>(
 }
 
 /// A body line pinned to a world line: a **cylindrical** joint, rank 4 — the body may slide along and turn
-/// about the line (SPEC §7 table, E7). Directions need not be unit but must have equal lengths.
+/// about the line (SPEC §7 table, E7). Directions need not be unit but must have equal lengths (to 1e-12
+/// relative): a line's coefficients scale with its direction, and lines of different weights cannot be pinned
+/// together (the pivot then drifts, 0.25–0.30 m in a test); points and directions must be finite, directions
+/// nonzero.
 pub fn line<A: PinningAlgebra>(
     name: impl Into<String>,
     (body_point, body_direction): (Vector3<f64>, Vector3<f64>),
     (world_point, world_direction): (Vector3<f64>, Vector3<f64>),
-) -> Pin<A, A::LineObject> {
-    Pin::new(
+) -> Result<Pin<A, A::LineObject>, ConstraintError> {
+    let name = name.into();
+    let invalid = |reason: String| ConstraintError::InvalidParameter {
+        name: name.clone(),
+        reason,
+    };
+    let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+    if !(finite(&body_point) && finite(&world_point) && finite(&body_direction) && finite(&world_direction)) {
+        return Err(invalid("the line points and directions must be finite".to_owned()));
+    }
+    let (body_length, world_length) = (body_direction.norm(), world_direction.norm());
+    if body_length == 0.0 || world_length == 0.0 {
+        return Err(invalid("a line direction is zero".to_owned()));
+    }
+    if (body_length - world_length).abs() > 1e-12 * body_length.max(world_length) {
+        return Err(invalid(format!(
+            "the body direction has length {body_length} and the world direction {world_length}: pinned lines \
+             need equal weights (scale one direction, or make both unit)"
+        )));
+    }
+    Ok(Pin::new(
         name,
         A::line_object(body_point, body_direction),
         A::line_object(world_point, world_direction),
         4,
-    )
+    ))
 }
 
 /// A body plane `{x : n·x = δ}` (body frame) pinned to a world plane: a planar joint, rank 3.
@@ -221,7 +243,7 @@ pub fn hinge<A: PinningAlgebra>(
             format!("{name}: line"),
             (body_point, body_axis),
             (world_point, world_axis),
-        )),
+        )?),
         Arc::new(point::<A>(format!("{name}: point"), body_point, world_point)),
     ];
     Ok(Composite::new(name, parts, 5))
@@ -257,7 +279,7 @@ pub fn prismatic<A: PinningAlgebra>(
             format!("{name}: line"),
             (body_point, body_axis),
             (world_point, world_axis),
-        )),
+        )?),
         Arc::new(plane::<A>(
             format!("{name}: plane"),
             (body_normal, body_normal.dot(&body_point)),
