@@ -660,6 +660,7 @@ fn pinned_lines_of_different_weights_are_refused() {
         (z, 2.0 * z, "equal weights"),
         (z, Vector3::zeros(), "zero"),
         (z * f64::NAN, z, "finite"),
+        (Vector3::repeat(1e308), Vector3::repeat(1e308), "finite"),
     ] {
         let error = pinning::line::<Pga>("slide", (p, body), (p, world)).unwrap_err();
         assert!(error.to_string().contains(reason), "{error}");

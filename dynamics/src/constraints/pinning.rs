@@ -191,6 +191,11 @@ pub fn line<A: PinningAlgebra>(
         return Err(invalid("the line points and directions must be finite".to_owned()));
     }
     let (body_length, world_length) = (body_direction.norm(), world_direction.norm());
+    if !(body_length.is_finite() && world_length.is_finite()) {
+        return Err(invalid(format!(
+            "the line directions' lengths {body_length} and {world_length} must be finite"
+        )));
+    }
     if body_length == 0.0 || world_length == 0.0 {
         return Err(invalid("a line direction is zero".to_owned()));
     }
