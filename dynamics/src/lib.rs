@@ -25,6 +25,8 @@ pub mod motor;
 pub mod pga;
 pub mod simulate;
 pub mod state;
+#[cfg(test)]
+mod test_random;
 
 pub use algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 pub use body::{Body, BodyError};

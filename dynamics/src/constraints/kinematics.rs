@@ -113,13 +113,8 @@ mod tests {
 
     /// The coordinate maps ([`ScrewFrame`]) equal the sandwiches `~RXR` and `RX~R` on screws, in both algebras.
     fn coordinate_maps_are_the_sandwich<A: Algebra>(tolerance: f64) {
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-        };
+        let mut uniform = crate::test_random::uniform(0x9e37_79b9_7f4a_7c15_u64);
+        let mut next = || uniform() * 4.0 - 2.0;
         for _ in 0..100 {
             let mut vector = || Vector3::new(next(), next(), next());
             let rotation = UnitQuaternion::from_scaled_axis(vector());

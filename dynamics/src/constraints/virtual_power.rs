@@ -633,13 +633,8 @@ mod tests {
     /// The body-frame rows of point wrenches equal the world wrenches moved to the body, for a ball joint on a
     /// moving pivot, a hinge and a prismatic joint at random poses and velocities, in both algebras.
     fn point_rows_are_the_moved_wrenches<A: Algebra>() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-        };
+        let mut uniform = crate::test_random::uniform(0x2545_f491_4f6c_dd1d_u64);
+        let mut next = || uniform() * 4.0 - 2.0;
         let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
         let pivot = |t: f64| PathPoint {
             value: Vector3::new(t.sin(), 0.5, -t),

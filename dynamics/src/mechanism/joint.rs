@@ -93,12 +93,12 @@ impl JointRows {
 /// Wrench (covector) coordinates `(τ; f)` of screw coordinates `(l = f, t = τ)` and back (SPEC §3: a wrench's
 /// force is its l-part, its moment its t-part, and `(τ; f)` pairs with the velocity `(ω; v)` to the power).
 #[inline]
-fn covector(c: &ScrewCoordinates) -> [f64; 6] {
+pub(crate) fn wrench_coordinates(c: &ScrewCoordinates) -> [f64; 6] {
     [c.t.x, c.t.y, c.t.z, c.l.x, c.l.y, c.l.z]
 }
 
 #[inline]
-fn wrench(y: &[f64; 6]) -> ScrewCoordinates {
+pub(crate) fn wrench_screw(y: &[f64; 6]) -> ScrewCoordinates {
     ScrewCoordinates {
         l: Vector3::new(y[3], y[4], y[5]),
         t: Vector3::new(y[0], y[1], y[2]),
@@ -228,7 +228,7 @@ impl<A: Algebra> Joint<A> {
             wrenches
                 .iter()
                 .take(6)
-                .map(|w| covector(&kinematics.frame.to_body(&A::screw_coordinates(*w))))
+                .map(|w| wrench_coordinates(&kinematics.frame.to_body(&A::screw_coordinates(*w))))
                 .collect()
         });
         reduce(
@@ -260,22 +260,10 @@ impl<A: Algebra> Joint<A> {
         }
         if let Some(frame) = frame {
             for (reference_row, row) in out.reference_rows.iter_mut().zip(&out.reduced.rows[..out.reduced.rank]) {
-                let moved = frame.to_world(&wrench(row));
-                *reference_row = covector(&moved).map(|x| -x);
+                let moved = frame.to_world(&wrench_screw(row));
+                *reference_row = wrench_coordinates(&moved).map(|x| -x);
             }
         }
         Ok(())
     }
-}
-
-/// Wrench coordinates `(τ; f)` as screw coordinates (used to apply reactions).
-#[inline]
-pub(crate) fn wrench_screw(y: &[f64; 6]) -> ScrewCoordinates {
-    wrench(y)
-}
-
-/// The covector (wrench coordinates) of a screw.
-#[inline]
-pub(crate) fn wrench_coordinates(c: &ScrewCoordinates) -> [f64; 6] {
-    covector(c)
 }

@@ -858,13 +858,9 @@ impl<A: Algebra> Mechanism<A> {
         }
         let position_level = self.joints.iter().all(|j| j.constraint.has_position_residual());
         self.position_rows(t, states, workspace)?;
-        let (position_tolerance, velocity_tolerance) = round_off_tolerances(workspace);
-        let drift = workspace
-            .joints
-            .iter()
-            .map(|rows| rows.position_residual)
-            .fold(0.0, f64::max);
-        if position_level && iterations > 0 && drift > position_tolerance && drift <= ONE_STEP_DRIFT {
+        let mut tolerances = Tolerances::of(workspace);
+        let drift = largest_position_residual(workspace);
+        if position_level && iterations > 0 && drift > tolerances.position && drift <= ONE_STEP_DRIFT {
             // The common case after a step: one Gauss–Newton step squares a drift this small to round-off, so no
             // evaluation checks it. The velocity projection can use the rows from before the positions moved by
             // δ when that leaves ė = O(|δ| |x|) — about drift × the largest body velocity — within the velocity
@@ -876,7 +872,7 @@ impl<A: Algebra> Mechanism<A> {
             self.factor_system(workspace)?;
             self.solve_factored(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
-            if drift * velocity_scale(workspace) > velocity_tolerance {
+            if drift * tolerances.velocity_scale > tolerances.velocity {
                 self.position_rows(t, states, workspace)?;
                 if !workspace.joints.iter().all(|rows| rows.reduced.direct) {
                     self.factor_system(workspace)?;
@@ -886,46 +882,40 @@ impl<A: Algebra> Mechanism<A> {
             self.change_momenta(states, workspace);
             return Ok(());
         }
+        // Initial conditions and large drifts: Gauss–Newton steps, each checked by an evaluation.
         let mut steps = 0;
-        loop {
-            let (position_tolerance, velocity_tolerance) = round_off_tolerances(workspace);
-            let off_manifold = workspace
+        while position_level && steps < iterations && largest_position_residual(workspace) > tolerances.position {
+            self.solve_reactions(workspace, Condition::Position, Consistency::Skip)?;
+            self.move_positions(states, workspace);
+            steps += 1;
+            self.position_rows(t, states, workspace)?;
+            tolerances = Tolerances::of(workspace);
+        }
+        let unreachable: Vec<usize> = (0..self.joints.len())
+            .filter(|&j| workspace.joints[j].position_residual > UNREACHABLE_RESIDUAL)
+            .collect();
+        if position_level && !unreachable.is_empty() {
+            let residual = unreachable
+                .iter()
+                .map(|&j| workspace.joints[j].position_residual)
+                .fold(0.0, f64::max);
+            return Err(ConstraintError::Unreachable {
+                names: self.names(unreachable),
+                residual,
+            });
+        }
+        // Positions left alone and velocities within round-off: nothing to do.
+        if steps == 0
+            && workspace
                 .joints
                 .iter()
-                .any(|rows| rows.position_residual > position_tolerance);
-            if position_level && off_manifold && steps < iterations {
-                self.solve_reactions(workspace, Condition::Position, Consistency::Skip)?;
-                self.move_positions(states, workspace);
-                steps += 1;
-                self.position_rows(t, states, workspace)?;
-                continue;
-            }
-            let unreachable: Vec<usize> = (0..self.joints.len())
-                .filter(|&j| workspace.joints[j].position_residual > UNREACHABLE_RESIDUAL)
-                .collect();
-            if position_level && !unreachable.is_empty() {
-                let residual = unreachable
-                    .iter()
-                    .map(|&j| workspace.joints[j].position_residual)
-                    .fold(0.0, f64::max);
-                return Err(ConstraintError::Unreachable {
-                    names: self.names(unreachable),
-                    residual,
-                });
-            }
-            // Positions left alone and velocities within round-off: nothing to do.
-            if steps == 0
-                && workspace
-                    .joints
-                    .iter()
-                    .all(|rows| rows.velocity_residual <= velocity_tolerance)
-            {
-                return Ok(());
-            }
-            self.solve_reactions(workspace, Condition::Velocity, Consistency::Skip)?;
-            self.change_momenta(states, workspace);
+                .all(|rows| rows.velocity_residual <= tolerances.velocity)
+        {
             return Ok(());
         }
+        self.solve_reactions(workspace, Condition::Velocity, Consistency::Skip)?;
+        self.change_momenta(states, workspace);
+        Ok(())
     }
 
     /// The Gauss–Newton position step from the reactions λ of `K λ = −e`: `δᵢ = Gᵢ Jᵢᵀλ`,
@@ -952,26 +942,38 @@ impl<A: Algebra> Mechanism<A> {
     }
 }
 
-/// The projection's position and velocity tolerances at the bodies' kinematics (see [`POSITION_TOLERANCE`]).
-fn round_off_tolerances<A: Algebra>(workspace: &MechanismWorkspace<A>) -> (f64, f64) {
-    let position = workspace
-        .bodies
-        .iter()
-        .map(|body| body.kinematics.frame.position.amax())
-        .fold(0.0, f64::max);
-    let ulps = ROUND_OFF_ULPS * f64::EPSILON;
-    (
-        POSITION_TOLERANCE.max(ulps * position),
-        VELOCITY_TOLERANCE.max(ulps * velocity_scale(workspace)),
-    )
+/// The projection's tolerances at the bodies' kinematics (see [`POSITION_TOLERANCE`]).
+struct Tolerances {
+    position: f64,
+    velocity: f64,
+    /// The largest body velocity coordinate (rad/s or m/s).
+    velocity_scale: f64,
 }
 
-/// The largest body velocity coordinate (rad/s or m/s).
-fn velocity_scale<A: Algebra>(workspace: &MechanismWorkspace<A>) -> f64 {
+impl Tolerances {
+    fn of<A: Algebra>(workspace: &MechanismWorkspace<A>) -> Self {
+        let (position, velocity_scale) = workspace.bodies.iter().fold((0.0f64, 0.0f64), |(p, v), body| {
+            let kinematics = &body.kinematics;
+            (
+                p.max(kinematics.frame.position.amax()),
+                v.max(kinematics.velocity.amax()),
+            )
+        });
+        let ulps = ROUND_OFF_ULPS * f64::EPSILON;
+        Tolerances {
+            position: POSITION_TOLERANCE.max(ulps * position),
+            velocity: VELOCITY_TOLERANCE.max(ulps * velocity_scale),
+            velocity_scale,
+        }
+    }
+}
+
+/// The largest position residual over the joints.
+fn largest_position_residual<A: Algebra>(workspace: &MechanismWorkspace<A>) -> f64 {
     workspace
-        .bodies
+        .joints
         .iter()
-        .map(|body| body.kinematics.velocity.amax())
+        .map(|rows| rows.position_residual)
         .fold(0.0, f64::max)
 }
 

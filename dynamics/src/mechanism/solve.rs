@@ -497,97 +497,28 @@ const MAX_FIXED_FRONT: usize = 12;
 /// One pass (forward or backward) over a front's factor: `(factor, size, eliminated, variables)`.
 type FrontPass = dyn Fn(&[f64], usize, usize, &mut [f64]);
 
-/// Runs `$fixed` with the const `$n` equal to `$size` when it is at most [`MAX_FIXED_FRONT`], else `$dynamic`.
-macro_rules! with_front_size {
-    ($size:expr, $n:ident => $fixed:expr, $dynamic:block) => {
-        match $size {
-            1 => {
-                const $n: usize = 1;
+/// Runs `$fixed` with the const `$n` equal to `$value` when it is one of the listed constants (loops over a
+/// constant count unroll), else `$dynamic`.
+macro_rules! with_constant {
+    ($value:expr, $n:ident in [$($k:literal),*] => $fixed:expr, $dynamic:block) => {
+        match $value {
+            $($k => {
+                const $n: usize = $k;
                 $fixed
-            }
-            2 => {
-                const $n: usize = 2;
-                $fixed
-            }
-            3 => {
-                const $n: usize = 3;
-                $fixed
-            }
-            4 => {
-                const $n: usize = 4;
-                $fixed
-            }
-            5 => {
-                const $n: usize = 5;
-                $fixed
-            }
-            6 => {
-                const $n: usize = 6;
-                $fixed
-            }
-            7 => {
-                const $n: usize = 7;
-                $fixed
-            }
-            8 => {
-                const $n: usize = 8;
-                $fixed
-            }
-            9 => {
-                const $n: usize = 9;
-                $fixed
-            }
-            10 => {
-                const $n: usize = 10;
-                $fixed
-            }
-            11 => {
-                const $n: usize = 11;
-                $fixed
-            }
-            12 => {
-                const $n: usize = 12;
-                $fixed
-            }
+            })*
             _ => $dynamic,
         }
+    };
+}
+use with_constant;
+
+/// [`with_constant`] over the front sizes up to [`MAX_FIXED_FRONT`].
+macro_rules! with_front_size {
+    ($size:expr, $n:ident => $fixed:expr, $dynamic:block) => {
+        with_constant!($size, $n in [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12] => $fixed, $dynamic)
     };
 }
 use with_front_size;
-
-/// Runs `$fixed` with the const `$m` equal to `$count` when it is a joint's rank (1 … 6: a chain's fronts
-/// eliminate one child joint, and with the count known the elimination's loops unroll), else `$dynamic`.
-macro_rules! with_joint_rank {
-    ($count:expr, $m:ident => $fixed:expr, $dynamic:block) => {
-        match $count {
-            1 => {
-                const $m: usize = 1;
-                $fixed
-            }
-            2 => {
-                const $m: usize = 2;
-                $fixed
-            }
-            3 => {
-                const $m: usize = 3;
-                $fixed
-            }
-            4 => {
-                const $m: usize = 4;
-                $fixed
-            }
-            5 => {
-                const $m: usize = 5;
-                $fixed
-            }
-            6 => {
-                const $m: usize = 6;
-                $fixed
-            }
-            _ => $dynamic,
-        }
-    };
-}
 
 /// A front's storage as an `N × N` array.
 fn square<const N: usize>(f: &mut [f64]) -> &mut [[f64; N]; N] {
@@ -606,7 +537,7 @@ fn square_ref<const N: usize>(f: &[f64]) -> &[[f64; N]; N] {
 /// on the others in the trailing block. A pivot is checked against its own diagonal as assembled (the part of
 /// the variable the earlier ones do not explain: scale-free); a failure returns (variable, pivot, diagonal).
 fn factor_front<const N: usize>(f: &mut [f64], m: usize, tolerance: f64) -> Result<(), (usize, f64, f64)> {
-    with_joint_rank!(m, M => eliminate::<N>(f, M, tolerance), { eliminate::<N>(f, m, tolerance) })
+    with_constant!(m, M in [1, 2, 3, 4, 5, 6] => eliminate::<N>(f, M, tolerance), { eliminate::<N>(f, m, tolerance) })
 }
 
 /// [`factor_front`]'s elimination; inlined into each call so that a constant `m` unrolls its loops.
@@ -666,7 +597,7 @@ fn factor_dynamic(
 
 /// `L y = x` over a front's eliminated variables, and the parent's part of x updated.
 fn forward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
-    with_joint_rank!(m, M => forward_eliminated::<N>(f, M, x), { forward_eliminated::<N>(f, m, x) })
+    with_constant!(m, M in [1, 2, 3, 4, 5, 6] => forward_eliminated::<N>(f, M, x), { forward_eliminated::<N>(f, m, x) })
 }
 
 #[inline(always)]
@@ -692,7 +623,7 @@ fn forward_dynamic(f: &[f64], size: usize, m: usize, x: &mut [f64]) {
 
 /// `Lᵀ x = y` over a front's eliminated variables, the parent's already solved.
 fn backward<const N: usize>(f: &[f64], m: usize, x: &mut [f64]) {
-    with_joint_rank!(m, M => backward_eliminated::<N>(f, M, x), { backward_eliminated::<N>(f, m, x) })
+    with_constant!(m, M in [1, 2, 3, 4, 5, 6] => backward_eliminated::<N>(f, M, x), { backward_eliminated::<N>(f, m, x) })
 }
 
 #[inline(always)]
@@ -799,13 +730,8 @@ mod tests {
     /// Jacobi reconstructs pseudo-random symmetric matrices with spread spectra.
     #[test]
     fn jacobi_reconstructs_symmetric_matrices() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut uniform = crate::test_random::uniform(0x2545_f491_4f6c_dd1d_u64);
+        let mut next = || uniform() - 0.5;
         for n in [1, 2, 5, 6, 9] {
             for _ in 0..50 {
                 let b: Vec<f64> = (0..n * n).map(|_| next()).collect();
