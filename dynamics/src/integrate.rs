@@ -173,6 +173,9 @@ pub enum StepError {
     /// The step size is zero, negative, NaN or infinite.
     #[error("the step must be positive and finite, got dt = {dt}")]
     InvalidStep { dt: f64 },
+    /// The time the step starts at is NaN or infinite.
+    #[error("the time must be finite, got t = {t}")]
+    InvalidTime { t: f64 },
     /// A state given to the step has a NaN or infinite coordinate.
     #[error("the state given at t = {t} is not finite (body {body})")]
     NonFiniteInput { t: f64, body: usize },
@@ -303,6 +306,9 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         }
         if !(dt.is_finite() && dt > 0.0) {
             return Err(StepError::InvalidStep { dt });
+        }
+        if !t.is_finite() {
+            return Err(StepError::InvalidTime { t });
         }
         if let Some(body) = states.iter().position(|state| !state.is_finite()) {
             return Err(StepError::NonFiniteInput { t, body });

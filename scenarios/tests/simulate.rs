@@ -155,7 +155,8 @@ fn a_blow_up_is_reported<A: Algebra>() {
     }
 }
 
-/// A step that is not positive and finite, or a state that is not finite, is refused before anything moves.
+/// A step that is not positive and finite, a time or a state that is not finite, is refused before anything
+/// moves.
 fn bad_steps_and_states_are_refused<A: Algebra>() {
     let scene = cuboid::<A>();
     let mut stepper = Stepper::new(&scene.system, Method::Rk4).expect("a general method");
@@ -166,6 +167,10 @@ fn bad_steps_and_states_are_refused<A: Algebra>() {
         let unchanged = A::motor_coordinates(states[0].motor) == A::motor_coordinates(scene.initial.motor)
             && A::screw_coordinates(states[0].momentum) == A::screw_coordinates(scene.initial.momentum);
         assert!(unchanged, "dt = {dt}: the state moved");
+    }
+    for t in [f64::NAN, f64::INFINITY] {
+        let error = stepper.step(t, &mut [scene.initial], 1e-3).unwrap_err();
+        assert!(matches!(error, StepError::InvalidTime { .. }), "t = {t}: {error}");
     }
     let mut broken = scene.initial;
     broken.momentum = broken.momentum * f64::NAN;
