@@ -114,7 +114,7 @@ fn check<A: SceneAlgebra>() {
         println!("{label}: initial {initial:.1e}, end {end:.1e}");
     }
     // Measured: initial states within 2.2e-16, end states within 6.4e-12, except the rod end on a sphere with
-    // projection and the fourth-order methods, within 2.7e-11: there the projection differs from the former
+    // projection and the fourth-order methods, within 2.6e-11: there the projection differs from the former
     // solver's by design (it leaves residuals below 1e-14 m and 1e-12 m/s alone and may share one
     // factorisation between its position and velocity solves, docs/mechanisms.md §M5), a 1e-12 difference per
     // step that 2 s of this scene's dynamics amplify. The Lie-group methods on the hinge and the tops mostly
