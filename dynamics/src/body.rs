@@ -5,6 +5,7 @@ use nalgebra::Vector3;
 
 /// Why a body's parameters are not physical.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum BodyError {
     #[error("mass must be positive and finite, got {0}")]
     Mass(f64),
@@ -16,11 +17,13 @@ pub enum BodyError {
     Dimensions(Vec<f64>),
 }
 
-/// Mass and principal moments (about the centre of mass, along the body axes).
+/// Mass and principal moments (about the centre of mass, along the body axes). The fields are private so
+/// that every `Body` went through [`Body::new`]'s checks: a negative mass or moments that no mass distribution
+/// has would otherwise simulate without a word.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Body {
-    pub mass: f64,
-    pub moments: Vector3<f64>,
+    mass: f64,
+    moments: Vector3<f64>,
 }
 
 fn positive(values: &[f64]) -> Result<(), BodyError> {
@@ -78,6 +81,16 @@ impl Body {
     pub fn sphere(mass: f64, radius: f64) -> Result<Body, BodyError> {
         positive(&[radius])?;
         Body::new(mass, Vector3::repeat(0.4 * mass * radius * radius))
+    }
+
+    /// The mass (kg).
+    pub fn mass(&self) -> f64 {
+        self.mass
+    }
+
+    /// The principal moments of inertia about the centre of mass, along the body axes (kg m²).
+    pub fn moments(&self) -> Vector3<f64> {
+        self.moments
     }
 
     /// `H = diag(I₁, I₂, I₃, m, m, m)`: the inertia in velocity coordinates `(ω; v)` (SPEC §3–§4).

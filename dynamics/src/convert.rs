@@ -12,6 +12,7 @@ use crate::motor;
 
 /// Why a multivector has no nalgebra counterpart.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ConversionError {
     /// The motor's rotor part (scalar and lᵢ) is zero or not finite, so it does not normalise to a rigid motion.
     #[error("the motor's rotor part has squared norm {0}, so it is not a rigid motion")]

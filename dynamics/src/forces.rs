@@ -77,7 +77,7 @@ impl<A: Algebra> Force<A> {
         match self {
             Force::Gravity { acceleration } => {
                 let centre = A::position(A::transform_point(motor, A::point(Vector3::zeros())));
-                force_line::<A>(body.mass * acceleration, centre)
+                force_line::<A>(body.mass() * acceleration, centre)
             }
             Force::Line { force, point } => force_line::<A>(*force, *point),
             Force::Couple { moment } => couple::<A>(*moment),
@@ -94,7 +94,7 @@ impl<A: Algebra> Force<A> {
     /// The potential energy of a conservative force (zero for the others): `−m g·c` for gravity.
     pub fn potential_energy(&self, body: &Body, state: &State<A>) -> f64 {
         match self {
-            Force::Gravity { acceleration } => -body.mass * acceleration.dot(&state.pose().0),
+            Force::Gravity { acceleration } => -body.mass() * acceleration.dot(&state.pose().0),
             _ => 0.0,
         }
     }

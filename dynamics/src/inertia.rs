@@ -12,8 +12,8 @@ impl Body {
     pub fn momentum<A: Algebra>(&self, velocity: A::Screw) -> A::Screw {
         let v = A::screw_coordinates(velocity);
         A::screw(ScrewCoordinates {
-            l: self.mass * v.t,
-            t: self.moments.component_mul(&v.l),
+            l: self.mass() * v.t,
+            t: self.moments().component_mul(&v.l),
         })
     }
 
@@ -22,8 +22,8 @@ impl Body {
     pub fn velocity<A: Algebra>(&self, momentum: A::Screw) -> A::Screw {
         let p = A::screw_coordinates(momentum);
         A::screw(ScrewCoordinates {
-            l: p.t.component_div(&self.moments),
-            t: p.l / self.mass,
+            l: p.t.component_div(&self.moments()),
+            t: p.l / self.mass(),
         })
     }
 

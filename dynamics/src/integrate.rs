@@ -750,7 +750,7 @@ impl<'a, A: Algebra> KineticSplitting<'a, A> {
         match system.forces.iter().position(|force| matches!(force, Force::Custom(_))) {
             Some(index) => Err(SplittingError::CustomForce { index }),
             None => {
-                let moments = system.body.moments;
+                let moments = system.body.moments();
                 let mut axis_order = [0, 1, 2];
                 axis_order.sort_by(|&i, &j| moments[i].total_cmp(&moments[j]));
                 Ok(KineticSplitting { system, axis_order })
@@ -811,7 +811,7 @@ fn drift<A: Algebra>(system: &FreeBody<A>, axis_order: [usize; 3], state: State<
     for (axis, fraction) in [(a, 0.5), (b, 0.5), (c, 1.0), (b, 0.5), (a, 0.5)] {
         let body_momentum = A::screw_coordinates(A::transform_screw(A::reverse(motor), state.momentum));
         let mut angular = nalgebra::Vector3::zeros();
-        angular[axis] = body_momentum.t[axis] / system.body.moments[axis];
+        angular[axis] = body_momentum.t[axis] / system.body.moments()[axis];
         let velocity = A::screw(ScrewCoordinates {
             l: angular,
             t: nalgebra::Vector3::zeros(),
@@ -821,7 +821,7 @@ fn drift<A: Algebra>(system: &FreeBody<A>, axis_order: [usize; 3], state: State<
     let body_momentum = A::screw_coordinates(A::transform_screw(A::reverse(motor), state.momentum));
     let velocity = A::screw(ScrewCoordinates {
         l: nalgebra::Vector3::zeros(),
-        t: body_momentum.l / system.body.mass,
+        t: body_momentum.l / system.body.mass(),
     });
     State {
         motor: A::compose(motor, exp::<A>(velocity * (-0.5 * h))),

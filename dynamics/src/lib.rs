@@ -39,3 +39,27 @@ pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Schedule, Simulation, SimulationError};
 pub use state::{State, WorldVelocity};
+
+/// Systems, states, results and errors cross threads (issue 13): a run keeps its failure in its own `Result`,
+/// with no shared slot, so parallel runs never see each other's errors. Checked at compile time.
+const _: () = {
+    const fn send_and_sync<T: Send + Sync>() {}
+    send_and_sync::<Mechanism<Pga>>();
+    send_and_sync::<Mechanism<Cga>>();
+    send_and_sync::<FreeBody<Pga>>();
+    send_and_sync::<FreeBody<Cga>>();
+    send_and_sync::<mechanism::MechanismWorkspace<Pga>>();
+    send_and_sync::<mechanism::MechanismWorkspace<Cga>>();
+    send_and_sync::<Stepper<'static, Pga, Mechanism<Pga>>>();
+    send_and_sync::<Stepper<'static, Cga, Mechanism<Cga>>>();
+    send_and_sync::<State<Pga>>();
+    send_and_sync::<State<Cga>>();
+    send_and_sync::<Simulation<Pga>>();
+    send_and_sync::<Simulation<Cga>>();
+    send_and_sync::<Body>();
+    send_and_sync::<SimulationError>();
+    send_and_sync::<StepError>();
+    send_and_sync::<MechanismError>();
+    send_and_sync::<ConstraintError>();
+    send_and_sync::<BodyError>();
+};

@@ -99,7 +99,7 @@ fn dense_reactions<A: Algebra>(
         let frame = ScrewFrame::of::<A>(motors[i]);
         let gravity = frame
             .rotation
-            .inverse_transform_vector(&(bodies[i].mass * Vector3::new(0.0, 0.0, -9.81)));
+            .inverse_transform_vector(&(bodies[i].mass() * Vector3::new(0.0, 0.0, -9.81)));
         let free = A::screw_coordinates(A::commutator(velocities[i], momenta[i]))
             + ScrewCoordinates {
                 l: gravity,
@@ -203,7 +203,7 @@ fn sparse_matches_dense<A: Algebra>(seed: u64, n: usize) -> Result<(), TestCaseE
         let frame = ScrewFrame::of::<A>(motors[i]);
         let gravity = frame
             .rotation
-            .inverse_transform_vector(&(bodies[i].mass * Vector3::new(0.0, 0.0, -9.81)));
+            .inverse_transform_vector(&(bodies[i].mass() * Vector3::new(0.0, 0.0, -9.81)));
         let mut reaction = A::screw_coordinates(rate.body_wrench);
         reaction.l -= gravity;
         let got = covector(&reaction);

@@ -88,8 +88,8 @@ fn equations_of_motion_are_newton_euler<A: Algebra>() {
         );
 
         // Classical Newton–Euler, body axes, about the centre of mass.
-        let inertia = case.body.moments;
-        let m = case.body.mass;
+        let inertia = case.body.moments();
+        let m = case.body.mass();
         let gravity = Vector3::new(0.0, 0.0, -dynamics::forces::STANDARD_GRAVITY);
         let total_force = case.force + m * gravity;
         let torque_world = (case.force_point - case.position).cross(&case.force);

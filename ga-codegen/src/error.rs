@@ -23,6 +23,7 @@ pub enum Location {
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     #[error("an algebra needs at least one basis vector")]
     EmptyBasis,

@@ -10,6 +10,7 @@ use thiserror::Error;
 use crate::elliptic::{complete_elliptic_k, jacobi_elliptic, EllipticError, EllipticParameter};
 
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
+#[non_exhaustive]
 pub enum AnalyticError {
     #[error(transparent)]
     Elliptic(#[from] EllipticError),

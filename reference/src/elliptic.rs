@@ -11,6 +11,7 @@ use thiserror::Error;
 
 /// Invalid input to the elliptic functions.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
+#[non_exhaustive]
 pub enum EllipticError {
     #[error("elliptic parameter m = {m} (complement {complement}) is outside [0, 1]")]
     ParameterOutOfRange { m: f64, complement: f64 },

@@ -18,6 +18,7 @@ use crate::trajectory::{Sample, Trajectory};
 pub const SAMPLE_TIME_TOLERANCE: f64 = 1e-9;
 
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum MetricError {
     #[error("the trajectories have {reference} and {simulated} samples; compare them on the same grid")]
     SampleCountMismatch { reference: usize, simulated: usize },

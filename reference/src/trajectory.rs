@@ -48,6 +48,7 @@ impl Sample {
 
 /// Malformed CSV text or an invalid sample sequence.
 #[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
 pub enum TrajectoryError {
     #[error("the CSV text has no header line")]
     MissingHeader,

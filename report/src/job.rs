@@ -18,6 +18,7 @@ use crate::sweep::{run, Outcome, SweepPlan};
 
 /// Why the job could not write its output.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum JobError {
     #[error("cannot write {path}: {source}")]
     Io { path: PathBuf, source: std::io::Error },

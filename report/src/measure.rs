@@ -7,6 +7,7 @@ use reference::{Sample, SceneConstraint, SceneId, SceneParameters, Trajectory, T
 
 /// Why a run could not be measured.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum MeasureError {
     #[error(transparent)]
     Metric(#[from] MetricError),

@@ -35,6 +35,7 @@ use crate::sweep::AlgebraKind;
 
 /// Why a scene file cannot run, or its run failed.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneFileError {
     #[error("cannot read the file: {0}")]
     Read(std::io::Error),

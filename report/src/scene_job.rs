@@ -23,6 +23,7 @@ use crate::sweep::AlgebraKind;
 
 /// Why a scene file's run or output failed.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneJobError {
     #[error(transparent)]
     Scene(#[from] SceneFileError),

@@ -142,6 +142,7 @@ pub struct Outcome {
 
 /// Why a run failed (reported in the table; the sweep goes on).
 #[derive(Clone, Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RunError {
     #[error("scene: {0}")]
     Scene(#[from] scenarios::SceneError),

@@ -12,6 +12,7 @@ use crate::MechanismId;
 
 /// Why a run could not be measured.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum MeasureError {
     #[error("the reference trajectory: {0}")]
     Reference(#[from] TrajectoryError),

@@ -44,6 +44,7 @@ impl Formulation {
 
 /// Why a scene could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneError {
     #[error("scene {scene} cannot be written by {formulation} in {algebra}")]
     NotExpressible {

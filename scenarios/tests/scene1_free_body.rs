@@ -156,9 +156,9 @@ fn check<A: Algebra>(integrator: Integrator, bounds: &Bounds) {
 
     let e0 = scene.scene.initial_energy;
     let energy = max_over(samples, |s| (s.energy - e0).abs() / e0);
-    let [p0, l0] = classical_momentum(&samples[0], scene.body.mass, &scene.body.moments);
+    let [p0, l0] = classical_momentum(&samples[0], scene.body.mass(), &scene.body.moments());
     let momentum = max_over(samples, |s| {
-        let [p, l] = classical_momentum(s, scene.body.mass, &scene.body.moments);
+        let [p, l] = classical_momentum(s, scene.body.mass(), &scene.body.moments());
         (p - p0).amax().max((l - l0).amax())
     });
     let line = max_over(samples, |s| {

@@ -43,6 +43,7 @@ use crate::algebra::Algebra;
 
 /// Why a constrained system could not be evaluated. Each variant names the constraint(s) involved.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ConstraintError {
     /// The rows lost rank: the `rank`-th singular value of the (kinetic-metric scaled) constraint map is
     /// negligible against the largest, so the reaction is not determined (SPEC §7.1).

@@ -532,7 +532,7 @@ impl<A: Algebra> Mechanism<A> {
                         l: kinematics
                             .frame
                             .rotation
-                            .inverse_transform_vector(&(body.body.mass * acceleration)),
+                            .inverse_transform_vector(&(body.body.mass() * acceleration)),
                         t: Vector3::zeros(),
                     },
                     _ => {
@@ -569,7 +569,7 @@ impl<A: Algebra> Mechanism<A> {
                 .bodies
                 .iter()
                 .map(|b| {
-                    let (i, m) = (b.body.moments, b.body.mass);
+                    let (i, m) = (b.body.moments(), b.body.mass());
                     [1.0 / i.x, 1.0 / i.y, 1.0 / i.z, 1.0 / m, 1.0 / m, 1.0 / m]
                 })
                 .collect(),
