@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use dynamics::constraints::objects::cga_circle;
-use dynamics::constraints::paths::{moving_point, Fixed, FunctionPath, TranslatedPath};
+use dynamics::constraints::paths::{moving_point, Fixed, TranslatedPath};
 use dynamics::constraints::{
     linear, pinning, Composite, Constraint, ConstraintError, Kinematics, Path, PathPoint, Pinnable, PinningAlgebra,
     RowBuffer, Stabilisation, VirtualPower, WrenchPoint,
@@ -127,8 +127,8 @@ fn pins_and_wrenches<A: PinningAlgebra>() -> Vec<Arc<dyn Constraint<A>>> {
                 (world_normal, offset + world_normal.dot(&centre)),
             )
         }),
-        Arc::new(pinning::driven_point::<A, _>("driven pivot", a, oscillation)),
-        Arc::new(pinning::sliding_attachment::<A, _>(
+        Arc::new(pinning::driven_point::<A>("driven pivot", a, oscillation)),
+        Arc::new(pinning::sliding_attachment::<A>(
             "sliding attachment",
             oscillation,
             Vector3::new(0.5, 0.1, 0.2),
@@ -156,9 +156,7 @@ fn pins_and_wrenches<A: PinningAlgebra>() -> Vec<Arc<dyn Constraint<A>>> {
             .unwrap(),
         ),
         Arc::new(VirtualPower::point_on_plane("plane", a, (Vector3::new(0.0, 0.0, 2.0), 0.4)).unwrap()),
-        Arc::new(
-            VirtualPower::point_on_moving_sphere("moving sphere", a, Arc::new(FunctionPath(oscillation)), 0.7).unwrap(),
-        ),
+        Arc::new(VirtualPower::point_on_moving_sphere("moving sphere", a, oscillation, 0.7).unwrap()),
         Arc::new(VirtualPower::point_on_circle("circle", a, (Vector3::x(), 0.6, Vector3::new(0.0, 1.0, 1.0))).unwrap()),
     ]
 }
@@ -503,16 +501,9 @@ fn failures_name_the_constraint() {
     );
 
     // A path that is not finite.
-    let broken: Arc<dyn Path<_>> = Arc::new(FunctionPath(|_t: f64| {
-        PathPoint::at_rest(Pga::point(Vector3::repeat(f64::NAN)))
-    }));
+    let broken = |_t: f64| PathPoint::at_rest(Pga::point(Vector3::repeat(f64::NAN)));
     let nan = Mechanism::<Pga>::single(body())
-        .with_constraint(pinning::Pin::with_paths(
-            "broken",
-            Arc::new(Fixed(Pga::point(tip))),
-            broken,
-            3,
-        ))
+        .with_constraint(pinning::Pin::with_paths("broken", Fixed(Pga::point(tip)), broken, 3))
         .unwrap();
     assert!(matches!(error_of(&nan, &s), ConstraintError::NonFinite { ref name, .. } if name == "broken"));
     // A step fails with the error and its time, and leaves the state as it was.
@@ -594,7 +585,7 @@ fn moving_sphere_by_both_formulations() {
             .unwrap()
     };
     let by_power = system(Arc::new(
-        VirtualPower::point_on_moving_sphere("power", end, Arc::new(FunctionPath(centre)), 0.5).unwrap(),
+        VirtualPower::point_on_moving_sphere("power", end, centre, 0.5).unwrap(),
     ));
     let by_pin = system(Arc::new(linear::cga_point_on_moving_sphere("pin", end, centre, 0.5)));
     let (mut x, mut y) = ([initial], [initial]);

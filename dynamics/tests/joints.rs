@@ -407,7 +407,7 @@ fn a_moving_pivot_by_prescribed_power() {
     let wrenches = (0..3)
         .map(|k| {
             let direction = Vector3::ith(k, 1.0);
-            Arc::new(move |t: f64| {
+            move |t: f64| {
                 let p = pivot(t);
                 WrenchPoint {
                     wrench: force_line::<Pga>(direction, p.value),
@@ -416,13 +416,13 @@ fn a_moving_pivot_by_prescribed_power() {
                     power: direction.dot(&p.rate),
                     power_rate: direction.dot(&p.acceleration),
                 }
-            }) as dynamics::constraints::WrenchPath<Pga>
+            }
         })
-        .collect();
+        .collect::<Vec<_>>();
     let constraints: [Arc<dyn Constraint<Pga>>; 3] = [
         Arc::new(VirtualPower::from_wrenches("user wrenches", wrenches)),
         Arc::new(VirtualPower::driven_ball_joint("driven ball", tip, pivot)),
-        Arc::new(pinning::driven_point::<Pga, _>("driven point", tip, pivot)),
+        Arc::new(pinning::driven_point::<Pga>("driven point", tip, pivot)),
     ];
     let body = body_a();
     let schedule = Schedule::new(1e-3, 1.0).unwrap();

@@ -2,47 +2,18 @@
 //! the body frame. The incidence constraints "body point P on a world object X" are `A[X] = P ∧ X = 0`, which
 //! constrains fewer degrees of freedom than pinning X itself (SPEC §9 table).
 
-use std::sync::Arc;
-
 use nalgebra::Vector3;
 
 use crate::algebra::Algebra;
 use crate::cga::{generated as cga_types, Cga};
 use crate::constraints::objects::{cga_circle, cga_sphere, PinningAlgebra};
-use crate::constraints::paths::{Fixed, Path, PathPoint, TranslatedPath};
-use crate::constraints::pinning::Pin;
+use crate::constraints::paths::{Fixed, Path, TranslatedPath};
+use crate::constraints::pinning::{LinearFunction, Pin};
 use crate::constraints::Coefficients;
 
-/// A linear map from X to Y, fixed in the body frame. Linearity is the caller's promise: the rows apply
-/// it to each term of SPEC §9's equation separately.
-pub struct LinearFunction<X, Y>(Arc<dyn Fn(X) -> Y + Send + Sync>);
-
-impl<X, Y> Clone for LinearFunction<X, Y> {
-    fn clone(&self) -> Self {
-        LinearFunction(self.0.clone())
-    }
-}
-
-impl<X, Y> LinearFunction<X, Y> {
-    pub fn new(function: impl Fn(X) -> Y + Send + Sync + 'static) -> Self {
-        LinearFunction(Arc::new(function))
-    }
-
-    #[inline]
-    pub fn apply(&self, x: X) -> Y {
-        (self.0)(x)
-    }
-}
-
-impl<X: 'static> LinearFunction<X, X> {
-    pub fn identity() -> Self {
-        LinearFunction::new(|x| x)
-    }
-}
-
 /// `P ∧ X = 0` with the target U = 0 at rest.
-fn incidence_target<Y: Coefficients>() -> Arc<dyn Path<Y>> {
-    Arc::new(Fixed(Y::zero()))
+fn incidence_target<Y: Coefficients>() -> Fixed<Y> {
+    Fixed(Y::zero())
 }
 
 /// The body point `body_point` (body coordinates) stays on the world plane `{x : normal·x = offset}`:
@@ -55,9 +26,9 @@ pub fn point_on_plane<A: PinningAlgebra>(
     let point = A::point_object(body_point);
     Pin::linear(
         name,
-        LinearFunction::new(move |plane| A::point_plane_incidence(point, plane)),
-        Arc::new(Fixed(A::plane_object(normal, offset))),
         incidence_target(),
+        LinearFunction::new(move |plane| A::point_plane_incidence(point, plane)),
+        Fixed(A::plane_object(normal, offset)),
         1,
     )
 }
@@ -72,9 +43,9 @@ pub fn point_on_line<A: PinningAlgebra>(
     let point = A::point_object(body_point);
     Pin::linear(
         name,
-        LinearFunction::new(move |line| A::point_line_incidence(point, line)),
-        Arc::new(Fixed(A::line_object(line_point, direction))),
         incidence_target(),
+        LinearFunction::new(move |line| A::point_line_incidence(point, line)),
+        Fixed(A::line_object(line_point, direction)),
         2,
     )
 }
@@ -89,33 +60,27 @@ pub fn cga_point_on_sphere(
     let point = Cga::point(body_point);
     Pin::linear(
         name,
-        LinearFunction::new(move |sphere| point ^ sphere),
-        Arc::new(Fixed(cga_sphere(centre, radius))),
         incidence_target(),
+        LinearFunction::new(move |sphere| point ^ sphere),
+        Fixed(cga_sphere(centre, radius)),
         1,
     )
 }
 
 /// CGA: the body point stays on a sphere of `radius` whose centre moves along `centre(t)`:
 /// `V(t) = T(c(t)) S₀ ~T(c(t))` with S₀ at the origin (SPEC §8, §9 table), rank 1.
-pub fn cga_point_on_moving_sphere<F>(
+pub fn cga_point_on_moving_sphere(
     name: impl Into<String>,
     body_point: Vector3<f64>,
-    centre: F,
+    centre: impl Path<Vector3<f64>> + 'static,
     radius: f64,
-) -> Pin<Cga, cga_types::Quadvector, cga_types::Pseudoscalar>
-where
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
-{
+) -> Pin<Cga, cga_types::Quadvector, cga_types::Pseudoscalar> {
     let point = Cga::point(body_point);
     Pin::linear(
         name,
-        LinearFunction::new(move |sphere| point ^ sphere),
-        Arc::new(TranslatedPath::<Cga, _, _>::new(
-            cga_sphere(Vector3::zeros(), radius),
-            centre,
-        )),
         incidence_target(),
+        LinearFunction::new(move |sphere| point ^ sphere),
+        TranslatedPath::<Cga, _, _>::new(cga_sphere(Vector3::zeros(), radius), centre),
         1,
     )
 }
@@ -131,9 +96,9 @@ pub fn cga_point_on_circle(
     let point = Cga::point(body_point);
     Pin::linear(
         name,
-        LinearFunction::new(move |circle| point ^ circle),
-        Arc::new(Fixed(cga_circle(centre, radius, normal))),
         incidence_target(),
+        LinearFunction::new(move |circle| point ^ circle),
+        Fixed(cga_circle(centre, radius, normal)),
         2,
     )
 }

@@ -31,10 +31,9 @@ pub mod virtual_power;
 use std::sync::Arc;
 
 pub use kinematics::Kinematics;
-pub use linear::LinearFunction;
 pub use objects::{Coefficients, Pinnable, PinningAlgebra};
-pub use paths::{CarriedPath, FunctionPath, MotorPath, MotorPoint, Path, PathPoint, ScrewMotion};
-pub use pinning::Pin;
+pub use paths::{CarriedPath, MotorPath, MotorPoint, Path, PathPoint, ScrewMotion};
+pub use pinning::{LinearFunction, Pin};
 pub use rows::{ConstraintRow, RowBuffer, MAX_ROWS};
 pub use stabilise::Stabilisation;
 pub use virtual_power::{VirtualPower, WrenchPath, WrenchPoint};

@@ -1,8 +1,13 @@
 //! Parametric paths (SPEC §8): a body-frame U(t) or world-frame V(t) with exact first and second time
-//! derivatives, given by the user ([`FunctionPath`]) or generated exactly by a translator
-//! ([`TranslatedPath`]: a driven pivot, an attachment sliding on the body).
+//! derivatives, given by the user (any closure `Fn(f64) -> PathPoint<X>` is a [`Path`]) or generated exactly
+//! by a translator ([`TranslatedPath`]: a driven pivot, an attachment sliding on the body).
+//!
+//! Every constructor that takes a path takes it the same way, as `impl Path<X> + 'static` (or
+//! `impl MotorPath<A>`, `impl WrenchPath<A>`): a closure, one of the paths here, or an `Arc` of any of them
+//! when one path is shared.
 
 use std::marker::PhantomData;
+use std::sync::Arc;
 
 use nalgebra::Vector3;
 
@@ -51,13 +56,21 @@ impl<X: Coefficients> Path<X> for Fixed<X> {
     }
 }
 
-/// A path given by a closure returning the value and its exact derivatives.
-#[derive(Clone, Copy, Debug)]
-pub struct FunctionPath<F>(pub F);
-
-impl<X, F: Fn(f64) -> PathPoint<X> + Send + Sync> Path<X> for FunctionPath<F> {
+/// A closure returning the value and its exact derivatives.
+impl<X, F: Fn(f64) -> PathPoint<X> + Send + Sync> Path<X> for F {
     fn at(&self, t: f64) -> PathPoint<X> {
-        (self.0)(t)
+        self(t)
+    }
+}
+
+/// A shared path.
+impl<X, P: Path<X> + ?Sized> Path<X> for Arc<P> {
+    fn at(&self, t: f64) -> PathPoint<X> {
+        (**self).at(t)
+    }
+
+    fn is_fixed(&self) -> bool {
+        (**self).is_fixed()
     }
 }
 
@@ -74,20 +87,20 @@ impl<X, F: Fn(f64) -> PathPoint<X> + Send + Sync> Path<X> for FunctionPath<F> {
 /// V̈ = τ̈×V₀ + τ̈×(τ×V₀) + τ̇×(τ̇×V₀)
 /// ```
 /// (`τ̇ × (τ × V₀) = τ × (τ̇ × V₀)` by the Jacobi identity, translations commuting.)
-pub struct TranslatedPath<A, X, F> {
+pub struct TranslatedPath<A, X, P> {
     base: X,
-    offset: F,
+    offset: P,
     algebra: PhantomData<fn() -> A>,
 }
 
-impl<A, X, F> TranslatedPath<A, X, F>
+impl<A, X, P> TranslatedPath<A, X, P>
 where
     A: Algebra,
     X: Pinnable<A>,
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+    P: Path<Vector3<f64>>,
 {
     /// `base` moved along the offset path `offset(t)` (value, velocity, acceleration).
-    pub fn new(base: X, offset: F) -> Self {
+    pub fn new(base: X, offset: P) -> Self {
         TranslatedPath {
             base,
             offset,
@@ -104,14 +117,14 @@ fn translation_screw<A: Algebra>(offset: Vector3<f64>) -> A::Screw {
     })
 }
 
-impl<A, X, F> Path<X> for TranslatedPath<A, X, F>
+impl<A, X, P> Path<X> for TranslatedPath<A, X, P>
 where
     A: Algebra,
     X: Pinnable<A>,
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+    P: Path<Vector3<f64>>,
 {
     fn at(&self, t: f64) -> PathPoint<X> {
-        let c = (self.offset)(t);
+        let c = self.offset.at(t);
         let (tau, tau_rate, tau_acceleration) = (
             translation_screw::<A>(c.value),
             translation_screw::<A>(c.rate),
@@ -131,10 +144,10 @@ where
 
 /// The point at `position(t)`: the origin point translated along the path, so its derivatives are exact
 /// (SPEC §8 gives them per algebra: `ṗ + (p·ṗ)n∞` in CGA, `e₀ṗI₃` in PGA).
-pub fn moving_point<A, F>(position: F) -> TranslatedPath<A, A::PointObject, F>
+pub fn moving_point<A, P>(position: P) -> TranslatedPath<A, A::PointObject, P>
 where
     A: PinningAlgebra,
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync,
+    P: Path<Vector3<f64>>,
 {
     TranslatedPath::new(A::point_object(Vector3::zeros()), position)
 }
@@ -153,23 +166,31 @@ pub trait MotorPath<A: Algebra>: Send + Sync {
     fn at(&self, t: f64) -> MotorPoint<A>;
 }
 
-impl<A: Algebra, F: Fn(f64) -> MotorPoint<A> + Send + Sync> MotorPath<A> for FunctionPath<F> {
+/// A closure returning the motor and its velocity and acceleration.
+impl<A: Algebra, F: Fn(f64) -> MotorPoint<A> + Send + Sync> MotorPath<A> for F {
     fn at(&self, t: f64) -> MotorPoint<A> {
-        (self.0)(t)
+        self(t)
+    }
+}
+
+/// A shared motor path.
+impl<A: Algebra, P: MotorPath<A> + ?Sized> MotorPath<A> for Arc<P> {
+    fn at(&self, t: f64) -> MotorPoint<A> {
+        (**self).at(t)
     }
 }
 
 /// `U(t) = U₀ exp(−½ θ(t) S)`: a screw motion by the parameter θ(t) (value, rate, acceleration) along the screw S
 /// (a body velocity: with S = l₃, θ turns the body about its z axis; with S = t₁, θ slides it along x), from the
 /// motor U₀. Its body velocity is `ξ = θ̇ S` (S commutes with exp(θS)), so `ξ̇ = θ̈ S`.
-pub struct ScrewMotion<A: Algebra, F> {
+pub struct ScrewMotion<A: Algebra, P> {
     start: A::Motor,
     screw: A::Screw,
-    parameter: F,
+    parameter: P,
 }
 
-impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> ScrewMotion<A, F> {
-    pub fn new(start: A::Motor, screw: A::Screw, parameter: F) -> Self {
+impl<A: Algebra, P: Path<f64>> ScrewMotion<A, P> {
+    pub fn new(start: A::Motor, screw: A::Screw, parameter: P) -> Self {
         ScrewMotion {
             start,
             screw,
@@ -178,9 +199,9 @@ impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> ScrewMotion<A, F> {
     }
 }
 
-impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> MotorPath<A> for ScrewMotion<A, F> {
+impl<A: Algebra, P: Path<f64>> MotorPath<A> for ScrewMotion<A, P> {
     fn at(&self, t: f64) -> MotorPoint<A> {
-        let theta = (self.parameter)(t);
+        let theta = self.parameter.at(t);
         MotorPoint {
             motor: A::compose(
                 self.start,
@@ -197,11 +218,16 @@ impl<A: Algebra, F: Fn(f64) -> PathPoint<f64> + Send + Sync> MotorPath<A> for Sc
 /// `V̈ = U((X × ξ) × ξ + X × ξ̇)~U`: the reference-frame path a motor joint pins the body's X to.
 pub struct CarriedPath<A: Algebra, X> {
     object: X,
-    path: std::sync::Arc<dyn MotorPath<A>>,
+    path: Arc<dyn MotorPath<A>>,
 }
 
 impl<A: Algebra, X: Pinnable<A>> CarriedPath<A, X> {
-    pub fn new(object: X, path: std::sync::Arc<dyn MotorPath<A>>) -> Self {
+    pub fn new(object: X, path: impl MotorPath<A> + 'static) -> Self {
+        CarriedPath::shared(object, Arc::new(path))
+    }
+
+    /// One motor path carrying several objects (a motor joint's two lines) without a second indirection.
+    pub(crate) fn shared(object: X, path: Arc<dyn MotorPath<A>>) -> Self {
         CarriedPath { object, path }
     }
 }

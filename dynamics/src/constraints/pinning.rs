@@ -21,11 +21,37 @@ use nalgebra::Vector3;
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::cga::{generated as cga_types, Cga};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::linear::LinearFunction;
 use crate::constraints::objects::{cga_circle, cga_sphere, Coefficients, Pinnable, PinningAlgebra};
-use crate::constraints::paths::{moving_point, CarriedPath, Fixed, MotorPath, Path, PathPoint};
+use crate::constraints::paths::{moving_point, CarriedPath, Fixed, MotorPath, Path};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
+
+/// A linear map from X to Y, fixed in the body frame. Linearity is the caller's promise: the rows apply
+/// it to each term of SPEC §9's equation separately.
+pub struct LinearFunction<X, Y>(Arc<dyn Fn(X) -> Y + Send + Sync>);
+
+impl<X, Y> Clone for LinearFunction<X, Y> {
+    fn clone(&self) -> Self {
+        LinearFunction(self.0.clone())
+    }
+}
+
+impl<X, Y> LinearFunction<X, Y> {
+    pub fn new(function: impl Fn(X) -> Y + Send + Sync + 'static) -> Self {
+        LinearFunction(Arc::new(function))
+    }
+
+    #[inline]
+    pub fn apply(&self, x: X) -> Y {
+        (self.0)(x)
+    }
+}
+
+impl<X: 'static> LinearFunction<X, X> {
+    pub fn identity() -> Self {
+        LinearFunction::new(|x| x)
+    }
+}
 
 /// `A[~R V(t) R] = U(t)`: see the module docs. `X` is the pinned object's type, `Y` the type of `A[X]`.
 pub struct Pin<A: Algebra, X: Pinnable<A>, Y: Coefficients = X> {
@@ -63,29 +89,35 @@ impl<A: Algebra, X: Pinnable<A>> Pin<A, X, X> {
     /// The body object `body` (body frame) pinned to the world object `world`: `V = R U ~R` (SPEC §7).
     /// `rank` is the number of constrained degrees of freedom (SPEC §7 table).
     pub fn new(name: impl Into<String>, body: X, world: X, rank: usize) -> Self {
-        Pin::with_paths(name, Arc::new(Fixed(body)), Arc::new(Fixed(world)), rank)
+        Pin::with_paths(name, Fixed(body), Fixed(world), rank)
     }
 
     /// A body path U(t) pinned to a world path V(t) (SPEC §8).
-    pub fn with_paths(name: impl Into<String>, body: Arc<dyn Path<X>>, world: Arc<dyn Path<X>>, rank: usize) -> Self {
-        Pin::linear(name, LinearFunction::identity(), world, body, rank)
+    pub fn with_paths(
+        name: impl Into<String>,
+        body: impl Path<X> + 'static,
+        world: impl Path<X> + 'static,
+        rank: usize,
+    ) -> Self {
+        Pin::linear(name, body, LinearFunction::identity(), world, rank)
     }
 }
 
 impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> Pin<A, X, Y> {
-    /// `function[~R V(t) R] = target(t)` (SPEC §9).
+    /// `target(t) = function[~R V(t) R]` (SPEC §9): the body-side target, then the function of the world
+    /// path, in the order of [`Pin::new`]'s (body, world).
     pub fn linear(
         name: impl Into<String>,
+        target: impl Path<Y> + 'static,
         function: LinearFunction<X, Y>,
-        world: Arc<dyn Path<X>>,
-        target: Arc<dyn Path<Y>>,
+        world: impl Path<X> + 'static,
         rank: usize,
     ) -> Self {
         Pin {
             name: name.into(),
-            world,
+            world: Arc::new(world),
             function,
-            body: target,
+            body: Arc::new(target),
             rank,
             algebra: PhantomData,
         }
@@ -297,14 +329,15 @@ pub fn prismatic<A: PinningAlgebra>(
 /// A motor joint by pinning: the body's motor relative to the reference follows `path` (U(t), SPEC §8). The
 /// body's x and z axes (lines through its origin) are pinned to their images carried by the path
 /// ([`CarriedPath`]): two lines that meet fix all six degrees of freedom. Rank 6.
-pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: Arc<dyn MotorPath<A>>) -> Composite<A> {
+pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: impl MotorPath<A> + 'static) -> Composite<A> {
     let name = name.into();
+    let path: Arc<dyn MotorPath<A>> = Arc::new(path);
     let axis = |direction: Vector3<f64>| -> Arc<dyn Constraint<A>> {
         let line = A::line_object(Vector3::zeros(), direction);
         Arc::new(Pin::with_paths(
             format!("{name}: line {direction:?}"),
-            Arc::new(Fixed(line)),
-            Arc::new(CarriedPath::new(line, path.clone())),
+            Fixed(line),
+            CarriedPath::shared(line, path.clone()),
             4,
         ))
     };
@@ -314,34 +347,25 @@ pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: Arc<dyn Mot
 
 /// A body point pinned to a world point moving along `pivot(t)` (value, velocity, acceleration): a driven
 /// pivot (SPEC §8), exact through [`moving_point`].
-pub fn driven_point<A, F>(name: impl Into<String>, body_point: Vector3<f64>, pivot: F) -> Pin<A, A::PointObject>
-where
-    A: PinningAlgebra,
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
-{
-    Pin::with_paths(
-        name,
-        Arc::new(Fixed(A::point_object(body_point))),
-        Arc::new(moving_point::<A, F>(pivot)),
-        3,
-    )
+pub fn driven_point<A: PinningAlgebra>(
+    name: impl Into<String>,
+    body_point: Vector3<f64>,
+    pivot: impl Path<Vector3<f64>> + 'static,
+) -> Pin<A, A::PointObject> {
+    Pin::with_paths(name, Fixed(A::point_object(body_point)), moving_point::<A, _>(pivot), 3)
 }
 
 /// An attachment point sliding on the body along `attachment(t)` (body coordinates), pinned to a fixed
 /// world point (SPEC §8).
-pub fn sliding_attachment<A, F>(
+pub fn sliding_attachment<A: PinningAlgebra>(
     name: impl Into<String>,
-    attachment: F,
+    attachment: impl Path<Vector3<f64>> + 'static,
     world_point: Vector3<f64>,
-) -> Pin<A, A::PointObject>
-where
-    A: PinningAlgebra,
-    F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
-{
+) -> Pin<A, A::PointObject> {
     Pin::with_paths(
         name,
-        Arc::new(moving_point::<A, F>(attachment)),
-        Arc::new(Fixed(A::point_object(world_point))),
+        moving_point::<A, _>(attachment),
+        Fixed(A::point_object(world_point)),
         3,
     )
 }

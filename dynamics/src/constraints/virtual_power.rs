@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::paths::{Fixed, FunctionPath, MotorPath, Path, PathPoint};
+use crate::constraints::paths::{Fixed, MotorPath, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 use crate::exponential::log;
@@ -74,8 +74,23 @@ impl<A: Algebra> WrenchPoint<A> {
     }
 }
 
-/// A user wrench as a function of time.
-pub type WrenchPath<A> = Arc<dyn Fn(f64) -> WrenchPoint<A> + Send + Sync>;
+/// A user wrench as a function of time: a closure `Fn(f64) -> WrenchPoint<A>`, or an `Arc` of one (a list of
+/// different closures is a `Vec<Arc<dyn WrenchPath<A>>>`).
+pub trait WrenchPath<A: Algebra>: Send + Sync {
+    fn at(&self, t: f64) -> WrenchPoint<A>;
+}
+
+impl<A: Algebra, F: Fn(f64) -> WrenchPoint<A> + Send + Sync> WrenchPath<A> for F {
+    fn at(&self, t: f64) -> WrenchPoint<A> {
+        self(t)
+    }
+}
+
+impl<A: Algebra, P: WrenchPath<A> + ?Sized> WrenchPath<A> for Arc<P> {
+    fn at(&self, t: f64) -> WrenchPoint<A> {
+        (**self).at(t)
+    }
+}
 
 /// A body direction whose world (reference-frame) image d must stay normal to the world direction `normal`:
 /// residual `normal·d`, whose rate `normal·(ω⨯d) = ω·(d⨯normal)` is the power of the couple `d⨯normal`.
@@ -107,7 +122,7 @@ enum Wrenches<A: Algebra> {
     /// The six unit wrenches of the body frame, with the prescribed relative velocity of a motor path.
     Motor(Arc<dyn MotorPath<A>>),
     /// User wrenches, no position residual.
-    Custom(Vec<WrenchPath<A>>),
+    Custom(Vec<Arc<dyn WrenchPath<A>>>),
 }
 
 /// A constraint by virtual power (see the module docs).
@@ -184,17 +199,12 @@ impl<A: Algebra> VirtualPower<A> {
     /// A driven ball joint: the body point stays at a pivot moving along `pivot(t)` (value, velocity,
     /// acceleration, world or reference frame). The pivot's motion does work: force k's velocity condition is
     /// `⟨Ḃ ∧ T_bk⟩_Π = ṗₖ`, the prescribed power of the driven motion (SPEC §14.1). Rank 3.
-    pub fn driven_ball_joint<F>(name: impl Into<String>, body_point: Vector3<f64>, pivot: F) -> Self
-    where
-        F: Fn(f64) -> PathPoint<Vector3<f64>> + Send + Sync + 'static,
-    {
-        Self::point_joint(
-            name.into(),
-            body_point,
-            Arc::new(FunctionPath(pivot)),
-            coordinate_axes(),
-            [],
-        )
+    pub fn driven_ball_joint(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        pivot: impl Path<Vector3<f64>> + 'static,
+    ) -> Self {
+        Self::point_joint(name.into(), body_point, Arc::new(pivot), coordinate_axes(), [])
     }
 
     /// Hinge: a ball joint at the point plus two couples normal to the axis, so the body turns only about
@@ -348,14 +358,14 @@ impl<A: Algebra> VirtualPower<A> {
         centre: Vector3<f64>,
         radius: f64,
     ) -> Result<Self, ConstraintError> {
-        Self::point_on_moving_sphere(name, body_point, Arc::new(Fixed(centre)), radius)
+        Self::point_on_moving_sphere(name, body_point, Fixed(centre), radius)
     }
 
     /// The body point stays on a sphere whose centre follows `centre` (value, velocity, acceleration). Rank 1.
     pub fn point_on_moving_sphere(
         name: impl Into<String>,
         body_point: Vector3<f64>,
-        centre: Arc<dyn Path<Vector3<f64>>>,
+        centre: impl Path<Vector3<f64>> + 'static,
         radius: f64,
     ) -> Result<Self, ConstraintError> {
         let name = name.into();
@@ -369,7 +379,7 @@ impl<A: Algebra> VirtualPower<A> {
             name,
             wrenches: Wrenches::Sphere {
                 body_point,
-                centre,
+                centre: Arc::new(centre),
                 radius,
             },
         })
@@ -393,19 +403,27 @@ impl<A: Algebra> VirtualPower<A> {
     /// driven motion: velocity conditions `x = ξ(t)` on the relative body velocity x, position residuals the
     /// coordinates of `−2 log(~U M)` (the screw that carries the path's motor U to the relative motor M for unit
     /// time, zero on the path; its rate is `x − ξ` to first order). Rank 6.
-    pub fn motor_joint(name: impl Into<String>, path: Arc<dyn MotorPath<A>>) -> Self {
+    pub fn motor_joint(name: impl Into<String>, path: impl MotorPath<A> + 'static) -> Self {
         VirtualPower {
             name: name.into(),
-            wrenches: Wrenches::Motor(path),
+            wrenches: Wrenches::Motor(Arc::new(path)),
         }
     }
 
     /// The SPEC's general form: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in
     /// the body's state. Rank = the number of wrenches (they must be independent). No position residual.
-    pub fn from_wrenches(name: impl Into<String>, wrenches: Vec<WrenchPath<A>>) -> Self {
+    pub fn from_wrenches<W: WrenchPath<A> + 'static>(
+        name: impl Into<String>,
+        wrenches: impl IntoIterator<Item = W>,
+    ) -> Self {
         VirtualPower {
             name: name.into(),
-            wrenches: Wrenches::Custom(wrenches),
+            wrenches: Wrenches::Custom(
+                wrenches
+                    .into_iter()
+                    .map(|wrench| Arc::new(wrench) as Arc<dyn WrenchPath<A>>)
+                    .collect(),
+            ),
         }
     }
 
@@ -500,7 +518,7 @@ impl<A: Algebra> VirtualPower<A> {
             }
             Wrenches::Custom(wrenches) => {
                 for wrench in wrenches {
-                    let point = wrench(kinematics.t);
+                    let point = wrench.at(kinematics.t);
                     emit(ConstraintWrench {
                         wrench: point.wrench,
                         rate: point.rate,
