@@ -97,6 +97,12 @@ pub trait Dynamics<A: Algebra> {
         true
     }
 
+    /// Whether no force and no joint acts on any body, so that each body's world momentum is a constant of the
+    /// motion. The body-momentum integrators then keep it exactly ([`crate::integrate`]).
+    fn conserves_world_momenta(&self) -> bool {
+        false
+    }
+
     /// The system as a single free body, if it is one (the splitting integrators need its structure).
     fn as_free_body(&self) -> Option<&FreeBody<A>> {
         None
@@ -233,6 +239,10 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
 
     fn rates_depend_on_motors(&self) -> bool {
         !self.forces.is_empty()
+    }
+
+    fn conserves_world_momenta(&self) -> bool {
+        self.forces.is_empty()
     }
 
     fn as_free_body(&self) -> Option<&FreeBody<A>> {

@@ -1074,4 +1074,8 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     fn energy(&self, states: &[State<A>]) -> f64 {
         Mechanism::energy(self, states)
     }
+
+    fn conserves_world_momenta(&self) -> bool {
+        self.joints.is_empty() && self.bodies.iter().all(|body| body.forces.is_empty())
+    }
 }

@@ -1,0 +1,149 @@
+//! Every way to build a body or a mechanism that cannot work ends in its own error variant, naming the cause
+//! (issue 13). Errors met only while running (inconsistent or unreachable joints, non-finite paths or states)
+//! are reached in `constraint_machinery.rs` and `integrate`'s unit tests.
+
+use std::sync::Arc;
+
+use dynamics::constraints::{pinning, Composite, Constraint, VirtualPower, MAX_ROWS};
+use dynamics::{
+    Algebra, Body, BodyError, ConstraintError, Mechanism, MechanismError, Pga, Reference, ScrewCoordinates,
+    Stabilisation, State,
+};
+use nalgebra::{UnitQuaternion, Vector3};
+
+fn body() -> Body {
+    Body::new(1.3, Vector3::new(0.4, 0.3, 0.2)).unwrap()
+}
+
+#[test]
+fn unphysical_bodies_are_refused() {
+    assert_eq!(Body::new(-1.0, Vector3::new(1.0, 2.0, 3.0)), Err(BodyError::Mass(-1.0)));
+    assert!(matches!(Body::new(f64::NAN, Vector3::repeat(1.0)), Err(BodyError::Mass(m)) if m.is_nan()));
+    assert_eq!(
+        Body::new(1.0, Vector3::new(-1.0, 2.0, 3.0)),
+        Err(BodyError::Moments([-1.0, 2.0, 3.0]))
+    );
+    assert_eq!(
+        Body::new(1.0, Vector3::new(1.0, 1.0, 3.0)),
+        Err(BodyError::Triangle([1.0, 1.0, 3.0]))
+    );
+    assert_eq!(
+        Body::cuboid(1.0, Vector3::new(1.0, 0.0, 1.0)),
+        Err(BodyError::Dimensions(vec![1.0, 0.0, 1.0]))
+    );
+    let message = Body::new(1.0, Vector3::new(1.0, 1.0, 3.0)).unwrap_err().to_string();
+    assert!(message.contains("triangle inequality"), "{message}");
+}
+
+#[test]
+fn mechanisms_refuse_bad_bodies_and_joints_naming_them() {
+    let mut mechanism = Mechanism::<Pga>::new();
+    assert_eq!(mechanism.add_body("", body()), Err(MechanismError::EmptyName));
+    let arm = mechanism.add_body("arm", body()).unwrap();
+    assert_eq!(
+        mechanism.add_body("arm", body()),
+        Err(MechanismError::DuplicateBody("arm".into()))
+    );
+    let ball = || pinning::point::<Pga>("elbow", Vector3::z(), Vector3::zeros());
+    assert_eq!(
+        mechanism.add_joint(arm, Reference::Body(arm), ball()),
+        Err(MechanismError::SelfJoint {
+            joint: "elbow".into(),
+            body: "arm".into()
+        })
+    );
+    // An id from another mechanism.
+    let mut other = Mechanism::<Pga>::new();
+    other.add_body("a", body()).unwrap();
+    let foreign = other.add_body("b", body()).unwrap();
+    assert_eq!(
+        mechanism.add_joint(foreign, Reference::World, ball()),
+        Err(MechanismError::UnknownBody(1))
+    );
+    let foreign_joint = other.add_joint(foreign, Reference::World, ball()).unwrap();
+    assert_eq!(
+        mechanism.set_reaction_basis(foreign_joint, vec![]),
+        Err(MechanismError::UnknownJoint(0))
+    );
+    let joint = mechanism.add_joint(arm, Reference::World, ball()).unwrap();
+    assert_eq!(
+        mechanism.set_reaction_basis(joint, vec![]),
+        Err(MechanismError::ReactionBasis {
+            joint: "elbow".into(),
+            count: 0
+        })
+    );
+    let not_finite = Pga::screw(ScrewCoordinates {
+        l: Vector3::new(f64::NAN, 0.0, 0.0),
+        t: Vector3::zeros(),
+    });
+    assert!(matches!(
+        mechanism.set_reaction_basis(joint, vec![not_finite]),
+        Err(MechanismError::ReactionBasis { count: 1, .. })
+    ));
+}
+
+#[test]
+fn declared_ranks_and_row_counts_are_checked_when_a_joint_is_added() {
+    let mut mechanism = Mechanism::<Pga>::new();
+    let arm = mechanism.add_body("arm", body()).unwrap();
+    let pin = |rank| pinning::Pin::<Pga, _>::new("pin", Pga::point(Vector3::z()), Pga::point(Vector3::zeros()), rank);
+    for rank in [0, 7] {
+        let error = mechanism.add_joint(arm, Reference::World, pin(rank)).unwrap_err();
+        assert!(
+            matches!(error, MechanismError::Constraint(ConstraintError::InvalidRank { rank: r, .. }) if r == rank),
+            "{error}"
+        );
+    }
+    // More rows than the solver's capacity.
+    let many: Vec<Arc<dyn Constraint<Pga>>> = (0..MAX_ROWS / 3 + 1)
+        .map(|k| {
+            Arc::new(pinning::point::<Pga>(
+                format!("ball {k}"),
+                Vector3::z(),
+                Vector3::zeros(),
+            )) as _
+        })
+        .collect();
+    let error = mechanism
+        .add_joint(arm, Reference::World, Composite::new("many balls", many, 3))
+        .unwrap_err();
+    assert!(
+        matches!(error, MechanismError::Constraint(ConstraintError::TooManyRows { ref name, capacity, .. })
+            if name == "many balls" && capacity == MAX_ROWS),
+        "{error}"
+    );
+    // Projection needs a position residual, which user wrenches do not have.
+    mechanism.set_stabilisation(Stabilisation::PROJECTION).unwrap();
+    let wrenches = VirtualPower::<Pga>::from_wrenches(
+        "user",
+        [|_t: f64| dynamics::constraints::WrenchPoint::fixed(dynamics::forces::couple::<Pga>(Vector3::z()))],
+    );
+    let error = mechanism.add_joint(arm, Reference::World, wrenches).unwrap_err();
+    assert!(
+        matches!(error, MechanismError::Constraint(ConstraintError::NoPositionResidual { ref name }) if name == "user"),
+        "{error}"
+    );
+}
+
+/// Two identical ball joints declared as one joint of rank 6 have rows of rank 3: the reaction is not
+/// determined, and the error names the joint.
+#[test]
+fn a_declared_rank_the_rows_do_not_have_is_rank_deficient() {
+    let ball = || Arc::new(pinning::point::<Pga>("ball", Vector3::z(), Vector3::zeros())) as Arc<dyn Constraint<Pga>>;
+    let mechanism = Mechanism::<Pga>::single(body())
+        .with_constraint(Composite::new("double ball", vec![ball(), ball()], 6))
+        .unwrap();
+    let state = State::<Pga>::new(
+        &body(),
+        Vector3::new(0.0, 0.0, -1.0),
+        &UnitQuaternion::identity(),
+        Vector3::new(0.3, -0.2, 0.1),
+        Vector3::zeros(),
+    );
+    let error = mechanism.rates_at(0.0, &[state]).unwrap_err();
+    assert!(
+        matches!(error, ConstraintError::RankDeficient { ref names, rank: 6, .. } if names.contains("double ball")),
+        "{error}"
+    );
+}
