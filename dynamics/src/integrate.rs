@@ -161,6 +161,11 @@ pub enum SplittingError {
     NotAFreeBody,
 }
 
+/// The largest angle (rad) a body may turn through in one step, judged from its angular velocity at the start
+/// of the step ([`StepError::StepTooLarge`]). The reference scenes turn at most 0.2 rad per step at their
+/// largest step (the heavy top, 20 rad/s at dt = 1e-2).
+pub const MAX_TURN_PER_STEP: f64 = 1.0;
+
 /// Why a step failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -183,6 +188,21 @@ pub enum StepError {
     /// A state given to the step has a NaN or infinite coordinate.
     #[error("the state given at t = {t} is not finite (body {body})")]
     NonFiniteInput { t: f64, body: usize },
+    /// At the start of the step, a body turns by more than [`MAX_TURN_PER_STEP`] within it: no method here
+    /// resolves that (RK4's local error is already ~1% of the motion at one radian per step, and beyond its
+    /// stability bound of 2.8 the result is noise, finite or not). The states are left as they were.
+    #[error(
+        "at t = {t}: body {body} turns {turn:.3} rad in the step dt = {dt} (angular velocity {angular_speed:.4e} \
+         rad/s), more than {MAX_TURN_PER_STEP} rad per step; take a step below {limit:.3e}",
+        limit = MAX_TURN_PER_STEP / angular_speed
+    )]
+    StepTooLarge {
+        t: f64,
+        dt: f64,
+        body: usize,
+        turn: f64,
+        angular_speed: f64,
+    },
     /// The step produced a NaN or infinite state: the step is too large for the motion, or a force or path
     /// returned NaN. The states are left as they were before the step.
     #[error("the state is no longer finite at t = {t} (body {body}): the step is too large for this system, or a force is not finite")]
@@ -332,6 +352,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 rkmk_body_momentum(&BUTCHER_6, dynamics, t, &mut next, dt, buffers, workspace)
             }
             (Integrator::Splitting(method), Some(splitting)) => {
+                buffers.slopes[0] = next[0].body_velocity(dynamics.body(0)) * (-0.5 * dt);
                 next[0] = step_splitting(method, splitting, t, &next[0], dt);
                 Ok(())
             }
@@ -343,6 +364,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         .and_then(|()| dynamics.after_step(t + dt, &mut next, workspace));
         let result = result
             .map_err(|error| StepError::Constraint { t, error })
+            .and_then(|()| check_turn::<A>(&buffers.slopes[..expected], t, dt))
             .and_then(|()| match next.iter().position(|state| !state.is_finite()) {
                 Some(body) => Err(StepError::NonFinite { t: t + dt, body }),
                 None => Ok(()),
@@ -353,6 +375,25 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         buffers.next = next;
         result
     }
+}
+
+/// Refuses a step in which a body turns by more than [`MAX_TURN_PER_STEP`]: `start_slopes` are the first
+/// stage's `−½ dt Ḃ` of every body (every method stores them), whose angular part has length `½ |ω| dt`.
+fn check_turn<A: Algebra>(start_slopes: &[A::Screw], t: f64, dt: f64) -> Result<(), StepError> {
+    for (body, slope) in start_slopes.iter().enumerate() {
+        let turn = 2.0 * A::screw_coordinates(*slope).l.norm();
+        // Written so that a NaN turn passes to the finiteness check, which names it.
+        if turn > MAX_TURN_PER_STEP {
+            return Err(StepError::StepTooLarge {
+                t,
+                dt,
+                body,
+                turn,
+                angular_speed: turn / dt,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The time derivative `(dR/dt, dΩ/dt)` of `(R, Ω)` of one body at one state.
@@ -412,6 +453,9 @@ fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(
     let (k2, rest) = rest.split_at_mut(n);
     let (k3, k4) = rest.split_at_mut(n);
     derivatives(dynamics, t, y, rates, k1, workspace)?;
+    for (slope, rate) in buffers.slopes.iter_mut().zip(rates.iter()) {
+        *slope = rate.body_velocity * (-0.5 * dt);
+    }
     advance(stage, y, k1, half);
     derivatives(dynamics, t + half, stage, rates, k2, workspace)?;
     advance(stage, y, k2, half);

@@ -147,3 +147,38 @@ fn a_declared_rank_the_rows_do_not_have_is_rank_deficient() {
         "{error}"
     );
 }
+
+/// A cuboid spinning at 300 rad/s stepped with dt = 1e-2 would turn 3 rad per step (RK4 doubled its energy in
+/// 1 s, RKMK4-body overflowed its motor at dt = 1e6): every integrator refuses the step, leaving the state as
+/// it was, and takes dt = 1e-3.
+#[test]
+fn a_step_that_turns_a_body_more_than_a_radian_is_refused() {
+    let body = Body::cuboid(1.0, Vector3::new(0.1, 0.2, 0.3)).unwrap();
+    let system = dynamics::FreeBody::<Pga>::new(body);
+    let start = State::<Pga>::new(
+        &body,
+        Vector3::zeros(),
+        &UnitQuaternion::identity(),
+        Vector3::new(0.0, 0.0, 300.0),
+        Vector3::zeros(),
+    );
+    for integrator in dynamics::Integrator::ALL {
+        let mut stepper = dynamics::Stepper::new(&system, integrator).unwrap();
+        let mut states = [start];
+        for dt in [1e-2, 1e6] {
+            let error = stepper.step(0.0, &mut states, dt).unwrap_err();
+            assert!(
+                matches!(error, dynamics::StepError::StepTooLarge { body: 0, turn, .. } if (turn - 300.0 * dt).abs() < 1e-9 * turn),
+                "{}: {error}",
+                integrator.name()
+            );
+            assert_eq!(states[0], start);
+        }
+        let message = stepper.step(0.0, &mut states, 1e-2).unwrap_err().to_string();
+        assert!(
+            message.contains("body 0 turns 3.000 rad") && message.contains("take a step below 3.333e-3"),
+            "{message}"
+        );
+        stepper.step(0.0, &mut states, 1e-3).unwrap();
+    }
+}

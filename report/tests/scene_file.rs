@@ -699,8 +699,10 @@ fn user_text_in_the_summary_is_escaped() {
 }
 
 /// A conservative scene whose energy changes by more than `ENERGY_WARNING` is flagged (stderr and summary.md):
-/// a torque-free cuboid spinning at 300 rad/s with RK4 at dt = 1e-2 (it once doubled its energy in a second
-/// without a word); at 3 rad/s and dt = 1e-3 the drift is round-off and nothing is said.
+/// a torque-free cuboid tumbling about its middle axis at 80 rad/s with RK4 at dt = 1e-2 (0.8 rad per step); at
+/// 3 rad/s and dt = 1e-3
+/// the drift is round-off and nothing is said. At 300 rad/s and dt = 1e-2 (it once doubled its energy in a
+/// second without a word) the step turns the body 3 rad, and the run is refused, naming a step that would do.
 #[test]
 fn a_conservative_scene_whose_energy_drifts_is_flagged() {
     let dir = std::env::temp_dir().join("report-scene-file-energy");
@@ -710,10 +712,19 @@ fn a_conservative_scene_whose_energy_drifts_is_flagged() {
         format!(
             "integrator = \"rk4\"\ndt = {dt:e}\nduration = 1.0\n[body]\nmass = 1.0\n\
              shape = {{ kind = \"cuboid\", size = [0.1, 0.2, 0.3] }}\n[initial]\n\
-             body_angular_velocity = [{spin:e}, 0.1, 0.0]\n"
+             body_angular_velocity = [0.1, {spin:e}, 0.0]\n"
         )
     };
-    for (name, spin, dt, flagged) in [("fast", 300.0, 1e-2, true), ("slow", 3.0, 1e-3, false)] {
+    let too_fast = dir.join("too_fast.toml");
+    std::fs::write(&too_fast, scene(300.0, 1e-2)).unwrap();
+    let error = run_scene_file(&too_fast, &dir.join("too_fast"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("turns 3.000 rad") && error.contains("take a step below 3.333e-3"),
+        "{error}"
+    );
+    for (name, spin, dt, flagged) in [("fast", 80.0, 1e-2, true), ("slow", 3.0, 1e-3, false)] {
         let file = dir.join(format!("{name}.toml"));
         std::fs::write(&file, scene(spin, dt)).unwrap();
         let output = dir.join(name);
@@ -721,7 +732,7 @@ fn a_conservative_scene_whose_energy_drifts_is_flagged() {
         let text = std::fs::read_to_string(output.join("summary.md")).unwrap();
         let largest = summary.runs.iter().map(|r| r.max_energy_change()).fold(0.0, f64::max);
         if flagged {
-            assert!(largest > 0.5, "{name}: the energy changed by only {largest:e}");
+            assert!(largest > 1e-4, "{name}: the energy changed by only {largest:e}");
             assert_eq!(summary.warnings.len(), 2, "{:?}", summary.warnings);
             for warning in &summary.warnings {
                 assert!(
