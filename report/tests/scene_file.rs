@@ -700,9 +700,9 @@ fn user_text_in_the_summary_is_escaped() {
 
 /// A conservative scene whose energy changes by more than `ENERGY_WARNING` is flagged (stderr and summary.md):
 /// a torque-free cuboid tumbling about its middle axis at 80 rad/s with RK4 at dt = 1e-2 (0.8 rad per step); at
-/// 3 rad/s and dt = 1e-3
-/// the drift is round-off and nothing is said. At 300 rad/s and dt = 1e-2 (it once doubled its energy in a
-/// second without a word) the step turns the body 3 rad, and the run is refused, naming a step that would do.
+/// 3 rad/s and dt = 1e-3 the drift is round-off and nothing is said. At 300 rad/s and dt = 1e-2 (it once doubled
+/// its energy in a second without a word) the step turns the body 3 rad, and the run is refused, naming a step
+/// that would do.
 #[test]
 fn a_conservative_scene_whose_energy_drifts_is_flagged() {
     let dir = std::env::temp_dir().join("report-scene-file-energy");
