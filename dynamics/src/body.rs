@@ -3,13 +3,18 @@
 
 use nalgebra::Vector3;
 
+/// The largest mass (kg) or principal moment (kg m²) a body may have: the weight `m g`, the momenta and energies
+/// multiply these by positions and velocities, and a mass of 1e308 kg overflowed its weight to infinity (then
+/// reported as a joint's "non-finite residual"). Far beyond any physical body.
+pub const MAX_MASS_PROPERTY: f64 = 1e50;
+
 /// Why a body's parameters are not physical.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BodyError {
-    #[error("mass must be positive and finite, got {0}")]
+    #[error("mass must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0}")]
     Mass(f64),
-    #[error("principal moments must be positive and finite, got {0:?}")]
+    #[error("principal moments must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
     Moments([f64; 3]),
     #[error("principal moments {0:?} violate the triangle inequality (each at most the sum of the others)")]
     Triangle([f64; 3]),
@@ -37,11 +42,12 @@ fn positive(values: &[f64]) -> Result<(), BodyError> {
 impl Body {
     /// A body with these principal moments, checked to be physical.
     pub fn new(mass: f64, moments: Vector3<f64>) -> Result<Body, BodyError> {
-        if !(mass.is_finite() && mass > 0.0) {
+        let physical = |v: f64| v > 0.0 && v <= MAX_MASS_PROPERTY;
+        if !physical(mass) {
             return Err(BodyError::Mass(mass));
         }
         let m = [moments.x, moments.y, moments.z];
-        if !m.iter().all(|v| v.is_finite() && *v > 0.0) {
+        if !m.iter().all(|&v| physical(v)) {
             return Err(BodyError::Moments(m));
         }
         // Any mass distribution has Iᵢ ≤ Iⱼ + Iₖ; allow round-off in the equality (thin plates).

@@ -26,7 +26,7 @@ use crate::exponential::exp;
 use crate::forces::Force;
 use crate::motion::{to_body, to_world, BodyRates, Dynamics, FreeBody, Rates};
 use crate::motor;
-use crate::state::State;
+use crate::state::{State, MAX_COORDINATE};
 
 /// A general integration method: valid for any [`Dynamics`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -185,8 +185,8 @@ pub enum StepError {
     /// The time the step starts at is NaN or infinite.
     #[error("the time must be finite, got t = {t}")]
     InvalidTime { t: f64 },
-    /// A state given to the step has a NaN or infinite coordinate.
-    #[error("the state given at t = {t} is not finite (body {body})")]
+    /// A state given to the step has a NaN or infinite coordinate, or one beyond [`MAX_COORDINATE`].
+    #[error("the state given at t = {t} is not finite or has a coordinate beyond {MAX_COORDINATE:e} (body {body})")]
     NonFiniteInput { t: f64, body: usize },
     /// At the start of the step, a body turns by more than [`MAX_TURN_PER_STEP`] within it: no method here
     /// resolves that (RK4's local error is already ~1% of the motion at one radian per step, and beyond its
@@ -205,7 +205,10 @@ pub enum StepError {
     },
     /// The step produced a NaN or infinite state: the step is too large for the motion, or a force or path
     /// returned NaN. The states are left as they were before the step.
-    #[error("the state is no longer finite at t = {t} (body {body}): the step is too large for this system, or a force is not finite")]
+    #[error(
+        "the state is no longer finite (or beyond {MAX_COORDINATE:e}) at t = {t} (body {body}): the step is too large \
+         for this system, or a force is not finite"
+    )]
     NonFinite { t: f64, body: usize },
 }
 
@@ -334,7 +337,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         if !t.is_finite() {
             return Err(StepError::InvalidTime { t });
         }
-        if let Some(body) = states.iter().position(|state| !state.is_finite()) {
+        if let Some(body) = states.iter().position(|state| !state.is_representable()) {
             return Err(StepError::NonFiniteInput { t, body });
         }
         let dynamics = self.dynamics;
@@ -365,7 +368,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         let result = result
             .map_err(|error| StepError::Constraint { t, error })
             .and_then(|()| check_turn::<A>(&buffers.slopes[..expected], t, dt))
-            .and_then(|()| match next.iter().position(|state| !state.is_finite()) {
+            .and_then(|()| match next.iter().position(|state| !state.is_representable()) {
                 Some(body) => Err(StepError::NonFinite { t: t + dt, body }),
                 None => Ok(()),
             });

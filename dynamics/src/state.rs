@@ -22,15 +22,23 @@ pub struct WorldVelocity {
     pub linear: Vector3<f64>,
 }
 
+/// The largest magnitude of a state coordinate (motor or momentum) that the dynamics accepts. The equations form
+/// products of a few coordinates with masses and moments (CGA's sandwiches square distances and multiply by the
+/// motor twice more), which stay finite far below this but overflow near `f64::MAX` (a body placed at 1e308 m
+/// used to fail inside its first joint as a "non-finite residual").
+pub const MAX_COORDINATE: f64 = 1e50;
+
 impl<A: Algebra> State<A> {
-    /// Whether every coordinate of the motor and the momentum is finite.
-    pub fn is_finite(&self) -> bool {
+    /// Whether every coordinate of the motor and the momentum is finite and at most [`MAX_COORDINATE`] in
+    /// magnitude.
+    pub fn is_representable(&self) -> bool {
         let motor = A::motor_coordinates(self.motor);
         let momentum = A::screw_coordinates(self.momentum);
-        motor.scalar.is_finite()
-            && motor.pseudoscalar.is_finite()
-            && motor.l.iter().chain(motor.t.iter()).all(|x| x.is_finite())
-            && momentum.l.iter().chain(momentum.t.iter()).all(|x| x.is_finite())
+        let within = |x: &f64| x.abs() <= MAX_COORDINATE;
+        within(&motor.scalar)
+            && within(&motor.pseudoscalar)
+            && motor.l.iter().chain(motor.t.iter()).all(within)
+            && momentum.l.iter().chain(momentum.t.iter()).all(within)
     }
 
     /// The state of a body at `position` (its centre of mass) with orientation `rotation`, moving

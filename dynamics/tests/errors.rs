@@ -19,6 +19,12 @@ fn body() -> Body {
 fn unphysical_bodies_are_refused() {
     assert_eq!(Body::new(-1.0, Vector3::new(1.0, 2.0, 3.0)), Err(BodyError::Mass(-1.0)));
     assert!(matches!(Body::new(f64::NAN, Vector3::repeat(1.0)), Err(BodyError::Mass(m)) if m.is_nan()));
+    // Finite but beyond what the weight and momenta can be formed from.
+    assert_eq!(Body::new(1e308, Vector3::repeat(1.0)), Err(BodyError::Mass(1e308)));
+    assert_eq!(
+        Body::new(1.0, Vector3::new(1e300, 1e300, 1e300)),
+        Err(BodyError::Moments([1e300; 3]))
+    );
     assert_eq!(
         Body::new(1.0, Vector3::new(-1.0, 2.0, 3.0)),
         Err(BodyError::Moments([-1.0, 2.0, 3.0]))
@@ -180,5 +186,31 @@ fn a_step_that_turns_a_body_more_than_a_radian_is_refused() {
             "{message}"
         );
         stepper.step(0.0, &mut states, 1e-3).unwrap();
+    }
+}
+
+/// A state far beyond any physical scale (a body placed at 1e308 m once failed inside its first joint as a
+/// "non-finite residual") is refused before the step, naming the body; NaN likewise.
+#[test]
+fn a_state_out_of_range_is_refused_before_the_step() {
+    let mechanism = Mechanism::<Pga>::single(body());
+    for position in [Vector3::new(1e308, 0.0, 0.0), Vector3::new(f64::NAN, 0.0, 0.0)] {
+        let state = State::<Pga>::new(
+            &body(),
+            position,
+            &UnitQuaternion::identity(),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        );
+        let mut states = [state];
+        let error = dynamics::Stepper::new(&mechanism, dynamics::Method::Rk4)
+            .unwrap()
+            .step(0.5, &mut states, 1e-3)
+            .unwrap_err();
+        assert!(
+            matches!(error, dynamics::StepError::NonFiniteInput { t: 0.5, body: 0 }),
+            "{error}"
+        );
+        assert!(error.to_string().contains("beyond 1e50"), "{error}");
     }
 }
