@@ -12,7 +12,7 @@ pub const MAX_MASS_PROPERTY: f64 = 1e50;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BodyError {
-    #[error("mass must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0}")]
+    #[error("mass must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
     Mass(f64),
     #[error("principal moments must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
     Moments([f64; 3]),
