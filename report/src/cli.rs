@@ -5,14 +5,12 @@ use std::process::ExitCode;
 
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, ValueEnum};
-use dynamics::constraints::Stabilisation;
-use dynamics::integrate::{Integrator, Method, SplittingMethod};
 use dynamics::Schedule;
 use reference::SceneId;
-use serde::Deserialize;
 
 use crate::job::run_job;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
+use crate::names::{IntegratorName, StabilisationName};
 use crate::scene_job::run_scene_file;
 use crate::sweep::{SweepPlan, DEFAULT_STEPS};
 
@@ -50,56 +48,6 @@ impl SceneName {
             SceneName::DoublePendulum => Named::Mechanism(MechanismKind::DoublePendulum),
             SceneName::FourBar => Named::Mechanism(MechanismKind::FourBar),
             SceneName::Chain => Named::Mechanism(MechanismKind::Chain),
-        }
-    }
-}
-
-/// The integrators by name, on the command line and in scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum IntegratorName {
-    Rk4,
-    Rkmk4,
-    Rkmk4Body,
-    Rkmk6Body,
-    Strang,
-    Yoshida4,
-}
-
-impl From<IntegratorName> for Integrator {
-    fn from(name: IntegratorName) -> Integrator {
-        match name {
-            IntegratorName::Rk4 => Integrator::General(Method::Rk4),
-            IntegratorName::Rkmk4 => Integrator::General(Method::Rkmk4),
-            IntegratorName::Rkmk4Body => Integrator::General(Method::Rkmk4Body),
-            IntegratorName::Rkmk6Body => Integrator::General(Method::Rkmk6Body),
-            IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
-            IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
-        }
-    }
-}
-
-/// The stabilisations by name, on the command line and in scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StabilisationName {
-    /// Post-step projection onto the constraint manifold (SPEC §10).
-    Projection,
-    /// Baumgarte feedback, α = β = 10 (SPEC §10).
-    Baumgarte,
-    /// None: bare acceleration-level constraints (they drift).
-    None,
-}
-
-impl From<StabilisationName> for Stabilisation {
-    fn from(name: StabilisationName) -> Stabilisation {
-        match name {
-            StabilisationName::Projection => Stabilisation::PROJECTION,
-            StabilisationName::Baumgarte => Stabilisation::Baumgarte {
-                alpha: 10.0,
-                beta: 10.0,
-            },
-            StabilisationName::None => Stabilisation::None,
         }
     }
 }

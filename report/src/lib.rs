@@ -9,6 +9,9 @@
 //! one; measured by `scenarios::mechanism_measures`) → [`mechanism_report`] (their section and plots).
 //!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
+//!
+//! The command line is [`cli`]; the integrators and stabilisations by the names it and scene files use are in
+//! [`names`].
 
 pub mod cli;
 pub mod csv;
@@ -19,6 +22,7 @@ pub mod measure;
 pub mod mechanism_report;
 pub mod mechanism_sweep;
 pub mod mujoco;
+pub mod names;
 pub mod plot;
 pub mod scene_file;
 pub mod scene_job;

@@ -15,8 +15,6 @@ pub enum MeasureError {
     Reference(#[from] TrajectoryError),
 }
 
-use crate::sweep::Config;
-
 /// A scene's physical feature (flip time, period, precession rate…) measured on the run and on the
 /// reference.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -163,10 +161,10 @@ fn features(
     })
 }
 
-/// All metrics of one run.
-pub fn measure(config: &Config, simulated: &Trajectory) -> Result<Measurements, MeasureError> {
-    let parameters = config.scene.parameters();
-    let full_reference = config.scene.reference_trajectory()?;
+/// All metrics of one run of `scene`.
+pub fn measure(scene: SceneId, simulated: &Trajectory) -> Result<Measurements, MeasureError> {
+    let parameters = scene.parameters();
+    let full_reference = scene.reference_trajectory()?;
     let reference = truncated(&full_reference, simulated.samples().len())?;
     let errors = metrics::trajectory_errors(&reference, simulated)?;
     let energy_drift: Vec<f64> = simulated
@@ -187,7 +185,7 @@ pub fn measure(config: &Config, simulated: &Trajectory) -> Result<Measurements, 
         energy_drift_end: *energy_drift.last().unwrap_or(&0.0),
         energy_drift_max: energy_drift.iter().copied().fold(0.0, f64::max),
         violation_max: (!violation.is_empty()).then(|| violation.iter().copied().fold(0.0, f64::max)),
-        features: features(config.scene, &parameters, simulated, &reference)?,
+        features: features(scene, &parameters, simulated, &reference)?,
         energy_drift,
         violation,
     })

@@ -26,11 +26,11 @@ use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::{
     Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Reference, Simulation, State,
 };
-use nalgebra::{Quaternion, Unit, UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, SVector, Unit, UnitQuaternion, Vector3};
 use scenarios::Formulation;
 use serde::Deserialize;
 
-use crate::cli::{IntegratorName, StabilisationName};
+use crate::names::{IntegratorName, StabilisationName};
 use crate::sweep::AlgebraKind;
 
 /// Why a scene file cannot run, or its run failed.
@@ -444,17 +444,34 @@ pub struct AxisJoint {
 }
 
 /// The values as a vector, if all are finite.
-fn finite(what: &str, values: [f64; 3]) -> Result<Vector3<f64>, SceneFileError> {
+fn finite<const D: usize>(what: &str, values: [f64; D]) -> Result<SVector<f64, D>, SceneFileError> {
     if values.iter().all(|v| v.is_finite()) {
-        Ok(Vector3::from(values))
+        Ok(SVector::from(values))
     } else {
         Err(invalid(what, format!("{values:?} is not finite")))
     }
 }
 
-/// The unit vector along finite, non-zero values.
+/// Finite, non-zero values as `(scale, vector)`, the values = scale × vector, with a squared length that neither
+/// overflows nor underflows: the values themselves (scale 1), unless their squared length does (lengths above
+/// about 1e154 or below about 1e-154; a normal of 1e300 once became the zero vector), then divided by their
+/// largest magnitude. So every finite, non-zero vector has its length and direction, and the usual ones are
+/// computed exactly as before.
+fn rescaled<const D: usize>(what: &str, values: [f64; D]) -> Result<(f64, SVector<f64, D>), SceneFileError> {
+    let vector = finite(what, values)?;
+    let largest = vector.amax();
+    if largest == 0.0 {
+        Err(invalid(what, "has no direction (zero vector)"))
+    } else if vector.norm_squared().is_normal() {
+        Ok((1.0, vector))
+    } else {
+        Ok((largest, vector / largest))
+    }
+}
+
+/// The unit vector along finite, non-zero values (of any magnitude).
 fn direction(what: &str, values: [f64; 3]) -> Result<Unit<Vector3<f64>>, SceneFileError> {
-    Unit::try_new(finite(what, values)?, 0.0).ok_or_else(|| invalid(what, "has no direction (zero vector)"))
+    Ok(Unit::new_normalize(rescaled(what, values)?.1))
 }
 
 fn positive(what: &str, value: f64) -> Result<f64, SceneFileError> {
@@ -504,17 +521,13 @@ impl OrientationSpec {
             (None, None, None, None) => Ok(UnitQuaternion::identity()),
             (Some(axis), Some(angle), None, None) => axis_angle(axis, angle),
             (Some(axis), None, Some(degrees), None) => axis_angle(axis, degrees.to_radians()),
-            (None, None, None, Some([w, x, y, z])) => {
-                let q = Quaternion::new(w, x, y, z);
-                if q.coords.iter().all(|c| c.is_finite()) && q.norm() > 0.0 {
-                    Ok(UnitQuaternion::from_quaternion(q))
-                } else {
-                    Err(invalid(
-                        WHAT,
-                        format!("quaternion {:?} is zero or not finite", [w, x, y, z]),
-                    ))
-                }
-            }
+            (None, None, None, Some(quaternion)) => match rescaled(WHAT, quaternion) {
+                Ok((_, q)) => Ok(UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))),
+                Err(_) => Err(invalid(
+                    WHAT,
+                    format!("quaternion {quaternion:?} is zero or not finite"),
+                )),
+            },
             _ => Err(invalid(
                 WHAT,
                 "give `axis` with either `angle` (rad) or `degrees`, or a `quaternion` [w, x, y, z]",
@@ -674,9 +687,10 @@ impl Geometry {
         let what = |field: &str| format!("constraint {name}: {field}");
         let point = |field: &str, values| finite(&what(field), values);
         let unit = |field: &str, values| direction(&what(field), values).map(Unit::into_inner);
-        // Normal to a unit axis: its component across the axis, which must not vanish.
+        // Normal to a unit axis: its component across the axis, which must not vanish (its length does not matter,
+        // so it is rescaled, lest the component overflow).
         let across = |field: &str, axis: Vector3<f64>, values| {
-            let normal = point(field, values)?;
+            let (_, normal) = rescaled(&what(field), values)?;
             let across = normal - axis * axis.dot(&normal);
             if across.norm() > 1e-9 * normal.norm() {
                 Ok(across.normalize())
@@ -758,14 +772,22 @@ impl Geometry {
                 normal,
                 offset,
             } => {
-                let length = finite(&what("normal"), *normal)?.norm();
+                let (scale, scaled_normal) = rescaled(&what("normal"), *normal)?;
                 if !offset.is_finite() {
                     return Err(invalid(what("offset"), format!("{offset} is not finite")));
                 }
+                // n·x = d is the unit normal's n/|n| · x = d/|n|.
+                let unit_offset = offset / scale / scaled_normal.norm();
+                if !unit_offset.is_finite() {
+                    return Err(invalid(
+                        what("offset"),
+                        format!("{offset} over the normal's length {normal:?} is not finite"),
+                    ));
+                }
                 CheckedGeometry::Plane {
                     body_point: point("body_point", *body_point)?,
-                    normal: unit("normal", *normal)?,
-                    offset: offset / length,
+                    normal: scaled_normal.normalize(),
+                    offset: unit_offset,
                 }
             }
             Geometry::PointOnSphere {

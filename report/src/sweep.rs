@@ -186,7 +186,7 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
     };
     let stepping = simulation.stepping_time.as_secs_f64();
     let trajectory = scenarios::trajectory(simulation.body(0)).map_err(|e| RunError::Metrics(e.to_string()))?;
-    let measurements = measure(config, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
+    let measurements = measure(config.scene, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
     Ok(Outcome {
         config: *config,
         cpu_per_simulated_second: stepping / schedule.duration(),
