@@ -86,3 +86,27 @@ fn a_drifting_scene_file_warns_on_stderr() {
         "{stderr}"
     );
 }
+
+/// An output directory that cannot be made stops the job (and a scene-file run) before anything runs, naming the
+/// path and the reason, with an error status.
+#[test]
+fn an_output_directory_that_cannot_be_made_is_an_error() {
+    let file = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-output-is-a-file");
+    std::fs::write(&file, "").unwrap();
+    let unwritable = file.join("out");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/heavy_top.toml");
+    for arguments in [&["--quiet"][..], &["--scene-file", scene]] {
+        let output = Command::new(env!("CARGO_BIN_EXE_ga-dynamics"))
+            .args(arguments)
+            .arg("--output")
+            .arg(&unwritable)
+            .output()
+            .expect("the job binary runs");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{arguments:?}: {stderr}");
+        assert!(
+            stderr.contains("cannot write") && stderr.contains("cli-output-is-a-file/out"),
+            "{arguments:?}: {stderr}"
+        );
+    }
+}
