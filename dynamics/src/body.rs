@@ -1,7 +1,9 @@
 //! Rigid bodies: mass and principal moments of inertia about the centre of mass. The body frame has
-//! its origin at the centre of mass and its axes along the principal axes (SPEC §2, E10a).
+//! its origin at the centre of mass and its axes along the principal axes (SPEC §2, E10a). A body given
+//! as a full inertia tensor in some other frame (a CAD part's) is diagonalised into that form, keeping where
+//! the principal frame sits ([`Body::from_inertia_tensor`]).
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 
 /// The largest mass (kg) or principal moment (kg m²) a body may have: the weight `m g`, the momenta and energies
 /// multiply these by positions and velocities, and a mass of 1e308 kg overflowed its weight to infinity (then
@@ -20,6 +22,33 @@ pub enum BodyError {
     Triangle([f64; 3]),
     #[error("shape dimensions must be positive and finite, got {0:?}")]
     Dimensions(Vec<f64>),
+    /// An inertia tensor that is not finite or not symmetric (`Iᵢⱼ = Iⱼᵢ` up to round-off).
+    #[error("an inertia tensor must be finite and symmetric, got {0:?}")]
+    Tensor([[f64; 3]; 3]),
+    #[error("the point the inertia is given about and the centre of mass must be finite, got {0:?}")]
+    Point([f64; 3]),
+}
+
+/// Where a body's principal frame sits in the frame its inertia tensor was given in ([`Body::from_inertia_tensor`]):
+/// the centre of mass, and the rotation from the principal axes (the body frame of the dynamics) to that frame's
+/// axes. A part placed in the world with pose `(position, rotation)` of its own frame has its body frame at
+/// [`PrincipalFrame::body_pose`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrincipalFrame {
+    pub centre_of_mass: Vector3<f64>,
+    pub rotation: UnitQuaternion<f64>,
+}
+
+impl PrincipalFrame {
+    /// The centre of mass and the body-frame orientation (principal axes → world) of a part whose own frame is at
+    /// `position` with orientation `rotation` in the world: the pose a [`crate::State`] constructor takes.
+    pub fn body_pose(
+        &self,
+        position: Vector3<f64>,
+        rotation: &UnitQuaternion<f64>,
+    ) -> (Vector3<f64>, UnitQuaternion<f64>) {
+        (position + rotation * self.centre_of_mass, rotation * self.rotation)
+    }
 }
 
 /// Mass and principal moments (about the centre of mass, along the body axes). The fields are private so
@@ -56,6 +85,73 @@ impl Body {
             return Err(BodyError::Triangle(m));
         }
         Ok(Body { mass, moments })
+    }
+
+    /// A body from its full inertia tensor `inertia` (kg m², any frame) about the point `about`, and its centre
+    /// of mass, both in that frame. The parallel-axis theorem moves the tensor to the centre of mass,
+    /// `I_c = I_about − m(|d|²𝟙 − d dᵀ)` with `d = centre_of_mass − about`; its eigenvectors are the principal
+    /// axes (made right-handed) and its eigenvalues the moments, checked like [`Body::new`]'s.
+    ///
+    /// ```
+    /// use dynamics::Body;
+    /// use nalgebra::{Matrix3, Vector3};
+    ///
+    /// // A 2 kg rod 1 m long along x, its inertia given about its end at the origin: m l²/3 across.
+    /// let end = Matrix3::from_diagonal(&Vector3::new(1e-4, 2.0 / 3.0, 2.0 / 3.0));
+    /// let (rod, frame) = Body::from_inertia_tensor(2.0, end, Vector3::zeros(), Vector3::new(0.5, 0.0, 0.0))?;
+    /// let mut moments: Vec<f64> = rod.moments().iter().copied().collect();
+    /// moments.sort_by(f64::total_cmp);
+    /// assert!((moments[2] - 2.0 / 12.0).abs() < 1e-15); // m l²/12 about the centre
+    /// assert_eq!(frame.centre_of_mass, Vector3::new(0.5, 0.0, 0.0));
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
+    pub fn from_inertia_tensor(
+        mass: f64,
+        inertia: Matrix3<f64>,
+        about: Vector3<f64>,
+        centre_of_mass: Vector3<f64>,
+    ) -> Result<(Body, PrincipalFrame), BodyError> {
+        let as_rows = |m: &Matrix3<f64>| std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]));
+        let largest = inertia.amax();
+        let asymmetry = (inertia - inertia.transpose()).amax();
+        if !largest.is_finite() || asymmetry > 1e-12 * largest {
+            return Err(BodyError::Tensor(as_rows(&inertia)));
+        }
+        for point in [about, centre_of_mass] {
+            if !point.iter().all(|x| x.is_finite()) {
+                return Err(BodyError::Point([point.x, point.y, point.z]));
+            }
+        }
+        if !(mass > 0.0 && mass <= MAX_MASS_PROPERTY) {
+            return Err(BodyError::Mass(mass));
+        }
+        let d = centre_of_mass - about;
+        let central =
+            (inertia + inertia.transpose()) * 0.5 - (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * mass;
+        let SymmetricEigen {
+            eigenvalues,
+            mut eigenvectors,
+        } = SymmetricEigen::new(central);
+        if eigenvectors.determinant() < 0.0 {
+            eigenvectors.column_mut(2).neg_mut();
+        }
+        let body = Body::new(mass, eigenvalues)?;
+        let rotation = UnitQuaternion::from_matrix(&eigenvectors);
+        Ok((
+            body,
+            PrincipalFrame {
+                centre_of_mass,
+                rotation,
+            },
+        ))
+    }
+
+    /// A solid cylinder of this radius and length, axis along body z: axial moment `m r²/2`, transverse
+    /// `m(3r² + h²)/12`.
+    pub fn cylinder(mass: f64, radius: f64, length: f64) -> Result<Body, BodyError> {
+        positive(&[radius, length])?;
+        let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
+        Body::new(mass, Vector3::new(transverse, transverse, 0.5 * mass * radius * radius))
     }
 
     /// A solid cuboid with side lengths `extents` along the body axes:

@@ -29,7 +29,7 @@ pub mod state;
 mod test_random;
 
 pub use algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
-pub use body::{Body, BodyError};
+pub use body::{Body, BodyError, PrincipalFrame};
 pub use cga::Cga;
 pub use constraints::{Constraint, ConstraintError, Stabilisation};
 pub use forces::Force;
@@ -38,7 +38,7 @@ pub use mechanism::{BodyId, JointId, Mechanism, MechanismError, Reference, Solve
 pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Schedule, Simulation, SimulationError};
-pub use state::{State, WorldVelocity};
+pub use state::{State, WorldMomentum, WorldVelocity};
 
 /// Systems, states, results and errors cross threads (issue 13): a run keeps its failure in its own `Result`,
 /// with no shared slot, so parallel runs never see each other's errors. Checked at compile time.

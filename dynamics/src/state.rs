@@ -13,6 +13,17 @@ pub struct State<A: Algebra> {
     pub momentum: A::Screw,
 }
 
+/// Momenta in world terms ([`State::world_momentum`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldMomentum {
+    /// `m v` (kg m/s).
+    pub linear: Vector3<f64>,
+    /// `I ω` about the centre of mass, world axes (kg m²/s).
+    pub angular_about_centre_of_mass: Vector3<f64>,
+    /// About the world origin: `I ω + c × m v`.
+    pub angular_about_origin: Vector3<f64>,
+}
+
 /// Velocities in world terms, for reports and comparisons with classical references.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WorldVelocity {
@@ -42,8 +53,9 @@ impl<A: Algebra> State<A> {
     }
 
     /// The state of a body at `position` (its centre of mass) with orientation `rotation`, moving
-    /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`:
-    /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (SPEC §11).
+    /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`: the mixed
+    /// frames of the reference scenes' files. [`State::from_body_twist`] and [`State::from_world_twist`] take
+    /// both velocities in one frame.
     pub fn new(
         body: &Body,
         position: Vector3<f64>,
@@ -51,10 +63,62 @@ impl<A: Algebra> State<A> {
         angular_body: Vector3<f64>,
         linear_world: Vector3<f64>,
     ) -> Self {
+        State::from_body_twist(
+            body,
+            position,
+            rotation,
+            angular_body,
+            rotation.inverse() * linear_world,
+        )
+    }
+
+    /// The state of a body whose centre of mass is at `position` (world), oriented by `rotation` (body → world),
+    /// moving with angular velocity `angular_world` and centre-of-mass velocity `linear_world`, both in world
+    /// axes.
+    ///
+    /// ```
+    /// use dynamics::{Body, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::cylinder(2.0, 0.1, 0.5)?;
+    /// let turned = UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.3, 0.0));
+    /// let state = State::<Pga>::from_world_twist(&body, Vector3::z(), &turned, Vector3::z(), Vector3::x());
+    /// let velocity = state.world_velocity(&body);
+    /// assert!((velocity.angular - Vector3::z()).norm() < 1e-15);
+    /// assert!((velocity.linear - Vector3::x()).norm() < 1e-15);
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
+    pub fn from_world_twist(
+        body: &Body,
+        position: Vector3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        angular_world: Vector3<f64>,
+        linear_world: Vector3<f64>,
+    ) -> Self {
+        let to_body = rotation.inverse();
+        State::from_body_twist(
+            body,
+            position,
+            rotation,
+            to_body * angular_world,
+            to_body * linear_world,
+        )
+    }
+
+    /// The state of a body whose centre of mass is at `position` (world), oriented by `rotation` (body → world),
+    /// moving with angular velocity `angular_body` and centre-of-mass velocity `linear_body`, both in body axes:
+    /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (SPEC §11).
+    pub fn from_body_twist(
+        body: &Body,
+        position: Vector3<f64>,
+        rotation: &UnitQuaternion<f64>,
+        angular_body: Vector3<f64>,
+        linear_body: Vector3<f64>,
+    ) -> Self {
         let motor = motor::from_pose::<A>(position, rotation);
         let velocity = A::screw(ScrewCoordinates {
             l: angular_body,
-            t: rotation.inverse() * linear_world,
+            t: linear_body,
         });
         // Project the sandwich's result back onto span{lᵢ, tᵢ}: in CGA its round-off leaves components
         // off the span (e45, eᵢ4 ≠ eᵢ5) that the next sandwich multiplies by |x|² again.
@@ -89,6 +153,20 @@ impl<A: Algebra> State<A> {
         WorldVelocity {
             angular: rotation * v.l,
             linear: rotation * v.t,
+        }
+    }
+
+    /// Linear momentum and angular momentum (about the centre of mass and about the world origin), in world
+    /// axes: the body momentum's parts `(p_b, L_b)` (the l and t coordinates of `Ω_b`, see [`Body::momentum`])
+    /// turned to the world, and `L_O = L + c × p`.
+    pub fn world_momentum(&self) -> WorldMomentum {
+        let (position, rotation) = self.pose();
+        let body = A::screw_coordinates(self.body_momentum());
+        let (linear, angular) = (rotation * body.l, rotation * body.t);
+        WorldMomentum {
+            linear,
+            angular_about_centre_of_mass: angular,
+            angular_about_origin: angular + position.cross(&linear),
         }
     }
 
