@@ -37,7 +37,7 @@ pub use integrate::{Integrator, KineticSplitting, Method, SplittingMethod, StepE
 pub use mechanism::{BodyId, JointId, Mechanism, MechanismError, Reference, SolverSettings, Violation};
 pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
 pub use pga::Pga;
-pub use simulate::{simulate, Schedule, Simulation, SimulationError};
+pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};
 pub use state::{State, WorldMomentum, WorldVelocity};
 
 /// Systems, states, results and errors cross threads (issue 13): a run keeps its failure in its own `Result`,

@@ -1,12 +1,21 @@
-//! Running a system of rigid bodies over time and recording every body on a sample grid (by default every
-//! 0.01 s, the grid of the reference scenes, at times `k · 0.01`).
+//! Running a system of rigid bodies over time: recording every body at chosen times, calling an observer after
+//! every step, and locating events.
 //!
-//! A [`Schedule`] fixes the step and checks that it divides the sample interval, so every sample falls on a
-//! step and nothing is interpolated (interpolation would add errors far above the references' ~1e-11 rad
-//! floor). [`simulate`] is the one entry point, for free bodies, constrained bodies and mechanisms, with any
+//! A [`Schedule`] fixes the step and the sample times: a grid (by default every 0.01 s, the grid of the reference
+//! scenes), which the step must divide so every sample falls on a step, or any list of times
+//! ([`Schedule::at_times`]), any step size. A sample between two steps is taken by a partial step from the
+//! last step's state — the method's own solution at that time, of its order and on the group (motors stay
+//! motors) — which does not change the steps that follow.
+//!
+//! A [`Plan`] adds to a schedule an observer called after every step, which may stop the run, and [`Event`]s:
+//! scalar functions of the state whose zero crossings are located to round-off by partial steps (a pendulum's
+//! turning points, a body point reaching a plane), with a direction filter, and optionally terminal.
+//!
+//! [`simulate`] is the one entry point, for free bodies, constrained bodies and mechanisms, with any
 //! [`Integrator`]; it allocates once (the samples) and measures the CPU time of the stepping alone, for
 //! work-precision comparisons.
 
+use std::ops::ControlFlow;
 use std::time::{Duration, Instant};
 
 use nalgebra::{UnitQuaternion, Vector3};
@@ -44,18 +53,36 @@ pub enum SimulationError {
     /// The initial state does not have one entry per body of the system.
     #[error("the initial state has {got} bodies, the system has {expected}")]
     BodyCount { expected: usize, got: usize },
+    /// Output times must be finite, positive and increasing.
+    #[error("output time {index} ({time}) is not finite, not positive or not after the one before")]
+    OutputTime { index: usize, time: f64 },
     /// A step failed (a reaction that could not be solved names its joints), or the integrator does not apply.
     #[error(transparent)]
     Step(#[from] StepError),
 }
 
-/// A fixed-step schedule: `intervals` sample intervals, each of `steps_per_sample` steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A fixed-step schedule: the step and the sample times (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Schedule {
-    sample_interval: f64,
-    steps_per_sample: usize,
-    intervals: usize,
+    dt: f64,
+    samples: Samples,
 }
+
+#[derive(Clone, Debug, PartialEq)]
+enum Samples {
+    /// `intervals` sample intervals, each of `steps_per_sample` steps.
+    Grid {
+        sample_interval: f64,
+        steps_per_sample: usize,
+        intervals: usize,
+    },
+    /// Samples at these times (after the one at 0), steps on the grid `k·dt`.
+    Times(Vec<f64>),
+}
+
+/// A sample time this close to the end of a step, relative to the step, is taken as the step's end rather than
+/// by a partial step of a few ulps.
+const SAME_TIME: f64 = 1e-9;
 
 /// `whole / part` if it is an integer within [`DIVISIBILITY_TOLERANCE`].
 fn whole_ratio(whole: f64, part: f64) -> Option<usize> {
@@ -96,42 +123,263 @@ impl Schedule {
             return Err(SimulationError::TooLong);
         }
         Ok(Schedule {
-            sample_interval: interval,
-            steps_per_sample,
-            intervals,
+            // The step actually taken: the interval over the whole number of steps in it.
+            dt: interval / steps_per_sample as f64,
+            samples: Samples::Grid {
+                sample_interval: interval,
+                steps_per_sample,
+                intervals,
+            },
         })
     }
 
-    /// The step actually taken: the sample interval over the whole number of steps in it (equal to the
-    /// requested step up to round-off).
-    pub fn dt(&self) -> f64 {
-        self.sample_interval / self.steps_per_sample as f64
+    /// Steps of `dt` (any size) on the grid `k·dt`, with samples at t = 0 and at each of `times` (finite,
+    /// positive, increasing); the run ends at the last. A time between two steps is sampled by a partial step.
+    ///
+    /// ```
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::sphere(1.0, 0.1)?;
+    /// let start = State::<Pga>::from_world_twist(&body, Vector3::zeros(), &UnitQuaternion::identity(), Vector3::zeros(), Vector3::x());
+    /// let schedule = Schedule::at_times(0.03, [0.05, 0.1])?;
+    /// let run = simulate(&FreeBody::new(body), &[start], Method::Rkmk4Body, &schedule)?;
+    /// let x: Vec<f64> = run.body(0).iter().map(|s| s.position.x).collect();
+    /// assert!((x[1] - 0.05).abs() < 1e-15 && (x[2] - 0.1).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn at_times(dt: f64, times: impl IntoIterator<Item = f64>) -> Result<Self, SimulationError> {
+        let dt = positive("the step", dt)?;
+        let times: Vec<f64> = times.into_iter().collect();
+        for (index, &time) in times.iter().enumerate() {
+            let previous = if index == 0 { 0.0 } else { times[index - 1] };
+            if !(time.is_finite() && time > previous) {
+                return Err(SimulationError::OutputTime { index, time });
+            }
+        }
+        let duration = positive("the duration", times.last().copied().unwrap_or(0.0))?;
+        if times.len() >= MAX_SAMPLES || duration / dt > (1u64 << 53) as f64 {
+            return Err(SimulationError::TooLong);
+        }
+        Ok(Schedule {
+            dt,
+            samples: Samples::Times(times),
+        })
     }
 
-    pub fn steps_per_sample(&self) -> usize {
-        self.steps_per_sample
+    /// The step: on a grid schedule the sample interval over the whole number of steps in it (equal to the
+    /// requested step up to round-off).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// On a grid schedule, the number of steps between samples.
+    pub fn steps_per_sample(&self) -> Option<usize> {
+        match self.samples {
+            Samples::Grid { steps_per_sample, .. } => Some(steps_per_sample),
+            Samples::Times(_) => None,
+        }
     }
 
     /// The number of samples, including the initial one.
     pub fn sample_count(&self) -> usize {
-        self.intervals + 1
+        match &self.samples {
+            Samples::Grid { intervals, .. } => intervals + 1,
+            Samples::Times(times) => times.len() + 1,
+        }
     }
 
-    /// The total number of steps.
+    /// The number of whole steps (a schedule at given times may add partial ones).
     pub fn step_count(&self) -> usize {
-        self.intervals * self.steps_per_sample
+        match &self.samples {
+            Samples::Grid {
+                intervals,
+                steps_per_sample,
+                ..
+            } => intervals * steps_per_sample,
+            Samples::Times(_) => self.step_time_count(),
+        }
+    }
+
+    /// Steps of `dt` to cover the duration, the last one possibly shortened.
+    fn step_time_count(&self) -> usize {
+        let steps = self.duration() / self.dt;
+        // A duration that is a whole number of steps up to round-off takes that many.
+        let whole = steps.round();
+        (if (steps - whole).abs() <= SAME_TIME * whole.max(1.0) {
+            whole
+        } else {
+            steps.ceil()
+        }) as usize
     }
 
     /// The simulated time.
     pub fn duration(&self) -> f64 {
-        self.intervals as f64 * self.sample_interval
+        match &self.samples {
+            Samples::Grid {
+                intervals,
+                sample_interval,
+                ..
+            } => *intervals as f64 * sample_interval,
+            Samples::Times(times) => times[times.len() - 1],
+        }
     }
 
-    /// The time of sample `index`: `index · interval`, computed from the index so it does not accumulate
-    /// round-off (and equals the reference files' times).
+    /// The time of sample `index`: on a grid `index · interval`, computed from the index so it does not
+    /// accumulate round-off (and equals the reference files' times).
     pub fn sample_time(&self, index: usize) -> f64 {
-        index as f64 * self.sample_interval
+        match &self.samples {
+            Samples::Grid { sample_interval, .. } => index as f64 * sample_interval,
+            Samples::Times(times) => {
+                if index == 0 {
+                    0.0
+                } else {
+                    times[index - 1]
+                }
+            }
+        }
     }
+
+    /// Step `k`: its start time and length. On a grid, `k` runs through the sample intervals (times computed from
+    /// the interval's start, as the reference files' are); at given times, through `k·dt`, the last step ending on
+    /// the last time.
+    fn step(&self, k: usize) -> (f64, f64) {
+        match &self.samples {
+            Samples::Grid {
+                sample_interval,
+                steps_per_sample,
+                ..
+            } => (
+                (k / steps_per_sample) as f64 * sample_interval + (k % steps_per_sample) as f64 * self.dt,
+                self.dt,
+            ),
+            Samples::Times(_) => {
+                let start = k as f64 * self.dt;
+                let end = if k + 1 == self.step_time_count() {
+                    self.duration()
+                } else {
+                    (k + 1) as f64 * self.dt
+                };
+                (start, end - start)
+            }
+        }
+    }
+}
+
+/// Which zero crossings of an [`Event`]'s function count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Crossing {
+    /// From negative to zero or positive.
+    Rising,
+    /// From positive to zero or negative.
+    Falling,
+    Either,
+}
+
+/// An event's function of the time and the states.
+type EventFunction<'a, A> = Box<dyn FnMut(f64, &[State<A>]) -> f64 + 'a>;
+
+/// A scalar function of the time and the states whose zero crossings [`simulate`] locates: after every step the
+/// function is evaluated, and a sign change (in the chosen [`Crossing`] direction) is bracketed and closed by
+/// partial steps from the step's start (regula falsi with the Illinois modification) until the bracket is a few
+/// ulps of the time wide. A terminal event ends the run at its crossing.
+pub struct Event<'a, A: Algebra> {
+    name: String,
+    function: EventFunction<'a, A>,
+    crossing: Crossing,
+    terminal: bool,
+}
+
+impl<'a, A: Algebra> Event<'a, A> {
+    /// Crossings of `function` in either direction, not terminal.
+    pub fn new(name: impl Into<String>, function: impl FnMut(f64, &[State<A>]) -> f64 + 'a) -> Self {
+        Event {
+            name: name.into(),
+            function: Box::new(function),
+            crossing: Crossing::Either,
+            terminal: false,
+        }
+    }
+
+    /// Only crossings in this direction.
+    pub fn crossing(mut self, crossing: Crossing) -> Self {
+        self.crossing = crossing;
+        self
+    }
+
+    /// The run ends at the first crossing.
+    pub fn terminal(mut self) -> Self {
+        self.terminal = true;
+        self
+    }
+
+    fn crosses(&self, before: f64, after: f64) -> bool {
+        let rising = before < 0.0 && after >= 0.0;
+        let falling = before > 0.0 && after <= 0.0;
+        match self.crossing {
+            Crossing::Rising => rising,
+            Crossing::Falling => falling,
+            Crossing::Either => rising || falling,
+        }
+    }
+}
+
+/// An observer: called after every step with the time and the states; `ControlFlow::Break` ends the run there.
+type Observer<'a, A> = Box<dyn FnMut(f64, &[State<A>]) -> ControlFlow<()> + 'a>;
+
+/// What a run records and watches: a [`Schedule`], [`Event`]s and an observer. A `&Schedule` converts into a plan
+/// without either, so `simulate(…, &schedule)` is the plain run.
+pub struct Plan<'a, A: Algebra> {
+    schedule: &'a Schedule,
+    events: Vec<Event<'a, A>>,
+    observer: Option<Observer<'a, A>>,
+}
+
+impl<'a, A: Algebra> Plan<'a, A> {
+    pub fn new(schedule: &'a Schedule) -> Self {
+        Plan {
+            schedule,
+            events: Vec::new(),
+            observer: None,
+        }
+    }
+
+    /// Locate this event's crossings (see [`Event`]).
+    pub fn event(mut self, event: Event<'a, A>) -> Self {
+        self.events.push(event);
+        self
+    }
+
+    /// Call `observer` after every step (not after the partial steps that take samples or locate events); it
+    /// ends the run by returning `ControlFlow::Break(())`.
+    pub fn observer(mut self, observer: impl FnMut(f64, &[State<A>]) -> ControlFlow<()> + 'a) -> Self {
+        self.observer = Some(Box::new(observer));
+        self
+    }
+}
+
+impl<'a, A: Algebra> From<&'a Schedule> for Plan<'a, A> {
+    fn from(schedule: &'a Schedule) -> Self {
+        Plan::new(schedule)
+    }
+}
+
+/// A located event crossing: which event (its index in the plan and name), the time, and the states there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventHit<A: Algebra> {
+    pub event: usize,
+    pub name: String,
+    pub t: f64,
+    pub states: Vec<State<A>>,
+}
+
+/// Why a run ended before its schedule's end.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stop {
+    /// The terminal event with this index crossed zero.
+    Event(usize),
+    /// The observer returned `ControlFlow::Break`.
+    Observer,
 }
 
 /// One recorded instant of one body, in the reference files' terms (SCENES.md "Files") plus the system's
@@ -157,9 +405,14 @@ pub struct Simulation<A: Algebra> {
     /// The samples of each body: `bodies[i][k]` is body i at sample k.
     pub bodies: Vec<Vec<Sample>>,
     pub final_state: Vec<State<A>>,
+    /// Whole steps taken (partial steps for samples and events not counted).
     pub steps: usize,
     /// CPU (wall) time spent stepping, excluding the recording of samples.
     pub stepping_time: Duration,
+    /// The located event crossings, in time order.
+    pub events: Vec<EventHit<A>>,
+    /// Why the run ended early, if it did; it then ends with a sample at that time.
+    pub stopped: Option<Stop>,
 }
 
 impl<A: Algebra> Simulation<A> {
@@ -197,16 +450,124 @@ fn record<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, states: &[S
     }
 }
 
+/// A clock that runs only while it is stepping.
+struct Stopwatch {
+    since: Option<Instant>,
+    total: Duration,
+}
+
+impl Stopwatch {
+    fn start(&mut self) {
+        self.since = Some(Instant::now());
+    }
+
+    fn stop(&mut self) {
+        if let Some(since) = self.since.take() {
+            self.total += since.elapsed();
+        }
+    }
+}
+
+/// Event crossings are closed to a bracket this many ulps of the time wide.
+const EVENT_ULPS: f64 = 4.0;
+/// Regula falsi steps at most per crossing (the Illinois modification converges superlinearly; a bracket of
+/// 1e-3 s closes to round-off in about ten).
+const EVENT_ITERATIONS: usize = 200;
+
+/// The crossing of `event` within the step of length `h` from `(t, start)`, where its value goes from `before`
+/// (not zero) to `after`: regula falsi on the partial step length with the Illinois modification (the retained end's
+/// value halved when the same end is kept twice), bisection where the secant leaves the bracket. Returns the first
+/// time found at or after the crossing, within [`EVENT_ULPS`] of the crossing, and the states there.
+#[allow(clippy::too_many_arguments)]
+fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
+    event: &mut Event<'_, A>,
+    stepper: &mut Stepper<'_, A, D>,
+    (t, h): (f64, f64),
+    start: &[State<A>],
+    end: &[State<A>],
+    (before, after): (f64, f64),
+    probe: &mut [State<A>],
+) -> Result<(f64, Vec<State<A>>), StepError> {
+    let (mut a, mut value_a) = (0.0, before);
+    let (mut b, mut value_b) = (h, after);
+    let mut at_b = end.to_vec();
+    let mut kept = 0i8;
+    for _ in 0..EVENT_ITERATIONS {
+        if value_b == 0.0 || b - a <= EVENT_ULPS * f64::EPSILON * (t + b).abs().max(h) {
+            break;
+        }
+        let mut m = b - value_b * (b - a) / (value_b - value_a);
+        if !(m > a && m < b) {
+            m = 0.5 * (a + b);
+        }
+        probe.copy_from_slice(start);
+        stepper.step(t, probe, m)?;
+        let value = (event.function)(t + m, probe);
+        if value == 0.0 || value.signum() != before.signum() {
+            (b, value_b) = (m, value);
+            at_b.copy_from_slice(probe);
+            if kept == -1 {
+                value_a *= 0.5;
+            }
+            kept = -1;
+        } else {
+            (a, value_a) = (m, value);
+            if kept == 1 {
+                value_b *= 0.5;
+            }
+            kept = 1;
+        }
+    }
+    Ok((t + b, at_b))
+}
+
 /// Runs any system — a [`crate::FreeBody`], or a [`crate::Mechanism`] of one or more bodies with joints — from
-/// `initial` (one state per body) with `integrator` on `schedule`. Splitting methods apply to a single free
-/// body. Fails with the first step that fails: its error names the joints involved and the time, or the time
-/// the state stopped being finite ([`crate::StepError`]).
-pub fn simulate<A: Algebra, D: Dynamics<A> + ?Sized>(
+/// `initial` (one state per body) with `integrator` on `plan`: a `&Schedule`, or a [`Plan`] with events and an
+/// observer. Splitting methods apply to a single free body. Fails with the first step that fails: its error
+/// names the joints involved and the time, or the time the state stopped being finite ([`crate::StepError`]).
+///
+/// The period of a pendulum from its turning points, where its angular velocity changes sign, against the
+/// exact period `4√(I/mgd) K(sin(θ₀/2))` (K by the arithmetic-geometric mean):
+///
+/// ```
+/// use dynamics::constraints::VirtualPower;
+/// use dynamics::simulate::{Crossing, Event, Plan};
+/// use dynamics::{simulate, Body, Force, Mechanism, Method, Pga, Schedule, State};
+/// use nalgebra::{UnitQuaternion, Vector3};
+///
+/// let rod = Body::rod(1.0, 1.0, 1e-3)?; // 1 kg, 1 m, hinged at its top end
+/// let top = (Vector3::new(0.0, 0.0, 0.5), Vector3::x());
+/// let pendulum = Mechanism::<Pga>::single(rod)
+///     .with_force(Force::gravity())
+///     .with_constraint(VirtualPower::hinge("pivot", top, (Vector3::zeros(), Vector3::x()))?)?;
+/// let tilted = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.0, 0.0));
+/// let hanging = tilted * Vector3::new(0.0, 0.0, -0.5);
+/// let start = State::from_world_twist(&rod, hanging, &tilted, Vector3::zeros(), Vector3::zeros());
+/// let swing = |_t: f64, states: &[State<Pga>]| states[0].world_velocity(&rod).angular.x;
+/// let schedule = Schedule::new(1e-3, 5.0)?;
+/// let plan = Plan::new(&schedule).event(Event::new("turning point", swing).crossing(Crossing::Rising));
+/// let run = simulate(&pendulum, &[start], Method::Rkmk6Body, plan)?;
+/// let period = run.events[1].t - run.events[0].t;
+///
+/// let (mut a, mut b) = (1.0, 0.15f64.cos()); // K(k) = π / 2 AGM(1, √(1 − k²)), k = sin 0.15
+/// for _ in 0..6 {
+///     (a, b) = (0.5 * (a + b), (a * b).sqrt());
+/// }
+/// let exact = 4.0 * (2.0 / (3.0 * 9.81f64)).sqrt() * std::f64::consts::PI / (2.0 * a);
+/// assert!((period - exact).abs() < 1e-10 * exact, "{period} vs {exact}");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     dynamics: &D,
     initial: &[State<A>],
     integrator: impl Into<Integrator>,
-    schedule: &Schedule,
+    plan: impl Into<Plan<'a, A>>,
 ) -> Result<Simulation<A>, SimulationError> {
+    let Plan {
+        schedule,
+        mut events,
+        mut observer,
+    } = plan.into();
     let expected = dynamics.body_count();
     if initial.len() != expected {
         return Err(SimulationError::BodyCount {
@@ -215,26 +576,110 @@ pub fn simulate<A: Algebra, D: Dynamics<A> + ?Sized>(
         });
     }
     let mut stepper = Stepper::new(dynamics, integrator)?;
-    let dt = schedule.dt();
-    let mut bodies: Vec<Vec<Sample>> = (0..expected)
-        .map(|_| Vec::with_capacity(schedule.sample_count()))
-        .collect();
+    let sample_count = schedule.sample_count();
+    let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(sample_count)).collect();
     record(dynamics, 0.0, initial, &mut bodies);
-    let mut state = initial.to_vec();
-    let mut stepping_time = Duration::ZERO;
-    for interval in 0..schedule.intervals {
-        let start_time = schedule.sample_time(interval);
-        let clock = Instant::now();
-        for k in 0..schedule.steps_per_sample {
-            stepper.step(start_time + k as f64 * dt, &mut state, dt)?;
+    let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
+    let mut values: Vec<f64> = events.iter_mut().map(|event| (event.function)(0.0, initial)).collect();
+    let (mut hits, mut stopped) = (Vec::new(), None);
+    let mut sample = 1;
+    let mut last_recorded = 0.0;
+    let mut clock = Stopwatch {
+        since: None,
+        total: Duration::ZERO,
+    };
+    let mut steps = 0;
+    clock.start();
+    for k in 0..schedule.step_count() {
+        let (t, h) = schedule.step(k);
+        let end = t + h;
+        next.copy_from_slice(&state);
+        stepper.step(t, &mut next, h)?;
+        steps += 1;
+        // Events in (t, end]: the earliest terminal one ends the run.
+        let mut terminal: Option<(f64, usize, Vec<State<A>>)> = None;
+        if !events.is_empty() {
+            clock.stop();
+            let mut found = Vec::new();
+            for (index, event) in events.iter_mut().enumerate() {
+                let after = (event.function)(end, &next);
+                if event.crosses(values[index], after) {
+                    let (time, states) = locate(
+                        event,
+                        &mut stepper,
+                        (t, h),
+                        &state,
+                        &next,
+                        (values[index], after),
+                        &mut probe,
+                    )?;
+                    if event.terminal && terminal.as_ref().is_none_or(|(first, ..)| time < *first) {
+                        terminal = Some((time, index, states.clone()));
+                    }
+                    found.push(EventHit {
+                        event: index,
+                        name: event.name.clone(),
+                        t: time,
+                        states,
+                    });
+                }
+                values[index] = after;
+            }
+            let limit = terminal.as_ref().map_or(end, |(time, ..)| *time);
+            found.retain(|hit| hit.t <= limit);
+            found.sort_by(|x, y| x.t.total_cmp(&y.t));
+            hits.extend(found);
+            clock.start();
         }
-        stepping_time += clock.elapsed();
-        record(dynamics, schedule.sample_time(interval + 1), &state, &mut bodies);
+        let limit = terminal.as_ref().map_or(end, |(time, ..)| *time);
+        // Samples in (t, limit]: at the step's end from its states, inside it by a partial step.
+        while sample < sample_count {
+            let time = schedule.sample_time(sample);
+            let at_end = (time - end).abs() <= SAME_TIME * h;
+            if at_end && terminal.is_none() {
+                clock.stop();
+                record(dynamics, time, &next, &mut bodies);
+            } else if !at_end && time < limit {
+                probe.copy_from_slice(&state);
+                stepper.step(t, &mut probe, time - t)?;
+                clock.stop();
+                record(dynamics, time, &probe, &mut bodies);
+            } else {
+                break;
+            }
+            last_recorded = time;
+            sample += 1;
+            clock.start();
+        }
+        if let Some((time, index, states)) = terminal {
+            clock.stop();
+            if last_recorded != time {
+                record(dynamics, time, &states, &mut bodies);
+            }
+            state = states;
+            stopped = Some(Stop::Event(index));
+            break;
+        }
+        std::mem::swap(&mut state, &mut next);
+        if let Some(observer) = observer.as_mut() {
+            clock.stop();
+            if observer(end, &state).is_break() {
+                if last_recorded != end {
+                    record(dynamics, end, &state, &mut bodies);
+                }
+                stopped = Some(Stop::Observer);
+                break;
+            }
+            clock.start();
+        }
     }
+    clock.stop();
     Ok(Simulation {
         bodies,
         final_state: state,
-        steps: schedule.step_count(),
-        stepping_time,
+        steps,
+        stepping_time: clock.total,
+        events: hits,
+        stopped,
     })
 }

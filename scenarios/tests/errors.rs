@@ -11,9 +11,9 @@ use scenarios::{build, Formulation, MechanismId, SceneError};
 
 #[test]
 fn a_sphere_pin_is_not_expressible_in_pga() {
-    let error = build::<Pga>(SceneId::RodOnSphere, Formulation::Pinning, Stabilisation::None)
-        .err()
-        .expect("PGA has no spheres to pin");
+    let Err(error) = build::<Pga>(SceneId::RodOnSphere, Formulation::Pinning, Stabilisation::None) else {
+        panic!("PGA has no spheres to pin");
+    };
     assert!(
         matches!(error, SceneError::NotExpressible { algebra: "PGA", .. }),
         "{error}"

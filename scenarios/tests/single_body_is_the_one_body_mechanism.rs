@@ -119,9 +119,16 @@ fn check<A: SceneAlgebra>() {
     // factorisation between its position and velocity solves, docs/mechanisms.md §M5), a 1e-12 difference per
     // step that 2 s of this scene's dynamics amplify. The Lie-group methods on the hinge and the tops mostly
     // agree within 1e-13.
+    //
+    // One case changed by design after the recording: the torque-free cuboid with RKMK4-body, whose steps now
+    // end on the conserved world momentum (`integrate::end_of_body_step`). That projection changes the
+    // trajectory by its local error, 2.0e-9 after 2 s (RKMK6-body's, sixth order, by 7.6e-14); it is held to
+    // the recorded state within 1e-8, and to the reference trajectory by `scene1_free_body.rs`.
     for (label, initial, end) in results {
         assert!(initial < 1e-15, "{label}: initial state differs by {initial:e}");
-        assert!(end < 3e-11, "{label}: end state differs by {end:e}");
+        let projected = label.starts_with("1 cuboid") && label.ends_with("RKMK4-body");
+        let bound = if projected { 1e-8 } else { 3e-11 };
+        assert!(end < bound, "{label}: end state differs by {end:e}");
     }
 }
 
