@@ -1,9 +1,9 @@
 //! The validated algebra model: basis vectors with their metric (diagonal, or a general symmetric
 //! form), blade naming, and the declared sparse types resolved to blade lists.
 
-use crate::blade::{self, BladeMask, BladeNaming};
+use crate::blade::{self, BladeMask, BladeNaming, SCALAR_NAME};
 use crate::declaration::{AlgebraDeclaration, Layout, ScalarType};
-use crate::error::Error;
+use crate::error::{Error, NameProblem};
 use crate::metric::Metric;
 use crate::operation::Operation;
 
@@ -12,6 +12,22 @@ pub const MAX_DIMENSION: usize = 32;
 
 /// `Multivector = all` is refused above this dimension: its products would have 4ⁿ terms.
 pub const MAX_FULL_MULTIVECTOR_DIMENSION: usize = 10;
+
+/// At most this many fields (blades) in one declared type: 2¹⁰ = 1024, the size `all` is allowed
+/// at [`MAX_FULL_MULTIVECTOR_DIMENSION`]. The product of two types has up to (fields)² terms, so this
+/// keeps every product within the ~10⁶ terms of the largest full multivector product; bigger types
+/// (`grades(0, 1, …, 11)` in 11 dimensions has 2048 fields, `grades(16)` in 32 dimensions 601 080 390)
+/// would build for many minutes or exhaust memory. The count is checked before any blade is listed.
+pub const MAX_TYPE_FIELDS: usize = 1 << MAX_FULL_MULTIVECTOR_DIMENSION;
+
+/// Words that cannot be identifiers in emitted code, in any edition: strict and reserved keywords
+/// (`try` from 2018, `gen` from 2024).
+pub const KEYWORDS: &[&str] = &[
+    "abstract", "as", "async", "await", "become", "box", "break", "const", "continue", "crate", "do", "dyn", "else",
+    "enum", "extern", "false", "final", "fn", "for", "gen", "if", "impl", "in", "let", "loop", "macro", "match", "mod",
+    "move", "mut", "override", "priv", "pub", "ref", "return", "Self", "self", "static", "struct", "super", "trait",
+    "true", "try", "type", "typeof", "unsafe", "unsized", "use", "virtual", "where", "while", "yield",
+];
 
 /// One coefficient of a declared type: the field `name` holds `sign ×` the coefficient of the
 /// canonical blade `blade` (sign −1 for a permuted name such as `e31`).
@@ -67,10 +83,11 @@ impl Algebra {
             });
         }
         for (index, vector) in basis.iter().enumerate() {
-            if !is_identifier(&vector.name) {
+            if let Err(problem) = check_identifier(&vector.name) {
                 return Err(Error::InvalidBasisName {
                     index,
                     name: vector.name.clone(),
+                    problem,
                 });
             }
             if basis[..index].iter().any(|earlier| earlier.name == vector.name) {
@@ -88,6 +105,8 @@ impl Algebra {
             }
         }
         let basis_names: Vec<String> = basis.iter().map(|v| v.name.clone()).collect();
+        let naming = BladeNaming::new(&basis_names);
+        check_blade_names(&basis_names, &naming)?;
         let metric = match &declaration.metric {
             None => Metric::diagonal(basis.iter().map(|v| v.square).collect()),
             Some(rows) if rows.len() != basis.len() => {
@@ -98,20 +117,12 @@ impl Algebra {
             }
             Some(rows) => Metric::from_matrix(rows)?,
         };
-        let naming = BladeNaming::new(&basis_names);
         let n = basis.len();
+        let operations = listed_operations(declaration)?;
 
         let mut types = Vec::with_capacity(declaration.types.len());
         for (ty_index, declared) in declaration.types.iter().enumerate() {
-            if declaration.types[..ty_index]
-                .iter()
-                .any(|earlier| earlier.name == declared.name)
-            {
-                return Err(Error::DuplicateTypeName {
-                    index: ty_index,
-                    name: declared.name.clone(),
-                });
-            }
+            check_type_name(declaration, &operations, ty_index)?;
             let mut fields: Vec<Field> = Vec::new();
             let mut push = |blade: BladeMask, sign: i64, name: String, item: usize| -> Result<(), Error> {
                 if fields.iter().any(|f| f.blade == blade) {
@@ -161,6 +172,11 @@ impl Algebra {
                             });
                         }
                     }
+                    // Counted before any blade is listed: `grades(16)` in 32 dimensions would list 6 · 10⁸.
+                    let count: u64 = grades.iter().map(|&grade| binomial(n as u64, grade as u64)).sum();
+                    if count > MAX_TYPE_FIELDS as u64 {
+                        return Err(too_many_fields(ty_index, &declared.name, count));
+                    }
                     let mut sorted = grades.clone();
                     sorted.sort_unstable();
                     for grade in sorted {
@@ -170,7 +186,19 @@ impl Algebra {
                     }
                 }
                 Layout::Blades(names) => {
+                    if names.len() > MAX_TYPE_FIELDS {
+                        return Err(too_many_fields(ty_index, &declared.name, names.len() as u64));
+                    }
                     for (item, name) in names.iter().enumerate() {
+                        if let Err(problem) = check_identifier(name) {
+                            return Err(Error::InvalidBladeName {
+                                ty_index,
+                                item,
+                                ty: declared.name.clone(),
+                                blade: name.clone(),
+                                problem,
+                            });
+                        }
                         let (blade, sign) = naming.parse(name).map_err(|reason| Error::UnknownBlade {
                             ty_index,
                             item,
@@ -194,20 +222,6 @@ impl Algebra {
             });
         }
 
-        let operations = match &declaration.operations {
-            None => Operation::ALL.to_vec(),
-            Some(listed) => {
-                for (index, op) in listed.iter().enumerate() {
-                    if listed[..index].contains(op) {
-                        return Err(Error::DuplicateOperation {
-                            index,
-                            name: op.name().to_string(),
-                        });
-                    }
-                }
-                listed.clone()
-            }
-        };
         Ok(Algebra {
             scalar: declaration.scalar,
             basis_names,
@@ -242,8 +256,200 @@ impl Algebra {
     }
 }
 
-fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+/// Whether `name` can be an identifier of emitted code: a Rust identifier (Unicode XID, as rustc
+/// accepts), not a keyword of any edition, not raw (`r#type`: the emitted code forms other names from
+/// it, such as `geometric_r#type`, which no identifier can spell).
+pub fn check_identifier(name: &str) -> Result<(), NameProblem> {
+    if name.starts_with("r#") {
+        return Err(NameProblem::Raw);
+    }
+    if KEYWORDS.contains(&name) {
+        return Err(NameProblem::Keyword);
+    }
+    // The same check rustc makes (XID_Start or `_`, then XID_Continue; not `_` alone); the string must
+    // be one identifier token and nothing else (no spaces, no comments).
+    match syn::parse_str::<syn::Ident>(name) {
+        Ok(ident) if ident == name => Ok(()),
+        _ => Err(NameProblem::NotAnIdentifier),
+    }
+}
+
+/// The operations to emit, each listed once.
+fn listed_operations(declaration: &AlgebraDeclaration) -> Result<Vec<Operation>, Error> {
+    match &declaration.operations {
+        None => Ok(Operation::ALL.to_vec()),
+        Some(listed) => {
+            for (index, op) in listed.iter().enumerate() {
+                if listed[..index].contains(op) {
+                    return Err(Error::DuplicateOperation {
+                        index,
+                        name: op.name().to_string(),
+                    });
+                }
+            }
+            Ok(listed.clone())
+        }
+    }
+}
+
+/// Blade names must name one blade each, and be identifiers: blade names join basis vector names
+/// (see [`BladeNaming`]), so a basis vector name must not read as a join of others, and no blade may
+/// be called `scalar` (the grade-0 blade) or a keyword. Checked on the naming rule, without listing
+/// the 2ⁿ names.
+fn check_blade_names(basis_names: &[String], naming: &BladeNaming) -> Result<(), Error> {
+    // Joined with `_`, names without `_` split back uniquely into their basis vectors; a `_` inside a
+    // basis vector name makes some blade names readable in two ways (`x_y` is the vector `x_y` and
+    // x ∧ y). The prefix is alphabetic, so a `_` in a name is in its part that gets joined.
+    if naming.separator() == "_" && basis_names.len() >= 2 {
+        if let Some(index) = basis_names.iter().position(|name| name.contains('_')) {
+            let name = &basis_names[index];
+            // Pieces between `_` never match a name containing `_`: any blade found is another one.
+            let clash = naming
+                .factors(name)
+                .ok()
+                .map(|factors| factors.iter().map(|&i| basis_names[i].clone()).collect());
+            return Err(Error::SeparatorInBasisName {
+                index,
+                name: name.clone(),
+                clash,
+            });
+        }
+    }
+    let factors = |blade: BladeMask| -> (usize, Vec<String>) {
+        let indices: Vec<usize> = (0..basis_names.len()).filter(|i| blade & (1 << i) != 0).collect();
+        let last = *indices.last().expect("a non-zero blade has a factor");
+        (last, indices.into_iter().map(|i| basis_names[i].clone()).collect())
+    };
+    if let Some(blade) = naming.canonical_blade(SCALAR_NAME) {
+        let (index, factors) = factors(blade);
+        return Err(Error::ScalarBladeName { index, factors });
+    }
+    for keyword in KEYWORDS {
+        if let Some(blade) = naming.canonical_blade(keyword) {
+            let (index, factors) = factors(blade);
+            return Err(Error::KeywordBladeName {
+                index,
+                blade: keyword.to_string(),
+                factors,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A type name must be an identifier, declared once, free in the emitted module and distinct from
+/// the other types' names in snake case (they become method names).
+///
+/// Names the emitted module refers to are refused rather than qualified, so that the emitted code
+/// stays as it is: the trait of each emitted binary operation (`Geometric`, `Sandwich`, …), `From`
+/// (the conversions implement it unqualified), `core` (the root of every operator trait path), `str`
+/// (the type of `BLADES`) and the scalar type. Other std names (`Add`, `Into`, `Default`, …) are free:
+/// emitted code spells them `core::ops::Add` or uses them only through derives.
+fn check_type_name(declaration: &AlgebraDeclaration, operations: &[Operation], index: usize) -> Result<(), Error> {
+    let name = &declaration.types[index].name;
+    if let Err(problem) = check_identifier(name) {
+        return Err(Error::InvalidTypeName {
+            index,
+            name: name.clone(),
+            problem,
+        });
+    }
+    let earlier = &declaration.types[..index];
+    if earlier.iter().any(|earlier| earlier.name == *name) {
+        return Err(Error::DuplicateTypeName {
+            index,
+            name: name.clone(),
+        });
+    }
+    let binary = operations.iter().copied().filter(|op| op.is_binary());
+    let clash = if let Some(operation) = binary.clone().find(|&op| crate::emit::trait_name(op) == *name) {
+        Some(format!(
+            "the trait `{name}` the module defines for the `{}` operation",
+            operation.name()
+        ))
+    } else {
+        match name.as_str() {
+            "From" => Some("`From`, the conversion trait the module implements between its types".to_string()),
+            "core" => Some("`core`, the crate the module names its operator traits by (`core::ops::Add`)".to_string()),
+            "str" => Some("`str`, the type of the blade names in each type's `BLADES`".to_string()),
+            scalar if scalar == declaration.scalar.name() => {
+                Some(format!("`{scalar}`, the scalar type of every coefficient"))
+            }
+            _ => None,
+        }
+    };
+    if let Some(clash) = clash {
+        return Err(Error::ReservedTypeName {
+            index,
+            name: name.clone(),
+            clash,
+        });
+    }
+    if let Some(operation) = binary.clone().next() {
+        let method_suffix = crate::emit::snake_case(name);
+        if let Some(other) = earlier
+            .iter()
+            .find(|earlier| crate::emit::snake_case(&earlier.name) == method_suffix)
+        {
+            return Err(Error::TypeMethodCollision {
+                index,
+                name: name.clone(),
+                other: other.name.clone(),
+                method_suffix,
+                operation: operation.name().to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn too_many_fields(ty_index: usize, ty: &str, fields: u64) -> Error {
+    Error::TooManyFields {
+        ty_index,
+        ty: ty.to_string(),
+        fields,
+        max: MAX_TYPE_FIELDS,
+        max_dimension: MAX_FULL_MULTIVECTOR_DIMENSION,
+    }
+}
+
+/// C(n, k), exact: n ≤ [`MAX_DIMENSION`] = 32, so every intermediate product stays below 2⁴⁰.
+fn binomial(n: u64, k: u64) -> u64 {
+    if k > n {
+        return 0;
+    }
+    let k = k.min(n - k);
+    // After step i, `c` is C(n − k + i, i): an integer, and c · (n − k + i + 1) is divisible by i + 1.
+    (0..k).fold(1, |c, i| c * (n - k + i + 1) / (i + 1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binomials_are_exact_up_to_the_largest_dimension() {
+        assert_eq!(binomial(32, 16), 601_080_390);
+        assert_eq!(binomial(11, 0), 1);
+        assert_eq!(binomial(11, 11), 1);
+        assert_eq!(binomial(10, 12), 0);
+        assert_eq!((0..=32).map(|k| binomial(32, k)).sum::<u64>(), 1 << 32);
+        assert_eq!((0..=11).map(|k| binomial(11, k)).sum::<u64>(), 2048);
+    }
+
+    #[test]
+    fn identifiers_are_checked_as_rustc_does() {
+        assert_eq!(check_identifier("e1"), Ok(()));
+        assert_eq!(check_identifier("α"), Ok(()));
+        assert_eq!(check_identifier("_x"), Ok(()));
+        assert_eq!(check_identifier("Motor"), Ok(()));
+        for name in ["", "_", "1e", "e 1", " e1", "e1 /* */", "e-1", "a::b", "∧"] {
+            assert_eq!(check_identifier(name), Err(NameProblem::NotAnIdentifier), "{name:?}");
+        }
+        for name in ["fn", "Self", "try", "gen", "async", "type"] {
+            assert_eq!(check_identifier(name), Err(NameProblem::Keyword), "{name:?}");
+        }
+        assert_eq!(check_identifier("r#type"), Err(NameProblem::Raw));
+        assert_eq!(check_identifier("r#e1"), Err(NameProblem::Raw));
+    }
 }

@@ -107,12 +107,33 @@ impl BladeNaming {
         format!("{}{}", self.prefix, parts.join(self.separator))
     }
 
+    /// The string between the names of two basis vectors in a blade name: empty (`e12`) or `_`.
+    pub fn separator(&self) -> &'static str {
+        self.separator
+    }
+
     /// Parses a blade name, possibly with its factors permuted (`e31`), into the canonical blade and
     /// the sign such that `name = sign · canonical blade`.
     pub fn parse(&self, name: &str) -> Result<(BladeMask, i64), String> {
         if name == SCALAR_NAME {
             return Ok((0, 1));
         }
+        let indices = self.factors(name)?;
+        let mut mask: BladeMask = 0;
+        for &index in &indices {
+            mask |= 1 << index;
+        }
+        // The sign of the permutation that sorts the factors: (−1)^(number of inversions).
+        let inversions = (0..indices.len())
+            .flat_map(|i| (i + 1..indices.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| indices[i] > indices[j]);
+        let sign = if inversions.count().is_multiple_of(2) { 1 } else { -1 };
+        Ok((mask, sign))
+    }
+
+    /// The basis vectors (indices, in written order, none repeated) whose outer product `name`
+    /// names, reading it without the special case of `scalar`.
+    pub fn factors(&self, name: &str) -> Result<Vec<usize>, String> {
         let Some(rest) = name.strip_prefix(self.prefix.as_str()) else {
             return Err(format!("blade names start with `{}`", self.prefix));
         };
@@ -124,7 +145,7 @@ impl BladeNaming {
         if pieces.is_empty() || pieces.iter().any(String::is_empty) {
             return Err(self.expected());
         }
-        let mut indices = Vec::with_capacity(pieces.len());
+        let mut indices: Vec<usize> = Vec::with_capacity(pieces.len());
         for piece in &pieces {
             match self.suffixes.iter().position(|s| s == piece) {
                 Some(index) => indices.push(index),
@@ -137,22 +158,24 @@ impl BladeNaming {
                 }
             }
         }
-        let mut mask: BladeMask = 0;
-        for &index in &indices {
-            if mask & (1 << index) != 0 {
+        for (position, &index) in indices.iter().enumerate() {
+            if indices[..position].contains(&index) {
                 return Err(format!(
                     "it repeats the basis vector `{}{}`",
                     self.prefix, self.suffixes[index]
                 ));
             }
-            mask |= 1 << index;
         }
-        // The sign of the permutation that sorts the factors: (−1)^(number of inversions).
-        let inversions = (0..indices.len())
-            .flat_map(|i| (i + 1..indices.len()).map(move |j| (i, j)))
-            .filter(|&(i, j)| indices[i] > indices[j]);
-        let sign = if inversions.count().is_multiple_of(2) { 1 } else { -1 };
-        Ok((mask, sign))
+        Ok(indices)
+    }
+
+    /// The non-zero blade whose canonical name is exactly `name`, if any (`e12` but not `e21`).
+    /// Names no blade should have (`scalar`, keywords) are looked up this way, without listing 2ⁿ
+    /// names.
+    pub fn canonical_blade(&self, name: &str) -> Option<BladeMask> {
+        let indices = self.factors(name).ok()?;
+        let mask = indices.iter().fold(0, |mask, &index| mask | (1 << index));
+        (self.name(mask) == name).then_some(mask)
     }
 
     fn expected(&self) -> String {

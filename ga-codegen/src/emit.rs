@@ -70,15 +70,15 @@ pub fn binary_function(algebra: &Algebra, function: &Function) -> TokenStream {
     .binary_impl(function)
 }
 
-/// `PlaneSet` → `plane_set`: the suffix of the `const fn` form of a binary operation.
-fn snake_case(name: &str) -> String {
+/// `PlaneSet` → `plane_set` (`Ω` → `ω`): the suffix of the `const fn` form of a binary operation.
+pub(crate) fn snake_case(name: &str) -> String {
     let mut out = String::with_capacity(name.len() + 4);
     for (i, c) in name.chars().enumerate() {
-        if c.is_ascii_uppercase() {
+        if c.is_uppercase() {
             if i > 0 {
                 out.push('_');
             }
-            out.push(c.to_ascii_lowercase());
+            out.extend(c.to_lowercase());
         } else {
             out.push(c);
         }
@@ -94,9 +94,14 @@ fn field_ident(ty: &SparseType, index: usize) -> Ident {
     format_ident!("{}", ty.fields[index].name)
 }
 
-/// The trait name of a binary operation (`left_contraction` → `LeftContraction`).
+/// The trait of a binary operation.
 fn trait_ident(operation: Operation) -> Ident {
-    let camel: String = operation
+    format_ident!("{}", trait_name(operation))
+}
+
+/// The name of a binary operation's trait (`left_contraction` → `LeftContraction`).
+pub(crate) fn trait_name(operation: Operation) -> String {
+    operation
         .name()
         .split('_')
         .map(|word| {
@@ -106,8 +111,7 @@ fn trait_ident(operation: Operation) -> Ident {
                 .map(|c| c.to_ascii_uppercase().to_string() + chars.as_str())
                 .unwrap_or_default()
         })
-        .collect();
-    format_ident!("{}", camel)
+        .collect()
 }
 
 fn operation_doc(operation: Operation) -> &'static str {

@@ -52,8 +52,97 @@ pub enum Error {
          use smaller numerators and denominators, or fewer non-zero off-diagonal entries"
     )]
     MetricTooLarge { dimension: usize },
-    #[error("basis vector name `{name}` is not a valid identifier")]
-    InvalidBasisName { index: usize, name: String },
+    #[error("basis vector name `{name}` {problem}")]
+    InvalidBasisName {
+        index: usize,
+        name: String,
+        problem: NameProblem,
+    },
+    #[error(
+        "basis vector name `{name}` contains `_`, which joins the names of basis vectors into blade names \
+         in this basis, so {}: name the basis vectors without `_`",
+        match clash {
+            Some(factors) => format!("`{name}` would also name the blade {}", wedge(factors)),
+            None => "a blade name could be read in more than one way".to_string(),
+        }
+    )]
+    SeparatorInBasisName {
+        index: usize,
+        name: String,
+        /// The basis vectors (without `_`) of another blade that `name` would also name, if any.
+        clash: Option<Vec<String>>,
+    },
+    #[error(
+        "`scalar` names the grade-0 blade, so it cannot also name {}: rename {}",
+        describe_blade(factors),
+        if factors.len() == 1 { "it".to_string() } else { format!("basis vector `{}`", last(factors)) }
+    )]
+    ScalarBladeName {
+        /// The last basis vector of the blade.
+        index: usize,
+        /// The basis vectors of the blade that would be called `scalar`.
+        factors: Vec<String>,
+    },
+    #[error(
+        "the blade {} would be named `{blade}`, a Rust keyword, which cannot name its field: rename basis vector `{}`",
+        wedge(factors),
+        last(factors)
+    )]
+    KeywordBladeName {
+        /// The last basis vector of the blade.
+        index: usize,
+        blade: String,
+        factors: Vec<String>,
+    },
+    #[error("type name `{name}` {problem}")]
+    InvalidTypeName {
+        index: usize,
+        name: String,
+        problem: NameProblem,
+    },
+    #[error("type name `{name}` clashes with {clash}: rename the type")]
+    ReservedTypeName {
+        index: usize,
+        name: String,
+        /// What the emitted module already means by the name.
+        clash: String,
+    },
+    #[error(
+        "types `{other}` and `{name}` would both give methods named `{operation}_{method_suffix}` (the `const fn` \
+         form of `{operation}` with that type on the right): both names are `{method_suffix}` in snake case; \
+         rename one of them"
+    )]
+    TypeMethodCollision {
+        /// The later type.
+        index: usize,
+        name: String,
+        /// The earlier type with the same snake-case name.
+        other: String,
+        /// The snake-case name both types give.
+        method_suffix: String,
+        /// A binary operation the methods are emitted for.
+        operation: String,
+    },
+    #[error(
+        "type `{ty}` would have {fields} fields; a declared type may have at most {max} \
+         (a full multivector in {max_dimension} dimensions): declare fewer grades or blades"
+    )]
+    TooManyFields {
+        ty_index: usize,
+        ty: String,
+        /// The number of blades the layout asks for.
+        fields: u64,
+        max: usize,
+        max_dimension: usize,
+    },
+    #[error("blade name `{blade}` in type `{ty}` {problem}")]
+    InvalidBladeName {
+        ty_index: usize,
+        item: usize,
+        ty: String,
+        blade: String,
+        problem: NameProblem,
+    },
     #[error("type `{name}` is declared twice")]
     DuplicateTypeName { index: usize, name: String },
     #[error("type `{name}` has no blades")]
@@ -114,10 +203,18 @@ impl Error {
             Error::EmptyBasis | Error::TooManyBasisVectors { .. } | Error::NoResultType { .. } => Location::Algebra,
             Error::DuplicateBasisName { index, .. }
             | Error::InvalidSquare { index, .. }
-            | Error::InvalidBasisName { index, .. } => Location::Basis(index),
-            Error::DuplicateTypeName { index, .. } | Error::EmptyType { index, .. } => Location::Type(index),
-            Error::AllTooLarge { ty_index, .. } => Location::Type(ty_index),
+            | Error::InvalidBasisName { index, .. }
+            | Error::SeparatorInBasisName { index, .. }
+            | Error::ScalarBladeName { index, .. }
+            | Error::KeywordBladeName { index, .. } => Location::Basis(index),
+            Error::DuplicateTypeName { index, .. }
+            | Error::EmptyType { index, .. }
+            | Error::InvalidTypeName { index, .. }
+            | Error::ReservedTypeName { index, .. }
+            | Error::TypeMethodCollision { index, .. } => Location::Type(index),
+            Error::AllTooLarge { ty_index, .. } | Error::TooManyFields { ty_index, .. } => Location::Type(ty_index),
             Error::UnknownBlade { ty_index, item, .. }
+            | Error::InvalidBladeName { ty_index, item, .. }
             | Error::DuplicateBlade { ty_index, item, .. }
             | Error::GradeOutOfRange { ty_index, item, .. } => Location::TypeItem { ty: ty_index, item },
             Error::DuplicateOperation { index, .. } => Location::Operation(index),
@@ -126,4 +223,51 @@ impl Error {
             Error::MetricNotSymmetric { row, column, .. } => Location::MetricEntry { row, column },
         }
     }
+}
+
+/// Why a name cannot be used in the emitted code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum NameProblem {
+    #[error("is not a valid identifier")]
+    NotAnIdentifier,
+    #[error("is a Rust keyword")]
+    Keyword,
+    #[error("is a raw identifier, which is not supported here: choose a name that needs no `r#`")]
+    Raw,
+}
+
+/// "the basis vector \`e1\`" or "the blade \`e1\` ∧ \`e2\`".
+fn describe_blade(factors: &[String]) -> String {
+    match factors {
+        [vector] => format!("the basis vector `{vector}`"),
+        _ => format!("the blade {}", wedge(factors)),
+    }
+}
+
+/// "\`e1\` ∧ \`e2\`".
+fn wedge(factors: &[String]) -> String {
+    let quoted: Vec<String> = factors.iter().map(|factor| format!("`{factor}`")).collect();
+    quoted.join(" ∧ ")
+}
+
+/// The last basis vector of a blade: the one its error points at.
+fn last(factors: &[String]) -> &str {
+    factors.last().map_or("", String::as_str)
+}
+
+/// A dense multivector of the wrong length given to the [`Evaluator`](crate::Evaluator).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum EvaluatorError {
+    #[error(
+        "the {operand} has {got} coefficients, but a dense multivector of this algebra has 2^n = {expected}, \
+         one per blade"
+    )]
+    DenseLength {
+        /// Which argument: `"left operand"`, `"right operand"` or `"operand"`.
+        operand: &'static str,
+        expected: usize,
+        got: usize,
+    },
 }

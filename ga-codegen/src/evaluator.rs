@@ -10,6 +10,7 @@ use num_rational::Rational64;
 use num_traits::ToPrimitive;
 
 use crate::blade::{grade, BladeMask};
+use crate::error::EvaluatorError;
 use crate::metric::Metric;
 use crate::operation::Operation;
 use crate::product::Rules;
@@ -54,20 +55,33 @@ impl Evaluator {
         Rules::new(&self.metric)
     }
 
-    fn check(&self, a: &[f64]) {
-        assert_eq!(a.len(), self.blade_count(), "a dense multivector has 2^n coefficients");
+    /// `Ok` if `a` has 2ⁿ coefficients.
+    fn check(&self, operand: &'static str, a: &[f64]) -> Result<(), EvaluatorError> {
+        if a.len() == self.blade_count() {
+            Ok(())
+        } else {
+            Err(EvaluatorError::DenseLength {
+                operand,
+                expected: self.blade_count(),
+                got: a.len(),
+            })
+        }
     }
 
     /// A binary operation, including the sandwich `a b ~a`.
     ///
-    /// # Panics
-    /// If a slice does not have 2ⁿ coefficients.
-    pub fn binary(&self, operation: Operation, a: &[f64], b: &[f64]) -> Vec<f64> {
-        self.check(a);
-        self.check(b);
+    /// # Errors
+    /// [`EvaluatorError::DenseLength`] if a slice does not have 2ⁿ coefficients.
+    pub fn binary(&self, operation: Operation, a: &[f64], b: &[f64]) -> Result<Vec<f64>, EvaluatorError> {
+        self.check("left operand", a)?;
+        self.check("right operand", b)?;
+        Ok(self.binary_unchecked(operation, a, b))
+    }
+
+    fn binary_unchecked(&self, operation: Operation, a: &[f64], b: &[f64]) -> Vec<f64> {
         if operation == Operation::Sandwich {
-            let ab = self.binary(Operation::Geometric, a, b);
-            return self.binary(Operation::Geometric, &ab, &self.unary(Operation::Reverse, a));
+            let ab = self.binary_unchecked(Operation::Geometric, a, b);
+            return self.binary_unchecked(Operation::Geometric, &ab, &self.unary_unchecked(Operation::Reverse, a));
         }
         let rules = self.rules();
         let mut out = vec![0.0; a.len()];
@@ -84,10 +98,14 @@ impl Evaluator {
     /// A unary blade map (reverse, involute, conjugate, complements, polarity). Operations that are
     /// not blade maps, and polarity on a degenerate metric, give zero.
     ///
-    /// # Panics
-    /// If the slice does not have 2ⁿ coefficients.
-    pub fn unary(&self, operation: Operation, a: &[f64]) -> Vec<f64> {
-        self.check(a);
+    /// # Errors
+    /// [`EvaluatorError::DenseLength`] if the slice does not have 2ⁿ coefficients.
+    pub fn unary(&self, operation: Operation, a: &[f64]) -> Result<Vec<f64>, EvaluatorError> {
+        self.check("operand", a)?;
+        Ok(self.unary_unchecked(operation, a))
+    }
+
+    fn unary_unchecked(&self, operation: Operation, a: &[f64]) -> Vec<f64> {
         let rules = self.rules();
         let mut out = vec![0.0; a.len()];
         for (i, &x) in a.iter().enumerate() {
@@ -98,7 +116,7 @@ impl Evaluator {
         out
     }
 
-    /// The grade-`k` part.
+    /// The grade-`k` part (of a slice of any length: blade `i` is coefficient `i`).
     pub fn grade_part(&self, a: &[f64], k: u32) -> Vec<f64> {
         a.iter()
             .enumerate()
@@ -107,7 +125,50 @@ impl Evaluator {
     }
 
     /// ⟨a ~a⟩₀.
-    pub fn norm_squared(&self, a: &[f64]) -> f64 {
-        self.binary(Operation::Geometric, a, &self.unary(Operation::Reverse, a))[0]
+    ///
+    /// # Errors
+    /// [`EvaluatorError::DenseLength`] if the slice does not have 2ⁿ coefficients.
+    pub fn norm_squared(&self, a: &[f64]) -> Result<f64, EvaluatorError> {
+        self.check("operand", a)?;
+        Ok(self.binary_unchecked(Operation::Geometric, a, &self.unary_unchecked(Operation::Reverse, a))[0])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrong_lengths_are_errors_naming_the_operand() {
+        let evaluator = Evaluator::new(&[1, 1]);
+        let (good, short) = ([1.0, 2.0, 3.0, 4.0], [1.0, 2.0, 3.0]);
+        assert_eq!(
+            evaluator.binary(Operation::Geometric, &good, &short),
+            Err(EvaluatorError::DenseLength {
+                operand: "right operand",
+                expected: 4,
+                got: 3
+            })
+        );
+        let error = evaluator.binary(Operation::Sandwich, &short, &good).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "the left operand has 3 coefficients, but a dense multivector of this algebra has 2^n = 4, one per blade"
+        );
+        assert_eq!(
+            evaluator.unary(Operation::Reverse, &[1.0; 8]),
+            Err(EvaluatorError::DenseLength {
+                operand: "operand",
+                expected: 4,
+                got: 8
+            })
+        );
+        assert!(evaluator.norm_squared(&[]).is_err());
+        // e1 e2 e1 = −e2 e1 e1 = −e2.
+        assert_eq!(
+            evaluator.binary(Operation::Sandwich, &[0.0, 1.0, 0.0, 0.0], &[0.0, 0.0, 1.0, 0.0]),
+            Ok(vec![0.0, 0.0, -1.0, 0.0])
+        );
+        assert_eq!(evaluator.norm_squared(&good), Ok(30.0));
     }
 }

@@ -37,7 +37,7 @@ pub mod program;
 
 pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
-pub use error::{Error, Location};
+pub use error::{Error, EvaluatorError, Location, NameProblem};
 pub use evaluator::Evaluator;
 /// Exact rational numbers: metric entries and every coefficient of the expansion.
 pub use num_rational::Rational64;

@@ -87,7 +87,9 @@ fn check(compiled: &Compiled, values: &[f64]) -> Result<(), TestCaseError> {
     for (operation, function) in &compiled.functions {
         let rhs = function.rhs.unwrap();
         let (a, b) = (fields(function.lhs, 0), fields(rhs, 105));
-        let expected = evaluator.binary(*operation, &dense(function.lhs, a), &dense(rhs, b));
+        let expected = evaluator
+            .binary(*operation, &dense(function.lhs, a), &dense(rhs, b))
+            .unwrap();
         let expected = if *operation == Operation::ScalarProduct {
             evaluator.grade_part(&expected, 0)
         } else {

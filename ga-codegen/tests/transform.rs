@@ -20,13 +20,13 @@ fn unit_versor(evaluator: &Evaluator, raw: &[Vec<f64>], allowed: impl Fn(usize) 
         for bit in (0..blades.trailing_zeros() as usize).filter(|&bit| allowed(bit)) {
             v[1 << bit] = coefficients[1 << bit];
         }
-        let square = evaluator.binary(Operation::Geometric, &v, &v)[0];
+        let square = evaluator.binary(Operation::Geometric, &v, &v).unwrap()[0];
         if square.abs() < 0.25 {
             return None;
         }
         sign *= square.signum();
         let v: Vec<f64> = v.iter().map(|c| c / square.abs().sqrt()).collect();
-        versor = evaluator.binary(Operation::Geometric, &versor, &v);
+        versor = evaluator.binary(Operation::Geometric, &versor, &v).unwrap();
     }
     (sign > 0.0).then_some(versor)
 }

@@ -50,6 +50,20 @@
 //! - `transform` is the sandwich `a x ~a` for unit versors (`a ~a = 1`), using that identity to do
 //!   less work: a unit PGA motor moves a point in 22 multiplies instead of the sandwich's 35.
 //!
+//! Limits, so that every accepted declaration builds in reasonable time and memory:
+//! - At most 32 basis vectors (blades are 32-bit masks), and `all` only up to 10 dimensions: its
+//!   products have 4ⁿ terms.
+//! - At most 1024 fields in any type (2¹⁰, the size of `all` in 10 dimensions), since a product of two
+//!   types has up to fields² terms. The count is checked before any blade is listed, so `grades(16)`
+//!   in 32 dimensions (601 080 390 fields) is refused at once.
+//!
+//! Names are Rust identifiers, Unicode included (`basis = [α = 1, β = 1]`); raw identifiers and
+//! keywords are refused. Type names must differ in snake case (they name the `const fn` products, as
+//! in `geometric_motor`) and must not be a name the module defines or uses: the trait of an emitted
+//! binary operation (`Geometric`, `Sandwich`, …), `From`, `core`, `str` or the scalar type. When blade
+//! names join basis vector names with `_` (`n0_ninf`), basis vector names must not contain `_`, and no
+//! blade may be named `scalar` or a keyword (as `f` + `o` + `r` would be).
+//!
 //! Mistakes are compile errors at the offending token (the square `2`, the blade `e05`, the unknown
 //! setting, the metric entry `0.5` or the entry that breaks its symmetry), all of them at once where
 //! they are independent.
