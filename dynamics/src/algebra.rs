@@ -17,7 +17,9 @@ use nalgebra::Vector3;
 /// the moment (SPEC §3).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ScrewCoordinates {
+    /// The coefficients `aᵢ` of the rotation bivectors `lᵢ = eᵢI₃`.
     pub l: Vector3<f64>,
+    /// The coefficients `bᵢ` of the translation bivectors `tᵢ = eᵢ ∧ N`.
     pub t: Vector3<f64>,
 }
 
@@ -54,9 +56,13 @@ impl Add for ScrewCoordinates {
 /// (the dual quaternions, SPEC §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MotorCoordinates {
+    /// The scalar part `s`.
     pub scalar: f64,
+    /// The coefficients `aᵢ` of the rotation bivectors `lᵢ`.
     pub l: Vector3<f64>,
+    /// The coefficients `bᵢ` of the translation bivectors `tᵢ`.
     pub t: Vector3<f64>,
+    /// The coefficient `c` of `Π = I₃ ∧ N`.
     pub pseudoscalar: f64,
 }
 

@@ -14,17 +14,24 @@ pub const MAX_MASS_PROPERTY: f64 = 1e50;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BodyError {
+    /// The mass (held, in kg) is not positive and finite or exceeds [`MAX_MASS_PROPERTY`].
     #[error("mass must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
     Mass(f64),
+    /// A principal moment (all three held, in kg m²) is not positive and finite or exceeds
+    /// [`MAX_MASS_PROPERTY`].
     #[error("principal moments must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
     Moments([f64; 3]),
+    /// The principal moments (held, in kg m²) violate `Iᵢ ≤ Iⱼ + Iₖ`, which every mass distribution satisfies.
     #[error("principal moments {0:?} violate the triangle inequality (each at most the sum of the others)")]
     Triangle([f64; 3]),
+    /// A shape constructor's dimensions (all of them held, in m; the rod's include its axial moment) are not
+    /// positive and finite.
     #[error("shape dimensions must be positive and finite, got {0:?}")]
     Dimensions(Vec<f64>),
     /// An inertia tensor that is not finite or not symmetric (`Iᵢⱼ = Iⱼᵢ` up to round-off).
     #[error("an inertia tensor must be finite and symmetric, got {0:?}")]
     Tensor([[f64; 3]; 3]),
+    /// The point the inertia tensor is given about, or the centre of mass, is not finite (that point held).
     #[error("the point the inertia is given about and the centre of mass must be finite, got {0:?}")]
     Point([f64; 3]),
 }
@@ -35,7 +42,9 @@ pub enum BodyError {
 /// [`PrincipalFrame::body_pose`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrincipalFrame {
+    /// The centre of mass, in the frame the inertia tensor was given in (m).
     pub centre_of_mass: Vector3<f64>,
+    /// The rotation taking the principal axes (body frame) to the axes of the frame the tensor was given in.
     pub rotation: UnitQuaternion<f64>,
 }
 

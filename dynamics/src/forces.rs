@@ -35,11 +35,22 @@ pub type WrenchFunction<A> = Arc<dyn Fn(f64, &State<A>) -> <A as Algebra>::Screw
 #[derive(Clone)]
 pub enum Force<A: Algebra> {
     /// Uniform gravity `m g` acting at the centre of mass (g = 9.81 along −e₃ in the scenes).
-    Gravity { acceleration: Vector3<f64> },
+    Gravity {
+        /// The gravitational acceleration g (m/s²), world axes.
+        acceleration: Vector3<f64>,
+    },
     /// A constant force along a fixed world line.
-    Line { force: Vector3<f64>, point: Vector3<f64> },
+    Line {
+        /// The force f (N), world axes.
+        force: Vector3<f64>,
+        /// A point of its line of action (m), world frame.
+        point: Vector3<f64>,
+    },
     /// A constant couple.
-    Couple { moment: Vector3<f64> },
+    Couple {
+        /// The moment b (N m), world axes.
+        moment: Vector3<f64>,
+    },
     /// Any wrench depending on time and state.
     Custom(WrenchFunction<A>),
 }

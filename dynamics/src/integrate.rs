@@ -54,8 +54,10 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every general method, in the order of the enum.
     pub const ALL: [Method; 4] = [Method::Rk4, Method::Rkmk4, Method::Rkmk4Body, Method::Rkmk6Body];
 
+    /// The method's name in reports and tables ("RK4", "RKMK4", "RKMK4-body", "RKMK6-body").
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4 => "RK4",
@@ -85,8 +87,10 @@ pub enum SplittingMethod {
 }
 
 impl SplittingMethod {
+    /// Every splitting method, in the order of the enum.
     pub const ALL: [SplittingMethod; 2] = [SplittingMethod::Strang, SplittingMethod::Yoshida4];
 
+    /// The method's name in reports and tables ("Strang", "Yoshida4").
     pub fn name(self) -> &'static str {
         match self {
             SplittingMethod::Strang => "Strang",
@@ -106,11 +110,14 @@ impl SplittingMethod {
 /// Any integrator: a general [`Method`] or a [`SplittingMethod`] (free bodies only).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Integrator {
+    /// A general method, for any system.
     General(Method),
+    /// A splitting method, for a single free body whose forces depend on the configuration only.
     Splitting(SplittingMethod),
 }
 
 impl Integrator {
+    /// Every integrator: the general methods, then the splittings.
     pub const ALL: [Integrator; 6] = [
         Integrator::General(Method::Rk4),
         Integrator::General(Method::Rkmk4),
@@ -120,6 +127,7 @@ impl Integrator {
         Integrator::Splitting(SplittingMethod::Yoshida4),
     ];
 
+    /// The name of the method.
     pub fn name(self) -> &'static str {
         match self {
             Integrator::General(method) => method.name(),
@@ -155,7 +163,10 @@ pub enum SplittingError {
     /// A kick `Ω ← Ω + h W` is the exact flow of `dΩ/dt = W` only if W does not depend on Ω (nor on
     /// time within the step); a custom force may depend on both.
     #[error("force {index} is a custom force, which may depend on the momentum; splitting needs forces of the configuration only")]
-    CustomForce { index: usize },
+    CustomForce {
+        /// The index of the custom force in the body's list of forces.
+        index: usize,
+    },
     /// The splittings are written for one free body (its kinetic energy splits into exact rotations).
     #[error("splitting methods integrate a single free body, not a constrained body or a mechanism")]
     NotAFreeBody,
@@ -172,22 +183,44 @@ pub const MAX_TURN_PER_STEP: f64 = 1.0;
 pub enum StepError {
     /// The state does not have one entry per body of the system.
     #[error("the state has {got} bodies, the system has {expected}")]
-    BodyCount { expected: usize, got: usize },
+    BodyCount {
+        /// The number of bodies of the system.
+        expected: usize,
+        /// The number of states given.
+        got: usize,
+    },
+    /// A splitting method was asked of a system it cannot integrate (when the stepper is made).
     #[error(transparent)]
     Splitting(#[from] SplittingError),
     /// An evaluation of the equations of motion (or the projection after the step) failed; the error names the
     /// joints or constraints involved.
     #[error("at t = {t}: {error}")]
-    Constraint { t: f64, error: ConstraintError },
+    Constraint {
+        /// The time the failing step started at (s).
+        t: f64,
+        /// What went wrong.
+        error: ConstraintError,
+    },
     /// The step size is zero, negative, NaN or infinite.
     #[error("the step must be positive and finite, got dt = {dt}")]
-    InvalidStep { dt: f64 },
+    InvalidStep {
+        /// The step that was refused (s).
+        dt: f64,
+    },
     /// The time the step starts at is NaN or infinite.
     #[error("the time must be finite, got t = {t}")]
-    InvalidTime { t: f64 },
+    InvalidTime {
+        /// The start time that was refused.
+        t: f64,
+    },
     /// A state given to the step has a NaN or infinite coordinate, or one beyond [`MAX_COORDINATE`].
     #[error("the state given at t = {t} is not finite or has a coordinate beyond {MAX_COORDINATE:e} (body {body})")]
-    NonFiniteInput { t: f64, body: usize },
+    NonFiniteInput {
+        /// The time the step was to start at (s).
+        t: f64,
+        /// The index of the first body whose state is not representable.
+        body: usize,
+    },
     /// At the start of the step, a body turns by more than [`MAX_TURN_PER_STEP`] within it: no method here
     /// resolves that (RK4's local error is already ~1% of the motion at one radian per step, and beyond its
     /// stability bound of 2.8 the result is noise, finite or not). The states are left as they were.
@@ -197,10 +230,15 @@ pub enum StepError {
         limit = MAX_TURN_PER_STEP / angular_speed
     )]
     StepTooLarge {
+        /// The time the refused step started at (s).
         t: f64,
+        /// The refused step (s).
         dt: f64,
+        /// The index of the first body that turns too far.
         body: usize,
+        /// The angle it would turn through, `|ω| dt` (rad).
         turn: f64,
+        /// Its angular speed `|ω|` at the start of the step (rad/s).
         angular_speed: f64,
     },
     /// The step produced a NaN or infinite state: the step is too large for the motion, or a force or path
@@ -209,7 +247,12 @@ pub enum StepError {
         "the state is no longer finite (or beyond {MAX_COORDINATE:e}) at t = {t} (body {body}): the step is too large \
          for this system, or a force is not finite"
     )]
-    NonFinite { t: f64, body: usize },
+    NonFinite {
+        /// The time the step was to reach (s).
+        t: f64,
+        /// The index of the first body whose state is not representable.
+        body: usize,
+    },
 }
 
 /// Steps of one integrator on one system. It owns the buffers of the stages and the system's workspace, so a
@@ -308,10 +351,12 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         })
     }
 
+    /// The integrator this stepper takes steps of.
     pub fn integrator(&self) -> Integrator {
         self.integrator
     }
 
+    /// The system being integrated.
     pub fn dynamics(&self) -> &'a D {
         self.dynamics
     }
@@ -856,6 +901,7 @@ impl<'a, A: Algebra> KineticSplitting<'a, A> {
         }
     }
 
+    /// The free body being split.
     pub fn system(&self) -> &'a FreeBody<A> {
         self.system
     }

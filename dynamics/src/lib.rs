@@ -1,13 +1,35 @@
 //! Rigid-body dynamics with constraints in CGA and PGA, from one generic source: single bodies and
 //! mechanisms of many bodies joined by pinned multivectors.
 //!
+//! A brick thrown up while tumbling: its centre of mass follows the parabola and the energy holds. The same code
+//! runs in CGA with [`Cga`] in place of [`Pga`].
+//!
+//! ```
+//! use dynamics::{simulate, Body, Force, FreeBody, Method, Pga, Schedule, State};
+//! use nalgebra::{UnitQuaternion, Vector3};
+//!
+//! let brick = Body::cuboid(1.0, Vector3::new(0.1, 0.2, 0.3))?; // 1 kg, sides in m
+//! let system = FreeBody::<Pga>::new(brick).with_force(Force::gravity());
+//! let (spin, throw) = (Vector3::new(0.1, 5.0, 0.1), Vector3::new(1.0, 0.0, 3.0)); // rad/s and m/s, world axes
+//! let start = State::from_world_twist(&brick, Vector3::zeros(), &UnitQuaternion::identity(), spin, throw);
+//! let run = simulate(&system, &[start], Method::Rkmk4Body, &Schedule::new(1e-3, 0.5)?)?;
+//!
+//! let end = run.body(0).last().unwrap();
+//! let t = end.t;
+//! assert!((end.position - Vector3::new(t, 0.0, 3.0 * t - 0.5 * 9.81 * t * t)).norm() < 1e-9); // m
+//! assert!((end.energy - run.body(0)[0].energy).abs() < 1e-9); // J
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! Implements Hadfield & Lasenby, *Constrained Dynamics in Conformal and Projective Geometric
 //! Algebra*, as corrected in the project's SPEC, and extends it to bodies held to each other
 //! (`docs/mechanisms.md`). The pipeline, one module per stage:
 //! [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`) → [`motor`] and
 //! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →
 //! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows) and [`mechanism`]
-//! (bodies, joints and the reaction solve) → [`integrate`] → [`simulate`].
+//! (bodies, joints and the reaction solve) → [`integrate`] → [`simulate`](mod@simulate).
+
+#![deny(missing_docs)]
 
 pub mod algebra;
 pub mod body;

@@ -19,7 +19,9 @@ use crate::state::State;
 /// group methods can use Ḃ directly) and the world momentum rate `dΩ/dt`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rates<A: Algebra> {
+    /// `Ḃ = M⁻¹[~RΩR]`, body frame.
     pub body_velocity: A::Screw,
+    /// dΩ/dt: the resultant wrench (external forces and reactions), world frame.
     pub momentum_rate: A::Screw,
 }
 
@@ -35,7 +37,9 @@ impl<A: Algebra> Rates<A> {
 /// step: `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) with `W_b = ~R W R` the body view of the resultant wrench.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyRates<A: Algebra> {
+    /// `Ḃ = M⁻¹[Ω_b]`, body frame.
     pub body_velocity: A::Screw,
+    /// `W_b = ~R W R`: the resultant wrench (external forces and reactions), body frame.
     pub body_wrench: A::Screw,
 }
 
@@ -134,11 +138,14 @@ fn body_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
 /// One rigid body under external forces, no constraints.
 #[derive(Clone, Debug)]
 pub struct FreeBody<A: Algebra> {
+    /// The body's mass properties.
     pub body: Body,
+    /// The external forces on it.
     pub forces: Vec<Force<A>>,
 }
 
 impl<A: Algebra> FreeBody<A> {
+    /// The body with no forces.
     pub fn new(body: Body) -> Self {
         FreeBody {
             body,
@@ -146,6 +153,7 @@ impl<A: Algebra> FreeBody<A> {
         }
     }
 
+    /// Adds a force, builder style.
     pub fn with_force(mut self, force: Force<A>) -> Self {
         self.forces.push(force);
         self

@@ -77,7 +77,9 @@ fn origin_image(c: &MotorCoordinates) -> Vector3<f64> {
 /// from the origin. `constraints::kinematics::tests` checks it against the sandwich.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScrewFrame {
+    /// Q, the rotation from body axes to world axes (see [`ScrewFrame::of`]).
     pub rotation: Rotation3<f64>,
+    /// c: the image of the body origin (the centre of mass), world frame (m).
     pub position: Vector3<f64>,
 }
 

@@ -39,12 +39,32 @@ const DIVISIBILITY_TOLERANCE: f64 = 1e-9;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimulationError {
+    /// A schedule's step, duration or sample interval is zero, negative, NaN or infinite.
     #[error("{name} must be positive and finite, got {value}")]
-    NotPositive { name: &'static str, value: f64 },
+    NotPositive {
+        /// Which quantity: "the step", "the duration" or "the sample interval".
+        name: &'static str,
+        /// The value that was refused.
+        value: f64,
+    },
+    /// The sample interval is not a whole number of steps (to a relative 1e-9).
     #[error("the step {dt} does not divide the sample interval {interval} into whole steps")]
-    StepDoesNotDivideInterval { dt: f64, interval: f64 },
+    StepDoesNotDivideInterval {
+        /// The step that was refused (s).
+        dt: f64,
+        /// The sample interval (s).
+        interval: f64,
+    },
+    /// The duration is not a whole number of sample intervals (to a relative 1e-9).
     #[error("the sample interval {interval} does not divide the duration {duration} into whole samples")]
-    IntervalDoesNotDivideDuration { interval: f64, duration: f64 },
+    IntervalDoesNotDivideDuration {
+        /// The sample interval (s).
+        interval: f64,
+        /// The duration that was refused (s).
+        duration: f64,
+    },
+    /// The schedule would record more than [`MAX_SAMPLES`] samples, or count more steps than are exact in `f64`
+    /// or fit in a `usize`.
     #[error(
         "the run would record more than {MAX_SAMPLES} samples or take more than {} steps",
         usize::MAX
@@ -52,10 +72,20 @@ pub enum SimulationError {
     TooLong,
     /// The initial state does not have one entry per body of the system.
     #[error("the initial state has {got} bodies, the system has {expected}")]
-    BodyCount { expected: usize, got: usize },
+    BodyCount {
+        /// The number of bodies of the system.
+        expected: usize,
+        /// The number of initial states given.
+        got: usize,
+    },
     /// Output times must be finite, positive and increasing.
     #[error("output time {index} ({time}) is not finite, not positive or not after the one before")]
-    OutputTime { index: usize, time: f64 },
+    OutputTime {
+        /// The position of the refused time in the list.
+        index: usize,
+        /// The refused time (s).
+        time: f64,
+    },
     /// A step failed (a reaction that could not be solved names its joints), or the integrator does not apply.
     #[error(transparent)]
     Step(#[from] StepError),
@@ -273,6 +303,7 @@ pub enum Crossing {
     Rising,
     /// From positive to zero or negative.
     Falling,
+    /// In either direction.
     Either,
 }
 
@@ -336,6 +367,7 @@ pub struct Plan<'a, A: Algebra> {
 }
 
 impl<'a, A: Algebra> Plan<'a, A> {
+    /// The schedule alone: no events and no observer.
     pub fn new(schedule: &'a Schedule) -> Self {
         Plan {
             schedule,
@@ -367,9 +399,13 @@ impl<'a, A: Algebra> From<&'a Schedule> for Plan<'a, A> {
 /// A located event crossing: which event (its index in the plan and name), the time, and the states there.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventHit<A: Algebra> {
+    /// The event's index in the plan, in the order the events were added.
     pub event: usize,
+    /// The event's name.
     pub name: String,
+    /// The time of the crossing (s): the first time found at or after it, within a few ulps.
     pub t: f64,
+    /// The state of every body at that time.
     pub states: Vec<State<A>>,
 }
 
@@ -386,6 +422,7 @@ pub enum Stop {
 /// energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
+    /// The time of the sample (s).
     pub t: f64,
     /// Centre-of-mass position, world frame.
     pub position: Vector3<f64>,
@@ -404,6 +441,7 @@ pub struct Sample {
 pub struct Simulation<A: Algebra> {
     /// The samples of each body: `bodies[i][k]` is body i at sample k.
     pub bodies: Vec<Vec<Sample>>,
+    /// The state of every body where the run ended: after the last step, or at a terminal event's crossing.
     pub final_state: Vec<State<A>>,
     /// Whole steps taken (partial steps for samples and events not counted).
     pub steps: usize,

@@ -9,7 +9,10 @@ use crate::motor;
 /// `[R, Ω]`: objects move as `V = R U ~R`; Ω is the momentum bivector in the world frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State<A: Algebra> {
+    /// R (body → world).
     pub motor: A::Motor,
+    /// Ω, the momentum bivector, world frame: `l` the linear momentum, `t` the angular momentum about the world
+    /// origin (SPEC §3).
     pub momentum: A::Screw,
 }
 

@@ -13,6 +13,7 @@ use crate::motor::ScrewFrame;
 /// The body's configuration and velocity at time `t`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kinematics<A: Algebra> {
+    /// The time of the evaluation (s).
     pub t: f64,
     /// R (body → world).
     pub motor: A::Motor,

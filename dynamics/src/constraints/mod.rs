@@ -51,35 +51,79 @@ pub enum ConstraintError {
          (largest {largest:e})"
     )]
     RankDeficient {
+        /// The names of the joints involved, joined by " + ".
         names: String,
+        /// The declared rank (or the size of the joint's reaction basis).
         rank: usize,
+        /// The `rank`-th singular value counting from the largest (or the pivot of the factorisation that found
+        /// the deficiency).
         singular_value: f64,
+        /// The largest singular value, against which it is negligible.
         largest: f64,
     },
     /// The acceleration conditions have no solution within the declared rank (or the supplied reaction basis):
     /// the relative residual `|C y − r| / |r|` exceeds [`SolverSettings::consistency_tolerance`].
+    ///
+    /// [`SolverSettings::consistency_tolerance`]: crate::SolverSettings::consistency_tolerance
     #[error("constraint {names}: inconsistent, relative residual {relative_residual:e} of the reaction solve")]
-    Inconsistent { names: String, relative_residual: f64 },
+    Inconsistent {
+        /// The names of the joints involved (a joint and the joints closing its loops), joined by " + ".
+        names: String,
+        /// The relative residual `|C y − r| / |r|` of the reaction solve.
+        relative_residual: f64,
+    },
     /// Projection cannot bring the positions onto these joints together (e.g. one body point held at two
     /// places): after Gauss–Newton steps their position residual is still this large.
     #[error("constraint {names}: cannot hold together, position residual {residual:e} after projection")]
-    Unreachable { names: String, residual: f64 },
+    Unreachable {
+        /// The names of the joints left unsatisfied, joined by " + ".
+        names: String,
+        /// The largest of their position residuals after projection.
+        residual: f64,
+    },
     /// A constraint produced a non-finite row (e.g. the state or a user path is not finite).
     #[error("constraint {name}: non-finite residual or Jacobian at t = {t}")]
-    NonFinite { name: String, t: f64 },
+    NonFinite {
+        /// The name of the constraint, or of the joints at the body whose reaction is not finite.
+        name: String,
+        /// The time of the evaluation (s).
+        t: f64,
+    },
     /// More scalar rows than [`MAX_ROWS`].
     #[error("constraint {name}: the system needs {rows} rows, more than the {capacity} supported")]
-    TooManyRows { name: String, rows: usize, capacity: usize },
-    /// A declared rank that cannot hold: more than 6 (the body's degrees of freedom) or than the rows.
-    #[error("constraint {name}: declared rank {rank} exceeds min(6, {rows} rows)")]
-    InvalidRank { name: String, rank: usize, rows: usize },
+    TooManyRows {
+        /// The name of the constraint.
+        name: String,
+        /// How many rows it needs.
+        rows: usize,
+        /// How many rows are supported ([`MAX_ROWS`]).
+        capacity: usize,
+    },
+    /// A declared rank that cannot hold: zero, or more than 6 (the body's degrees of freedom) or than the rows.
+    #[error("constraint {name}: declared rank {rank} is not between 1 and min(6, {rows} rows)")]
+    InvalidRank {
+        /// The name of the constraint.
+        name: String,
+        /// The rank it declares.
+        rank: usize,
+        /// The number of rows it emits.
+        rows: usize,
+    },
     /// Projection (SPEC §10) needs a position residual, which this constraint does not provide (e.g. virtual
     /// power from user wrenches, SPEC §6).
     #[error("constraint {name}: has no position-level residual, so it cannot be stabilised by projection")]
-    NoPositionResidual { name: String },
+    NoPositionResidual {
+        /// The name of the constraint.
+        name: String,
+    },
     /// A parameter of a constraint is not usable (zero axis, non-positive radius, …).
     #[error("constraint {name}: {reason}")]
-    InvalidParameter { name: String, reason: String },
+    InvalidParameter {
+        /// The name of the constraint (or "stabilisation" for a bad [`Stabilisation`]).
+        name: String,
+        /// What is wrong with the parameter.
+        reason: String,
+    },
 }
 
 /// A constraint on one body: emits its rows at a state (see the module docs).
@@ -115,6 +159,7 @@ impl<A: Algebra> Composite<A> {
         }
     }
 
+    /// The constraints that act together, in the order their rows are pushed.
     pub fn parts(&self) -> &[Arc<dyn Constraint<A>>] {
         &self.parts
     }

@@ -22,7 +22,9 @@ pub trait Coefficients:
 {
     /// `[f64; n]` for an n-coefficient type.
     type Array: AsRef<[f64]>;
+    /// The coefficients, in the type's blade order: one constraint row each.
     fn coefficients(self) -> Self::Array;
+    /// The value with every coefficient zero.
     fn zero() -> Self;
 }
 
@@ -114,6 +116,7 @@ pub trait PinningAlgebra: Algebra {
     /// `P ∧ L`, a 4-vector; PGA `L × P`, a trivector).
     type LineIncidence: Coefficients;
 
+    /// The point at `x`.
     fn point_object(x: Vector3<f64>) -> Self::PointObject;
     /// The line through `point` along `direction`; with a unit direction it has unit weight.
     fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject;

@@ -17,8 +17,11 @@ use crate::constraints::objects::{Coefficients, Pinnable, PinningAlgebra};
 /// A path's value and its first and second time derivatives at one time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathPoint<X> {
+    /// The value at that time.
     pub value: X,
+    /// Its first time derivative.
     pub rate: X,
+    /// Its second time derivative.
     pub acceleration: X,
 }
 
@@ -35,6 +38,7 @@ impl<X: Coefficients> PathPoint<X> {
 
 /// A prescribed path with exact derivatives.
 pub trait Path<X>: Send + Sync {
+    /// The value and its exact first and second derivatives at time `t` (s).
     fn at(&self, t: f64) -> PathPoint<X>;
     /// A fixed path lets a pin skip the derivative terms of SPEC §8 (they are zero).
     fn is_fixed(&self) -> bool {
@@ -156,13 +160,17 @@ where
 /// (`dU/dt = −½Uξ`, SPEC §3) and ξ̇.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotorPoint<A: Algebra> {
+    /// The motor U (body → reference).
     pub motor: A::Motor,
+    /// The body-frame velocity ξ, with `dU/dt = −½Uξ`.
     pub velocity: A::Screw,
+    /// Its time derivative ξ̇.
     pub acceleration: A::Screw,
 }
 
 /// A prescribed rigid motion U(t), for motor joints (a body's motor relative to its reference follows it).
 pub trait MotorPath<A: Algebra>: Send + Sync {
+    /// The motor, its body-frame velocity and that velocity's derivative at time `t` (s).
     fn at(&self, t: f64) -> MotorPoint<A>;
 }
 
@@ -190,6 +198,7 @@ pub struct ScrewMotion<A: Algebra, P> {
 }
 
 impl<A: Algebra, P: Path<f64>> ScrewMotion<A, P> {
+    /// The motion from `start` along `screw` by the parameter path `parameter` (θ with its exact derivatives).
     pub fn new(start: A::Motor, screw: A::Screw, parameter: P) -> Self {
         ScrewMotion {
             start,
@@ -222,6 +231,7 @@ pub struct CarriedPath<A: Algebra, X> {
 }
 
 impl<A: Algebra, X: Pinnable<A>> CarriedPath<A, X> {
+    /// The body-frame object `object` carried by the motor path `path`.
     pub fn new(object: X, path: impl MotorPath<A> + 'static) -> Self {
         CarriedPath::shared(object, Arc::new(path))
     }

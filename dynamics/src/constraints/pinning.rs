@@ -37,10 +37,12 @@ impl<X, Y> Clone for LinearFunction<X, Y> {
 }
 
 impl<X, Y> LinearFunction<X, Y> {
+    /// Wraps `function`, which the caller promises is linear.
     pub fn new(function: impl Fn(X) -> Y + Send + Sync + 'static) -> Self {
         LinearFunction(Arc::new(function))
     }
 
+    /// `A[x]`.
     #[inline]
     pub fn apply(&self, x: X) -> Y {
         (self.0)(x)
@@ -48,6 +50,7 @@ impl<X, Y> LinearFunction<X, Y> {
 }
 
 impl<X: 'static> LinearFunction<X, X> {
+    /// The identity map, for plain pins `V_b = U`.
     pub fn identity() -> Self {
         LinearFunction::new(|x| x)
     }

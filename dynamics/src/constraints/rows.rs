@@ -43,6 +43,7 @@ pub struct RowBuffer {
 }
 
 impl RowBuffer {
+    /// An empty buffer.
     pub fn new() -> Self {
         Self::default()
     }
@@ -66,14 +67,17 @@ impl RowBuffer {
         self.requested
     }
 
+    /// The number of stored rows (at most [`MAX_ROWS`]; see [`RowBuffer::requested`] for all pushed).
     pub fn len(&self) -> usize {
         self.rows.len()
     }
 
+    /// Whether no row is stored.
     pub fn is_empty(&self) -> bool {
         self.rows.is_empty()
     }
 
+    /// Removes every row and resets the count of pushed rows.
     pub fn clear(&mut self) {
         self.rows.clear();
         self.requested = 0;

@@ -19,11 +19,19 @@ pub enum Stabilisation {
     None,
     /// Baumgarte feedback with damping α and stiffness β (1/s); the SPEC's tests used α = β = 10 (pendulum,
     /// circle) or 20 (top).
-    Baumgarte { alpha: f64, beta: f64 },
+    Baumgarte {
+        /// The damping α (1/s): the `2α ė` term.
+        alpha: f64,
+        /// The stiffness β (1/s): the `β² e` term.
+        beta: f64,
+    },
     /// Projection onto the manifold after every step that leaves the joints off it by more than round-off
     /// (1e-14 in position, 1e-12 in velocity, or 16 ulp of the largest coordinate), with at most this many
     /// Gauss–Newton steps on the position.
-    Projection { position_iterations: usize },
+    Projection {
+        /// The most Gauss–Newton steps on the position per projection.
+        position_iterations: usize,
+    },
 }
 
 impl Stabilisation {

@@ -55,9 +55,13 @@ pub struct ConstraintWrench<A: Algebra> {
 /// pivot's forces `f` have power `f·ṗ`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WrenchPoint<A: Algebra> {
+    /// `T`, reference frame.
     pub wrench: A::Screw,
+    /// `Ṫ`, its time derivative, reference frame.
     pub rate: A::Screw,
+    /// `s`: the velocity condition is `⟨Ḃ ∧ T_b⟩_Π = s`.
     pub power: f64,
+    /// `ṡ`.
     pub power_rate: f64,
 }
 
@@ -77,6 +81,7 @@ impl<A: Algebra> WrenchPoint<A> {
 /// A user wrench as a function of time: a closure `Fn(f64) -> WrenchPoint<A>`, or an `Arc` of one (a list of
 /// different closures is a `Vec<Arc<dyn WrenchPath<A>>>`).
 pub trait WrenchPath<A: Algebra>: Send + Sync {
+    /// The wrench, its rate and the prescribed power at time `t` (s).
     fn at(&self, t: f64) -> WrenchPoint<A>;
 }
 

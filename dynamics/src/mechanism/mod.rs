@@ -3,11 +3,11 @@
 //!
 //! * a **joint** is any [`Constraint`] of [`crate::constraints`] — pinned multivectors, linear functions of
 //!   them, parametric paths, virtual power — between a body and its **reference**: the world, or another body,
-//!   whose frame then plays the world's part ([`joint`], §M2). Its rows are reduced to its rank ([`reduce`],
+//!   whose frame then plays the world's part (`joint`, §M2). Its rows are reduced to its rank (`reduce`,
 //!   §M3);
 //! * the reactions solve `J G Jᵀ λ = rhs` in the kinetic metric, `G` the bodies' inverse inertias, by a sparse
 //!   LDLᵀ over a spanning tree of the joints (linear in N for chains and trees) with loop-closing joints
-//!   through a rank-revealing Schur complement ([`solve`], [`topology`], §M4);
+//!   through a rank-revealing Schur complement (`solve`, `topology`, §M4);
 //! * stabilisation by Baumgarte feedback or by projection of the whole system onto the joint manifold after
 //!   each step (§M5).
 //!
@@ -55,6 +55,7 @@ impl BodyId {
 pub struct JointId(usize);
 
 impl JointId {
+    /// The joint's index: its position in the order the joints were added.
     pub fn index(self) -> usize {
         self.0
     }
@@ -63,7 +64,9 @@ impl JointId {
 /// What a joint holds its body to: the frame in which the constraint's "world" objects are fixed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Reference {
+    /// The world frame.
     World,
+    /// The body frame of another body of the mechanism.
     Body(BodyId),
 }
 
@@ -77,18 +80,37 @@ impl From<BodyId> for Reference {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum MechanismError {
+    /// A body was added with the name of one already there (the name is held).
     #[error("two bodies are named {0:?}; names identify bodies in errors and output")]
     DuplicateBody(String),
+    /// A body was added with an empty name.
     #[error("a body needs a non-empty name")]
     EmptyName,
+    /// A [`BodyId`] (its index held) that is not a body of this mechanism.
     #[error("body index {0} is not a body of this mechanism")]
     UnknownBody(usize),
+    /// A [`JointId`] (its index held) that is not a joint of this mechanism; also index 0 for
+    /// [`Mechanism::with_reaction_basis`] before any joint was added.
     #[error("joint index {0} is not a joint of this mechanism")]
     UnknownJoint(usize),
+    /// A joint would hold a body to the body itself.
     #[error("joint {joint}: holds body {body} to itself")]
-    SelfJoint { joint: String, body: String },
+    SelfJoint {
+        /// The name of the joint's constraint.
+        joint: String,
+        /// The name of the body.
+        body: String,
+    },
+    /// A reaction basis that is empty, has more than 6 wrenches or a non-finite one
+    /// ([`Mechanism::set_reaction_basis`]).
     #[error("joint {joint}: a reaction basis needs 1 to 6 finite wrenches, got {count}")]
-    ReactionBasis { joint: String, count: usize },
+    ReactionBasis {
+        /// The name of the joint.
+        joint: String,
+        /// The number of wrenches given.
+        count: usize,
+    },
+    /// A joint or stabilisation was refused by the constraint checks (rank, rows, position residual, parameters).
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
 }
@@ -98,7 +120,9 @@ pub enum MechanismError {
 /// pins).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Violation {
+    /// `max |e|` over the joints' rows that have a position residual.
     pub position: f64,
+    /// `max |ė|` over all the joints' rows.
     pub velocity: f64,
 }
 
@@ -429,6 +453,7 @@ impl<A: Algebra> Mechanism<A> {
         self.topology = Topology::new(self.bodies.len(), &joints);
     }
 
+    /// The stabilisation in use.
     pub fn stabilisation(&self) -> Stabilisation {
         self.stabilisation
     }
@@ -461,6 +486,7 @@ impl<A: Algebra> Mechanism<A> {
         })
     }
 
+    /// The number of joints.
     pub fn joint_count(&self) -> usize {
         self.joints.len()
     }
