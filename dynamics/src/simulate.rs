@@ -28,6 +28,9 @@ use crate::state::State;
 /// The default sample interval (s), that of the reference scenes.
 pub const SAMPLE_INTERVAL: f64 = 0.01;
 
+/// Samples reserved per body before a run; more are allocated as they are recorded.
+const RESERVED_SAMPLES: usize = 1 << 14;
+
 /// The most samples a run records (120 bytes each: 1.2 GB at this limit).
 pub const MAX_SAMPLES: usize = 10_000_000;
 
@@ -615,7 +618,10 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     }
     let mut stepper = Stepper::new(dynamics, integrator)?;
     let sample_count = schedule.sample_count();
-    let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(sample_count)).collect();
+    // Reserved up to a bound, grown as the samples come: a long run of many bodies must not ask for its whole
+    // record before its first step (10⁷ samples of 64 bodies would be 77 GB).
+    let reserved = sample_count.min(RESERVED_SAMPLES);
+    let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
     record(dynamics, 0.0, initial, &mut bodies);
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     let mut values: Vec<f64> = events.iter_mut().map(|event| (event.function)(0.0, initial)).collect();

@@ -1058,7 +1058,8 @@ pub const MAX_FILE_BYTES: u64 = 4 << 20;
 /// chain; a longer run is more likely a typo (`duration = 99990`, `dt = 1e-15`) than a plan.
 pub const MAX_STEPS: usize = 100_000_000;
 
-/// The most samples a scene file's run records (per algebra): every sample is kept for the CSV and the plots.
+/// The most body samples (samples × bodies) a scene file's run records (per algebra), about 120 bytes each:
+/// every sample is kept for the CSV and the plots.
 pub const MAX_SAMPLES: usize = 1_000_000;
 
 /// The name of the world in `between`.
@@ -1121,12 +1122,13 @@ impl SceneFile {
                 ),
             ));
         }
-        if schedule.sample_count() > MAX_SAMPLES {
+        let bodies = self.layout()?.bodies.len();
+        if schedule.sample_count().saturating_mul(bodies) > MAX_SAMPLES {
             return Err(invalid(
                 "duration, sample_interval",
                 format!(
-                    "{} samples ({} s every {} s) is more than a scene file records (at most {MAX_SAMPLES:e}): \
-                     lengthen sample_interval",
+                    "{} samples ({} s every {} s) of {bodies} bodies is more than a scene file records (at most \
+                     {MAX_SAMPLES:e} body samples): lengthen sample_interval",
                     schedule.sample_count(),
                     self.duration,
                     self.sample_interval

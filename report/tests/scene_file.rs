@@ -762,3 +762,20 @@ fn runs_too_long_are_refused_with_the_limit() {
         &["dt, duration", "steps", "at most 1e8"],
     );
 }
+
+/// The cap on recorded samples counts every body's: the 16-link chain sampled every 1e-4 s for 10 s would keep
+/// 16 × 100001 samples, more than a scene file records, and is refused before anything runs.
+#[test]
+fn the_sample_cap_counts_every_body() {
+    let chain = include_str!("../../scenes/chain.toml")
+        .replacen("dt = 1e-3", "dt = 1e-4\nsample_interval = 1e-4", 1)
+        .replacen("duration = 5.0", "duration = 10.0", 1);
+    let error = SceneFile::parse(&chain)
+        .and_then(|scene| scene.schedule())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("100001 samples") && error.contains("of 16 bodies"),
+        "{error}"
+    );
+}
