@@ -1,17 +1,24 @@
 //! The report's plots per scene: work-precision (error against CPU per simulated second, with MuJoCo's
 //! points), energy drift over time, constraint violation over time, and the traced paths of the paper's
 //! figures (simulated against the reference).
+//!
+//! The sweep's runs are drawn as small multiples: one panel per integrator [`Family`] (and per constraint
+//! formulation), so an axis carries at most four curves (two integrators in two algebras) and MuJoCo's points.
+//! A colour means the same in every panel ([`slot`]): the hue is the integrator's place in its family, the dark
+//! shade PGA (solid, circles), the light shade CGA (dashed, squares).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use dynamics::integrate::{Integrator, Method, SplittingMethod};
 use nalgebra::Vector3;
 use reference::{SceneConstraint, SceneId};
+use scenarios::Formulation;
 
-use crate::markdown::RunResult;
+use crate::markdown::{formulation_rank, RunResult};
 use crate::mujoco;
-use crate::plot::{chart, Labels, Panel, PlotError, Series};
-use crate::sweep::Outcome;
+use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series, Shape};
+use crate::sweep::{AlgebraKind, Outcome};
 
 /// A file-name stem for a scene.
 pub fn stem(scene: SceneId) -> &'static str {
@@ -23,6 +30,106 @@ pub fn stem(scene: SceneId) -> &'static str {
         SceneId::RodOnSphere => "scene4_rod_on_sphere",
         SceneId::RodOnCircle => "scene4_rod_on_circle",
     }
+}
+
+/// The integrator families the plots put in panels of their own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Family {
+    /// RK4 and RKMK4: the momentum integrated in the world frame.
+    WorldFrame,
+    /// RKMK4-body and RKMK6-body: the momentum carried in the body frame.
+    BodyMomentum,
+    /// Strang and Yoshida-4 (free bodies only).
+    Splitting,
+}
+
+impl Family {
+    /// An integrator's family and its place in it (0 or 1).
+    pub fn of(integrator: Integrator) -> (Family, usize) {
+        match integrator {
+            Integrator::General(Method::Rk4) => (Family::WorldFrame, 0),
+            Integrator::General(Method::Rkmk4) => (Family::WorldFrame, 1),
+            Integrator::General(Method::Rkmk4Body) => (Family::BodyMomentum, 0),
+            Integrator::General(Method::Rkmk6Body) => (Family::BodyMomentum, 1),
+            Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
+            Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
+        }
+    }
+
+    pub fn title(self) -> &'static str {
+        match self {
+            Family::WorldFrame => "RK4 and RKMK4 (momentum in the world frame)",
+            Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
+            Family::Splitting => "Strang and Yoshida-4 splittings",
+        }
+    }
+}
+
+/// The palette slot of a run: the hue pair (blue, vermilion) by the integrator's place in its family, the dark
+/// shade for PGA and the light one for CGA, so a colour means the same in every panel and never repeats in one.
+pub fn slot(algebra: AlgebraKind, member: usize) -> usize {
+    2 * member
+        + match algebra {
+            AlgebraKind::Pga => 0,
+            AlgebraKind::Cga => 1,
+        }
+}
+
+/// A run's series in the style of its algebra: PGA solid with circles, CGA dashed with squares (so where the two
+/// algebras give the same curve, the PGA one shows through the CGA dashes).
+pub fn styled(series: Series, algebra: AlgebraKind, member: usize) -> Series {
+    Series {
+        slot: Some(slot(algebra, member)),
+        dashed: algebra == AlgebraKind::Cga,
+        shape: match algebra {
+            AlgebraKind::Pga => Shape::Circle,
+            AlgebraKind::Cga => Shape::Square,
+        },
+        ..series
+    }
+}
+
+/// A panel's title: its formulation, if any, and its family.
+pub fn panel_title(formulation: Option<Formulation>, family: Family) -> String {
+    match formulation {
+        Some(f) => format!("{}: {}", f.name(), family.title()),
+        None => family.title().to_owned(),
+    }
+}
+
+/// One panel's runs: per palette slot, the series' algebra, integrator and runs.
+struct PanelRuns<'a> {
+    formulation: Option<Formulation>,
+    family: Family,
+    series: BTreeMap<usize, (AlgebraKind, Integrator, Vec<&'a Outcome>)>,
+}
+
+/// The runs grouped into panels (by family, then formulation) and series (by algebra and integrator).
+fn panels_of<'a>(outcomes: &[&'a Outcome]) -> Vec<PanelRuns<'a>> {
+    let mut panels: BTreeMap<(Family, usize), PanelRuns<'a>> = BTreeMap::new();
+    for &outcome in outcomes {
+        let config = &outcome.config;
+        let (family, member) = Family::of(config.integrator);
+        let panel = panels
+            .entry((family, formulation_rank(config.formulation)))
+            .or_insert_with(|| PanelRuns {
+                formulation: config.formulation,
+                family,
+                series: BTreeMap::new(),
+            });
+        panel
+            .series
+            .entry(slot(config.algebra, member))
+            .or_insert_with(|| (config.algebra, config.integrator, Vec::new()))
+            .2
+            .push(outcome);
+    }
+    panels.into_values().collect()
+}
+
+/// A series label within a panel: "PGA, RK4" (the panel's title gives the formulation and family).
+fn short_label(algebra: AlgebraKind, integrator: Integrator) -> String {
+    format!("{}, {}", algebra.name(), integrator.name())
 }
 
 /// The work-precision error of a scene: orientation at T, except scene 4, whose anchor is a position.
@@ -39,15 +146,6 @@ pub fn showcase_step(outcomes: &[&Outcome]) -> Option<f64> {
         .iter()
         .map(|o| o.config.dt)
         .min_by(|a, b| (a.ln() - 1e-3f64.ln()).abs().total_cmp(&(b.ln() - 1e-3f64.ln()).abs()))
-}
-
-/// Outcomes grouped by series label, in a stable order.
-fn by_series<'a>(outcomes: &[&'a Outcome]) -> BTreeMap<String, Vec<&'a Outcome>> {
-    let mut groups: BTreeMap<String, Vec<&Outcome>> = BTreeMap::new();
-    for outcome in outcomes {
-        groups.entry(outcome.config.series_label()).or_default().push(outcome);
-    }
-    groups
 }
 
 /// The world position of a body point in a sample.
@@ -87,13 +185,27 @@ fn traced_path(scene: SceneId) -> (&'static str, &'static str, &'static str, Pro
             true,
         ),
         SceneConstraint::Free => (
-            "body angular velocity ω_y: the flips",
+            "angular velocity about the body y axis: the flips",
             "time (s)",
-            "ω_y, body frame (rad/s)",
+            "ω about the body y axis (rad/s)",
             Box::new(|s| (s.t, (s.orientation.inverse() * s.angular_velocity).y)),
             false,
         ),
     }
+}
+
+/// Values below this are drawn at it on the log plots of drift and violation (round-off is about 1e-16).
+pub const LOG_FLOOR: f64 = 1e-17;
+
+/// The running maximum of a sequence (the largest value up to each point).
+pub fn running_max(values: &[f64]) -> Vec<f64> {
+    values
+        .iter()
+        .scan(f64::NEG_INFINITY, |largest, &v| {
+            *largest = largest.max(v);
+            Some(*largest)
+        })
+        .collect()
 }
 
 /// Draws every figure of one scene into `dir`; returns the file names.
@@ -104,80 +216,118 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
         return Ok(files);
     }
     let stem = stem(scene);
-    let groups = by_series(&outcomes);
+    let groups = panels_of(&outcomes);
 
-    // Work-precision.
-    let mut series: Vec<Series> = groups
+    // Work-precision, MuJoCo's points in every panel where they compare (runs of the scene's full length).
+    let full = scene.parameters().duration;
+    let mismatch = outcomes
         .iter()
-        .map(|(label, runs)| {
-            let mut points: Vec<(f64, f64)> = runs
-                .iter()
-                .map(|o| (o.cpu_per_simulated_second, work_precision_error(scene, o)))
-                .collect();
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series {
-                markers: true,
-                ..Series::line(label.clone(), points)
-            }
-        })
-        .collect();
-    if let Some(points) = mujoco::work_precision_points(scene) {
-        series.push(Series {
-            markers_only: true,
-            ..Series::line("MuJoCo 4.0 RK4 (measured)", points)
-        });
-    }
+        .find_map(|o| mujoco::length_mismatch(o.config.duration, full));
+    let mujoco_points = mujoco::work_precision_points(scene).filter(|_| mismatch.is_none());
+    let titles: Vec<String> = groups.iter().map(|g| panel_title(g.formulation, g.family)).collect();
     let y = match scene {
         SceneId::RodOnSphere | SceneId::RodOnCircle => "centre-of-mass position error at T (m)",
         _ => "orientation error at T (rad)",
     };
+    let panels: Vec<Panel> = groups
+        .iter()
+        .zip(&titles)
+        .map(|(group, title)| {
+            let mut series: Vec<Series> = group
+                .series
+                .values()
+                .map(|(algebra, integrator, runs)| {
+                    let mut points: Vec<(f64, f64)> = runs
+                        .iter()
+                        .map(|o| (o.cpu_per_simulated_second, work_precision_error(scene, o)))
+                        .collect();
+                    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    let (_, member) = Family::of(*integrator);
+                    let line = Series {
+                        markers: true,
+                        ..Series::line(short_label(*algebra, *integrator), points)
+                    };
+                    styled(line, *algebra, member)
+                })
+                .collect();
+            if let Some(points) = &mujoco_points {
+                series.push(Series::reference_points(mujoco::single_body_legend(), points.clone()));
+            }
+            Panel::new(Labels::new(title, "CPU per simulated second (s)", y), series)
+                .log_x()
+                .log_y()
+        })
+        .collect();
+    let caption = match (mujoco::anchor(scene), &mismatch) {
+        (None, _) => "No MuJoCo figures for this scene.".to_owned(),
+        (Some(_), Some(why)) => format!(
+            "MuJoCo's points are not drawn, {why}: its errors were measured at the scene's full T. Dark, solid: \
+             PGA; light, dashed: CGA."
+        ),
+        (Some(_), None) => format!(
+            "Black triangles: {}, at dt = 1e-2, 1e-3, 1e-4. Dark, solid: PGA; light, dashed: CGA.",
+            mujoco::SINGLE_BODY_MEASURED
+        ),
+    };
     let name = format!("{stem}_work_precision.png");
     let title = format!("Scene {}: error against CPU time", scene.label());
-    let labels = Labels {
-        title: &title,
-        x: "CPU per simulated second (s)",
-        y,
-    };
-    chart(&dir.join(&name), &Panel::new(labels, series).log_x().log_y())?;
+    figure_with_caption(&dir.join(&name), &title, &panels, &caption)?;
     files.push(name);
 
     // Over time, at the showcase step.
     let Some(dt) = showcase_step(&outcomes) else {
         return Ok(files);
     };
-    let showcase: Vec<&Outcome> = outcomes.iter().copied().filter(|o| o.config.dt == dt).collect();
-    let over_time = |values: fn(&Outcome) -> &[f64]| -> Vec<Series> {
-        showcase
+    let over_time = |values: &dyn Fn(&Outcome) -> Vec<f64>, y: &'static str| -> Vec<Panel> {
+        groups
             .iter()
-            .map(|o| {
-                let points = o.samples.iter().zip(values(o)).map(|(s, &v)| (s.t, v)).collect();
-                Series::line(o.config.series_label(), points)
+            .zip(&titles)
+            .map(|(group, title)| {
+                let series = group
+                    .series
+                    .values()
+                    .filter_map(|(algebra, integrator, runs)| {
+                        let run = runs.iter().find(|o| o.config.dt == dt)?;
+                        let points = run.samples.iter().zip(values(run)).map(|(s, v)| (s.t, v)).collect();
+                        let (_, member) = Family::of(*integrator);
+                        Some(styled(
+                            Series::line(short_label(*algebra, *integrator), points),
+                            *algebra,
+                            member,
+                        ))
+                    })
+                    .collect();
+                Panel::new(Labels::new(title, "time (s)", y), series).log_y_with_floor(LOG_FLOOR)
             })
             .collect()
     };
     let name = format!("{stem}_energy_drift.png");
     let title = format!("Scene {}: energy drift, dt = {dt:.0e} s", scene.label());
-    let labels = Labels {
-        title: &title,
-        x: "time (s)",
-        y: "|E(t) − E₀| / E_scale",
-    };
-    chart(
+    let panels = over_time(
+        &|o| o.measurements.energy_drift.clone(),
+        "|E(t) − E₀| ÷ the scene's energy scale",
+    );
+    figure_with_caption(
         &dir.join(&name),
-        &Panel::new(labels, over_time(|o| &o.measurements.energy_drift)).log_y(),
+        &title,
+        &panels,
+        "Energy drift per sample (every 0.01 s) relative to the scene's energy scale (SCENES.md). Dark, solid: \
+             PGA; light, dashed: CGA.",
     )?;
     files.push(name);
     if !matches!(scene.parameters().constraint, SceneConstraint::Free) {
         let name = format!("{stem}_violation.png");
         let title = format!("Scene {}: constraint violation, dt = {dt:.0e} s", scene.label());
-        let labels = Labels {
-            title: &title,
-            x: "time (s)",
-            y: "constraint violation (m)",
-        };
-        chart(
+        let panels = over_time(
+            &|o| running_max(&o.measurements.violation),
+            "largest violation up to t (m)",
+        );
+        figure_with_caption(
             &dir.join(&name),
-            &Panel::new(labels, over_time(|o| &o.measurements.violation)).log_y(),
+            &title,
+            &panels,
+            "The largest constraint violation from the start up to each time (running maximum of the violation \
+                 sampled every 0.01 s). Dark, solid: PGA; light, dashed: CGA.",
         )?;
         files.push(name);
     }
@@ -209,17 +359,82 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
             })
             .collect();
         let series = vec![
-            Series::line("reference (DOP853)", reference),
-            Series::line(
-                format!("{}, dt = {:.0e} s", best.config.series_label(), best.config.dt),
-                simulated,
-            ),
+            Series {
+                slot: Some(0),
+                thick: true,
+                ..Series::line(
+                    format!(
+                        "{}, dt\u{a0}=\u{a0}{:.0e}\u{a0}s",
+                        best.config.series_label(),
+                        best.config.dt
+                    ),
+                    simulated,
+                )
+            },
+            Series::reference_line("reference (scipy DOP853)", reference),
         ];
         let name = format!("{stem}_path.png");
         let title = format!("Scene {}: {what}", scene.label());
-        let panel = Panel::new(Labels { title: &title, x, y }, series);
+        let panel = Panel::new(Labels { title: &title, x, y }, series).note(
+            "The reference (black, dashed) is drawn over the simulated run (blue), which shows through its gaps.",
+        );
         chart(&dir.join(&name), &if equal { panel.equal_aspect() } else { panel })?;
         files.push(name);
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sweep::{default_integrators, SweepPlan, DEFAULT_STEPS};
+    use dynamics::constraints::Stabilisation;
+
+    #[test]
+    fn every_panel_of_the_default_sweep_keeps_to_four_curves_in_distinct_colours() {
+        let plan = SweepPlan {
+            scenes: SceneId::ALL.to_vec(),
+            integrators: default_integrators(),
+            steps: DEFAULT_STEPS.to_vec(),
+            duration: None,
+            stabilisation: Stabilisation::PROJECTION,
+        };
+        let configs = plan.configurations();
+        for scene in SceneId::ALL {
+            // Panels as `panels_of` forms them, from the configurations alone.
+            let mut panels: BTreeMap<(Family, usize), Vec<usize>> = BTreeMap::new();
+            for config in configs.iter().filter(|c| c.scene == scene) {
+                let (family, member) = Family::of(config.integrator);
+                let slots = panels
+                    .entry((family, formulation_rank(config.formulation)))
+                    .or_default();
+                let slot = slot(config.algebra, member);
+                if !slots.contains(&slot) {
+                    slots.push(slot);
+                }
+            }
+            for (key, slots) in &panels {
+                // Four curves and MuJoCo's points at most: within the palette's six colours.
+                assert!(slots.len() <= 4, "{scene:?} {key:?}: {slots:?}");
+                let mut series: Vec<Series> = slots
+                    .iter()
+                    .map(|&s| Series {
+                        slot: Some(s),
+                        ..Series::line("run", vec![])
+                    })
+                    .collect();
+                series.push(Series::reference_points("MuJoCo", vec![]));
+                let colours = crate::plot::series_colours(&series).unwrap();
+                for (i, c) in colours.iter().enumerate() {
+                    assert!(!colours[..i].contains(c), "{scene:?} {key:?}: colour {c:?} repeats");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn running_max_never_falls() {
+        assert_eq!(running_max(&[0.0, 2.0, 1.0, 3.0]), vec![0.0, 2.0, 2.0, 3.0]);
+        assert!(running_max(&[]).is_empty());
+    }
 }

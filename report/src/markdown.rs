@@ -1,11 +1,14 @@
 //! `report.md`: per scene a work-precision table (a line per configuration), the CGA-vs-PGA agreement
 //! and the MuJoCo anchor, with where every number comes from.
 
+use std::cmp::Ordering;
 use std::collections::{BTreeMap, HashMap};
 use std::fmt::Write as _;
 
+use dynamics::integrate::Integrator;
 use dynamics::simulate::Sample;
 use reference::SceneId;
+use scenarios::Formulation;
 
 use crate::mujoco;
 use crate::sweep::{AlgebraKind, Config, Outcome, RunError};
@@ -53,6 +56,40 @@ pub fn agreement(first: &[Sample], second: &[Sample]) -> (f64, f64) {
         })
 }
 
+/// Where a table row goes: algebra, formulation and integrator (each in its declared order), then the step.
+pub type RowKey = (AlgebraKind, usize, usize, f64);
+
+/// A formulation's place in [`Formulation::ALL`] (the free body's `None` first).
+pub fn formulation_rank(formulation: Option<Formulation>) -> usize {
+    formulation.map_or(0, |f| {
+        1 + Formulation::ALL.iter().position(|&g| g == f).unwrap_or(usize::MAX - 1)
+    })
+}
+
+/// An integrator's place in [`Integrator::ALL`].
+pub fn integrator_rank(integrator: Integrator) -> usize {
+    Integrator::ALL
+        .iter()
+        .position(|&i| i == integrator)
+        .unwrap_or(usize::MAX)
+}
+
+/// A run's [`RowKey`].
+pub fn row_key(config: &Config) -> RowKey {
+    (
+        config.algebra,
+        formulation_rank(config.formulation),
+        integrator_rank(config.integrator),
+        config.dt,
+    )
+}
+
+/// The order of table rows: by configuration, then by step from the coarsest to the finest, compared as numbers
+/// (as text, 1e-4 would come before 2e-3).
+pub fn compare_rows(a: &RowKey, b: &RowKey) -> Ordering {
+    (a.0, a.1, a.2).cmp(&(b.0, b.1, b.2)).then_with(|| b.3.total_cmp(&a.3))
+}
+
 fn scene_table(out: &mut String, results: &[&RunResult]) {
     let feature_names: Vec<(&str, &str)> = results
         .iter()
@@ -80,7 +117,9 @@ fn scene_table(out: &mut String, results: &[&RunResult]) {
     );
     let _ = writeln!(out, "| {} |", header.join(" | "));
     let _ = writeln!(out, "|{}|", vec!["---"; header.len()].join("|"));
-    for (config, result) in results {
+    let mut rows: Vec<&RunResult> = results.to_vec();
+    rows.sort_by(|a, b| compare_rows(&row_key(&a.0), &row_key(&b.0)));
+    for (config, result) in rows {
         let mut row = vec![config.series_label(), format!("{:.0e}", config.dt)];
         match result {
             Ok(o) => {
@@ -104,10 +143,12 @@ fn scene_table(out: &mut String, results: &[&RunResult]) {
     }
 }
 
-fn agreement_table(out: &mut String, results: &[&RunResult]) {
-    // Pair each CGA run with the PGA run of the same configuration.
-    let mut worst: BTreeMap<String, (f64, f64)> = BTreeMap::new();
+/// The CGA-vs-PGA rows: per configuration run in both algebras, its label and the largest orientation (rad) and
+/// position (m) difference, sorted by configuration and then numerically by step (coarse to fine).
+pub fn agreement_rows(results: &[&RunResult]) -> Vec<(String, f64, f64)> {
+    let mut rows: Vec<(RowKey, String, f64, f64)> = Vec::new();
     for (config, result) in results.iter().filter(|(c, _)| c.algebra == AlgebraKind::Cga) {
+        // Pair each CGA run with the PGA run of the same configuration.
         let twin = config.same_but(AlgebraKind::Pga);
         let Some((_, Ok(pga))) = results.iter().find(|(c, _)| *c == twin) else {
             continue;
@@ -119,9 +160,15 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
             config.series_label().trim_start_matches("CGA, "),
             config.dt
         );
-        worst.insert(label, (angle, distance));
+        rows.push((row_key(config), label, angle, distance));
     }
-    if worst.is_empty() {
+    rows.sort_by(|a, b| compare_rows(&a.0, &b.0));
+    rows.into_iter().map(|(_, label, a, d)| (label, a, d)).collect()
+}
+
+fn agreement_table(out: &mut String, results: &[&RunResult]) {
+    let rows = agreement_rows(results);
+    if rows.is_empty() {
         let _ = writeln!(out, "No configuration runs in both algebras.\n");
         return;
     }
@@ -130,7 +177,7 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
         "| configuration | max orientation difference (rad) | max position difference (m) |"
     );
     let _ = writeln!(out, "|---|---|---|");
-    for (label, (angle, distance)) in worst {
+    for (label, angle, distance) in rows {
         let _ = writeln!(out, "| {label} | {} | {} |", scientific(angle), scientific(distance));
     }
     let _ = writeln!(out);
@@ -143,6 +190,10 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
     let Some(anchor) = mujoco::anchor(scene) else {
         return Vec::new();
     };
+    if length_mismatch(scene, runs).is_some() {
+        // MuJoCo's error is at the scene's full T: no cost is compared at it for a run of another length.
+        return Vec::new();
+    }
     let target = anchor.reference_error();
     let mut series: BTreeMap<String, Vec<(f64, f64, f64)>> = BTreeMap::new();
     for (config, result) in runs {
@@ -171,18 +222,35 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
     ranked
 }
 
+/// Why the runs of a scene cannot be compared with MuJoCo's error at the scene's T, if they cannot
+/// ([`mujoco::length_mismatch`]): the job's `--duration` makes every run of a scene that long.
+pub fn length_mismatch(scene: SceneId, runs: &[&RunResult]) -> Option<String> {
+    let full = scene.parameters().duration;
+    runs.iter()
+        .find_map(|(config, _)| mujoco::length_mismatch(config.duration, full))
+}
+
 /// A configuration's label, its CPU per simulated second at MuJoCo's error and its cheapest run that meets
 /// that error as (dt, error, CPU per simulated second).
 type Ranked = (String, f64, (f64, f64, f64));
 
-/// Per anchored scene, the cheapest configuration at MuJoCo's accuracy and the ratio of the costs.
-fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>) {
+/// Per anchored scene, the cheapest configuration at MuJoCo's accuracy and the ratio of the costs; for a run
+/// of another length than the scene's T, "n/a" instead.
+fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>, mismatches: &HashMap<SceneId, String>) {
     let mut rows = Vec::new();
     for scene in SceneId::ALL {
-        let (Some(anchor), Some((label, cost, (dt, error, measured)))) = (
-            mujoco::anchor(scene),
-            rankings.get(&scene).and_then(|ranked| ranked.first()),
-        ) else {
+        let Some(anchor) = mujoco::anchor(scene) else {
+            continue;
+        };
+        if let Some(why) = mismatches.get(&scene) {
+            rows.push(format!(
+                "| {} | {} | – | – | {why} | – |",
+                scene.label(),
+                scientific(anchor.reference_error()),
+            ));
+            continue;
+        }
+        let Some((label, cost, (dt, error, measured))) = rankings.get(&scene).and_then(|ranked| ranked.first()) else {
             continue;
         };
         rows.push(format!(
@@ -201,21 +269,24 @@ fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>) {
     let _ = writeln!(out, "## Speed at MuJoCo's accuracy\n");
     let _ = writeln!(
         out,
-        "For each scene with a MuJoCo anchor: the configuration that reaches MuJoCo 4.0's error at dt = 1e-3 (RK4, \
-         measured by the team on this machine) with the least CPU per simulated second, its cost there \
-         (interpolated log–log between the two runs of the sweep that bracket the error), and MuJoCo's cost at \
-         that error divided by ours. Our costs are measured with runs in parallel, so they are if anything high. \
-         Last column: the cheapest run of the sweep that meets the error outright (dt: error at CPU per simulated s).\n"
+        "For each scene with a MuJoCo anchor: the configuration that reaches MuJoCo 4.0's error at dt = 1e-3 (RK4) \
+         with the least CPU per simulated second, its cost there (interpolated log–log between the two runs of the \
+         sweep that bracket the error), and MuJoCo's cost at that error divided by ours. Our costs are measured by \
+         this run with runs in parallel, so they are if anything high. Last column: the cheapest run of the sweep \
+         that meets the error outright (dt: error at CPU per simulated s). MuJoCo's errors are at each scene's full \
+         T, so a shortened run (`--duration`) is not compared with them (n/a).\n"
     );
     let _ = writeln!(
         out,
-        "| scene | MuJoCo's error at dt = 1e-3 | cheapest configuration | its CPU per simulated s (s) | MuJoCo's / ours | measured run |"
+        "| scene | MuJoCo's error at dt = 1e-3 (recorded {date}) | cheapest configuration | its CPU per simulated s (s) \
+         | MuJoCo's / ours (MuJoCo recorded {date}) | measured run |",
+        date = mujoco::SINGLE_BODY_RECORDED
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|");
     for row in rows {
         let _ = writeln!(out, "{row}");
     }
-    let _ = writeln!(out);
+    let _ = writeln!(out, "\n{}.\n", mujoco::SINGLE_BODY_MEASURED);
 }
 
 /// The whole report.
@@ -229,7 +300,7 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
          rtol = atol = 1e-13, classical Newton–Euler equations; no GA code) and the analytic values of SCENES.md, \
          sampled every 0.01 s. CPU time is the stepping time of each run (sampling and metrics excluded) on this \
          machine, with {threads} runs in parallel; \"CPU per simulated s\" is that time divided by the simulated \
-         time. Energy drift is |E(T) − E₀| / E_scale (SCENES.md). Constrained scenes use the stabilisation chosen \
+         time. Energy drift is |E(T) − E₀| divided by the scene's energy scale (SCENES.md). Constrained scenes use the stabilisation chosen \
          for the sweep; \"virtual power\" and \"pinning\" are the two constraint formulations (SPEC §6, §7–§9).\n"
     );
     let runs_by_scene: Vec<(SceneId, Vec<&RunResult>)> = SceneId::ALL
@@ -240,7 +311,11 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
         .iter()
         .map(|(scene, runs)| (*scene, costs_at_mujoco_error(*scene, runs)))
         .collect();
-    mujoco_summary(&mut out, &rankings);
+    let mismatches: HashMap<SceneId, String> = runs_by_scene
+        .iter()
+        .filter_map(|(scene, runs)| Some((*scene, length_mismatch(*scene, runs)?)))
+        .collect();
+    mujoco_summary(&mut out, &rankings, &mismatches);
     for (scene, runs) in runs_by_scene {
         if runs.is_empty() {
             continue;
@@ -255,24 +330,36 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
             let points: Vec<String> = anchor
                 .points
                 .iter()
-                .map(|(dt, error)| format!("dt = {dt:.0e}: {error:.0e}"))
+                .map(|(dt, error)| format!("{error:.0e} (dt = {dt:.0e})"))
                 .collect();
             let _ = writeln!(
                 out,
-                "MuJoCo 4.0 RK4 on this scene and machine (issue tracker): {:.1} µs/step; error at T {}.\n",
+                "MuJoCo 4.0 RK4 on this scene: {:.1} µs/step; error at T = {} s of {}. {}.\n",
                 anchor.time_per_step * 1e6,
-                points.join(", ")
+                scene.parameters().duration,
+                points.join(", "),
+                mujoco::SINGLE_BODY_MEASURED,
             );
             let ranked = &rankings[&scene];
-            if !ranked.is_empty() {
+            if let Some(why) = mismatches.get(&scene) {
                 let _ = writeln!(
                     out,
-                    "At MuJoCo's error at dt = 1e-3 ({}; MuJoCo: {} s of CPU per simulated s), the five cheapest \
-                     configurations:\n",
-                    scientific(anchor.reference_error()),
-                    scientific(anchor.reference_cost())
+                    "No cost is compared at MuJoCo's accuracy for this run — {why}: MuJoCo's errors are at T.\n"
                 );
-                let _ = writeln!(out, "| configuration | CPU per simulated s (s) | MuJoCo's / ours |");
+            } else if !ranked.is_empty() {
+                let _ = writeln!(
+                    out,
+                    "At MuJoCo's error at dt = 1e-3 ({}; MuJoCo: {} s of CPU per simulated s, recorded {}), the five \
+                     cheapest configurations:\n",
+                    scientific(anchor.reference_error()),
+                    scientific(anchor.reference_cost()),
+                    mujoco::SINGLE_BODY_RECORDED
+                );
+                let _ = writeln!(
+                    out,
+                    "| configuration | CPU per simulated s (s) | MuJoCo's / ours (MuJoCo recorded {}) |",
+                    mujoco::SINGLE_BODY_RECORDED
+                );
                 let _ = writeln!(out, "|---|---|---|");
                 for (label, cost, _) in ranked.iter().take(5) {
                     let _ = writeln!(
@@ -289,4 +376,113 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
         agreement_table(&mut out, &runs);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::Measurements;
+    use dynamics::constraints::Stabilisation;
+    use dynamics::integrate::Method;
+
+    fn config(algebra: AlgebraKind, dt: f64, duration: f64) -> Config {
+        Config {
+            scene: SceneId::Cuboid,
+            algebra,
+            formulation: None,
+            integrator: Integrator::General(Method::Rk4),
+            dt,
+            duration,
+            stabilisation: Stabilisation::PROJECTION,
+        }
+    }
+
+    /// A cuboid run whose error falls as dt⁴ from 1e-8 rad at dt = 1e-2 and whose cost is 1e-6 s per step.
+    fn run(algebra: AlgebraKind, dt: f64, duration: f64) -> RunResult {
+        let error = 1e-8 * (dt / 1e-2).powi(4);
+        let measurements = Measurements {
+            orientation_end: error,
+            orientation_max: error,
+            position_end: 0.0,
+            position_max: 0.0,
+            energy_drift_end: 0.0,
+            energy_drift_max: 0.0,
+            violation_max: None,
+            features: vec![],
+            energy_drift: vec![],
+            violation: vec![],
+        };
+        let config = config(algebra, dt, duration);
+        let outcome = Outcome {
+            config,
+            samples: vec![],
+            cpu_per_simulated_second: 1e-6 / dt,
+            time_per_step: 1e-6,
+            measurements,
+        };
+        (config, Ok(outcome))
+    }
+
+    /// The steps in an order that sorts differently as text.
+    const STEPS: [f64; 5] = [1e-4, 2e-3, 1e-2, 5e-4, 1e-3];
+
+    fn runs(duration: f64) -> Vec<RunResult> {
+        AlgebraKind::ALL
+            .iter()
+            .flat_map(|&algebra| STEPS.iter().map(move |&dt| run(algebra, dt, duration)))
+            .collect()
+    }
+
+    #[test]
+    fn rows_sort_by_step_as_numbers() {
+        let results = runs(10.0);
+        let refs: Vec<&RunResult> = results.iter().collect();
+        let labels: Vec<String> = agreement_rows(&refs).into_iter().map(|(label, _, _)| label).collect();
+        assert_eq!(
+            labels,
+            ["1e-2", "2e-3", "1e-3", "5e-4", "1e-4"].map(|dt| format!("RK4, dt = {dt}"))
+        );
+        // The work-precision table: CGA's rows, then PGA's, each from the coarsest step to the finest.
+        let mut table = String::new();
+        scene_table(&mut table, &refs);
+        let rows: Vec<(&str, &str)> = table
+            .lines()
+            .skip(2)
+            .map(|line| {
+                let cells: Vec<&str> = line.split(" | ").collect();
+                (cells[0].trim_start_matches("| "), cells[1])
+            })
+            .collect();
+        let expected: Vec<(&str, &str)> = ["CGA, RK4", "PGA, RK4"]
+            .iter()
+            .flat_map(|&c| ["1e-2", "2e-3", "1e-3", "5e-4", "1e-4"].map(|dt| (c, dt)))
+            .collect();
+        assert_eq!(rows, expected);
+        // As text, "1e-4" < "2e-3"; as numbers the coarser step comes first.
+        let key = |dt| row_key(&config(AlgebraKind::Pga, dt, 10.0));
+        assert_eq!(compare_rows(&key(2e-3), &key(1e-4)), Ordering::Less);
+        assert_eq!(compare_rows(&key(1e-2), &key(5e-3)), Ordering::Less);
+    }
+
+    #[test]
+    fn mujoco_ratio_is_omitted_for_a_shortened_run() {
+        // At the scene's T = 10 s the runs reach MuJoCo's 2e-10 rad and the ratio is reported.
+        let full = report(&runs(10.0), 2, &HashMap::new());
+        let summary_row = |text: &str| {
+            text.lines()
+                .find(|l| l.starts_with("| 1 cuboid"))
+                .map(str::to_owned)
+                .expect("a summary row for scene 1")
+        };
+        assert!(summary_row(&full).contains('×'), "{}", summary_row(&full));
+        assert!(full.contains("the five cheapest configurations"));
+        assert!(full.contains(mujoco::SINGLE_BODY_MEASURED));
+        // Shortened to 2 s: no cost at MuJoCo's accuracy, and the row says why.
+        let short = report(&runs(2.0), 2, &HashMap::new());
+        let row = summary_row(&short);
+        assert!(row.contains("n/a: shortened run (2 s of T = 10 s)"), "{row}");
+        assert!(!row.contains('×'), "{row}");
+        assert!(!short.contains("the five cheapest configurations"));
+        assert!(short.contains("No cost is compared at MuJoCo's accuracy for this run"));
+    }
 }

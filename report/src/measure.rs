@@ -121,7 +121,7 @@ fn features(
             );
             vec![
                 Feature {
-                    name: "θ_max",
+                    name: "largest nutation angle θ",
                     unit: "rad",
                     simulated: ours.theta_max,
                     reference: theirs.theta_max,

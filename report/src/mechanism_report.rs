@@ -6,18 +6,45 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
+use dynamics::integrate::Integrator;
 use scenarios::MechanismId;
 
-use crate::markdown::scientific;
-use crate::mechanism_sweep::{MechanismOutcome, MechanismResult, CHAIN_LONG_RUN, CHAIN_TIMING_DURATION};
+use crate::figures::{panel_title, styled, Family};
+use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, RowKey};
+use crate::mechanism_sweep::{
+    MechanismConfig, MechanismOutcome, MechanismResult, CHAIN_LONG_RUN, CHAIN_TIMING_DURATION,
+};
 use crate::mujoco::{self, cost_at_error};
-use crate::plot::{figure, Labels, Panel, PlotError, Series};
+use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series, Shape};
 use crate::sweep::AlgebraKind;
 
 /// M2 is exact when every sample's loop violation is at most this (m), as the mechanisms issue asks.
 const EXACT_LOOP: f64 = 1e-12;
 /// The coupler accuracy (m) at which M2's cost is compared with MuJoCo's (whose soft loop is off by 4.5e-2 m).
 const FOUR_BAR_TARGET: f64 = 1e-9;
+
+/// Where a mechanism run's row goes in its table ([`compare_rows`]).
+fn row_key(config: &MechanismConfig) -> RowKey {
+    (
+        config.algebra,
+        formulation_rank(Some(config.formulation)),
+        integrator_rank(Integrator::General(config.method)),
+        config.dt,
+    )
+}
+
+/// Why the runs of M1 or M2 cannot be compared with MuJoCo's error at the mechanism's T, if they cannot.
+fn length_mismatch(results: &[MechanismResult], id: MechanismId) -> Option<String> {
+    results
+        .iter()
+        .filter(|(c, _)| c.id == id)
+        .find_map(|(c, _)| mujoco::length_mismatch(c.duration, id.duration()))
+}
+
+/// The legend of the mechanisms' MuJoCo points.
+fn mechanism_legend(what: &str) -> String {
+    format!("MuJoCo 4.0 RK4{what} (measured\u{a0}{})", mujoco::MECHANISMS_DATE)
+}
 
 /// The successful runs of one mechanism, by series label, each sorted by cost.
 fn series_of(results: &[MechanismResult], id: MechanismId) -> BTreeMap<String, Vec<&MechanismOutcome>> {
@@ -91,7 +118,9 @@ fn work_precision_table(out: &mut String, results: &[MechanismResult], id: Mecha
     }
     columns.push("largest energy drift (J)");
     table_header(out, &columns);
-    for (config, result) in results.iter().filter(|(c, _)| c.id == id) {
+    let mut rows: Vec<&MechanismResult> = results.iter().filter(|(c, _)| c.id == id).collect();
+    rows.sort_by(|a, b| compare_rows(&row_key(&a.0), &row_key(&b.0)));
+    for (config, result) in rows {
         let mut row = vec![config.series_label(), format!("{:.0e}", config.dt)];
         match result {
             Ok(o) => {
@@ -136,10 +165,10 @@ fn chain_table(out: &mut String, results: &[MechanismResult]) {
             "links N",
             "PGA µs/step",
             "CGA µs/step",
-            "MuJoCo ball µs/step",
+            &format!("MuJoCo ball µs/step (measured {})", mujoco::MECHANISMS_DATE),
             "MuJoCo / PGA",
-            "MuJoCo hinge µs/step",
-            "Pinocchio ABA µs/evaluation",
+            &format!("MuJoCo hinge µs/step (measured {})", mujoco::MECHANISMS_DATE),
+            &format!("Pinocchio ABA µs/evaluation (measured {})", mujoco::MECHANISMS_DATE),
             "PGA µs per evaluation per degree of freedom",
         ],
     );
@@ -180,7 +209,9 @@ fn chain_table(out: &mut String, results: &[MechanismResult]) {
 fn summary(out: &mut String, results: &[MechanismResult]) {
     let _ = writeln!(
         out,
-        "| mechanism | target | algebra | cheapest configuration | its CPU per simulated s (s) | MuJoCo's | MuJoCo's / ours |"
+        "| mechanism | target | algebra | cheapest configuration | its CPU per simulated s (s) | MuJoCo's (measured \
+         {date}) | MuJoCo's / ours (MuJoCo measured {date}) |",
+        date = mujoco::MECHANISMS_DATE
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     let m1 = mujoco::DOUBLE_PENDULUM;
@@ -207,6 +238,16 @@ fn summary(out: &mut String, results: &[MechanismResult]) {
         if groups.is_empty() {
             continue;
         }
+        if let Some(why) = length_mismatch(results, id) {
+            // The targets are errors at the mechanism's T: a run of another length is not compared with them.
+            let _ = writeln!(
+                out,
+                "| {} | {what} | both | – | – | {} | {why} |",
+                id.label(),
+                scientific(theirs)
+            );
+            continue;
+        }
         for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
             let (label, ours) =
                 cheapest(&groups, target, algebra).map_or(("none reaches it".to_string(), None), |(l, c)| (l, Some(c)));
@@ -223,7 +264,8 @@ fn summary(out: &mut String, results: &[MechanismResult]) {
     }
 }
 
-/// Work-precision of M1 or M2, one panel per algebra, MuJoCo's points as markers.
+/// Work-precision of M1 or M2: a panel per integrator family and joint formulation (two integrators in two
+/// algebras each), MuJoCo's points as black triangles where the runs are of the mechanism's full length.
 fn work_precision_figure(
     dir: &Path,
     results: &[MechanismResult],
@@ -234,10 +276,11 @@ fn work_precision_figure(
     if groups.is_empty() {
         return Ok(false);
     }
-    let (y, mujoco_points): (&str, Vec<(f64, f64)>) = match id {
+    let (y, mujoco_points, what): (&str, Vec<(f64, f64)>, &str) = match id {
         MechanismId::FourBar => (
             "coupler centre-of-mass error at T (m)",
             vec![(mujoco::FOUR_BAR_TIME_PER_STEP / 1e-3, mujoco::FOUR_BAR_COUPLER_ERROR)],
+            "at dt = 1e-3, its loop closed by a soft equality constraint",
         ),
         _ => (
             "orientation error at T (rad)",
@@ -246,46 +289,74 @@ fn work_precision_figure(
                 .iter()
                 .map(|&(dt, e)| (mujoco::DOUBLE_PENDULUM.time_per_step / dt, e))
                 .collect(),
+            "at dt = 1e-2, 1e-3, 1e-4",
         ),
     };
-    let titles: Vec<String> = [AlgebraKind::Pga, AlgebraKind::Cga]
+    let mismatch = length_mismatch(results, id);
+    // Panels by family, then formulation; in each, a series per palette slot (algebra and integrator).
+    type PanelSeries<'a> = BTreeMap<usize, (AlgebraKind, Integrator, &'a Vec<&'a MechanismOutcome>)>;
+    let mut panels_runs: BTreeMap<(Family, usize), (scenarios::Formulation, PanelSeries)> = BTreeMap::new();
+    for runs in groups.values() {
+        let config = runs[0].config;
+        let integrator = Integrator::General(config.method);
+        let (family, member) = Family::of(integrator);
+        panels_runs
+            .entry((family, formulation_rank(Some(config.formulation))))
+            .or_insert_with(|| (config.formulation, BTreeMap::new()))
+            .1
+            .insert(
+                crate::figures::slot(config.algebra, member),
+                (config.algebra, integrator, runs),
+            );
+    }
+    let titles: Vec<String> = panels_runs
         .iter()
-        .map(|a| format!("{} in {}", id.label(), a.name()))
+        .map(|((family, _), (formulation, _))| panel_title(Some(*formulation), *family))
         .collect();
-    let panels: Vec<Panel> = [AlgebraKind::Pga, AlgebraKind::Cga]
-        .iter()
+    let panels: Vec<Panel> = panels_runs
+        .values()
         .zip(&titles)
-        .map(|(&algebra, title)| {
-            let mut series: Vec<Series> = groups
-                .iter()
-                .filter(|(_, runs)| runs[0].config.algebra == algebra)
-                .map(|(label, runs)| {
+        .map(|((_, series), title)| {
+            let mut series: Vec<Series> = series
+                .values()
+                .map(|(algebra, integrator, runs)| {
                     let points = runs
                         .iter()
                         .filter_map(|o| Some((o.cpu_per_simulated_second, headline_error(o)?)))
                         .collect();
-                    Series {
+                    let (_, member) = Family::of(*integrator);
+                    let line = Series {
                         markers: true,
-                        ..Series::line(label.clone(), points)
-                    }
+                        ..Series::line(format!("{}, {}", algebra.name(), integrator.name()), points)
+                    };
+                    styled(line, *algebra, member)
                 })
                 .collect();
-            series.push(Series {
-                markers_only: true,
-                ..Series::line(
-                    "MuJoCo 4.0 RK4 (measured, dt = 1e-2, 1e-3, 1e-4)",
-                    mujoco_points.clone(),
-                )
-            });
+            if mismatch.is_none() {
+                series.push(Series::reference_points(mechanism_legend(""), mujoco_points.clone()));
+            }
             Panel::new(Labels::new(title, "CPU per simulated second (s)", y), series)
                 .log_x()
                 .log_y()
         })
         .collect();
-    figure(
+    let caption = match &mismatch {
+        Some(why) => format!(
+            "MuJoCo's points are not drawn, {why}: its errors were measured at the mechanism's full T. Dark, solid: \
+             PGA; light, dashed: CGA."
+        ),
+        None => format!(
+            "Black triangles: MuJoCo 4.0 RK4 {what}, measured {} with MULTIBODY.md's scripts on the project's \
+             2-core machine type (thread CPU time); constants, not measured by this run. Dark, solid: PGA; light, \
+             dashed: CGA.",
+            mujoco::MECHANISMS_DATE
+        ),
+    };
+    figure_with_caption(
         &dir.join(name),
         &format!("{}: error against CPU time", id.label()),
         &panels,
+        &caption,
     )?;
     Ok(true)
 }
@@ -310,33 +381,43 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
     }
     let points =
         |table: &[(usize, f64)], factor: f64| table.iter().map(|&(n, t)| (n as f64, t * 1e6 * factor)).collect();
+    let date = mujoco::MECHANISMS_DATE;
     let series = vec![
-        Series {
-            markers: true,
-            ..Series::line("PGA, ball joints by virtual power, RK4", pga)
-        },
-        Series {
-            markers: true,
-            ..Series::line("CGA, the same", cga)
-        },
+        styled(
+            Series {
+                markers: true,
+                ..Series::line("PGA, ball joints by virtual power, RK4", pga)
+            },
+            AlgebraKind::Pga,
+            0,
+        ),
+        styled(
+            Series {
+                markers: true,
+                ..Series::line("CGA, the same", cga)
+            },
+            AlgebraKind::Cga,
+            0,
+        ),
+        Series::reference_points(
+            mechanism_legend(", ball joints"),
+            points(&mujoco::CHAIN_BALL_TIME_PER_STEP, 1.0),
+        ),
         Series {
             markers_only: true,
+            shape: Shape::Triangle,
+            slot: Some(4),
             ..Series::line(
-                "MuJoCo 4.0 RK4, ball joints",
-                points(&mujoco::CHAIN_BALL_TIME_PER_STEP, 1.0),
-            )
-        },
-        Series {
-            markers_only: true,
-            ..Series::line(
-                "MuJoCo 4.0 RK4, hinges",
+                mechanism_legend(", hinges"),
                 points(&mujoco::CHAIN_HINGE_TIME_PER_STEP, 1.0),
             )
         },
         Series {
             markers_only: true,
+            shape: Shape::Diamond,
+            slot: Some(2),
             ..Series::line(
-                "Pinocchio 4.1 ABA × 4 evaluations",
+                format!("Pinocchio 4.1 ABA × 4 evaluations (measured\u{a0}{date})"),
                 points(&mujoco::PINOCCHIO_CHAIN_EVALUATION, 4.0),
             )
         },
@@ -347,7 +428,15 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
     )
     .log_x()
     .log_y();
-    figure(&dir.join(name), "M3 chain: cost against the number of links", &[panel])?;
+    figure_with_caption(
+        &dir.join(name),
+        "M3 chain: cost against the number of links",
+        &[panel],
+        &format!(
+            "MuJoCo and Pinocchio: constants measured {date} with MULTIBODY.md's scripts on the project's 2-core \
+             machine type (thread CPU time), not by this run; ours: this run."
+        ),
+    )?;
     Ok(true)
 }
 

@@ -3,6 +3,10 @@
 //! error at T (rad; the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per
 //! step. Drawn as reference markers on the work-precision
 //! plots: CPU per simulated second = time per step / dt.
+//!
+//! These are constants, not measured by the job: wherever the report shows them it says when and where they were
+//! measured ([`SINGLE_BODY_MEASURED`], [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a
+//! run of another length (`--duration`) is not compared with them ([`length_mismatch`]).
 
 use reference::SceneId;
 
@@ -61,6 +65,38 @@ pub fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
     })
 }
 
+/// The day the single-body figures below entered the code (commit b6f0a06): the day they were measured is not
+/// recorded; the README calls it an earlier day than the mechanisms' 2026-11-25.
+pub const SINGLE_BODY_RECORDED: &str = "2026-11-22";
+
+/// Where the single-body scenes' MuJoCo figures come from, as far as the repository records it; printed beside
+/// them in the report.
+pub const SINGLE_BODY_MEASURED: &str = "MuJoCo 4.0 (RK4) figures from the project's issue tracker, measured by the \
+     team on the project's 2-core machine and recorded in this code on 2026-11-22 (the day of the measurement is \
+     not recorded); constants, not measured by this run";
+
+/// The legend of the single-body MuJoCo points on the plots.
+pub fn single_body_legend() -> String {
+    // No-break space: the legend wraps before "(recorded", not inside it.
+    format!("MuJoCo 4.0 RK4 (recorded\u{a0}{SINGLE_BODY_RECORDED})")
+}
+
+/// The day the mechanisms' MuJoCo and Pinocchio figures were measured ([`MECHANISMS_MEASURED`]).
+pub const MECHANISMS_DATE: &str = "2026-11-25";
+
+/// Why runs of `duration` (s) cannot be compared with MuJoCo's error at the full length `full` (s), if they
+/// cannot: "n/a: shortened run (2 s of T = 10 s)". Errors grow with time, so a shorter run's error at its end is
+/// not comparable with MuJoCo's at T.
+pub fn length_mismatch(duration: f64, full: f64) -> Option<String> {
+    if (duration - full).abs() <= 1e-9 * full.abs() {
+        None
+    } else if duration < full {
+        Some(format!("n/a: shortened run ({duration} s of T = {full} s)"))
+    } else {
+        Some(format!("n/a: run of {duration} s, not T = {full} s"))
+    }
+}
+
 pub fn anchor(scene: SceneId) -> Option<Anchor> {
     let points = |errors: [f64; 3]| [(1e-2, errors[0]), (1e-3, errors[1]), (1e-4, errors[2])];
     match scene {
@@ -94,7 +130,8 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
     })
 }
 
-/// Where the mechanisms' MuJoCo and Pinocchio figures below come from, printed beside them in the report. (The
+/// Where the mechanisms' MuJoCo and Pinocchio figures below come from ([`MECHANISMS_DATE`]), printed beside them in
+/// the report. (The
 /// M1 and M2 times are those measured beside the benchmark run the README quotes; other runs the same day gave
 /// 5.2–6.8 µs and 11.0–15.6 µs per step: the shared machine varies by a third from hour to hour.)
 pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with MULTIBODY.md's \
@@ -160,5 +197,17 @@ mod tests {
         // The first crossing from the cheap end counts, not a later one past a round-off floor.
         let floored = [(10.0, 1e-4), (100.0, 1e-8), (1000.0, 2e-8)];
         assert!((cost_at_error(&floored, 1e-6).unwrap() - 1000f64.sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn runs_of_another_length_are_not_compared() {
+        assert_eq!(length_mismatch(10.0, 10.0), None);
+        assert_eq!(
+            length_mismatch(2.0, 10.0).as_deref(),
+            Some("n/a: shortened run (2 s of T = 10 s)")
+        );
+        assert!(length_mismatch(20.0, 10.0).unwrap().starts_with("n/a"));
+        assert!(MECHANISMS_MEASURED.contains(MECHANISMS_DATE));
+        assert!(SINGLE_BODY_MEASURED.contains(SINGLE_BODY_RECORDED));
     }
 }

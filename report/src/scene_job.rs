@@ -16,6 +16,7 @@ use dynamics::simulate::Sample;
 use dynamics::{Cga, Pga};
 
 use crate::csv;
+use crate::figures::{running_max, styled, LOG_FLOOR};
 use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
 use crate::scene_file::{joint_violations, FileAlgebra, JointGeometry, Layout, Pose, SceneFile, SceneFileError};
@@ -152,11 +153,12 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         files.push(csv_path);
     }
 
-    let over_time = |values: fn(&AlgebraRun) -> &[f64]| -> Vec<Series> {
+    let over_time = |values: fn(&AlgebraRun) -> Vec<f64>| -> Vec<Series> {
         runs.iter()
             .map(|run| {
-                let points = run.bodies[0].iter().zip(values(run)).map(|(s, &v)| (s.t, v)).collect();
-                Series::line(run.algebra.name(), points)
+                let points = run.bodies[0].iter().zip(values(run)).map(|(s, v)| (s.t, v)).collect();
+                // PGA dark and solid, CGA light and dashed, as in the main job's plots.
+                styled(Series::line(run.algebra.name(), points), run.algebra, 0)
             })
             .collect()
     };
@@ -175,17 +177,18 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     let labels = Labels::new(&energy_title, "time (s)", energy_axis);
     chart(
         &energy_path,
-        &Panel::new(labels, over_time(|r| &r.energy_change)).log_y(),
+        &Panel::new(labels, over_time(|r| r.energy_change.clone())).log_y_with_floor(LOG_FLOOR),
     )?;
     files.push(energy_path);
     if !layout.joints.is_empty() {
         let violation_title = format!("{title}: constraint violation, dt = {:e} s", scene.dt);
         let violation_path = output.join(format!("{stem}_violation.png"));
-        let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation (m)");
-        chart(
-            &violation_path,
-            &Panel::new(labels, over_time(|r| &r.violation)).log_y(),
-        )?;
+        // The running maximum: per-sample violations at round-off are noise that hides the curves.
+        let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation up to t (m)");
+        let panel = Panel::new(labels, over_time(|r| running_max(&r.violation)))
+            .log_y_with_floor(LOG_FLOOR)
+            .note("The largest violation over all joints from the start up to each sample (running maximum).");
+        chart(&violation_path, &panel)?;
         files.push(violation_path);
     }
 
