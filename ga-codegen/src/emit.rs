@@ -21,6 +21,9 @@ use crate::operation::Operation;
 use crate::product::reverse_sign;
 use crate::program::{Definition, Term, Value};
 
+/// The traits every emitted struct derives (it is also `#[repr(C)]`).
+pub const DERIVED_TRAITS: [&str; 5] = ["Clone", "Copy", "Debug", "PartialEq", "Default"];
+
 /// Emits the items of the algebra's module.
 pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
     let emitter = Emitter {
@@ -223,9 +226,10 @@ impl Emitter<'_> {
         );
         let zeros = fields.iter().map(|f| quote! { #f: 0.0 });
         let indices = 0..count;
+        let derived = DERIVED_TRAITS.map(|name| format_ident!("{name}"));
         quote! {
             #[doc = #doc]
-            #[derive(Clone, Copy, Debug, PartialEq, Default)]
+            #[derive(#(#derived),*)]
             #[repr(C)]
             pub struct #name {
                 #( #[doc = #field_docs] pub #fields: #scalar, )*

@@ -15,7 +15,8 @@
 //!    `a ~a = 1`;
 //! 4. [`program`]: lowering to straight-line code (shared products, doubling), with the [`Cost`]
 //!    model (exact multiply and add counts); [`functions`] catalogues every emitted function;
-//! 5. [`emit`]: Rust tokens via `quote`.
+//! 5. [`emit`]: Rust tokens via `quote`; [`features`] emits the opt-in impls of ecosystem traits
+//!    (`Display`, `approx`, `mint`).
 //!
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
@@ -29,6 +30,7 @@ pub mod emit;
 pub mod error;
 pub mod evaluator;
 pub mod expand;
+pub mod features;
 pub mod functions;
 pub mod metric;
 pub mod operation;
@@ -39,6 +41,7 @@ pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
 pub use error::{Error, EvaluatorError, Location, NameProblem};
 pub use evaluator::Evaluator;
+pub use features::Feature;
 /// Exact rational numbers: metric entries and every coefficient of the expansion.
 pub use num_rational::Rational64;
 pub use operation::Operation;
@@ -48,6 +51,18 @@ pub use program::Cost;
 /// in `mod name { … }`.
 pub fn generate(declaration: &AlgebraDeclaration) -> Result<proc_macro2::TokenStream, Error> {
     emit::emit(&Algebra::new(declaration)?)
+}
+
+/// [`generate`], followed by the impls of `features` for every declared type (see [`features`]).
+/// The items [`generate`] emits are the same with or without features.
+pub fn generate_with_features(
+    declaration: &AlgebraDeclaration,
+    features: &[Feature],
+) -> Result<proc_macro2::TokenStream, Error> {
+    let algebra = Algebra::new(declaration)?;
+    let mut items = emit::emit(&algebra)?;
+    items.extend(features::emit(&algebra, features));
+    Ok(items)
 }
 
 /// Formats emitted tokens as readable Rust source (prettyplease), e.g. to inspect or snapshot them.

@@ -42,3 +42,21 @@ fn null_cga_motor_times_motor() {
         "Motor"
     ));
 }
+
+/// The opt-in impls (`Display`, `approx`, `mint`) of a vector and a rotor with permuted blade names.
+#[test]
+fn vga_features() {
+    let declaration = ga_codegen::AlgebraDeclaration {
+        scalar: ga_codegen::ScalarType::F32,
+        basis: common::basis(&[("e1", 1), ("e2", 1), ("e3", 1)]),
+        metric: None,
+        types: vec![
+            common::grades("Vector", &[1]),
+            common::blades("Rotor", &["scalar", "e23", "e31", "e12"]),
+        ],
+        operations: Some(vec![]),
+    };
+    let algebra = Algebra::new(&declaration).unwrap();
+    let features = ga_codegen::features::emit(&algebra, &ga_codegen::Feature::ALL);
+    insta::assert_snapshot!(ga_codegen::pretty(&features).unwrap());
+}

@@ -3,7 +3,7 @@
 //! Declares a geometric algebra and its sparse types in a module; the module receives fully unrolled
 //! Rust code for them, compiled by [`ga_codegen`].
 //!
-//! ```ignore
+//! ```
 //! ga_macros::algebra! {
 //!     /// 3D projective geometric algebra.
 //!     pub mod pga {
@@ -18,26 +18,78 @@
 //!             Translator = blades(scalar, e01, e02, e03);
 //!             Multivector = all;
 //!         }
-//!         ops = [geometric, outer, reverse];              // optional: emit only these operations
+//!         ops = [geometric, outer, reverse, transform];   // optional: emit only these operations
+//!         features = [display];                           // optional: impls of ecosystem traits
 //!     }
+//! }
+//!
+//! use pga::Transform as _;
+//!
+//! fn main() {
+//!     // The point (1, 2, 3) is e123 + 1 e032 + 2 e013 + 3 e021; the stored blades are canonical.
+//!     assert_eq!(pga::Point::BLADES, ["e012", "e013", "e023", "e123"]);
+//!     let point = pga::Point::from_array([-3.0, 2.0, -1.0, 1.0]);
+//!     // A translation by (10, 0, 0), and its composition with itself.
+//!     let step = pga::Translator { scalar: 1.0, e01: -5.0, e02: 0.0, e03: 0.0 };
+//!     let twice: pga::Motor = (step * step).into();
+//!     assert_eq!(twice, pga::Motor { scalar: 1.0, e01: -10.0, ..pga::Motor::ZERO });
+//!     assert_eq!(twice.transform(point), pga::Point::from_array([-3.0, 2.0, -21.0, 1.0]));
+//!     assert_eq!(twice.to_string(), "1 - 10*e01");
+//!     assert_eq!(pga::Plane { e1: 1.0, ..pga::Plane::ZERO } ^ pga::Plane { e2: 1.0, ..pga::Plane::ZERO },
+//!                pga::Line { e12: 1.0, ..pga::Line::ZERO });
 //! }
 //! ```
 //!
 //! - Attributes and doc comments on the module are kept on the emitted module, and so is its
-//!   visibility. Doc comments on a type are kept on its struct; other attributes on a type are refused.
+//!   visibility. Attributes on a type go onto its struct (see [Attributes on types](#attributes-on-types)).
 //! - The settings may come in any order, each at most once. `scalar`, `basis` and `types` are
-//!   required; `metric` and `ops` are optional (all operations are emitted without `ops`).
+//!   required; `metric`, `ops` and `features` are optional (all operations are emitted without
+//!   `ops`, no feature without `features`).
 //! - `scalar` is `f32` or `f64`.
 //! - `basis` lists the basis vectors in bit order, each with its square: `1`, `-1` or `0`.
 //! - `metric` declares any symmetric bilinear form instead: `metric[i][j]` = B(eᵢ, eⱼ), rational
 //!   entries (`1`, `-1`, `1/2`, `-1/2`), and then `basis` lists names only. CGA on a null basis, whose
-//!   rigid motors have PGA's 8 coefficients:
+//!   rigid motors have PGA's coefficient count:
 //!
-//!   ```ignore
-//!   basis = [e1, e2, e3, n0, ninf];
-//!   metric = [[1, 0, 0, 0, 0], [0, 1, 0, 0, 0], [0, 0, 1, 0, 0], [0, 0, 0, 0, -1], [0, 0, 0, -1, 0]];
-//!   types { Motor = blades(scalar, e1_e2, e1_e3, e2_e3, e1_ninf, e2_ninf, e3_ninf, e1_e2_e3_ninf); }
 //!   ```
+//!   ga_macros::algebra! {
+//!       pub mod cga {
+//!           scalar = f64;
+//!           basis = [e1, e2, e3, n0, ninf];
+//!           metric = [[1, 0, 0, 0, 0], [0, 1, 0, 0, 0], [0, 0, 1, 0, 0], [0, 0, 0, 0, -1], [0, 0, 0, -1, 0]];
+//!           types { Motor = blades(scalar, e1_e2, e1_e3, e2_e3, e1_ninf, e2_ninf, e3_ninf, e1_e2_e3_ninf); }
+//!           // Every operation emitted for `Motor` must have a type for its result: the complements
+//!           // and the polarity of a motor are not motors, so list the operations that are.
+//!           ops = [geometric, reverse, transform];
+//!       }
+//!   }
+//!
+//!   // As many coefficients as PGA's `Motor = grades(0, 2, 4)`:
+//!   # let pga = ga_codegen::Algebra::new(&ga_codegen::AlgebraDeclaration {
+//!   #     scalar: ga_codegen::ScalarType::F64,
+//!   #     basis: [("e0", 0), ("e1", 1), ("e2", 1), ("e3", 1)]
+//!   #         .map(|(name, square)| ga_codegen::BasisVectorDeclaration { name: name.into(), square })
+//!   #         .to_vec(),
+//!   #     metric: None,
+//!   #     types: vec![ga_codegen::TypeDeclaration {
+//!   #         name: "Motor".into(),
+//!   #         layout: ga_codegen::Layout::Grades(vec![0, 2, 4]),
+//!   #     }],
+//!   #     operations: None,
+//!   # })
+//!   # .unwrap();
+//!   assert_eq!(cga::Motor::BLADES.len(), pga.types[0].fields.len());
+//!   // Translators 1 − ½ t ninf compose by adding their vectors t.
+//!   let translator = |[x, y, z]: [f64; 3]| cga::Motor {
+//!       scalar: 1.0, e1_ninf: -x / 2.0, e2_ninf: -y / 2.0, e3_ninf: -z / 2.0, ..cga::Motor::ZERO
+//!   };
+//!   assert_eq!(translator([1.0, 2.0, 3.0]) * translator([4.0, 5.0, 6.0]), translator([5.0, 7.0, 9.0]));
+//!   ```
+//!
+//!   Without `ops`, this declaration is refused at `Motor` (as `tests/ui/no_result_type.rs` checks):
+//!   "no declared type holds the result of `Motor.right_complement()`: it needs the blades [n0,
+//!   e1_e2_n0, …]; declare a type with them (or `Multivector = all`), or list only the operations you
+//!   need in `ops = [...]`, without `right_complement`".
 //!
 //!   Blades are outer products of basis vectors (`e1_ninf` = e1 ∧ ninf), so grades keep their
 //!   meaning. The complements and the regressive product stay metric-free, relative to the basis
@@ -46,16 +98,157 @@
 //!   those blades in that order; `scalar` is the grade-0 blade, and a permuted name such as `e31`
 //!   stores −`e13`) or `all` (the full multivector, for small algebras only).
 //! - `ops` takes the method names of [`ga_codegen::Operation`], e.g. `geometric`, `outer`,
-//!   `left_contraction`, `reverse`, `transform`.
+//!   `left_contraction`, `reverse`, `transform`. Every operation is emitted for every type (pair), so
+//!   some declared type must hold each result.
 //! - `transform` is the sandwich `a x ~a` for unit versors (`a ~a = 1`), using that identity to do
-//!   less work: a unit PGA motor moves a point in 22 multiplies instead of the sandwich's 35.
+//!   less work than `sandwich`, which holds for any `a`. Each emitted function's doc comment states its
+//!   exact cost (`Cost: … multiplies, … adds.`), as [`ga_codegen::functions::cost`] counts it; for a
+//!   PGA motor moving a point:
 //!
-//! Limits, so that every accepted declaration builds in reasonable time and memory:
+//!   ```
+//!   use ga_codegen::{functions, Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, Operation};
+//!   use ga_codegen::{ScalarType, TypeDeclaration};
+//!
+//!   let pga = Algebra::new(&AlgebraDeclaration {
+//!       scalar: ScalarType::F64,
+//!       basis: [("e0", 0), ("e1", 1), ("e2", 1), ("e3", 1)]
+//!           .map(|(name, square)| BasisVectorDeclaration { name: name.into(), square })
+//!           .to_vec(),
+//!       metric: None,
+//!       types: [("Motor", vec![0, 2, 4]), ("Point", vec![3])]
+//!           .map(|(name, grades)| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) })
+//!           .to_vec(),
+//!       operations: None,
+//!   })?;
+//!   let multiplies = |operation| {
+//!       functions::cost(&pga, operation, "Motor", Some("Point")).map(|cost| cost.unwrap().multiplies)
+//!   };
+//!   assert_eq!(multiplies(Operation::Transform)?, 21);
+//!   assert_eq!(multiplies(Operation::Sandwich)?, 30);
+//!   # Ok::<(), ga_codegen::Error>(())
+//!   ```
+//! - `features` takes `display`, `approx` and `mint` (see [Features](#features)).
+//!
+//! ## Attributes on types
+//!
+//! Attributes on a type declaration go onto its struct: doc comments before the generated ones, any
+//! other attribute after the struct's own `#[derive(Clone, Copy, Debug, PartialEq, Default)]` and
+//! `#[repr(C)]`. So the types can derive the traits of other crates, with their helper attributes:
+//!
+//! ```
+//! ga_macros::algebra! {
+//!     pub mod vga {
+//!         scalar = f32;
+//!         basis = [e1 = 1, e2 = 1, e3 = 1];
+//!         types {
+//!             /// A direction, stored in GPU buffers and scene files.
+//!             #[derive(serde::Serialize, serde::Deserialize, bytemuck::Pod, bytemuck::Zeroable)]
+//!             #[serde(deny_unknown_fields)]
+//!             Vector = grades(1);
+//!             Rotor = grades(0, 2);
+//!         }
+//!         ops = [reverse, transform];
+//!     }
+//! }
+//!
+//! fn main() {
+//!     # assert_eq!(ga_codegen::emit::DERIVED_TRAITS, ["Clone", "Copy", "Debug", "PartialEq", "Default"]);
+//!     let v = vga::Vector { e1: 1.0, e2: 2.0, e3: 3.0 };
+//!     assert_eq!(serde_json::to_string(&v).unwrap(), r#"{"e1":1.0,"e2":2.0,"e3":3.0}"#);
+//!     assert_eq!(bytemuck::cast_slice::<vga::Vector, f32>(&[v, v]), [1.0, 2.0, 3.0, 1.0, 2.0, 3.0]);
+//! }
+//! ```
+//!
+//! (The same as a program: `cargo run -p ga-macros --example derives`.) Refused, at the offending
+//! token:
+//! - `#[cfg(…)]`: it would remove the struct but not the operations emitted for it with the other
+//!   types. Put the `cfg` on the module.
+//! - A derive of `Clone`, `Copy`, `Debug`, `PartialEq` or `Default`: already derived (also under a
+//!   `core::`/`std::` path). `Eq`, `Ord` and `Hash` cannot be derived for floating-point fields.
+//!   `PartialOrd` and the traits of other crates are fine.
+//! - A `repr` other than `C` and `align(N)`: `packed` (the fields all have the scalar type, so there
+//!   is no padding to remove; packing would only lower the alignment and make `&v.e1` an error),
+//!   `transparent`, `Rust`, integer types. `#[repr(C)]` may be written (bytemuck's `Pod` wants to see
+//!   it) and is merged with the struct's own; `#[repr(align(16))]` raises the alignment.
+//! - Inside `#[cfg_attr(predicate, …)]`, the same rules apply to each attribute it adds.
+//!
+//! Any other attribute (lint levels, `must_use`, derive helpers such as `serde(…)`) is passed
+//! through, for rustc and the derives to check.
+//!
+//! ## Features
+//!
+//! `features = [display, approx, mint]` adds impls of ecosystem traits to every declared type; the
+//! rest of the module is the same with or without them. The emitted code names `::approx` and
+//! `::mint`, so the crate that invokes the macro must depend on those crates (`approx` 0.5, `mint`
+//! 0.5.8 or later).
+//! - `display`: `core::fmt::Display`, the non-zero coefficients as a sum of blades in storage order,
+//!   each followed by `*` and its field's name (none for `scalar`), signs folded into ` + ` / ` - `:
+//!   `1.5 + 2*e12 - 0.5*e0123`. Zero coefficients are skipped; all zero prints `0`. A precision
+//!   (`{:.3}`) applies to every coefficient. The `*` keeps `2*e12` from reading as 2·10¹².
+//! - `approx`: `approx::AbsDiffEq`, `RelativeEq` and `UlpsEq`, true when every coefficient is within
+//!   the tolerance of the other's (with the scalar's default tolerances).
+//! - `mint`: `From` both ways and `mint::IntoMint`, for the types with an unambiguous mint type,
+//!   decided by [`ga_codegen::features::mint_mapping`]: 2, 3 or 4 grade-1 blades of orthonormal basis
+//!   vectors are a `mint::Vector2`/`3`/`4` (`x`, `y`, `z`, `w` in basis order), and the scalar with
+//!   the three bivectors of three orthonormal basis vectors a, b, c is a `mint::Quaternion` with
+//!   `s` = scalar, `v` = (−e_bc, e_ac, −e_ab), the signs that make a unit rotor's `transform` rotate
+//!   like the quaternion's `q v q*`. Other types get no conversion; `mint` with no such type is an
+//!   error.
+//!
+//! ```
+//! ga_macros::algebra! {
+//!     pub mod vga {
+//!         scalar = f64;
+//!         basis = [e1 = 1, e2 = 1, e3 = 1];
+//!         types { Vector = grades(1); Rotor = blades(scalar, e12, e13, e23); }
+//!         ops = [reverse, transform];
+//!         features = [display, approx, mint];
+//!     }
+//! }
+//!
+//! use vga::Transform as _;
+//!
+//! fn main() {
+//!     // A quarter turn about the z axis, from a quaternion.
+//!     let half = std::f64::consts::FRAC_PI_4;
+//!     let z = mint::Vector3 { x: 0.0, y: 0.0, z: half.sin() };
+//!     let rotor = vga::Rotor::from(mint::Quaternion { v: z, s: half.cos() });
+//!     assert_eq!(format!("{rotor:.4}"), "0.7071 - 0.7071*e12");
+//!     let turned = rotor.transform(vga::Vector { e1: 1.0, e2: 0.0, e3: 0.0 });
+//!     approx::assert_relative_eq!(turned, vga::Vector { e1: 0.0, e2: 1.0, e3: 0.0 }, epsilon = 1e-15);
+//!     let turned: mint::Vector3<f64> = turned.into();
+//!     assert!((turned.y - 1.0).abs() < 1e-15);
+//! }
+//! ```
+//!
+//! ## Limits
+//!
+//! So that every accepted declaration builds in reasonable time and memory:
 //! - At most 32 basis vectors (blades are 32-bit masks), and `all` only up to 10 dimensions: its
 //!   products have 4ⁿ terms.
 //! - At most 1024 fields in any type (2¹⁰, the size of `all` in 10 dimensions), since a product of two
 //!   types has up to fields² terms. The count is checked before any blade is listed, so `grades(16)`
 //!   in 32 dimensions (601 080 390 fields) is refused at once.
+//!
+//! These figures are the compiler's:
+//!
+//! ```
+//! use ga_codegen::algebra::{MAX_DIMENSION, MAX_FULL_MULTIVECTOR_DIMENSION, MAX_TYPE_FIELDS};
+//! use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Layout, ScalarType, TypeDeclaration};
+//!
+//! assert_eq!((MAX_DIMENSION, MAX_FULL_MULTIVECTOR_DIMENSION, MAX_TYPE_FIELDS), (32, 10, 1024));
+//! assert_eq!(MAX_TYPE_FIELDS, 1 << MAX_FULL_MULTIVECTOR_DIMENSION);
+//! let middle = AlgebraDeclaration {
+//!     scalar: ScalarType::F64,
+//!     basis: (0..32).map(|i| BasisVectorDeclaration { name: format!("v{i}"), square: 1 }).collect(),
+//!     metric: None,
+//!     types: vec![TypeDeclaration { name: "Middle".into(), layout: Layout::Grades(vec![16]) }],
+//!     operations: None,
+//! };
+//! assert!(matches!(Algebra::new(&middle), Err(Error::TooManyFields { fields: 601_080_390, .. })));
+//! ```
+//!
+//! ## Names
 //!
 //! Names are Rust identifiers, Unicode included (`basis = [α = 1, β = 1]`); raw identifiers and
 //! keywords are refused. Type names must differ in snake case (they name the `const fn` products, as
@@ -65,8 +258,10 @@
 //! blade may be named `scalar` or a keyword (as `f` + `o` + `r` would be).
 //!
 //! Mistakes are compile errors at the offending token (the square `2`, the blade `e05`, the unknown
-//! setting, the metric entry `0.5` or the entry that breaks its symmetry), all of them at once where
-//! they are independent.
+//! setting, the metric entry `0.5` or the entry that breaks its symmetry, the refused attribute, the
+//! operation whose result no type holds), all of them at once where they are independent.
+
+#![deny(missing_docs)]
 
 mod diagnostics;
 mod expand;
@@ -80,7 +275,7 @@ use proc_macro::TokenStream;
 pub fn algebra(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as parse::AlgebraInput);
     validate::validate(&input)
-        .and_then(|declaration| expand::expand(&input, &declaration))
+        .and_then(|validated| expand::expand(&input, &validated))
         .unwrap_or_else(syn::Error::into_compile_error)
         .into()
 }

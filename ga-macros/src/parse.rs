@@ -11,7 +11,7 @@ use syn::{braced, bracketed, parenthesized, token, Attribute, Expr, Ident, LitIn
 use crate::diagnostics::{both, combine};
 
 /// The settings a module body accepts, as error messages list them.
-const SETTING_KEYS: &str = "`scalar`, `basis`, `metric`, `types` or `ops`";
+const SETTING_KEYS: &str = "`scalar`, `basis`, `metric`, `types`, `ops` or `features`";
 
 /// `#[attributes] visibility mod name { settings }`.
 pub struct AlgebraInput {
@@ -30,6 +30,8 @@ pub struct AlgebraInput {
     pub types: Vec<TypeEntry>,
     /// `ops = [geometric, reverse];`, if present.
     pub ops: Option<Punctuated<Ident, Token![,]>>,
+    /// `features = [display, approx, mint];`, if present.
+    pub features: Option<Punctuated<Ident, Token![,]>>,
 }
 
 /// The `basis` setting. Its key is kept as the place to report errors about the basis as a whole
@@ -65,7 +67,7 @@ pub struct SquareLiteral {
     pub magnitude: LitInt,
 }
 
-/// `Name = layout;` with the doc comments written before it.
+/// `Name = layout;` with the attributes (doc comments, derives, …) written before it.
 pub struct TypeEntry {
     pub attrs: Vec<Attribute>,
     pub name: Ident,
@@ -107,6 +109,7 @@ impl Parse for AlgebraInput {
         let mut metric = None;
         let mut types = None;
         let mut ops = None;
+        let mut features = None;
         // A repeated setting does not stop parsing, so that every repetition is reported at once.
         let mut repeated = Vec::new();
         while !body.is_empty() {
@@ -147,6 +150,10 @@ impl Parse for AlgebraInput {
                     let names = assigned_list(&body, Ident::parse)?;
                     store(&mut ops, names, &key)
                 }
+                "features" => {
+                    let names = assigned_list(&body, Ident::parse)?;
+                    store(&mut features, names, &key)
+                }
                 _ => {
                     return Err(syn::Error::new(
                         key.span(),
@@ -171,6 +178,7 @@ impl Parse for AlgebraInput {
             metric,
             types,
             ops,
+            features,
         })
     }
 }

@@ -1,20 +1,30 @@
 //! From the AST to a [`ga_codegen::AlgebraDeclaration`] the compiler accepts. Errors the macro can
-//! see on its own (scalar names, number literals, operation names, attributes) are reported here,
-//! all at once; the algebra's own rules are left to [`ga_codegen::Algebra::new`], whose errors
-//! [`locate`] turns into `syn::Error`s at the offending tokens.
+//! see on its own (scalar names, number literals, operation and feature names, attributes) are
+//! reported here, all at once; the algebra's own rules are left to [`ga_codegen::Algebra::new`],
+//! whose errors [`locate`] turns into `syn::Error`s at the offending tokens.
 
+use ga_codegen::emit::DERIVED_TRAITS;
+use ga_codegen::features::mint_mapping;
 use ga_codegen::{
-    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Layout, Location, Operation, Rational64, ScalarType,
-    TypeDeclaration,
+    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Feature, Layout, Location, Operation, Rational64,
+    ScalarType, TypeDeclaration,
 };
 use quote::ToTokens;
-use syn::{Attribute, BinOp, Expr, ExprBinary, ExprLit, ExprUnary, Ident, Lit, UnOp};
+use syn::parse::ParseStream;
+use syn::punctuated::Punctuated;
+use syn::{BinOp, Expr, ExprBinary, ExprLit, ExprUnary, Ident, Lit, LitInt, Meta, Path, Token, UnOp};
 
 use crate::diagnostics::{both, collect};
 use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, MetricRow, TypeEntry};
 
+/// What the macro emits: the compiler's declaration and the opt-in features.
+pub struct Validated {
+    pub declaration: AlgebraDeclaration,
+    pub features: Vec<Feature>,
+}
+
 /// The declaration written in `input`, checked by the compiler.
-pub fn validate(input: &AlgebraInput) -> syn::Result<AlgebraDeclaration> {
+pub fn validate(input: &AlgebraInput) -> syn::Result<Validated> {
     let scalar = scalar_type(&input.scalar);
     let has_metric = input.metric.is_some();
     let basis = collect(input.basis.vectors.iter().map(|entry| basis_vector(entry, has_metric)));
@@ -22,11 +32,14 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<AlgebraDeclaration> {
         .metric
         .as_ref()
         .map(|metric| collect(metric.rows.iter().map(metric_row)));
-    let types = collect(input.types.iter().map(type_declaration));
+    let types = collect(input.types.iter().map(|entry| type_declaration(entry, &input.scalar)));
     let operations = input.ops.as_ref().map(|names| collect(names.iter().map(operation)));
+    let features = input.features.as_ref().map(feature_list).transpose();
     let (metric, operations) = (metric.transpose(), operations.transpose());
-    let ((((scalar, basis), metric), types), operations) =
-        both(both(both(both(scalar, basis), metric), types), operations)?;
+    let (((((scalar, basis), metric), types), operations), features) = both(
+        both(both(both(both(scalar, basis), metric), types), operations),
+        features,
+    )?;
     let declaration = AlgebraDeclaration {
         scalar,
         basis,
@@ -36,17 +49,82 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<AlgebraDeclaration> {
     };
     // `generate` checks this too, but checking here makes every declaration that leaves this module
     // one the compiler accepts, which the tests can see without emitting any code.
-    Algebra::new(&declaration).map_err(|error| locate(input, &error))?;
-    Ok(declaration)
+    let algebra = Algebra::new(&declaration).map_err(|error| locate(input, &error))?;
+    let features: Vec<Feature> = features
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(feature, _)| feature)
+        .collect();
+    if let Some(mint) = input.features.iter().flatten().find(|name| *name == "mint") {
+        if !algebra.types.iter().any(|ty| mint_mapping(&algebra, ty).is_some()) {
+            return Err(syn::Error::new(
+                mint.span(),
+                "no declared type maps to a `mint` type: `mint` converts types of 2, 3 or 4 grade-1 blades \
+                 of orthonormal basis vectors (`mint::Vector2`, `Vector3`, `Vector4`) and rotors \
+                 `blades(scalar, e12, e13, e23)` of three orthonormal basis vectors (`mint::Quaternion`)",
+            ));
+        }
+    }
+    Ok(Validated { declaration, features })
+}
+
+/// The features listed in `features = [...]`, each at most once.
+fn feature_list(names: &Punctuated<Ident, Token![,]>) -> syn::Result<Vec<(Feature, &Ident)>> {
+    let listed: Vec<Option<Feature>> = names.iter().map(|name| Feature::from_name(&name.to_string())).collect();
+    collect(
+        names
+            .iter()
+            .zip(&listed)
+            .enumerate()
+            .map(|(index, (name, feature))| match feature {
+                None => {
+                    let valid: Vec<String> = Feature::ALL.iter().map(|f| format!("`{}`", f.name())).collect();
+                    Err(syn::Error::new(
+                        name.span(),
+                        format!("unknown feature `{name}`: expected one of {}", valid.join(", ")),
+                    ))
+                }
+                Some(feature) if listed[..index].contains(&Some(*feature)) => Err(syn::Error::new(
+                    name.span(),
+                    format!("feature `{name}` is listed twice: list each feature once"),
+                )),
+                Some(feature) => Ok((*feature, name)),
+            }),
+    )
 }
 
 /// The compiler's `error` as a `syn::Error` at the tokens of `input` it is about.
 pub fn locate(input: &AlgebraInput, error: &Error) -> syn::Error {
-    syn::Error::new_spanned(offending_tokens(input, error), error)
+    let message = match error {
+        // The fix is in the macro's syntax, which the compiler's message cannot name.
+        Error::NoResultType { operation, .. } if listed_operation(input, operation).is_some() => {
+            format!("{error}, or remove `{operation}` from `ops`")
+        }
+        Error::NoResultType { operation, .. } => {
+            format!("{error}, or list only the operations you need in `ops = [...]`, without `{operation}`")
+        }
+        _ => error.to_string(),
+    };
+    syn::Error::new_spanned(offending_tokens(input, error), message)
+}
+
+/// The name of `operation` in the `ops` list, if the list names it.
+fn listed_operation<'a>(input: &'a AlgebraInput, operation: &str) -> Option<&'a Ident> {
+    input.ops.iter().flatten().find(|name| *name == operation)
 }
 
 fn offending_tokens<'a>(input: &'a AlgebraInput, error: &Error) -> &'a dyn ToTokens {
     let module_name = &input.name;
+    // An operation whose result no type holds: where it is asked for (in `ops`), or else the type
+    // it is emitted for.
+    if let Error::NoResultType { operation, lhs, .. } = error {
+        if let Some(name) = listed_operation(input, operation) {
+            return name;
+        }
+        if let Some(entry) = input.types.iter().find(|entry| entry.name == lhs) {
+            return &entry.name;
+        }
+    }
     match error.location() {
         // Errors about the basis as a whole read best next to the basis.
         Location::Algebra if matches!(error, Error::EmptyBasis | Error::TooManyBasisVectors { .. }) => &input.basis.key,
@@ -184,8 +262,13 @@ fn integer(expression: &Expr, entry: &Expr) -> syn::Result<i64> {
     }
 }
 
-fn type_declaration(entry: &TypeEntry) -> syn::Result<TypeDeclaration> {
-    let attributes = collect(entry.attrs.iter().map(documentation_only));
+fn type_declaration(entry: &TypeEntry, scalar: &Ident) -> syn::Result<TypeDeclaration> {
+    let attributes = collect(
+        entry
+            .attrs
+            .iter()
+            .map(|attribute| type_attribute(&attribute.meta, scalar)),
+    );
     let layout = match &entry.layout {
         LayoutSyntax::Grades(grades) => collect(grades.iter().map(|grade| grade.base10_parse())).map(Layout::Grades),
         LayoutSyntax::Blades(blades) => Ok(Layout::Blades(blades.iter().map(Ident::to_string).collect())),
@@ -198,15 +281,103 @@ fn type_declaration(entry: &TypeEntry) -> syn::Result<TypeDeclaration> {
     })
 }
 
-/// Doc comments are carried onto the emitted struct; any other attribute (a derive, a cfg) would
-/// apply to the struct but not to the operations emitted for it, so it is refused.
-fn documentation_only(attribute: &Attribute) -> syn::Result<()> {
-    if attribute.path().is_ident("doc") {
+/// Standard traits a struct of floating-point fields cannot derive.
+const NOT_DERIVABLE: [&str; 3] = ["Eq", "Ord", "Hash"];
+
+/// An attribute on a type declaration goes onto the emitted struct, except those that cannot work
+/// there: `cfg` (it would remove the struct but not the operations emitted for it with the other
+/// types), a derive of a trait the struct already derives or that floating-point fields cannot
+/// derive, and a `repr` other than `C` (always emitted) and `align(N)`. Inside `cfg_attr`, the same
+/// rules apply to each attribute it adds. Any other attribute (doc comments, derives such as
+/// `serde::Serialize`, derive helpers, lint levels) is passed through for rustc to check.
+fn type_attribute(meta: &Meta, scalar: &Ident) -> syn::Result<()> {
+    let path = meta.path();
+    if path.is_ident("cfg") {
+        Err(syn::Error::new_spanned(
+            meta,
+            "`cfg` is not allowed on a type declaration: it would remove the struct but not the \
+             operations emitted for it with the other types; put the `cfg` on the module",
+        ))
+    } else if path.is_ident("cfg_attr") {
+        let added = meta.require_list()?.parse_args_with(|input: ParseStream| {
+            input.parse::<Meta>()?;
+            input.parse::<Token![,]>()?;
+            Punctuated::<Meta, Token![,]>::parse_terminated(input)
+        })?;
+        collect(added.iter().map(|meta| type_attribute(meta, scalar))).map(drop)
+    } else if path.is_ident("derive") {
+        let traits = meta
+            .require_list()?
+            .parse_args_with(Punctuated::<Path, Token![,]>::parse_terminated)?;
+        collect(traits.iter().map(|path| derived_trait(path, scalar))).map(drop)
+    } else if path.is_ident("repr") {
+        let hints = meta
+            .require_list()?
+            .parse_args_with(Punctuated::<Meta, Token![,]>::parse_terminated)?;
+        collect(hints.iter().map(representation)).map(drop)
+    } else {
         Ok(())
+    }
+}
+
+/// A derived trait: anything but a standard trait the struct already derives or cannot derive.
+fn derived_trait(path: &Path, scalar: &Ident) -> syn::Result<()> {
+    let standard = path.segments.len() == 1
+        || ["core", "std", "alloc"]
+            .iter()
+            .any(|root| path.segments.first().is_some_and(|first| first.ident == root));
+    let Some(last) = path.segments.last().filter(|_| standard) else {
+        return Ok(());
+    };
+    let name = last.ident.to_string();
+    if DERIVED_TRAITS.contains(&name.as_str()) {
+        Err(syn::Error::new_spanned(
+            path,
+            format!(
+                "`{name}` is already derived for every emitted type ({}): remove it from the derive",
+                DERIVED_TRAITS.map(|derived| format!("`{derived}`")).join(", ")
+            ),
+        ))
+    } else if NOT_DERIVABLE.contains(&name.as_str()) {
+        Err(syn::Error::new_spanned(
+            path,
+            format!("`{name}` cannot be derived: the coefficients are `{scalar}`, which does not implement `{name}`"),
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+/// A `repr` hint: `C` (the struct always has it) or `align(N)`.
+fn representation(hint: &Meta) -> syn::Result<()> {
+    let path = hint.path();
+    let name = path.to_token_stream().to_string();
+    if path.is_ident("C") && matches!(hint, Meta::Path(_)) {
+        Ok(())
+    } else if path.is_ident("align") {
+        let align = hint.require_list()?;
+        align
+            .parse_args_with(|input: ParseStream| input.parse::<LitInt>())
+            .map(drop)
+    } else if path.is_ident("packed") {
+        Err(syn::Error::new_spanned(
+            hint,
+            "`repr(packed)` is refused: every field has the same scalar type, so the struct (always \
+             `repr(C)`) has no padding to remove; packing would only lower its alignment and make \
+             references to its fields (`&v.e1`) an error",
+        ))
+    } else if path.is_ident("transparent") {
+        Err(syn::Error::new_spanned(
+            hint,
+            "`repr(transparent)` is refused: the emitted struct has one field per blade and is always `repr(C)`",
+        ))
     } else {
         Err(syn::Error::new_spanned(
-            attribute,
-            "only doc comments are allowed on a type declaration",
+            hint,
+            format!(
+                "`repr({name})` does not apply to the emitted struct, which is always `repr(C)`: \
+                 only `repr(C)` and `repr(align(N))` are accepted"
+            ),
         ))
     }
 }
@@ -226,7 +397,7 @@ mod tests {
     use super::*;
 
     fn declaration(source: &str) -> syn::Result<AlgebraDeclaration> {
-        validate(&syn::parse_str(source)?)
+        validate(&syn::parse_str(source)?).map(|validated| validated.declaration)
     }
 
     fn messages(source: &str) -> Vec<String> {
@@ -325,14 +496,18 @@ mod tests {
             "mod bad {
                 scalar = f16;
                 basis = [e1 = 99999999999999999999];
-                types { #[derive(Hash)] Vector = grades(1); }
+                types { #[derive(Clone)] Vector = grades(1); }
                 ops = [geometric, wedge];
             }",
         );
         assert_eq!(errors.len(), 4, "{errors:?}");
         assert_eq!(errors[0], "unknown scalar type `f16`: expected f32 or f64");
         assert_eq!(errors[1], "number too large to fit in target type");
-        assert_eq!(errors[2], "only doc comments are allowed on a type declaration");
+        assert_eq!(
+            errors[2],
+            "`Clone` is already derived for every emitted type (`Clone`, `Copy`, `Debug`, `PartialEq`, \
+             `Default`): remove it from the derive"
+        );
         assert!(errors[3].starts_with("unknown operation `wedge`: expected one of `geometric`, `outer`"));
     }
 
@@ -390,6 +565,142 @@ mod tests {
             rhs: "Vector".to_string(),
             blades: Vec::new(),
         };
-        assert_eq!(tokens(no_result), "vga");
+        // Not the module: the type the operation is emitted for.
+        assert_eq!(tokens(no_result), "Vector");
+    }
+
+    #[test]
+    fn attributes_that_work_on_the_struct_pass_through() {
+        let validated = validate(
+            &syn::parse_str(
+                "mod vga {
+                    scalar = f32;
+                    basis = [e1 = 1, e2 = 1];
+                    types {
+                        /// A direction.
+                        #[derive(serde::Serialize, serde::Deserialize, bytemuck::Pod, PartialOrd)]
+                        #[repr(C, align(8))]
+                        #[serde(rename_all = \"UPPERCASE\")]
+                        #[cfg_attr(feature = \"x\", derive(bytemuck::Zeroable), repr(C))]
+                        #[allow(clippy::all)]
+                        Vector = grades(1);
+                    }
+                }",
+            )
+            .unwrap(),
+        );
+        assert!(validated.is_ok());
+    }
+
+    #[test]
+    fn attributes_that_cannot_work_are_refused_at_their_tokens() {
+        let input: AlgebraInput = syn::parse_str(
+            "mod vga {
+                scalar = f64;
+                basis = [e1 = 1, e2 = 1];
+                types {
+                    #[derive(serde::Serialize, std::fmt::Debug, Eq, Hash)]
+                    #[repr(C, packed)]
+                    #[repr(transparent)]
+                    #[repr(u8)]
+                    #[cfg(test)]
+                    #[cfg_attr(test, derive(Default))]
+                    Vector = grades(1);
+                }
+            }",
+        )
+        .unwrap();
+        let errors: Vec<(String, String)> = match validate(&input) {
+            Ok(_) => panic!("expected errors"),
+            Err(errors) => errors
+                .into_iter()
+                .map(|error| {
+                    let message = error.to_string();
+                    (message.split(':').next().unwrap_or_default().to_string(), message)
+                })
+                .collect(),
+        };
+        let heads: Vec<&str> = errors.iter().map(|(head, _)| head.as_str()).collect();
+        assert_eq!(
+            heads,
+            [
+                "`Debug` is already derived for every emitted type (`Clone`, `Copy`, `Debug`, `PartialEq`, `Default`)",
+                "`Eq` cannot be derived",
+                "`Hash` cannot be derived",
+                "`repr(packed)` is refused",
+                "`repr(transparent)` is refused",
+                "`repr(u8)` does not apply to the emitted struct, which is always `repr(C)`",
+                "`cfg` is not allowed on a type declaration",
+                "`Default` is already derived for every emitted type (`Clone`, `Copy`, `Debug`, `PartialEq`, `Default`)",
+            ],
+            "{errors:#?}"
+        );
+        assert_eq!(
+            errors[1].1,
+            "`Eq` cannot be derived: the coefficients are `f64`, which does not implement `Eq`"
+        );
+    }
+
+    #[test]
+    fn features_are_named_once_and_mint_needs_a_type_to_map() {
+        let validated = validate(
+            &syn::parse_str(
+                "mod vga { scalar = f64; basis = [e1 = 1, e2 = 1, e3 = 1]; types { V = grades(1); }
+                 features = [mint, display, approx]; }",
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        assert_eq!(validated.features, [Feature::Mint, Feature::Display, Feature::Approx]);
+        assert_eq!(
+            messages("mod vga { scalar = f64; basis = [e1 = 1]; types { V = grades(1); } features = [serde, display, display]; }"),
+            [
+                "unknown feature `serde`: expected one of `display`, `approx`, `mint`",
+                "feature `display` is listed twice: list each feature once",
+            ]
+        );
+        let pga = messages(
+            "mod pga { scalar = f64; basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1]; types { Plane = grades(1); }
+             features = [mint]; }",
+        );
+        assert_eq!(pga.len(), 1);
+        assert!(pga[0].starts_with("no declared type maps to a `mint` type"), "{pga:?}");
+    }
+
+    #[test]
+    fn a_missing_result_type_points_at_the_operation_or_the_type() {
+        let source = |ops: &str| {
+            format!(
+                "mod vga {{ scalar = f64; basis = [e1 = 1, e2 = 1]; types {{ Scalar = blades(scalar); Vector = grades(1); }} {ops} }}"
+            )
+        };
+        let no_result = Error::NoResultType {
+            operation: "geometric".to_string(),
+            lhs: "Vector".to_string(),
+            rhs: "Vector".to_string(),
+            blades: vec!["scalar".to_string(), "e12".to_string()],
+        };
+        let listed: AlgebraInput = syn::parse_str(&source("ops = [reverse, geometric];")).unwrap();
+        let error = locate(&listed, &no_result);
+        assert_eq!(
+            offending_tokens(&listed, &no_result).to_token_stream().to_string(),
+            "geometric"
+        );
+        assert!(
+            error.to_string().ends_with(", or remove `geometric` from `ops`"),
+            "{error}"
+        );
+        let unlisted: AlgebraInput = syn::parse_str(&source("")).unwrap();
+        let error = locate(&unlisted, &no_result);
+        assert_eq!(
+            offending_tokens(&unlisted, &no_result).to_token_stream().to_string(),
+            "Vector"
+        );
+        assert!(
+            error
+                .to_string()
+                .ends_with(", or list only the operations you need in `ops = [...]`, without `geometric`"),
+            "{error}"
+        );
     }
 }
