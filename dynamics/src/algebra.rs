@@ -1,8 +1,8 @@
-//! The `Algebra` trait: what a rigid-body simulator needs from a geometric algebra (SPEC §1).
+//! The `Algebra` trait: what a rigid-body simulator needs from a geometric algebra (`docs/theory.md` §1).
 //!
 //! Both implementations ([`crate::Pga`], [`crate::Cga`]) are built from one `algebra!` invocation
 //! each. The simulator is written once against this trait. Coordinates are the shared language of
-//! the two algebras (SPEC §1.4): a screw (velocity, momentum, wrench, line) is `Σ aᵢ lᵢ + bᵢ tᵢ` with
+//! the two algebras (theory §1.4): a screw (velocity, momentum, wrench, line) is `Σ aᵢ lᵢ + bᵢ tᵢ` with
 //! `lᵢ = eᵢI₃` and `tᵢ = eᵢ ∧ N`, and a motor is `s + Σ aᵢlᵢ + Σ bᵢtᵢ + cΠ` with `Π = I₃ ∧ N`.
 
 use core::fmt::Debug;
@@ -10,11 +10,11 @@ use core::ops::{Add, Mul, Neg, Sub};
 
 use nalgebra::Vector3;
 
-/// Coordinates of a screw `Σ aᵢ lᵢ + bᵢ tᵢ` (SPEC §1.4): `l` holds the aᵢ, `t` the bᵢ.
+/// Coordinates of a screw `Σ aᵢ lᵢ + bᵢ tᵢ` (theory §1.4): `l` holds the aᵢ, `t` the bᵢ.
 ///
 /// For a velocity, `l` is the angular velocity ω and `t` the linear velocity v; for a momentum `l`
 /// is the linear momentum p and `t` the angular momentum L; for a wrench `l` is the force f and `t`
-/// the moment (SPEC §3).
+/// the moment (theory §3).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ScrewCoordinates {
     /// The coefficients `aᵢ` of the rotation bivectors `lᵢ = eᵢI₃`.
@@ -53,7 +53,7 @@ impl Add for ScrewCoordinates {
 }
 
 /// Coordinates of a motor `s + Σ aᵢlᵢ + Σ bᵢtᵢ + cΠ` in the 8-dimensional motor subalgebra
-/// (the dual quaternions, SPEC §2).
+/// (the dual quaternions, theory §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct MotorCoordinates {
     /// The scalar part `s`.
@@ -92,7 +92,7 @@ pub trait Algebra: Copy + Debug + Default + Send + Sync + 'static {
     fn screw_coordinates(screw: Self::Screw) -> ScrewCoordinates;
     /// The motor with these coordinates.
     fn motor(coordinates: MotorCoordinates) -> Self::Motor;
-    /// The coordinates of a motor, projected onto the motor subalgebra (SPEC §2: in CGA the `tᵢ`
+    /// The coordinates of a motor, projected onto the motor subalgebra (theory §2: in CGA the `tᵢ`
     /// and `Π` each span two blades, whose coefficients are averaged).
     fn motor_coordinates(motor: Self::Motor) -> MotorCoordinates;
 
@@ -104,10 +104,10 @@ pub trait Algebra: Copy + Debug + Default + Send + Sync + 'static {
     fn reverse(motor: Self::Motor) -> Self::Motor;
     /// `M X ~M` for a screw X (world view of a body screw).
     fn transform_screw(motor: Self::Motor, screw: Self::Screw) -> Self::Screw;
-    /// The commutator product `(XY − YX)/2` of two screws (SPEC §1.1).
+    /// The commutator product `(XY − YX)/2` of two screws (theory §1.1).
     fn commutator(first: Self::Screw, second: Self::Screw) -> Self::Screw;
-    /// `⟨X ∧ Y⟩_Π`, the coefficient of Π in the outer product of two screws (SPEC §1.4): the
-    /// reciprocal product that gives power and kinetic energy (SPEC §3, §4).
+    /// `⟨X ∧ Y⟩_Π`, the coefficient of Π in the outer product of two screws (theory §1.4): the
+    /// reciprocal product that gives power and kinetic energy (theory §3, §4).
     fn wedge_pi(first: Self::Screw, second: Self::Screw) -> f64;
 
     /// The point at `x`.

@@ -1,5 +1,5 @@
 //! Rigid bodies: mass and principal moments of inertia about the centre of mass. The body frame has
-//! its origin at the centre of mass and its axes along the principal axes (SPEC §2, E10a). A body given
+//! its origin at the centre of mass and its axes along the principal axes (`docs/theory.md` §2, E10a). A body given
 //! as a full inertia tensor in some other frame (a CAD part's) is diagonalised into that form, keeping where
 //! the principal frame sits ([`Body::from_inertia_tensor`]).
 
@@ -164,7 +164,7 @@ impl Body {
     }
 
     /// A solid cuboid with side lengths `extents` along the body axes:
-    /// `I = m/12 (b² + c², a² + c², a² + b²)` (SPEC §11).
+    /// `I = m/12 (b² + c², a² + c², a² + b²)` (theory §11).
     pub fn cuboid(mass: f64, extents: Vector3<f64>) -> Result<Body, BodyError> {
         positive(&[extents.x, extents.y, extents.z])?;
         let s = extents.component_mul(&extents);
@@ -204,7 +204,7 @@ impl Body {
         self.moments
     }
 
-    /// `H = diag(I₁, I₂, I₃, m, m, m)`: the inertia in velocity coordinates `(ω; v)` (SPEC §3–§4).
+    /// `H = diag(I₁, I₂, I₃, m, m, m)`: the inertia in velocity coordinates `(ω; v)` (theory §3–§4).
     pub fn kinetic_metric(&self) -> nalgebra::Matrix6<f64> {
         let m = self.mass;
         nalgebra::Matrix6::from_diagonal(&nalgebra::Vector6::new(

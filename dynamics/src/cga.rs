@@ -1,8 +1,8 @@
-//! CGA Cl(4,1) (SPEC §1.2): bits 0..4 = e1..e5 with e5² = −1; `n∞ = e4 + e5`, `n0 = (e5 − e4)/2`.
+//! CGA Cl(4,1) (`docs/theory.md` §1.2): bits 0..4 = e1..e5 with e5² = −1; `n∞ = e4 + e5`, `n0 = (e5 − e4)/2`.
 //!
 //! In this diagonal basis the translation bivectors `tᵢ = eᵢ∧n∞ = eᵢ4 + eᵢ5` and `Π = e1234 + e1235`
 //! each span two blades, so a motor is stored as the full even part (16 numbers) and a screw as all
-//! ten bivectors; coordinates read `tᵢ` from the `eᵢ4` blades and average on projection (SPEC §2).
+//! ten bivectors; coordinates read `tᵢ` from the `eᵢ4` blades and average on projection (theory §2).
 
 use nalgebra::Vector3;
 
@@ -26,7 +26,7 @@ ga_macros::algebra! {
             Trivector = grades(3);
             /// 4-vectors: spheres and planes (OPNS).
             Quadvector = grades(4);
-            /// The pseudoscalar `e12345` (I5): incidence of a point and a sphere or plane (`P ∧ X`, SPEC §9).
+            /// The pseudoscalar `e12345` (I5): incidence of a point and a sphere or plane (`P ∧ X`, theory §9).
             Pseudoscalar = grades(5);
             /// Odd elements.
             Odd = grades(1, 3, 5);
@@ -53,7 +53,7 @@ pub const fn bivector_from_coordinates(c: [f64; 6]) -> Bivector {
 }
 
 /// `[a₁, a₂, a₃, b₁, b₂, b₃]` of a screw. For a screw, bᵢ is both the eᵢ4 and the eᵢ5 coefficient
-/// (SPEC §1.4 reads eᵢ4); their mean is the orthogonal projection onto span{tᵢ}, which also removes
+/// (theory §1.4 reads eᵢ4); their mean is the orthogonal projection onto span{tᵢ}, which also removes
 /// round-off that a product leaves off the span.
 pub const fn bivector_coordinates(s: Bivector) -> [f64; 6] {
     [
@@ -66,7 +66,7 @@ pub const fn bivector_coordinates(s: Bivector) -> [f64; 6] {
     ]
 }
 
-/// `⟨X ∧ Y⟩_Π`: the e1234 coefficient (SPEC §1.4).
+/// `⟨X ∧ Y⟩_Π`: the e1234 coefficient (theory §1.4).
 pub const fn wedge_pi(first: Bivector, second: Bivector) -> f64 {
     first.outer_bivector(second).e1234
 }

@@ -1,7 +1,7 @@
 //! Interop with nalgebra, for either algebra: motors ↔ [`Isometry3`], points ↔ [`Point3`], screws ↔ pairs of
 //! [`Vector3`].
 //!
-//! Conventions (SPEC §2–§3): a motor `T(c) R_rot` is the isometry `x ↦ q x + c` with the quaternion
+//! Conventions (`docs/theory.md` §2–§3): a motor `T(c) R_rot` is the isometry `x ↦ q x + c` with the quaternion
 //! `q = (w, x, y, z)` of `R_rot = w − (x, y, z)·l`; a screw `Σ aᵢlᵢ + bᵢtᵢ` is the pair `(a, b)`, which is
 //! `(ω, v)` for a velocity, `(p, L)` for a momentum and `(f, τ)` for a wrench.
 
@@ -22,7 +22,7 @@ pub enum ConversionError {
     NotAPoint,
 }
 
-/// The isometry of a motor, after normalising it onto the unit motors (SPEC §2).
+/// The isometry of a motor, after normalising it onto the unit motors (theory §2).
 pub fn motor_to_isometry<A: Algebra>(motor: A::Motor) -> Result<Isometry3<f64>, ConversionError> {
     let c = A::motor_coordinates(motor);
     let rotor_norm_squared = c.scalar * c.scalar + c.l.norm_squared();

@@ -2,7 +2,7 @@
 //!
 //! The simulator is one generic source; it is only right for both algebras if their screw algebras
 //! (span{lᵢ, tᵢ} with the commutator product: se(3)) have the same structure constants through the
-//! coordinate maps, and if the reciprocal pairing `⟨X ∧ Y⟩_Π` (power, energy; SPEC §3–§4) agrees.
+//! coordinate maps, and if the reciprocal pairing `⟨X ∧ Y⟩_Π` (power, energy; `docs/theory.md` §3–§4) agrees.
 //! [`assert_same_screw_algebra!`](crate::assert_same_screw_algebra) evaluates both with the generated `const fn` products for every
 //! pair of basis screws and fails the build if anything differs.
 

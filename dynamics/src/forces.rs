@@ -1,4 +1,4 @@
-//! Forces as screws (SPEC §3): a force f acting along the line through a is the wrench
+//! Forces as screws (`docs/theory.md` §3): a force f acting along the line through a is the wrench
 //! `W = f I₃ − (a∧f) I₃ N = Σ fᵢlᵢ + (a⨯f)ᵢtᵢ` (the same in both algebras); a couple b is `b∧N = Σ bᵢtᵢ`.
 
 use std::fmt;

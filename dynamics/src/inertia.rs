@@ -1,4 +1,4 @@
-//! The inertia map M, its inverse and the kinetic energy (SPEC §4), in the algebra-agnostic form:
+//! The inertia map M, its inverse and the kinetic energy (`docs/theory.md` §4), in the algebra-agnostic form:
 //! `M(Ḃ) = m Σᵢ [⟨Ḃ∧lᵢ⟩_Π lᵢ + γᵢ ⟨Ḃ∧tᵢ⟩_Π tᵢ]` with `γᵢ = Iᵢ/m`. Since `⟨X∧tᵢ⟩_Π` and
 //! `⟨X∧lᵢ⟩_Π` are X's lᵢ and tᵢ coordinates, M moves the velocity's t-part (v) to the momentum's
 //! l-part (p = m v) and the l-part (ω) to the t-part (L = Iω).
@@ -27,7 +27,7 @@ impl Body {
         })
     }
 
-    /// `½ ⟨Ḃ ∧ M(Ḃ)⟩_Π = ½(m|v|² + ωᵀIω)` (SPEC §4; the scalar product is *not* the energy).
+    /// `½ ⟨Ḃ ∧ M(Ḃ)⟩_Π = ½(m|v|² + ωᵀIω)` (theory §4; the scalar product is *not* the energy).
     #[inline]
     pub fn kinetic_energy<A: Algebra>(&self, velocity: A::Screw) -> f64 {
         0.5 * A::wedge_pi(velocity, self.momentum::<A>(velocity))

@@ -1,4 +1,4 @@
-//! Fixed-step integrators for the state of N rigid bodies, one `[R, Ω]` per body (SPEC §5, §10).
+//! Fixed-step integrators for the state of N rigid bodies, one `[R, Ω]` per body (`docs/theory.md` §5, §10).
 //!
 //! Two families:
 //! * [`Method`]: general methods, valid for any [`Dynamics`] (free bodies, constrained bodies, mechanisms):
@@ -31,14 +31,14 @@ use crate::state::{State, MAX_COORDINATE};
 /// A general integration method: valid for any [`Dynamics`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// Classic RK4 on (R, Ω) treated as vectors, then renormalisation of R (the paper's method, SPEC §10).
+    /// Classic RK4 on (R, Ω) treated as vectors, then renormalisation of R (the paper's method, theory §10).
     Rk4,
     /// Runge–Kutta–Munthe-Kaas of order 4: R is advanced as `R₀ exp(σ)` with σ from the RK4 tableau,
     /// corrected by the commutators that truncate `dexp⁻¹` at order 4. R stays an exact motor; the world
     /// momentum Ω (a vector) follows classic RK4, so a free body keeps Ω exactly.
     Rkmk4,
     /// RKMK4 with the momentum carried in the body frame during the step, `Ω_b = ~RΩR` with
-    /// `dΩ_b/dt = Ḃ × Ω_b + ~R W R` (SPEC §5). For a free body the body momentum then obeys Euler's equations
+    /// `dΩ_b/dt = Ḃ × Ω_b + ~R W R` (theory §5). For a free body the body momentum then obeys Euler's equations
     /// on their own, and the error of R no longer feeds back into `Ḃ = M⁻¹[Ω_b]`; with world Ω (the other two
     /// methods) `Ḃ = M⁻¹[~RΩR]` inherits R's error, which the Dzhanibekov flips amplify: on scene 1 at
     /// dt = 1e-3 this method's orientation error is about 100× smaller than RK4's or RKMK4's (see
@@ -521,16 +521,16 @@ fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(
     Ok(())
 }
 
-/// The Lie bracket `[X, Y] = XY − YX`, twice the commutator product of SPEC §1.1.
+/// The Lie bracket `[X, Y] = XY − YX`, twice the commutator product of theory §1.1.
 #[inline]
 fn bracket<A: Algebra>(x: A::Screw, y: A::Screw) -> A::Screw {
     A::commutator(x, y) * 2.0
 }
 
-/// RKMK4 for `dR/dt = R ξ` with `ξ = −½Ḃ` (SPEC §3) and `dΩ/dt = W`, body by body.
+/// RKMK4 for `dR/dt = R ξ` with `ξ = −½Ḃ` (theory §3) and `dΩ/dt = W`, body by body.
 ///
 /// With `R = R₀ exp(σ)`, σ obeys `dσ/dt = dexp⁻¹_{−σ}(ξ) = ξ + ½[σ, ξ] + …` (`[X, Y] = XY − YX`, twice the
-/// commutator product of SPEC §1.1). Classic RK4 on σ, with `dexp⁻¹` truncated to the terms that matter at
+/// commutator product of theory §1.1). Classic RK4 on σ, with `dexp⁻¹` truncated to the terms that matter at
 /// order 4, leaves two commutators (Munthe-Kaas' RKMK4, here for the right action `R ξ`, which flips the sign
 /// of the odd terms relative to the usual left-action form):
 ///
@@ -611,7 +611,7 @@ fn rkmk4<A: Algebra, D: Dynamics<A> + ?Sized>(
 /// One stage of a body-momentum method: the body rates at the stage motors `R₀ exp(σᵢ)` (σ from
 /// `buffers.sigmas`; the start motors for the first stage, and for systems whose rates do not depend on the
 /// motors, which skips an exponential and a motor product per body) and the body momenta `buffers.momenta`;
-/// stores `k = −½hḂ` and `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) of body i at `[s n + i]`.
+/// stores `k = −½hḂ` and `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5) of body i at `[s n + i]`.
 fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
     dynamics: &D,
     (s, at, dt): (usize, f64, f64),
@@ -644,7 +644,7 @@ fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
 }
 
 /// [`Method::Rkmk4Body`]: the RKMK4 stages of [`rkmk4`] for every R, classic RK4 stages for the body momenta
-/// `Ω_b`, with `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). The stages' R are exact motors, so any system can be
+/// `Ω_b`, with `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5). The stages' R are exact motors, so any system can be
 /// handed the world state `(R, RΩ_b~R)`.
 ///
 /// The state carries the world momentum, so every step converts it to the body frame and back, through the
@@ -763,7 +763,7 @@ fn dexp_inverse<A: Algebra>(sigma: A::Screw, k: A::Screw, order: u32) -> A::Scre
 /// A body-momentum Runge–Kutta–Munthe-Kaas step ([`Method::Rkmk6Body`]) on any explicit tableau, body by body:
 /// stage i evaluates the rates at `R₀ exp(σᵢ)`, `σᵢ = Σⱼ aᵢⱼ Kⱼ`, and turns `kᵢ = −½hḂᵢ` into
 /// `Kᵢ = dexp⁻¹_{−σᵢ}(kᵢ)` (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic
-/// stages of `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of
+/// stages of `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of
 /// the new motor.
 fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     tableau: &Tableau<S>,
@@ -871,7 +871,7 @@ fn shortest_arc(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
 ///
 /// The kinetic pieces have exact flows that leave the world momentum Ω unchanged: `Lᵢ²/2Iᵢ` turns the body
 /// about its axis i at the constant rate `Lᵢ/Iᵢ`, and `|p|²/2m` translates it at the constant body velocity
-/// `p/m`. Each is applied as `R ← R exp(−½ h Ḃₖ)` (SPEC §3). The translation commutes with the rotations
+/// `p/m`. Each is applied as `R ← R exp(−½ h Ḃₖ)` (theory §3). The translation commutes with the rotations
 /// (|p| is invariant under rotations, and a translation along p keeps L about the centre of mass), so it is
 /// applied once per drift. The forces enter as kicks `Ω ← Ω + h W(R)`, the exact flow of `dΩ/dt = W` at fixed
 /// R. For conservative forces (gravity) every piece is a Hamiltonian flow, so the method is symplectic and

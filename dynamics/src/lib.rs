@@ -22,7 +22,7 @@
 //! ```
 //!
 //! Implements Hadfield & Lasenby, *Constrained Dynamics in Conformal and Projective Geometric
-//! Algebra*, as corrected in the project's SPEC, and extends it to bodies held to each other
+//! Algebra*, as derived and corrected in `docs/theory.md`, and extends it to bodies held to each other
 //! (`docs/mechanisms.md`). The pipeline, one module per stage:
 //! [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`) → [`motor`] and
 //! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →

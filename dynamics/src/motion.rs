@@ -1,4 +1,4 @@
-//! The equations of motion (SPEC §5) and the interface the integrators step: a system of N rigid bodies.
+//! The equations of motion (`docs/theory.md` §5) and the interface the integrators step: a system of N rigid bodies.
 //!
 //! ```text
 //! Ω_b = ~R Ω R,  Ḃ = M⁻¹[Ω_b],  dR/dt = −½ R Ḃ,  dΩ/dt = W_world (+ R F ~R for a reaction F)
@@ -34,7 +34,7 @@ impl<A: Algebra> Rates<A> {
 }
 
 /// The rates of one body in its own frame, for integrators that carry the body momentum `Ω_b = ~RΩR` within a
-/// step: `dΩ_b/dt = Ḃ × Ω_b + W_b` (SPEC §5) with `W_b = ~R W R` the body view of the resultant wrench.
+/// step: `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5) with `W_b = ~R W R` the body view of the resultant wrench.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyRates<A: Algebra> {
     /// `Ḃ = M⁻¹[Ω_b]`, body frame.
@@ -78,7 +78,7 @@ pub trait Dynamics<A: Algebra> {
         workspace: &mut Self::Workspace,
     ) -> Result<(), ConstraintError>;
 
-    /// Called after every step: by default, renormalise the motors (SPEC §2, §10). Constrained systems also
+    /// Called after every step: by default, renormalise the motors (theory §2, §10). Constrained systems also
     /// project onto the constraint manifold here.
     fn after_step(
         &self,

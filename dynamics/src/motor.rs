@@ -1,4 +1,4 @@
-//! Rigid transforms built from the algebra's products (SPEC §2): rotors, translators, poses and
+//! Rigid transforms built from the algebra's products (`docs/theory.md` §2): rotors, translators, poses and
 //! normalisation, written once for both algebras.
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
@@ -13,7 +13,7 @@ pub fn identity<A: Algebra>() -> A::Motor {
     })
 }
 
-/// The rotor `cos(θ/2) − sin(θ/2) n̂I₃` rotating by +θ about the unit axis n̂ (SPEC §2; `n̂I₃ = Σ nᵢlᵢ`).
+/// The rotor `cos(θ/2) − sin(θ/2) n̂I₃` rotating by +θ about the unit axis n̂ (theory §2; `n̂I₃ = Σ nᵢlᵢ`).
 /// A zero axis gives the identity.
 pub fn rotor<A: Algebra>(axis: Vector3<f64>, angle: f64) -> A::Motor {
     let axis = axis.try_normalize(0.0).unwrap_or_else(Vector3::zeros);
@@ -25,7 +25,7 @@ pub fn rotor<A: Algebra>(axis: Vector3<f64>, angle: f64) -> A::Motor {
     })
 }
 
-/// The translator `T(c) = 1 − ½ Σ cᵢ tᵢ` (SPEC §2).
+/// The translator `T(c) = 1 − ½ Σ cᵢ tᵢ` (theory §2).
 pub fn translator<A: Algebra>(offset: Vector3<f64>) -> A::Motor {
     A::motor(MotorCoordinates {
         scalar: 1.0,
@@ -49,7 +49,7 @@ pub fn from_pose<A: Algebra>(position: Vector3<f64>, rotation: &UnitQuaternion<f
     A::compose(translator::<A>(position), rotor_from_quaternion::<A>(rotation))
 }
 
-/// The position and orientation of a motor: the image of the origin (SPEC §2), and the rotor part
+/// The position and orientation of a motor: the image of the origin (theory §2), and the rotor part
 /// (its scalar and lᵢ coefficients; the N-terms never touch them) as a unit quaternion.
 ///
 /// The image of the origin comes from the motor's coordinates, `c = −2(s t + p l − l⨯t) / (s² + |l|²)`
@@ -68,7 +68,7 @@ fn origin_image(c: &MotorCoordinates) -> Vector3<f64> {
     (c.scalar * c.t + c.pseudoscalar * c.l - c.l.cross(&c.t)) * (-2.0 / scale)
 }
 
-/// The rigid map of a motor on screw coordinates (SPEC §1.4): a screw `(l, t)` of the body frame is
+/// The rigid map of a motor on screw coordinates (theory §1.4): a screw `(l, t)` of the body frame is
 /// `(Ql, Qt + c⨯Ql)` in the world frame, with Q the rotation and c the position of the motor ([`pose`]); a
 /// force f through a has `l = f`, `t = a⨯f` and moves with its line. This is the sandwich `RX~R` on
 /// span{lᵢ, tᵢ}, divided by the sandwich's scale `⟨R~R⟩₀` (so a motor normalised to round-off does not scale
@@ -144,7 +144,7 @@ impl ScrewFrame {
 }
 
 /// Projects onto the motor subalgebra and normalises: with `K = R~R = a + bΠ`,
-/// `R ← (1 − ½(b/a)Π) R / √a` (SPEC §2). Valid for drift inside the subalgebra, which the
+/// `R ← (1 − ½(b/a)Π) R / √a` (theory §2). Valid for drift inside the subalgebra, which the
 /// projection guarantees.
 pub fn normalise<A: Algebra>(motor: A::Motor) -> A::Motor {
     let projected = A::motor(A::motor_coordinates(motor));

@@ -1,8 +1,8 @@
-//! PGA Cl(3,0,1) with `e0` last (SPEC §1.3): bits 0..3 = e1, e2, e3, e0.
+//! PGA Cl(3,0,1) with `e0` last (`docs/theory.md` §1.3): bits 0..3 = e1, e2, e3, e0.
 //!
-//! The declared blades are chosen so that fields are the SPEC's coordinates directly: a `Line` is
+//! The declared blades are chosen so that fields are the coordinates of theory §1.3–§1.4 directly: a `Line` is
 //! `(e23, e31, e12) = lᵢ` and `(e10, e20, e30) = tᵢ = eᵢe₀`; a `Point` `(1 + e₀x)I₃` has
-//! `e123 = 1` and `(e230, e310, e120) = x` (SPEC §1.3: `e₀e₂e₃ = e230`, `e₀e₃e₁ = e310`,
+//! `e123 = 1` and `(e230, e310, e120) = x` (theory §1.3: `e₀e₂e₃ = e230`, `e₀e₃e₁ = e310`,
 //! `e₀e₁e₂ = e120`); a `Motor` is `(scalar, lᵢ, tᵢ, Π = e1230)`: 8 numbers.
 
 use nalgebra::Vector3;
@@ -25,7 +25,7 @@ ga_macros::algebra! {
             Point = blades(e123, e230, e310, e120);
             /// A plane `n + δ e0`.
             Plane = blades(e1, e2, e3, e0);
-            /// The pseudoscalar `e1230`: incidence of a point and a plane (`P ∧ X`, SPEC §9).
+            /// The pseudoscalar `e1230`: incidence of a point and a plane (`P ∧ X`, theory §9).
             Pseudoscalar = blades(e1230);
             /// Odd elements (products of planes and lines).
             Odd = grades(1, 3);
@@ -53,7 +53,7 @@ pub const fn line_coordinates(s: Line) -> [f64; 6] {
     [s.e23, s.e31, s.e12, s.e10, s.e20, s.e30]
 }
 
-/// `⟨X ∧ Y⟩_Π`: the e1230 coefficient (SPEC §1.4).
+/// `⟨X ∧ Y⟩_Π`: the e1230 coefficient (theory §1.4).
 pub const fn wedge_pi(first: Line, second: Line) -> f64 {
     first.outer_line(second).e1230
 }

@@ -421,7 +421,7 @@ pub enum Stop {
     Observer,
 }
 
-/// One recorded instant of one body, in the reference files' terms (SCENES.md "Files") plus the system's
+/// One recorded instant of one body, in the reference files' terms (`docs/scenes.md` "Files") plus the system's
 /// energy.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
@@ -473,7 +473,7 @@ impl<A: Algebra> Simulation<A> {
     }
 }
 
-/// Appends the sample of every body at `t`: pose from the motor (SPEC §2), velocities from the body velocity
+/// Appends the sample of every body at `t`: pose from the motor (theory §2), velocities from the body velocity
 /// `Ḃ = M⁻¹[~RΩR]` turned into world axes.
 fn record<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, states: &[State<A>], bodies: &mut [Vec<Sample>]) {
     let energy = dynamics.energy(states);

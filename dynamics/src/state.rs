@@ -1,4 +1,4 @@
-//! The state of one rigid body: the motor R (body → world) and the world-frame momentum Ω (SPEC §0, §5).
+//! The state of one rigid body: the motor R (body → world) and the world-frame momentum Ω (`docs/theory.md` §0, §5).
 
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -12,7 +12,7 @@ pub struct State<A: Algebra> {
     /// R (body → world).
     pub motor: A::Motor,
     /// Ω, the momentum bivector, world frame: `l` the linear momentum, `t` the angular momentum about the world
-    /// origin (SPEC §3).
+    /// origin (theory §3).
     pub momentum: A::Screw,
 }
 
@@ -110,7 +110,7 @@ impl<A: Algebra> State<A> {
 
     /// The state of a body whose centre of mass is at `position` (world), oriented by `rotation` (body → world),
     /// moving with angular velocity `angular_body` and centre-of-mass velocity `linear_body`, both in body axes:
-    /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (SPEC §11).
+    /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (theory §11).
     pub fn from_body_twist(
         body: &Body,
         position: Vector3<f64>,
@@ -138,7 +138,7 @@ impl<A: Algebra> State<A> {
         A::transform_screw(A::reverse(self.motor), self.momentum)
     }
 
-    /// `Ḃ = M⁻¹[Ω_b]`: angular velocity and centre-of-mass velocity, both in body axes (SPEC §3).
+    /// `Ḃ = M⁻¹[Ω_b]`: angular velocity and centre-of-mass velocity, both in body axes (theory §3).
     #[inline]
     pub fn body_velocity(&self, body: &Body) -> A::Screw {
         body.velocity::<A>(self.body_momentum())
@@ -173,7 +173,7 @@ impl<A: Algebra> State<A> {
         }
     }
 
-    /// Kinetic energy `½⟨Ḃ ∧ Ω_b⟩_Π` (SPEC §4).
+    /// Kinetic energy `½⟨Ḃ ∧ Ω_b⟩_Π` (theory §4).
     pub fn kinetic_energy(&self, body: &Body) -> f64 {
         body.kinetic_energy::<A>(self.body_velocity(body))
     }

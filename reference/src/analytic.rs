@@ -1,8 +1,8 @@
-//! Closed-form solutions behind the analytic values of SCENES.md: the torque-free asymmetric top
+//! Closed-form solutions behind the analytic values of `docs/scenes.md`: the torque-free asymmetric top
 //! (scene 1), the physical pendulum (scene 2) and the heavy symmetric top (scene 3).
 //!
 //! Everything is computed from physical parameters and initial conditions, so the tests can compare it with the
-//! numbers SCENES.md prints and with the reference trajectories.
+//! numbers `docs/scenes.md` prints and with the reference trajectories.
 
 use nalgebra::Vector3;
 use thiserror::Error;
@@ -42,7 +42,7 @@ fn require(name: &'static str, value: f64, requirement: &'static str, valid: boo
 }
 
 /// Body-frame angular velocity of a torque-free rigid body rotating near its intermediate axis
-/// (Landau–Lifshitz §37, as quoted in SCENES.md scene 1), with I_x > I_y > I_z and L² > 2T I_y:
+/// (Landau–Lifshitz §37, as quoted in `docs/scenes.md` scene 1), with I_x > I_y > I_z and L² > 2T I_y:
 ///
 /// ω_x = A_x dn(u), ω_y = A_y sn(u), ω_z = −A_z cn(u), u = λt + K(k²),
 ///
@@ -51,7 +51,7 @@ fn require(name: &'static str, value: f64, requirement: &'static str, valid: boo
 /// k² = (I_y − I_z)(2T I_x − L²) / ((I_x − I_y)(L² − 2T I_z)).
 ///
 /// These are LL's formulas with their axes (1, 2, 3) relabelled (z, y, x), so that x is the largest axis as in
-/// SCENES.md. u = K at t = 0 means the body starts at an extremum of ω_y, i.e. with ω_z = 0. The amplitudes
+/// `docs/scenes.md`. u = K at t = 0 means the body starts at an extremum of ω_y, i.e. with ω_z = 0. The amplitudes
 /// carry the signs of the initial ω_x, ω_y: the sign of ω_z then follows from Euler's equation
 /// I_z ω̇_z = (I_x − I_y) ω_x ω_y, which is positive for ω_x, ω_y > 0 and −A_z cn(u) rises through u = K.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,7 +196,7 @@ impl Pendulum {
     }
 }
 
-/// θ(t) of a pendulum released from rest (SCENES.md scene 2): sin(θ/2) = k sn(K − ω₀t | k²),
+/// θ(t) of a pendulum released from rest (`docs/scenes.md` scene 2): sin(θ/2) = k sn(K − ω₀t | k²),
 /// θ̇ = −2kω₀ cn(K − ω₀t | k²), with k = sin(θ₀/2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PendulumSolution {
@@ -251,7 +251,7 @@ pub struct SteadyPrecessionRates {
 }
 
 /// The nutation of a heavy top between its turning points u₁ = cos θ_max and u₂ = cos θ_min
-/// ((du/dt)² = f(u) = (1 − u²)(α − βu) − (b − au)², SCENES.md scene 3).
+/// ((du/dt)² = f(u) = (1 − u²)(α − βu) − (b − au)², `docs/scenes.md` scene 3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Nutation {
     /// a = I₃ω₃/I₁.
@@ -484,7 +484,7 @@ mod tests {
         );
         assert_relative(solution.lambda, published.lambda, 1e-14, "λ");
         assert_relative(solution.parameter.m(), published.parameter, 1e-14, "k²");
-        // SCENES.md's K and the periods derived from it are 3.4e-14 (relative) above the exact values below.
+        // docs/scenes.md's K and the periods derived from it are 3.4e-14 (relative) above the exact values below.
         assert_relative(
             solution.quarter_period_integral,
             published.quarter_period_integral,
@@ -549,7 +549,7 @@ mod tests {
 
     #[test]
     fn dzhanibekov_closed_form_matches_the_reference_trajectory() {
-        // SCENES.md: DOP853 vs the closed form, max |ω error| = 3e-10 rad/s.
+        // docs/scenes.md: DOP853 vs the closed form, max |ω error| = 3e-10 rad/s.
         let solution = cuboid_solution();
         let reference = SceneId::Cuboid.reference_trajectory().unwrap();
         let max_error = reference
@@ -616,7 +616,7 @@ mod tests {
 
     #[test]
     fn pendulum_closed_form_matches_the_reference_trajectory() {
-        // SCENES.md: DOP853 agrees with the closed form to 1.4e-14 rad (measured here: 3.8e-15 rad, 1.5e-14 rad/s;
+        // docs/scenes.md: DOP853 agrees with the closed form to 1.4e-14 rad (measured here: 3.8e-15 rad, 1.5e-14 rad/s;
         // the rate bound is the angle bound times ω₀ ≈ 3.8). The reference's θ is the rotation angle
         // about world y: 2 atan2(q_y, q_w); θ̇ = ω_y (world).
         let solution = scene_pendulum().released_from_rest(PENDULUM_INITIAL_ANGLE).unwrap();
@@ -690,8 +690,9 @@ mod tests {
 
     #[test]
     fn heavy_top_constants_match_high_precision_values() {
-        // mpmath at 40 digits (polyroots on the cubic, quad on the precession integral). SCENES.md's printed roots,
-        // θ bounds and precession figures are off from these by 5e-15 to 5e-14 (within the 1e-13 of the test above).
+        // mpmath at 40 digits (polyroots on the cubic, quad on the precession integral). The roots, θ bounds and
+        // precession figures printed in docs/scenes.md are off from these by 5e-15 to 5e-14 (within the 1e-13 of the
+        // test above).
         let top = scene_top();
         let cusp = top.nutation(TOP_INITIAL_TILT, 0.0, 0.0, TOP_SPIN).unwrap();
         let exact_roots = [0.7171129870824912, 0.8660254037844386, 2.544864586821688];

@@ -1,7 +1,7 @@
 //! The complete elliptic integral of the first kind K(m) and the Jacobi elliptic functions sn, cn, dn,
 //! for a real argument and a parameter 0 ≤ m ≤ 1.
 //!
-//! Parameter convention: m = k² (Abramowitz & Stegun, and SCENES.md, which writes `K(k^2)` and `sn(u | k^2)`).
+//! Parameter convention: m = k² (Abramowitz & Stegun, and `docs/scenes.md`, which writes `K(k²)` and `sn(u | k²)`).
 //! Both algorithms come from the arithmetic–geometric mean (AGM) and converge quadratically:
 //! * K(m) = π / (2 AGM(1, √(1 − m)))  (A&S 17.6.1);
 //! * sn, cn, dn by the descending Landen transformation in its AGM form (A&S 16.4): run the AGM
@@ -140,7 +140,7 @@ mod tests {
     use super::*;
     use std::f64::consts::{FRAC_PI_2, PI};
 
-    /// SCENES.md scene 1: k² of the Dzhanibekov cuboid, as printed.
+    /// `docs/scenes.md` scene 1: k² of the Dzhanibekov cuboid, as printed.
     const CUBOID_M: f64 = 0.999792043255003;
     /// Its complement 1 − k², from the cancellation-free formula (see `analytic::DzhanibekovSolution`).
     const CUBOID_COMPLEMENT: f64 = 2.0795674499704062e-4;
@@ -167,7 +167,7 @@ mod tests {
 
     #[test]
     fn complete_integral_matches_scenes_md() {
-        // SCENES.md scene 2: K(0.5); scene 1: K(k²).
+        // docs/scenes.md scene 2: K(0.5); scene 1: K(k²).
         let k_half = complete_elliptic_k(parameter(0.5)).unwrap();
         let k_cuboid = complete_elliptic_k(parameter(CUBOID_M)).unwrap();
         assert!(

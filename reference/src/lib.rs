@@ -4,12 +4,13 @@
 //! following Hadfield & Lasenby, "Constrained Dynamics in Conformal and Projective Geometric Algebra") are tested
 //! against this crate, which shares no code or formalism with them: plain vectors and quaternions (nalgebra),
 //! textbook closed forms, and reference trajectories integrated with scipy's DOP853 on the classical Newton–Euler
-//! equations. The scenes, values and metrics are those of the project's `shared/scenes/SCENES.md` (SPEC §11.2).
+//! equations. The scenes, values and metrics are those of `docs/scenes.md` (what the tests check:
+//! `docs/theory.md` §11).
 //!
 //! One module per concept:
 //! * [`scenes`]: the six reference scenes ([`SceneId`]): parameters, embedded reference trajectories, published end
 //!   states and published analytic values;
-//! * [`multibody`]: the mechanisms of MULTIBODY.md (double pendulum, four-bar linkage, N-link chain): parameters,
+//! * [`multibody`]: the mechanisms of `docs/scenes.md` (double pendulum, four-bar linkage, N-link chain): parameters,
 //!   initial states from joint coordinates, embedded reference trajectories, joint violations from poses;
 //! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;

@@ -1,4 +1,4 @@
-//! The error metrics of SCENES.md ("Error metrics"), evaluated on trajectories sampled every 0.01 s.
+//! The error metrics of `docs/scenes.md` ("Error metrics"), evaluated on trajectories sampled every 0.01 s.
 //!
 //! Feature extractors (flip times, pendulum period, nutation features) work on the samples alone, so the
 //! same code applied to the reference and to a simulator gives comparable numbers; the tests apply them to the
@@ -199,7 +199,7 @@ pub fn pendulum_period(trajectory: &Trajectory) -> Result<f64, MetricError> {
 }
 
 /// Scene 3: the tilt θ of the top's symmetry axis a = R e_z from the upward vertical, the precession angle φ and
-/// its rate φ̇, with the z-x-z Euler convention of SCENES.md: a = (sin φ sin θ, −cos φ sin θ, cos θ).
+/// its rate φ̇, with the z-x-z Euler convention of `docs/scenes.md`: a = (sin φ sin θ, −cos φ sin θ, cos θ).
 /// θ = atan2(√(a_x² + a_y²), a_z), φ = atan2(a_x, −a_y) (in (−π, π]), and with ȧ = ω × a,
 /// φ̇ = (a × ȧ)_z / (a_x² + a_y²) = (ω_z − a_z (a·ω)) / (1 − a_z²).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,7 +239,7 @@ fn unwrapped_precession(angles: &[TopAxisAngles]) -> Vec<f64> {
     unwrapped
 }
 
-/// Scene 3a features (SCENES.md "Error metrics").
+/// Scene 3a features (`docs/scenes.md` "Error metrics").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NutationFeatures {
     /// Mean of the parabola-refined maxima of θ (rad).
@@ -305,7 +305,7 @@ pub fn nutation_features(trajectory: &Trajectory) -> Result<NutationFeatures, Me
     }
 }
 
-/// Scene 3b features (SCENES.md "Error metrics").
+/// Scene 3b features (`docs/scenes.md` "Error metrics").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteadyPrecessionFeatures {
     /// max over the samples of |θ − θ₀| (rad).
@@ -470,7 +470,7 @@ mod tests {
 
     #[test]
     fn reference_energy_drift_is_at_the_published_level() {
-        // SCENES.md: scene 3 relative energy deviation 2.1e-15; scene 4 energy deviation 4.3e-13 J (sphere) and
+        // docs/scenes.md: scene 3 relative energy deviation 2.1e-15; scene 4 energy deviation 4.3e-13 J (sphere) and
         // 7.5e-14 J (circle), to which the rounding of the printed E₀ = −4.73833333333333 (3.3e-15 J below the exact
         // −4.738333…) adds: (4.3e-13 + 0.4e-14)/9.81 = 4.4e-14 and (7.5e-14 + 0.4e-14)/9.81 = 8.1e-15.
         // Scenes 1 and 2 have no published figure: bounds just above the measured 7.7e-15 and 1.8e-16.
@@ -498,12 +498,12 @@ mod tests {
         let analytic_error = flip_time_error(&flips, &solution.flip_instants(parameters.duration).unwrap()).unwrap();
         // Measured 2.6e-10 s. The generic Hermite bound h⁴/384 · max|ω_y⁗| / |ω̇_y| ≈ 2.6e-11 · 3e4 / 48 ≈ 1.5e-8 s is
         // loose because ω_y is odd about each flip, so the error term vanishes at the crossing to leading order.
-        // The reference's own ω error (3e-10 rad/s, SCENES.md) contributes only 3e-10 / 48 ≈ 6e-12 s.
+        // The reference's own ω error (3e-10 rad/s, docs/scenes.md) contributes only 3e-10 / 48 ≈ 6e-12 s.
         assert!(
             analytic_error < 1e-9,
             "max flip-time error vs closed form {analytic_error:e} s"
         );
-        // SCENES.md prints the instants with 12 decimals.
+        // docs/scenes.md prints the instants with 12 decimals.
         assert!(
             published_error < 1e-9,
             "max flip-time error vs SCENES.md {published_error:e} s"
@@ -540,10 +540,10 @@ mod tests {
 
     #[test]
     fn nutation_features_of_the_reference_match_the_analytic_values() {
-        // SCENES.md: the extraction recovers θ_max, nutation period and mean precession rate to < 1e-8 (sampling and
-        // parabola-fit floor). That holds in absolute terms (rad, s, rad/s). Measured: 9.1e-9 rad (1.19e-8 relative),
-        // 7.4e-9 s, 7.2e-9 rad/s; the same extraction applied to the exact closed-form θ(t) (mpmath) gives the same
-        // θ_max and period errors, so these are the method's floor, not the reference's.
+        // docs/scenes.md: the extraction recovers θ_max, nutation period and mean precession rate to < 1e-8 (sampling
+        // and parabola-fit floor). That holds in absolute terms (rad, s, rad/s). Measured: 9.1e-9 rad (1.19e-8
+        // relative), 7.4e-9 s, 7.2e-9 rad/s; the same extraction applied to the exact closed-form θ(t) (mpmath) gives
+        // the same θ_max and period errors, so these are the method's floor, not the reference's.
         let features = nutation_features(&reference(SceneId::TopCusp)).unwrap();
         let published = HEAVY_TOP_VALUES;
         assert_eq!(features.maxima, 9, "maxima at (k + ½) · 1.07 s for k = 0..8");
@@ -561,7 +561,7 @@ mod tests {
     #[test]
     fn steady_precession_features_of_the_reference() {
         let features = steady_precession_features(&reference(SceneId::TopSteady), TOP_INITIAL_TILT).unwrap();
-        // The DOP853 reference keeps θ to its ~1e-12 rad floor (SCENES.md "Notes").
+        // The DOP853 reference keeps θ to its ~1e-12 rad floor (docs/scenes.md, "Reference accuracy").
         assert!(
             features.max_nutation < 1e-11,
             "spurious nutation {:e}",
@@ -604,7 +604,7 @@ mod tests {
 
     #[test]
     fn reference_constraint_violations_are_at_the_published_level() {
-        // SCENES.md: constraint drift of the reference, sphere 3.6e-14 m, circle 7.6e-15 m.
+        // docs/scenes.md: constraint drift of the reference, sphere 3.6e-14 m, circle 7.6e-15 m.
         let sphere = SceneId::RodOnSphere;
         let sphere_violations = constraint_violations(&reference(sphere), &sphere.parameters().constraint).unwrap();
         assert!(

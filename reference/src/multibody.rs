@@ -1,4 +1,4 @@
-//! The multi-body reference scenes of MULTIBODY.md: M1, the 3D double pendulum (two hinges, an open chain);
+//! The multi-body reference scenes of `docs/scenes.md`: M1, the 3D double pendulum (two hinges, an open chain);
 //! M2, the four-bar linkage (a closed loop); M3, the N-link chain of ball joints (scaling). Their parameters,
 //! exact initial states from joint coordinates (forward kinematics, plain vectors and quaternions), the
 //! embedded reference trajectories, published values, and the violation of each joint computed from the
@@ -119,7 +119,7 @@ fn parse_rows(text: &str, columns: usize) -> Result<Vec<Vec<f64>>, TrajectoryErr
 // ---------------------------------------------------------------------------------------------------------------
 // M1: the 3D double pendulum.
 
-/// M1 (MULTIBODY.md): link 1 hinged to the world about world x at its top end; link 2 hinged to link 1's
+/// M1 (`docs/scenes.md`): link 1 hinged to the world about world x at its top end; link 2 hinged to link 1's
 /// bottom end about link 1's body y. Joint angles q1 (link 1 about world x) and q2 (link 2 relative to link 1,
 /// about link 1's y), zero hanging straight down with all frames aligned with the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,7 +136,7 @@ pub struct DoublePendulum {
     pub duration: f64,
 }
 
-/// M1's parameters as MULTIBODY.md gives them.
+/// M1's parameters as `docs/scenes.md` gives them.
 pub const DOUBLE_PENDULUM: DoublePendulum = DoublePendulum {
     links: [
         Link {
@@ -157,7 +157,7 @@ pub const DOUBLE_PENDULUM: DoublePendulum = DoublePendulum {
     duration: 10.0,
 };
 
-/// M1's published end state at T = 10 s (MULTIBODY.md): per link the centre of mass and the quaternion
+/// M1's published end state at T = 10 s (`docs/scenes.md`): per link the centre of mass and the quaternion
 /// (w, x, y, z), then the energy (J).
 pub const DOUBLE_PENDULUM_END: ([[f64; 7]; 2], f64) = (
     [
@@ -260,7 +260,7 @@ impl DoublePendulum {
 // ---------------------------------------------------------------------------------------------------------------
 // M2: the four-bar linkage.
 
-/// M2 (MULTIBODY.md): planar in the x–z plane, every hinge axis world y; ground pivots A = (0, 0, 0) and
+/// M2 (`docs/scenes.md`): planar in the x–z plane, every hinge axis world y; ground pivots A = (0, 0, 0) and
 /// D = (L0, 0, 0); crank AB, coupler BC, rocker DC, each a cuboid (w, w, L) with body z along the link from its
 /// first joint to its second (A→B, B→C, D→C) and body y = world y. The crank angle φ is AB's angle from +x
 /// towards +z; C is on the left of B→D.
@@ -274,7 +274,7 @@ pub struct FourBar {
     pub initial_angle: f64,
     pub initial_rate: f64,
     pub duration: f64,
-    /// The crank returns to φ₀ + 2πk every this many seconds (MULTIBODY.md).
+    /// The crank returns to φ₀ + 2πk every this many seconds (`docs/scenes.md`).
     pub revolution_period: f64,
 }
 
@@ -487,7 +487,7 @@ pub fn revolution_times(samples: &[(f64, f64, f64)], start: f64) -> Vec<f64> {
 // ---------------------------------------------------------------------------------------------------------------
 // M3: the N-link chain.
 
-/// M3 (MULTIBODY.md): N identical links joined end to end by ball joints (link k's body (0, 0, −L/2) to link
+/// M3 (`docs/scenes.md`): N identical links joined end to end by ball joints (link k's body (0, 0, −L/2) to link
 /// k+1's body (0, 0, +L/2)), the first link's top end at the world origin; initially straight and horizontal
 /// along +y (every link turned +90° about world x), at rest.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -504,7 +504,7 @@ pub const CHAIN: Chain = Chain {
     duration: 10.0,
 };
 
-/// The chain lengths of MULTIBODY.md's scaling table.
+/// The chain lengths of M3 in `docs/scenes.md`.
 pub const CHAIN_LENGTHS: [usize; 7] = [1, 2, 4, 8, 16, 32, 64];
 
 impl Chain {
@@ -593,7 +593,7 @@ mod tests {
         // The velocities close the loop too: B's and C's velocities agree from both links.
         let [(i, p), (j, q)] = m2.joint_points()[1];
         assert!((state[i].point_velocity(&p) - state[j].point_velocity(&q)).norm() < 1e-14);
-        // The file's 15 significant digits against MULTIBODY.md's printed end state; the file's energy at T
+        // The file's 15 significant digits against the end state printed in docs/scenes.md (M2); the file's energy at T
         // differs from the printed (initial) one by the reference integration's 4e-12 J.
         let (end, energy) = FOUR_BAR_END;
         let last = m2.reference_angles().unwrap()[500];

@@ -1,7 +1,7 @@
-//! The six reference scenes of SCENES.md: their parameters, embedded reference trajectories, published end
-//! states and published analytic values. Numbers are written as SCENES.md prints them; where SCENES.md defines a
-//! quantity by geometry instead of by value (e.g. the pendulum's initial CoM from θ₀ = π/2), it is built from
-//! that definition.
+//! The six reference scenes of `docs/scenes.md`: their parameters, embedded reference trajectories, published end
+//! states and published analytic values. Numbers are written as published, to the digits given (the end states
+//! only here, the other values also in `docs/scenes.md`); where a scene defines a quantity by geometry instead of
+//! by value (e.g. the pendulum's initial CoM from θ₀ = π/2), it is built from that definition.
 //!
 //! Units are SI. Quaternions map body → world; the body frame is the principal-axis frame at the CoM.
 
@@ -17,7 +17,7 @@ pub const GRAVITY: f64 = 9.81;
 /// Interval of the reference samples and of the error metrics (s).
 pub const SAMPLE_INTERVAL: f64 = 0.01;
 
-/// One of the reference scenes of SCENES.md.
+/// One of the reference scenes of `docs/scenes.md`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SceneId {
     /// Scene 1: free cuboid spinning near its intermediate axis (Dzhanibekov flips), gravity off.
@@ -82,9 +82,9 @@ pub struct SceneParameters {
     pub constraint: SceneConstraint,
     /// CoM height at which the potential energy m g (z − z₀) is zero.
     pub potential_zero_height: f64,
-    /// Total energy E₀ as printed in SCENES.md.
+    /// Total energy E₀ as printed in `docs/scenes.md`.
     pub initial_energy: f64,
-    /// Normaliser of the energy drift metric |E(T) − E₀| / E_scale (SCENES.md "Error metrics").
+    /// Normaliser of the energy drift metric |E(T) − E₀| / E_scale (`docs/scenes.md` "Error metrics").
     pub energy_scale: f64,
 }
 
@@ -134,7 +134,7 @@ impl SceneId {
         SceneId::RodOnCircle,
     ];
 
-    /// Short name with the SCENES.md scene number.
+    /// Short name with the `docs/scenes.md` scene number.
     pub fn label(self) -> &'static str {
         match self {
             SceneId::Cuboid => "1 cuboid (Dzhanibekov)",
@@ -277,7 +277,7 @@ impl SceneId {
         Trajectory::from_csv(self.reference_csv())
     }
 
-    /// The end state at t = T printed in SCENES.md ("reference end state").
+    /// The published end state at t = T (`docs/scenes.md`; checked against the reference file's last row).
     pub fn published_end_state(self) -> Sample {
         let (t, position, orientation, velocity, angular_velocity) = match self {
             SceneId::Cuboid => (
@@ -360,7 +360,7 @@ impl SceneId {
     }
 }
 
-/// Scene 1 analytic values printed in SCENES.md (Landau–Lifshitz §37 closed form).
+/// Scene 1 analytic values printed in `docs/scenes.md` (Landau–Lifshitz §37 closed form).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DzhanibekovValues {
     /// 2 T_rot = ω·Iω.
@@ -392,7 +392,7 @@ pub const CUBOID_VALUES: DzhanibekovValues = DzhanibekovValues {
     flip_instants: [1.170945474841, 3.512836424524, 5.854727374206, 8.196618323889],
 };
 
-/// Scene 2 analytic values printed in SCENES.md.
+/// Scene 2 analytic values printed in `docs/scenes.md`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PendulumValues {
     /// ω₀ = √(m g d / I_p) (rad/s).
@@ -407,7 +407,7 @@ pub struct PendulumValues {
     pub exact_period: f64,
 }
 
-// k is kept as printed in SCENES.md (15 digits), not replaced by FRAC_1_SQRT_2.
+// k is kept as printed in docs/scenes.md (15 digits), not replaced by FRAC_1_SQRT_2.
 #[allow(clippy::approx_constant)]
 pub const PENDULUM_VALUES: PendulumValues = PendulumValues {
     small_amplitude_frequency: 3.83601355576333,
@@ -417,7 +417,7 @@ pub const PENDULUM_VALUES: PendulumValues = PendulumValues {
     exact_period: 1.93333485437325,
 };
 
-/// Scene 3 analytic values printed in SCENES.md (Goldstein §5.7, u = cos θ).
+/// Scene 3 analytic values printed in `docs/scenes.md` (Goldstein §5.7, u = cos θ).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeavyTopValues {
     /// a = I₃ω₃/I₁ (rad/s).
@@ -517,8 +517,8 @@ mod tests {
 
     #[test]
     fn reference_starts_at_the_scene_initial_state() {
-        // The parameters are re-derived from SCENES.md's text, the CSV is the integrator's output: they agree to a few
-        // ulp.
+        // The parameters are re-derived from the scenes' definitions (docs/scenes.md), the CSV is the integrator's
+        // output: they agree to a few ulp.
         for scene in SceneId::ALL {
             let first = *scene.reference_trajectory().unwrap().first();
             assert_states_close(&first, &scene.parameters().initial_state(), 1e-15, scene.label());

@@ -1,8 +1,8 @@
 //! Sampled rigid-body trajectories and the CSV format of the reference files.
 //!
-//! Format (SCENES.md, "Files"): a header line `t,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz`, then one row per sample
-//! with the time, the CoM position, the orientation quaternion (w, x, y, z) mapping body → world, the CoM velocity
-//! and the angular velocity, both in the world frame.
+//! Format (`docs/scenes.md`, "Files"): a header line `t,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz`, then one row per
+//! sample with the time, the CoM position, the orientation quaternion (w, x, y, z) mapping body → world, the CoM
+//! velocity and the angular velocity, both in the world frame.
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use thiserror::Error;

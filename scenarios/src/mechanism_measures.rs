@@ -40,7 +40,8 @@ pub struct MechanismMeasures {
     pub four_bar: Option<FourBarMeasures>,
 }
 
-/// The four-bar's features: the crank's revolutions against MULTIBODY.md's period, the link angles at the end.
+/// The four-bar's features: the crank's revolutions against the period in `docs/scenes.md` (M2), the link angles at
+/// the end.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBarMeasures {
     /// Completed crank revolutions.

@@ -1,14 +1,14 @@
-//! The mechanisms of MULTIBODY.md (built from the GA-independent [`reference::multibody`] parameters) as
+//! The mechanisms of `docs/scenes.md` (built from the GA-independent [`reference::multibody`] parameters) as
 //! [`Mechanism`]s with their initial states, per algebra and per joint formulation:
 //!
-//! | scene | virtual power (SPEC §6, §14.1) | pinning (SPEC §7, §14.1) |
+//! | scene | virtual power (theory §6, §14.1) | pinning (theory §7, §14.1) |
 //! |---|---|---|
 //! | M1 double pendulum | two hinges: 3 forces + 2 couples each | two hinges: line + point each |
 //! | M2 four-bar linkage | four hinges, 20 rows of rank 17 | the same by pinned lines and points |
 //! | M3 N-link chain | N ball joints: 3 forces each | N pinned points |
 //!
 //! Initial states come from the scenes' joint coordinates (exact forward kinematics) and are projected onto
-//! the joint manifold (SPEC §10), which moves them by round-off only.
+//! the joint manifold (theory §10), which moves them by round-off only.
 
 use std::sync::Arc;
 
@@ -49,7 +49,7 @@ impl MechanismId {
         }
     }
 
-    /// The simulated time of MULTIBODY.md.
+    /// The simulated time of `docs/scenes.md`.
     pub fn duration(self) -> f64 {
         match self {
             MechanismId::DoublePendulum => DOUBLE_PENDULUM.duration,
@@ -111,7 +111,7 @@ fn ball<A: PinningAlgebra>(
     }
 }
 
-/// Builds a mechanism from MULTIBODY.md in algebra `A` with joints written by `formulation`, stabilised by
+/// Builds a mechanism from `docs/scenes.md` in algebra `A` with joints written by `formulation`, stabilised by
 /// `stabilisation`; the initial state is projected onto the joint manifold.
 pub fn build_mechanism<A: PinningAlgebra>(
     id: MechanismId,

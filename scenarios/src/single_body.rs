@@ -1,8 +1,8 @@
-//! The single-body reference scenes of SCENES.md (built from the GA-independent [`mod@reference`] parameters) as
+//! The single-body reference scenes of `docs/scenes.md` (built from the GA-independent [`mod@reference`] parameters) as
 //! systems with their initial states, per algebra and per constraint formulation: one place for tests,
 //! examples and sweeps over scenes × integrators × step sizes.
 //!
-//! | scene | virtual power (SPEC §6) | pinning (SPEC §7, §9) |
+//! | scene | virtual power (theory §6) | pinning (theory §7, §9) |
 //! |---|---|---|
 //! | 1 cuboid | free | free |
 //! | 2 hinged rod | 3 forces + 2 couples | line + point, rank 5 |
@@ -10,7 +10,7 @@
 //! | 4 sphere | force towards the centre | CGA only: `P ∧ S = 0`, rank 1 |
 //! | 4 circle | sphere + plane forces | CGA only: `P ∧ C = 0`, rank 2 |
 //!
-//! PGA has no spheres or circles (SPEC §13), so scene 4 by pinning is CGA only.
+//! PGA has no spheres or circles (theory §13), so scene 4 by pinning is CGA only.
 
 use std::sync::Arc;
 
@@ -25,9 +25,9 @@ use dynamics::{Algebra, Body, BodyError, Cga, Force, Mechanism, MechanismError, 
 /// How a scene's constraint is written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Formulation {
-    /// Constraint wrenches (SPEC §6).
+    /// Constraint wrenches (theory §6).
     VirtualPower,
-    /// Pinned multivectors and linear functions of them (SPEC §7, §9).
+    /// Pinned multivectors and linear functions of them (theory §7, §9).
     Pinning,
 }
 
@@ -62,13 +62,13 @@ pub enum SceneError {
 
 /// An algebra in which the scenes can be built. Only CGA can pin a point to a sphere or a circle.
 pub trait SceneAlgebra: PinningAlgebra {
-    /// `P ∧ S = 0` (SPEC §9), if the algebra has spheres.
+    /// `P ∧ S = 0` (theory §9), if the algebra has spheres.
     fn point_on_sphere_pin(
         body_point: Vector3<f64>,
         centre: Vector3<f64>,
         radius: f64,
     ) -> Option<Arc<dyn Constraint<Self>>>;
-    /// `P ∧ C = 0` (SPEC §9), if the algebra has circles.
+    /// `P ∧ C = 0` (theory §9), if the algebra has circles.
     fn point_on_circle_pin(
         body_point: Vector3<f64>,
         circle: (Vector3<f64>, f64, Vector3<f64>),
@@ -112,7 +112,7 @@ impl SceneAlgebra for Cga {
 }
 
 /// A scene ready to run: the system (a single body held by the world: a [`Mechanism`] of one body), its initial
-/// state (projected onto the constraint manifold, SPEC §10) and how long SCENES.md runs it.
+/// state (projected onto the constraint manifold, theory §10) and how long `docs/scenes.md` runs it.
 #[derive(Clone, Debug)]
 pub struct Scene<A: Algebra> {
     pub id: SceneId,

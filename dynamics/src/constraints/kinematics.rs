@@ -1,6 +1,6 @@
 //! The state of the body at one evaluation, in the forms the constraints need: the motor and its reverse
-//! (to move objects between frames, SPEC §2), the body velocity Ḃ (SPEC §3) and, for the force-line
-//! constraints of virtual power (SPEC §6), world positions and velocities of body points.
+//! (to move objects between frames, `docs/theory.md` §2), the body velocity Ḃ (theory §3) and, for the force-line
+//! constraints of virtual power (theory §6), world positions and velocities of body points.
 //!
 //! "World" is the constraint's reference frame: the world for a body held by the world, or another body's
 //! frame for a joint between two bodies, whose kinematics are then the relative ones (docs/mechanisms.md §M2).
@@ -23,7 +23,7 @@ pub struct Kinematics<A: Algebra> {
     pub body_velocity: A::Screw,
     /// The coordinates `x = (ω; v)` of Ḃ (body axes).
     pub velocity: Vector6<f64>,
-    /// Ḃ_w = R Ḃ ~R, world frame (SPEC §3).
+    /// Ḃ_w = R Ḃ ~R, world frame (theory §3).
     pub world_velocity: A::Screw,
     /// Position of the centre of mass and rotation body → world, with the motor's map on screw coordinates.
     pub frame: ScrewFrame,

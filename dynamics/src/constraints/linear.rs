@@ -1,6 +1,6 @@
-//! Pinning linear functions of multivectors (SPEC §9): `A[~R V(t) R] = U(t)` with A linear and fixed in
+//! Pinning linear functions of multivectors (`docs/theory.md` §9): `A[~R V(t) R] = U(t)` with A linear and fixed in
 //! the body frame. The incidence constraints "body point P on a world object X" are `A[X] = P ∧ X = 0`, which
-//! constrains fewer degrees of freedom than pinning X itself (SPEC §9 table).
+//! constrains fewer degrees of freedom than pinning X itself (theory §9 table).
 
 use nalgebra::Vector3;
 
@@ -17,7 +17,7 @@ fn incidence_target<Y: Coefficients>() -> Fixed<Y> {
 }
 
 /// The body point `body_point` (body coordinates) stays on the world plane `{x : normal·x = offset}`:
-/// `P ∧ X = 0`, rank 1 (SPEC §9 table), in either algebra.
+/// `P ∧ X = 0`, rank 1 (theory §9 table), in either algebra.
 pub fn point_on_plane<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -34,7 +34,7 @@ pub fn point_on_plane<A: PinningAlgebra>(
 }
 
 /// The body point `body_point` stays on the world line through `line_point` along `direction`: the point–line
-/// incidence is zero (SPEC §9 table: CGA `P ∧ L`, PGA `L × P`), rank 2, in either algebra.
+/// incidence is zero (theory §9 table: CGA `P ∧ L`, PGA `L × P`), rank 2, in either algebra.
 pub fn point_on_line<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -50,7 +50,7 @@ pub fn point_on_line<A: PinningAlgebra>(
     )
 }
 
-/// CGA: the body point stays on the OPNS sphere (centre, radius): `P ∧ S = 0`, a 5-vector, rank 1 (SPEC §9).
+/// CGA: the body point stays on the OPNS sphere (centre, radius): `P ∧ S = 0`, a 5-vector, rank 1 (theory §9).
 pub fn cga_point_on_sphere(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -68,7 +68,7 @@ pub fn cga_point_on_sphere(
 }
 
 /// CGA: the body point stays on a sphere of `radius` whose centre moves along `centre(t)`:
-/// `V(t) = T(c(t)) S₀ ~T(c(t))` with S₀ at the origin (SPEC §8, §9 table), rank 1.
+/// `V(t) = T(c(t)) S₀ ~T(c(t))` with S₀ at the origin (theory §8, §9 table), rank 1.
 pub fn cga_point_on_moving_sphere(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -86,7 +86,7 @@ pub fn cga_point_on_moving_sphere(
 }
 
 /// CGA: the body point stays on the OPNS circle: `P ∧ C = 0`, a 4-vector with 5 coefficients and rank 2.
-/// Off the circle the map picks up spurious small singular values (SPEC §7.1, E8), which the fixed-rank
+/// Off the circle the map picks up spurious small singular values (theory §7.1, E8), which the fixed-rank
 /// solve ignores.
 pub fn cga_point_on_circle(
     name: impl Into<String>,

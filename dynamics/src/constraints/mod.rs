@@ -1,22 +1,22 @@
-//! Constraints (SPEC §6–§9): by virtual power, by pinning multivectors, parametric paths and linear functions of
-//! them. Each is written for one body against a reference frame — the world, or, as a joint of a
+//! Constraints (`docs/theory.md` §6–§9): by virtual power, by pinning multivectors, parametric paths and linear
+//! functions of them. Each is written for one body against a reference frame — the world, or, as a joint of a
 //! [`crate::Mechanism`], another body — and evaluated at every evaluation of the equations of motion.
 //!
 //! # One formulation for all of them
 //!
 //! Every constraint here reduces, at one state, to scalar **rows** in the body velocity coordinates
-//! `x = (ω; v)` of Ḃ (SPEC §3; for a joint, the velocity relative to the reference) — see [`ConstraintRow`]:
+//! `x = (ω; v)` of Ḃ (theory §3; for a joint, the velocity relative to the reference) — see [`ConstraintRow`]:
 //!
 //! * a velocity residual `ė = a·x + s(t)`, linear in x with the Jacobian row `a`;
 //! * its rate along the motion `ë = a·ẍ + b`, where `ẍ` are the coordinates of B̈ and b (the *bias*) collects
 //!   every term without B̈;
-//! * optionally a position residual e with `de/dt = ė`, which the stabilisation uses (SPEC §10).
+//! * optionally a position residual e with `de/dt = ė`, which the stabilisation uses (theory §10).
 //!
 //! Virtual power (§6): `ė = ⟨Ḃ ∧ T_b⟩_Π`, so `a` holds the wrench coordinates `(τ; f)` of `T_b = ~R T R`.
 //! Pinning (§7–§9): `ė = A[Ḃ × V_b + V̇_b] − U̇`, one row per multivector coefficient, column j of `a` holding
-//! `A[Ḃⱼ × V_b]` for the basis velocity Ḃⱼ. With `B̈ = M⁻¹[Ḃ×Ω_b + S + F]` (SPEC §5), i.e.
+//! `A[Ḃⱼ × V_b]` for the basis velocity Ḃⱼ. With `B̈ = M⁻¹[Ḃ×Ω_b + S + F]` (theory §5), i.e.
 //! `ẍ = H⁻¹(g + y)` in wrench coordinates, the acceleration condition `ë = 0` becomes a linear system for the
-//! reaction y (SPEC §6 and §7.1), which [`crate::mechanism`] solves for all joints of a system at once in the
+//! reaction y (theory §6 and §7.1), which [`crate::mechanism`] solves for all joints of a system at once in the
 //! kinetic metric, each joint with its known rank.
 
 mod kinematics;
@@ -45,7 +45,7 @@ use crate::algebra::Algebra;
 #[non_exhaustive]
 pub enum ConstraintError {
     /// The rows lost rank: the `rank`-th singular value of the (kinetic-metric scaled) constraint map is
-    /// negligible against the largest, so the reaction is not determined (SPEC §7.1).
+    /// negligible against the largest, so the reaction is not determined (theory §7.1).
     #[error(
         "constraint {names}: rank deficient, expected rank {rank} but singular value {rank} is {singular_value:e} \
          (largest {largest:e})"
@@ -109,8 +109,8 @@ pub enum ConstraintError {
         /// The number of rows it emits.
         rows: usize,
     },
-    /// Projection (SPEC §10) needs a position residual, which this constraint does not provide (e.g. virtual
-    /// power from user wrenches, SPEC §6).
+    /// Projection (theory §10) needs a position residual, which this constraint does not provide (e.g. virtual
+    /// power from user wrenches, theory §6).
     #[error("constraint {name}: has no position-level residual, so it cannot be stabilised by projection")]
     NoPositionResidual {
         /// The name of the constraint.
@@ -130,18 +130,18 @@ pub enum ConstraintError {
 pub trait Constraint<A: Algebra>: Send + Sync {
     /// A name for error messages and reports.
     fn name(&self) -> &str;
-    /// The number of degrees of freedom removed on the constraint manifold (SPEC §7 table, §9 table).
+    /// The number of degrees of freedom removed on the constraint manifold (theory §7 table, §9 table).
     fn rank(&self) -> usize;
     /// How many rows [`Constraint::rows`] pushes.
     fn row_count(&self) -> usize;
-    /// Whether every row has a position residual (needed by projection, SPEC §10).
+    /// Whether every row has a position residual (needed by projection, theory §10).
     fn has_position_residual(&self) -> bool;
     /// Pushes the rows at this state.
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError>;
 }
 
 /// Several constraints acting as one, with a declared rank: a hinge pinned as a line plus a point has rank 5,
-/// not 4 + 3 (SPEC §7 table, E7), and a circle by virtual power is a sphere plus a plane (SPEC §6).
+/// not 4 + 3 (theory §7 table, E7), and a circle by virtual power is a sphere plus a plane (theory §6).
 #[derive(Clone)]
 pub struct Composite<A: Algebra> {
     name: String,

@@ -1,10 +1,10 @@
-//! The multivectors a constraint can pin (SPEC §7): points, lines and planes in both algebras, and in CGA
+//! The multivectors a constraint can pin (`docs/theory.md` §7): points, lines and planes in both algebras, and in CGA
 //! spheres and circles, as the types `algebra!` generated for PGA and CGA.
 //!
-//! Pinning is grade-agnostic (SPEC §7): it needs only to move an object between frames (`M X ~M`), to
+//! Pinning is grade-agnostic (theory §7): it needs only to move an object between frames (`M X ~M`), to
 //! commute it with a screw (`B × X`, which keeps its grade) and to read its coefficients. [`Pinnable`] is
 //! that interface; [`PinningAlgebra`] names each algebra's point, line and plane types and builds them
-//! from Euclidean data (SPEC §1.2, §1.3).
+//! from Euclidean data (theory §1.2, §1.3).
 
 use std::fmt::Debug;
 use std::ops::{Add, Mul, Sub};
@@ -33,7 +33,7 @@ pub trait Pinnable<A: Algebra>: Coefficients {
     /// `M X ~M`. For CGA's 16-component even motor the generated sandwich may have a wider result type; its
     /// extra grades vanish for a unit motor and are dropped.
     fn transformed(self, motor: A::Motor) -> Self;
-    /// `B × X` (commutator product, SPEC §1.1), which keeps the grade of X.
+    /// `B × X` (commutator product, theory §1.1), which keeps the grade of X.
     fn screw_commutator(screw: A::Screw, object: Self) -> Self;
 }
 
@@ -102,7 +102,7 @@ macro_rules! generated_pinnable {
 generated_pinnable!(Pga, pga: Point, Line, Plane);
 generated_pinnable!(Cga, cga: Vector.grade_1, Bivector, Trivector, Quadvector.grade_4);
 
-/// An algebra in which points, lines and planes can be pinned (SPEC §7 table).
+/// An algebra in which points, lines and planes can be pinned (theory §7 table).
 pub trait PinningAlgebra: Algebra {
     /// CGA: the null vector `up(x)`; PGA: the trivector `(1 + e₀x)I₃`.
     type PointObject: Pinnable<Self>;
@@ -112,7 +112,7 @@ pub trait PinningAlgebra: Algebra {
     type PlaneObject: Pinnable<Self>;
     /// The value of `P ∧ X` for a point P and a plane X: a pseudoscalar, zero iff P is on X.
     type Incidence: Coefficients;
-    /// The value of the incidence of a point and a line, zero iff the point is on the line (SPEC §9: CGA
+    /// The value of the incidence of a point and a line, zero iff the point is on the line (theory §9: CGA
     /// `P ∧ L`, a 4-vector; PGA `L × P`, a trivector).
     type LineIncidence: Coefficients;
 
@@ -122,9 +122,9 @@ pub trait PinningAlgebra: Algebra {
     fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject;
     /// The plane `{x : normal·x = offset}`.
     fn plane_object(normal: Vector3<f64>, offset: f64) -> Self::PlaneObject;
-    /// `P ∧ X` (SPEC §9 table: body point on plane).
+    /// `P ∧ X` (theory §9 table: body point on plane).
     fn point_plane_incidence(point: Self::PointObject, plane: Self::PlaneObject) -> Self::Incidence;
-    /// The point–line incidence (SPEC §9 table: body point on line; §1.3: a PGA point X is on the line L iff
+    /// The point–line incidence (theory §9 table: body point on line; §1.3: a PGA point X is on the line L iff
     /// `L × X = 0`).
     fn point_line_incidence(point: Self::PointObject, line: Self::LineObject) -> Self::LineIncidence;
 }
@@ -141,7 +141,7 @@ impl PinningAlgebra for Pga {
     }
 
     fn line_object(point: Vector3<f64>, direction: Vector3<f64>) -> Self::LineObject {
-        // SPEC §1.3: L = d I₃ + (a⨯d)∧e₀, i.e. lᵢ-coordinates d and tᵢ-coordinates a⨯d.
+        // theory §1.3: L = d I₃ + (a⨯d)∧e₀, i.e. lᵢ-coordinates d and tᵢ-coordinates a⨯d.
         let moment = point.cross(&direction);
         pga::line_from_coordinates([direction.x, direction.y, direction.z, moment.x, moment.y, moment.z])
     }
@@ -165,7 +165,7 @@ impl PinningAlgebra for Pga {
     }
 }
 
-/// `n∞ = e4 + e5` (SPEC §1.2).
+/// `n∞ = e4 + e5` (theory §1.2).
 const INFINITY: cga::generated::Vector = cga::generated::Vector {
     e1: 0.0,
     e2: 0.0,
@@ -174,10 +174,10 @@ const INFINITY: cga::generated::Vector = cga::generated::Vector {
     e5: 1.0,
 };
 
-/// `I₅ = e12345`, which takes IPNS (vector, bivector) objects to OPNS ones (SPEC §1.2).
+/// `I₅ = e12345`, which takes IPNS (vector, bivector) objects to OPNS ones (theory §1.2).
 const UNIT_PSEUDOSCALAR: cga::generated::Pseudoscalar = cga::generated::Pseudoscalar { e12345: 1.0 };
 
-/// The IPNS plane `n + δ n∞` (SPEC §1.2).
+/// The IPNS plane `n + δ n∞` (theory §1.2).
 fn cga_dual_plane(normal: Vector3<f64>, offset: f64) -> cga::generated::Vector {
     cga::generated::Vector {
         e1: normal.x,
@@ -188,7 +188,7 @@ fn cga_dual_plane(normal: Vector3<f64>, offset: f64) -> cga::generated::Vector {
     } + INFINITY * offset
 }
 
-/// The IPNS sphere `up(c) − ½ρ² n∞` (SPEC §1.2).
+/// The IPNS sphere `up(c) − ½ρ² n∞` (theory §1.2).
 fn cga_dual_sphere(centre: Vector3<f64>, radius: f64) -> cga::generated::Vector {
     Cga::point(centre) - INFINITY * (0.5 * radius * radius)
 }

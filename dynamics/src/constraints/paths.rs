@@ -1,4 +1,4 @@
-//! Parametric paths (SPEC §8): a body-frame U(t) or world-frame V(t) with exact first and second time
+//! Parametric paths (`docs/theory.md` §8): a body-frame U(t) or world-frame V(t) with exact first and second time
 //! derivatives, given by the user (any closure `Fn(f64) -> PathPoint<X>` is a [`Path`]) or generated exactly
 //! by a translator ([`TranslatedPath`]: a driven pivot, an attachment sliding on the body).
 //!
@@ -40,13 +40,13 @@ impl<X: Coefficients> PathPoint<X> {
 pub trait Path<X>: Send + Sync {
     /// The value and its exact first and second derivatives at time `t` (s).
     fn at(&self, t: f64) -> PathPoint<X>;
-    /// A fixed path lets a pin skip the derivative terms of SPEC §8 (they are zero).
+    /// A fixed path lets a pin skip the derivative terms of theory §8 (they are zero).
     fn is_fixed(&self) -> bool {
         false
     }
 }
 
-/// A constant value (SPEC §7: static U and V).
+/// A constant value (theory §7: static U and V).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Fixed<X>(pub X);
 
@@ -78,9 +78,9 @@ impl<X, P: Path<X> + ?Sized> Path<X> for Arc<P> {
     }
 }
 
-/// `V(t) = T(c(t)) V₀ ~T(c(t))` for an offset path c(t) with exact derivatives (SPEC §8).
+/// `V(t) = T(c(t)) V₀ ~T(c(t))` for an offset path c(t) with exact derivatives (theory §8).
 ///
-/// The SPEC writes it as `V₀ + L(c) + Q(c,c)` with `L(c) = ½(N c V₀ − V₀ N c)` and `Q(c₁,c₂) = −¼ N c₁ V₀ N c₂`.
+/// Theory §8 also writes it as `V₀ + L(c) + Q(c,c)` with `L(c) = ½(N c V₀ − V₀ N c)` and `Q(c₁,c₂) = −¼ N c₁ V₀ N c₂`.
 /// With the translation screw `τ(c) = N c = −Σ cᵢtᵢ` (so `T(c) = 1 + ½τ`), `L(c) = τ × V₀`, and since
 /// translation screws annihilate each other (`τ₁τ₂ = 0`), `Q(c₁,c₂) + Q(c₂,c₁) = τ₁ × (τ₂ × V₀)`. Hence,
 /// exactly and with the commutator alone:
@@ -147,7 +147,7 @@ where
 }
 
 /// The point at `position(t)`: the origin point translated along the path, so its derivatives are exact
-/// (SPEC §8 gives them per algebra: `ṗ + (p·ṗ)n∞` in CGA, `e₀ṗI₃` in PGA).
+/// (theory §8 gives them per algebra: `ṗ + (p·ṗ)n∞` in CGA, `e₀ṗI₃` in PGA).
 pub fn moving_point<A, P>(position: P) -> TranslatedPath<A, A::PointObject, P>
 where
     A: PinningAlgebra,
@@ -157,7 +157,7 @@ where
 }
 
 /// A prescribed rigid motion at one time: the motor U (body → reference), its body-frame velocity ξ
-/// (`dU/dt = −½Uξ`, SPEC §3) and ξ̇.
+/// (`dU/dt = −½Uξ`, theory §3) and ξ̇.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MotorPoint<A: Algebra> {
     /// The motor U (body → reference).
@@ -223,7 +223,7 @@ impl<A: Algebra, P: Path<f64>> MotorPath<A> for ScrewMotion<A, P> {
 }
 
 /// An object X of the body frame carried by a motor path: `V(t) = U X ~U`, and from
-/// `d/dt(R Y ~R) = R(Y × Ḃ + Ẏ)~R` (SPEC §5) applied twice, `V̇ = U(X × ξ)~U`,
+/// `d/dt(R Y ~R) = R(Y × Ḃ + Ẏ)~R` (theory §5) applied twice, `V̇ = U(X × ξ)~U`,
 /// `V̈ = U((X × ξ) × ξ + X × ξ̇)~U`: the reference-frame path a motor joint pins the body's X to.
 pub struct CarriedPath<A: Algebra, X> {
     object: X,

@@ -1,16 +1,16 @@
-//! Constraints by pinning multivectors (SPEC §7), parametric paths (§8) and linear functions of them (§9),
+//! Constraints by pinning multivectors (`docs/theory.md` §7), parametric paths (§8) and linear functions of them (§9),
 //! all as one [`Pin`]: a world object V(t), mapped into the body frame `V_b = ~R V R`, must satisfy
 //! `A[V_b] = U(t)` for a body-fixed linear function A (the identity for plain pins) and a body-frame
 //! target U(t).
 //!
-//! Residuals and rows (SPEC §8, §9), with `Ḃ×` the commutator product:
+//! Residuals and rows (theory §8, §9), with `Ḃ×` the commutator product:
 //!
 //! ```text
 //! e = A[V_b] − U
 //! ė = A[Ḃ × V_b + V̇_b] − U̇                                   (Jacobian column j: A[Ḃⱼ × V_b])
 //! ë = A[B̈ × V_b] + A[Ḃ×(Ḃ×V_b) + 2 Ḃ×V̇_b + V̈_b] − Ü         (bias: everything but the B̈ term)
 //! ```
-//! which is the SPEC's final equation `A[V_b × M⁻¹F] = −Ü + A[M⁻¹[S + Ḃ×Ω_b] × V_b + …]` once
+//! which is theory §9's final equation `A[V_b × M⁻¹F] = −Ü + A[M⁻¹[S + Ḃ×Ω_b] × V_b + …]` once
 //! `B̈ = M⁻¹[Ḃ×Ω_b + S + F]` is substituted (the solve does that, see [`crate::constraints`]).
 
 use std::marker::PhantomData;
@@ -27,7 +27,7 @@ use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 
 /// A linear map from X to Y, fixed in the body frame. Linearity is the caller's promise: the rows apply
-/// it to each term of SPEC §9's equation separately.
+/// it to each term of theory §9's equation separately.
 pub struct LinearFunction<X, Y>(Arc<dyn Fn(X) -> Y + Send + Sync>);
 
 impl<X, Y> Clone for LinearFunction<X, Y> {
@@ -89,13 +89,13 @@ impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> std::fmt::Debug for Pin<A, X, 
 }
 
 impl<A: Algebra, X: Pinnable<A>> Pin<A, X, X> {
-    /// The body object `body` (body frame) pinned to the world object `world`: `V = R U ~R` (SPEC §7).
-    /// `rank` is the number of constrained degrees of freedom (SPEC §7 table).
+    /// The body object `body` (body frame) pinned to the world object `world`: `V = R U ~R` (theory §7).
+    /// `rank` is the number of constrained degrees of freedom (theory §7 table).
     pub fn new(name: impl Into<String>, body: X, world: X, rank: usize) -> Self {
         Pin::with_paths(name, Fixed(body), Fixed(world), rank)
     }
 
-    /// A body path U(t) pinned to a world path V(t) (SPEC §8).
+    /// A body path U(t) pinned to a world path V(t) (theory §8).
     pub fn with_paths(
         name: impl Into<String>,
         body: impl Path<X> + 'static,
@@ -107,7 +107,7 @@ impl<A: Algebra, X: Pinnable<A>> Pin<A, X, X> {
 }
 
 impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> Pin<A, X, Y> {
-    /// `target(t) = function[~R V(t) R]` (SPEC §9): the body-side target, then the function of the world
+    /// `target(t) = function[~R V(t) R]` (theory §9): the body-side target, then the function of the world
     /// path, in the order of [`Pin::new`]'s (body, world).
     pub fn linear(
         name: impl Into<String>,
@@ -127,7 +127,7 @@ impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> Pin<A, X, Y> {
     }
 }
 
-/// The basis velocity screws `Ḃⱼ` of the coordinates `x = (ω; v)`: `lⱼ` for ωⱼ, `tⱼ` for vⱼ (SPEC §3).
+/// The basis velocity screws `Ḃⱼ` of the coordinates `x = (ω; v)`: `lⱼ` for ωⱼ, `tⱼ` for vⱼ (theory §3).
 fn velocity_basis<A: Algebra>() -> [A::Screw; 6] {
     std::array::from_fn(|j| {
         let mut coordinates = ScrewCoordinates::default();
@@ -197,7 +197,7 @@ impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> Constraint<A> for Pin<A, X, Y>
     }
 }
 
-/// A body point (body coordinates) pinned to a world point: a ball joint, rank 3 (SPEC §7 table).
+/// A body point (body coordinates) pinned to a world point: a ball joint, rank 3 (theory §7 table).
 pub fn point<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -207,7 +207,7 @@ pub fn point<A: PinningAlgebra>(
 }
 
 /// A body line pinned to a world line: a **cylindrical** joint, rank 4 — the body may slide along and turn
-/// about the line (SPEC §7 table, E7). Directions need not be unit but must have equal lengths (to 1e-12
+/// about the line (theory §7 table, E7). Directions need not be unit but must have equal lengths (to 1e-12
 /// relative): a line's coefficients scale with its direction, and lines of different weights cannot be pinned
 /// together (the pivot then drifts, 0.25–0.30 m in a test); points and directions must be finite, directions
 /// nonzero.
@@ -263,7 +263,7 @@ pub fn plane<A: PinningAlgebra>(
 }
 
 /// A hinge: the body line through `body_point` along `body_axis` pinned to the world line through
-/// `world_point` along `world_axis`, plus the point itself; rank 5 (SPEC §7 table, E7). Axes are normalised.
+/// `world_point` along `world_axis`, plus the point itself; rank 5 (theory §7 table, E7). Axes are normalised.
 pub fn hinge<A: PinningAlgebra>(
     name: impl Into<String>,
     (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
@@ -329,7 +329,7 @@ pub fn prismatic<A: PinningAlgebra>(
     Ok(Composite::new(name, parts, 5))
 }
 
-/// A motor joint by pinning: the body's motor relative to the reference follows `path` (U(t), SPEC §8). The
+/// A motor joint by pinning: the body's motor relative to the reference follows `path` (U(t), theory §8). The
 /// body's x and z axes (lines through its origin) are pinned to their images carried by the path
 /// ([`CarriedPath`]): two lines that meet fix all six degrees of freedom. Rank 6.
 pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: impl MotorPath<A> + 'static) -> Composite<A> {
@@ -349,7 +349,7 @@ pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: impl MotorP
 }
 
 /// A body point pinned to a world point moving along `pivot(t)` (value, velocity, acceleration): a driven
-/// pivot (SPEC §8), exact through [`moving_point`].
+/// pivot (theory §8), exact through [`moving_point`].
 pub fn driven_point<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
@@ -359,7 +359,7 @@ pub fn driven_point<A: PinningAlgebra>(
 }
 
 /// An attachment point sliding on the body along `attachment(t)` (body coordinates), pinned to a fixed
-/// world point (SPEC §8).
+/// world point (theory §8).
 pub fn sliding_attachment<A: PinningAlgebra>(
     name: impl Into<String>,
     attachment: impl Path<Vector3<f64>> + 'static,
@@ -374,7 +374,7 @@ pub fn sliding_attachment<A: PinningAlgebra>(
 }
 
 /// CGA: a body sphere (centre in body coordinates) pinned to a world sphere of the same radius: the
-/// centre is pinned, rank 3 (SPEC §7 table).
+/// centre is pinned, rank 3 (theory §7 table).
 pub fn cga_sphere_pin(
     name: impl Into<String>,
     body_centre: Vector3<f64>,
@@ -390,7 +390,7 @@ pub fn cga_sphere_pin(
 }
 
 /// CGA: a body circle pinned to a world circle of the same radius: only rotation about the circle's axis
-/// remains, rank 5 (SPEC §7 table).
+/// remains, rank 5 (theory §7 table).
 pub fn cga_circle_pin(
     name: impl Into<String>,
     (body_centre, body_normal): (Vector3<f64>, Vector3<f64>),

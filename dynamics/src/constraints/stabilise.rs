@@ -1,8 +1,8 @@
-//! Stabilisation against drift (SPEC §10). All formulations here hold the constraints at the acceleration
+//! Stabilisation against drift (`docs/theory.md` §10). All formulations here hold the constraints at the acceleration
 //! level only, so position and velocity errors grow (∝ t³ and t² for the hinge, E9) unless corrected:
 //!
 //! * **Baumgarte**: solve `ë + 2α ė + β² e = 0` instead of `ë = 0`. In the solve's right-hand side
-//!   `r' = −a·H⁻¹g − b` this subtracts `2α ė + β² e`; in the SPEC's `C y = r` with `C = −A H⁻¹` it is the
+//!   `r' = −a·H⁻¹g − b` this subtracts `2α ė + β² e`; in theory §7.1's `C y = r` with `C = −A H⁻¹` it is the
 //!   `r + 2α ė + β² e` with the **+** sign. Rows without a position residual get the α term only.
 //! * **Projection** after each step: normalise R, then Gauss–Newton steps on the position,
 //!   `δ = −H⁻¹Aᵀ(AH⁻¹Aᵀ)⁺_r e`, `R ← normalise(R exp(−½δ))` (the motion with body velocity δ for unit time),
@@ -15,9 +15,9 @@ use crate::constraints::rows::ConstraintRow;
 /// How a constrained system is kept on its constraint manifold.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stabilisation {
-    /// None: the bare acceleration-level constraints (SPEC §6–§9).
+    /// None: the bare acceleration-level constraints (theory §6–§9).
     None,
-    /// Baumgarte feedback with damping α and stiffness β (1/s); the SPEC's tests used α = β = 10 (pendulum,
+    /// Baumgarte feedback with damping α and stiffness β (1/s); theory §10 uses α = β = 10 (pendulum,
     /// circle) or 20 (top).
     Baumgarte {
         /// The damping α (1/s): the `2α ė` term.
@@ -35,7 +35,7 @@ pub enum Stabilisation {
 }
 
 impl Stabilisation {
-    /// Projection with the SPEC's 2 Gauss–Newton steps.
+    /// Projection with the 2 Gauss–Newton steps of theory §10.
     pub const PROJECTION: Stabilisation = Stabilisation::Projection { position_iterations: 2 };
 
     /// Why the parameters are unusable, if they are.

@@ -1,4 +1,4 @@
-//! Constraints by virtual power (SPEC §6): a set of constraint wrenches `T_k(t)` (world frame, bivectors)
+//! Constraints by virtual power (`docs/theory.md` §6): a set of constraint wrenches `T_k(t)` (world frame, bivectors)
 //! spanning the reactions the constraint can exert. With `T_bk = ~R T_k R`:
 //!
 //! * velocity condition `P_k = ⟨Ḃ ∧ T_bk⟩_Π = s_k` (`s_k = 0` unless the constraint moves, see below);
@@ -13,13 +13,13 @@
 //! The wrenches are all *dual* lines `force_line(f, a) = f I₃ − (a∧f) I₃ N` — bivectors in both algebras —
 //! never the OPNS line `A∧V∧n∞` itself (E4). The catalogue places the forces at the constrained body point A
 //! (world position a) and the couples along directions that follow the body, so that each row's power is
-//! exactly the rate of a position residual e (on the manifold these are the SPEC's wrenches): projection and
-//! Baumgarte's β term then apply to virtual power as well (SPEC §10 notes that the bare method has no
-//! position-level residual; [`VirtualPower::from_wrenches`] has none).
+//! exactly the rate of a position residual e (on the manifold these are the static wrenches of theory §6):
+//! projection and Baumgarte's β term then apply to virtual power as well (theory §10 notes that the bare method has
+//! no position-level residual; [`VirtualPower::from_wrenches`] has none).
 //!
 //! A moving constraint does work: its velocity condition is `P = s` with the prescribed power s of the driven
 //! motion — `(c − a)·ċ` for the sphere with centre c(t), `f·ṗ` for a force f at a pivot moving along p(t), the
-//! path's relative velocity for a motor joint (SPEC §14.1).
+//! path's relative velocity for a motor joint (theory §14.1).
 
 use std::sync::Arc;
 
@@ -49,7 +49,7 @@ pub struct ConstraintWrench<A: Algebra> {
     pub position_residual: Option<f64>,
 }
 
-/// A user constraint wrench at one time (SPEC §6, §14.1): `T(t)` and `Ṫ(t)` in the reference frame (the world,
+/// A user constraint wrench at one time (theory §6, §14.1): `T(t)` and `Ṫ(t)` in the reference frame (the world,
 /// or the reference body's frame for a joint), independent of the state, and the power `s(t)` the constrained
 /// motion must put through it: zero for a fixed constraint, the prescribed power of a driven one (a moving
 /// pivot's forces `f` have power `f·ṗ`).
@@ -203,7 +203,7 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// A driven ball joint: the body point stays at a pivot moving along `pivot(t)` (value, velocity,
     /// acceleration, world or reference frame). The pivot's motion does work: force k's velocity condition is
-    /// `⟨Ḃ ∧ T_bk⟩_Π = ṗₖ`, the prescribed power of the driven motion (SPEC §14.1). Rank 3.
+    /// `⟨Ḃ ∧ T_bk⟩_Π = ṗₖ`, the prescribed power of the driven motion (theory §14.1). Rank 3.
     pub fn driven_ball_joint(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -391,7 +391,7 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// The body point stays on the circle of `radius` about `centre` in the plane with `normal`: a sphere plus
-    /// a plane through its centre (SPEC §6). Rank 2.
+    /// a plane through its centre (theory §6). Rank 2.
     pub fn point_on_circle(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -415,7 +415,7 @@ impl<A: Algebra> VirtualPower<A> {
         }
     }
 
-    /// The SPEC's general form: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in
+    /// The general form of theory §6: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in
     /// the body's state. Rank = the number of wrenches (they must be independent). No position residual.
     pub fn from_wrenches<W: WrenchPath<A> + 'static>(
         name: impl Into<String>,
@@ -480,8 +480,8 @@ impl<A: Algebra> VirtualPower<A> {
                     acceleration: c_acceleration,
                 } = centre.at(kinematics.t);
                 let inward = c - a;
-                // T = force_line(c − a, a) = (c − a; a⨯c), the SPEC's (A∧up(c)∧n∞)I₅; e = ½(ρ² − |a − c|²) has
-                // rate (c − a)·ȧ − (c − a)·ċ = P − s.
+                // T = force_line(c − a, a) = (c − a; a⨯c), the dual line (A∧up(c)∧n∞)I₅ of theory §6 (E4);
+                // e = ½(ρ² − |a − c|²) has rate (c − a)·ȧ − (c − a)·ċ = P − s.
                 emit(ConstraintWrench {
                     wrench: force_line::<A>(inward, a),
                     rate: A::screw(ScrewCoordinates {
@@ -579,7 +579,7 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
 /// bias `⟨Ḃ_w ∧ Ṫ⟩_Π − ṡ`.
 fn wrench_row<A: Algebra>(kinematics: &Kinematics<A>, w: &ConstraintWrench<A>) -> ConstraintRow {
     let body = kinematics.to_body_coordinates(&A::screw_coordinates(w.wrench));
-    // Wrench coordinates (τ; f) pair with velocity coordinates (ω; v) to the power (SPEC §3).
+    // Wrench coordinates (τ; f) pair with velocity coordinates (ω; v) to the power (theory §3).
     let jacobian = [body.t.x, body.t.y, body.t.z, body.l.x, body.l.y, body.l.z];
     let power: f64 = jacobian
         .iter()

@@ -13,7 +13,7 @@
 //!   same wrench, expressed in a's frame, with the opposite sign — Newton's third law, and by d'Alembert the
 //!   joint's reaction on b is `Σλa`, on a the opposite.
 //!
-//! With the world as reference, `M = R_b` and `Ḃ_a = 0`: the single-body constraint exactly (SPEC §6–§9).
+//! With the world as reference, `M = R_b` and `Ḃ_a = 0`: the single-body constraint exactly (`docs/theory.md` §6–§9).
 
 use std::fmt;
 use std::sync::Arc;
@@ -35,7 +35,7 @@ pub(crate) struct Joint<A: Algebra> {
     pub body: usize,
     /// None: the world.
     pub reference: Option<usize>,
-    /// A supplied reaction basis (wrenches in the reference frame, SPEC §7.1 method 2).
+    /// A supplied reaction basis (wrenches in the reference frame, theory §7.1 method 2).
     pub reaction_basis: Option<Vec<A::Screw>>,
 }
 
@@ -90,7 +90,7 @@ impl JointRows {
     }
 }
 
-/// Wrench (covector) coordinates `(τ; f)` of screw coordinates `(l = f, t = τ)` and back (SPEC §3: a wrench's
+/// Wrench (covector) coordinates `(τ; f)` of screw coordinates `(l = f, t = τ)` and back (theory §3: a wrench's
 /// force is its l-part, its moment its t-part, and `(τ; f)` pairs with the velocity `(ω; v)` to the power).
 #[inline]
 pub(crate) fn wrench_coordinates(c: &ScrewCoordinates) -> [f64; 6] {

@@ -357,7 +357,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(JointId(self.joints.len() - 1))
     }
 
-    /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; SPEC §7.1 method 2)
+    /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; theory §7.1 method 2)
     /// instead of the span of its rows. Rows the basis cannot express are reported as inconsistent.
     pub fn set_reaction_basis(&mut self, joint: JointId, wrenches: Vec<A::Screw>) -> Result<(), MechanismError> {
         let entry = self
@@ -605,7 +605,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Every body's kinematics from its motor and body momentum; with `dynamics`, also its external wrench and
-    /// free acceleration `H⁻¹(Ḃ × Ω_b + S_b)` (SPEC §5).
+    /// free acceleration `H⁻¹(Ḃ × Ω_b + S_b)` (theory §5).
     fn body_kinematics(
         &self,
         t: f64,
@@ -779,7 +779,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// The total momentum `Σ Ωᵢ` (world frame): linear momentum in the l-part, angular momentum about the world
-    /// origin in the t-part (SPEC §3).
+    /// origin in the t-part (theory §3).
     pub fn momentum(&self, states: &[State<A>]) -> A::Screw {
         states
             .iter()
@@ -854,7 +854,7 @@ impl<A: Algebra> Mechanism<A> {
         self.joint_rows(t, workspace, false)
     }
 
-    /// Projects states onto the joint manifold (SPEC §10, docs/mechanisms.md §M5): normalise every motor,
+    /// Projects states onto the joint manifold (theory §10, docs/mechanisms.md §M5): normalise every motor,
     /// Gauss–Newton steps on the positions of the whole system (at most as many as [`Stabilisation::Projection`]
     /// says and at least enough to converge from afar, stopping once the residuals are round-off; skipped if a
     /// joint has no position residual), then the kinetic-metric velocity projection. Use it on initial

@@ -7,13 +7,13 @@
 //!
 //! * when the nonzero rows already number the rank (virtual power, a PGA point once its zero row is dropped),
 //!   they are used as they are;
-//! * otherwise by the SPEC's kinetic-metric solution truncated to the known rank (§7.1 method 1): with `g` the
+//! * otherwise by the kinetic-metric solution truncated to the known rank (theory §7.1 method 1): with `g` the
 //!   held body's inverse inertia (diagonal) and `A' = A diag(√g)`, the eigenvectors `v_k` of `A'ᵀA'` with the
 //!   r largest eigenvalues `σ_k²` span the kept row space, `q_k = v_k ⊙ √(1/g)` and
 //!   `z_k = Σᵢ (A'ᵢ·v_k) βᵢ / σ_k²`. The (r+1)-th singular value, the spurious one of an incidence pin off its
-//!   manifold (SPEC E8), is dropped. For a body held by the world this is exactly §7.1's `y = H^{1/2}(A H^{-1/2})⁺_r β`
-//!   (then `q G qᵀ = I`); for two bodies the held body's metric chooses the truncation, which matters only off
-//!   the manifold;
+//!   manifold (theory §12, E8), is dropped. For a body held by the world this is exactly theory §7.1's
+//!   `y = H^{1/2}(A H^{-1/2})⁺_r β` (then `q G qᵀ = I`); for two bodies the held body's metric chooses the
+//!   truncation, which matters only off the manifold;
 //! * with a supplied reaction basis (§7.1 method 2), `q` is the basis, orthonormalised, and `z` solves
 //!   `C z = β` in least squares with `C = A qᵀ`; rows the basis cannot express leave a residual, reported as an
 //!   inconsistency.
