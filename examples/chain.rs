@@ -1,4 +1,4 @@
-//! A chain of 16 links joined by ball joints (MULTIBODY.md's M3), its top end at the world origin, released at
+//! A chain of 16 links joined by ball joints (docs/scenes.md's M3), its top end at the world origin, released at
 //! rest straight and horizontal. Simulated in PGA with the reactions of all 16 joints solved together (cost
 //! linear in the number of links); prints the energy drift and the joint violation; writes `chain.png`: the
 //! chain seen from the side at a few instants as it falls and whips.

@@ -1,5 +1,5 @@
-//! Work–precision table of the constrained scenes (SCENES.md 1–4): for every scene, formulation (virtual power,
-//! pinning), algebra (PGA, CGA), general integrator and step dt = 1e-2, 1e-3, 1e-4, with projection (SPEC §10):
+//! Work–precision table of the constrained scenes (docs/scenes.md 1–4): for every scene, formulation (virtual power,
+//! pinning), algebra (PGA, CGA), general integrator and step dt = 1e-2, 1e-3, 1e-4, with projection (theory §10):
 //! the CPU time per step and per simulated second, the error against the reference trajectory and the largest
 //! constraint violation. Prints a Markdown table (about a minute in release).
 //!

@@ -1,5 +1,5 @@
 //! A 3D double pendulum written with the mechanism API: two cuboid links, the first hinged to the world about
-//! world x, the second hinged to the first's bottom end about the first's body y (MULTIBODY.md's M1, its
+//! world x, the second hinged to the first's bottom end about the first's body y (docs/scenes.md's M1, its
 //! parameters from `reference::multibody`), by virtual-power hinges, in PGA and CGA. Prints the end state's
 //! error against the reference (reduced coordinates, DOP853), the energy drift and the hinge violation; writes
 //! `double_pendulum.png`: the lower link's end seen from the side and from below, and the two joint angles.
@@ -114,7 +114,7 @@ fn main() -> output::Result<()> {
     let (q1, q2) = angles(&pga);
     figure(
         &folder.join("double_pendulum.png"),
-        "Double pendulum (MULTIBODY.md M1), two hinges, PGA, RKMK6-body at dt = 2e-3 s",
+        "Double pendulum (docs/scenes.md M1), two hinges, PGA, RKMK6-body at dt = 2e-3 s",
         &[
             Panel::new(
                 Labels::new("Lower end, seen along x", "world y (m)", "world z (m)"),

@@ -1,5 +1,5 @@
 //! Fig. 1 of the paper: the Dzhanibekov (tennis-racket) flips of a free cuboid spinning about its intermediate
-//! axis (SCENES.md scene 1), in PGA and CGA. Writes `dzhanibekov_{pga,cga}.csv` and `dzhanibekov.png`
+//! axis (docs/scenes.md scene 1), in PGA and CGA. Writes `dzhanibekov_{pga,cga}.csv` and `dzhanibekov.png`
 //! (body angular velocity over time; the path of the centre of a face on the intermediate axis, relative to
 //! the centre of mass).
 //!

@@ -1,4 +1,4 @@
-//! The four-bar linkage (MULTIBODY.md's M2): crank, coupler and rocker hinged to each other and to two ground
+//! The four-bar linkage (docs/scenes.md's M2): crank, coupler and rocker hinged to each other and to two ground
 //! pivots, a closed loop whose four hinges write 20 conditions of rank 17. Simulated by the mechanism solver in
 //! PGA (the loop closes through a rank-revealing Schur complement); prints the loop violation, the crank's
 //! revolution period against the exact 0.7906242901366745 s and the end angles' error; writes `four_bar.png`:
@@ -78,7 +78,7 @@ fn main() -> output::Result<()> {
     }
     figure(
         &folder.join("four_bar.png"),
-        "Four-bar linkage (MULTIBODY.md M2): the coupler curve, PGA, RKMK6-body at dt = 2e-3 s",
+        "Four-bar linkage (docs/scenes.md M2): the coupler curve, PGA, RKMK6-body at dt = 2e-3 s",
         &[Panel::new(
             Labels::new("Seen along the hinge axes (y)", "world x (m)", "world z (m)"),
             series,

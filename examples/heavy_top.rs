@@ -1,4 +1,4 @@
-//! The spinning cone pinned at its tip (the heavy symmetric top, SCENES.md scenes 3a and 3b), by virtual power
+//! The spinning cone pinned at its tip (the heavy symmetric top, docs/scenes.md scenes 3a and 3b), by virtual power
 //! (a ball joint of three forces) and by pinning the tip point, in PGA and CGA. Writes
 //! `heavy_top_{cusp,steady}_{virtual_power,pinning}_{pga,cga}.csv` and `heavy_top.png`: the path of the
 //! centre of the cone's base seen from above (cusped nutation from rest, and steady precession) and the tilt

@@ -1,6 +1,6 @@
-//! The pendulum pinned by a line (SPEC §7, E7): pinning the rod's hinge line alone makes a **cylindrical**
+//! The pendulum pinned by a line (theory §7, E7): pinning the rod's hinge line alone makes a **cylindrical**
 //! joint — the rod also slides along the line — while the line plus a point on it makes a hinge. The rod of
-//! SCENES.md scene 2 is released horizontally with a sliding velocity of 0.3 m/s along the axis, in PGA and
+//! docs/scenes.md scene 2 is released horizontally with a sliding velocity of 0.3 m/s along the axis, in PGA and
 //! CGA. Writes `pendulum_{line,hinge}_{pga,cga}.csv` and `pendulum_line.png` (the free end's path seen along
 //! the axis, and its slide along the axis).
 //!
@@ -41,7 +41,7 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
         Vector3::zeros(),
         Vector3::new(0.0, 0.3, 0.0),
     );
-    // The hinge forbids the slide: projecting the initial state removes it (SPEC §10).
+    // The hinge forbids the slide: projecting the initial state removes it (theory §10).
     let mut initial = [initial];
     system.project(0.0, &mut initial)?;
     let [initial] = initial;

@@ -1,6 +1,6 @@
-//! The pendulum end on a sphere and on a circle (SCENES.md scene 4): a free rod whose end P slides on a sphere
+//! The pendulum end on a sphere and on a circle (docs/scenes.md scene 4): a free rod whose end P slides on a sphere
 //! of radius 0.5 m about the origin, or on the horizontal circle of that sphere. By virtual power (force lines
-//! through P, SPEC §6) in PGA and CGA, and by pinning the incidences `P ∧ S = 0`, `P ∧ C = 0` (SPEC §9) in
+//! through P, theory §6) in PGA and CGA, and by pinning the incidences `P ∧ S = 0`, `P ∧ C = 0` (theory §9) in
 //! CGA. Writes `rod_on_{sphere,circle}_{virtual_power,pinning}_{pga,cga}.csv` and
 //! `rod_on_{sphere,circle}.png` (the paths of P and of the centre of mass, from above and from the side).
 //!

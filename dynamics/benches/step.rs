@@ -1,4 +1,4 @@
-//! CPU time of one step of each integrator in each algebra, for the free cuboid of scene 1 (SCENES.md), and of
+//! CPU time of one step of each integrator in each algebra, for the free cuboid of scene 1 (docs/scenes.md), and of
 //! the same body as a one-body `Mechanism` without joints (the general path every mechanism takes).
 //!
 //! `cargo bench -p dynamics --bench step`

@@ -53,7 +53,7 @@ for_both_algebras!(
 );
 
 fn rotor_rotates_right_handed<A: Algebra>() {
-    // SPEC §2: e1 → cos θ e1 + sin θ e2 for n̂ = e3.
+    // theory §2: e1 → cos θ e1 + sin θ e2 for n̂ = e3.
     let theta = 0.3;
     let r = rotor::<A>(Vector3::z(), theta);
     let moved = A::position(A::transform_point(r, A::point(Vector3::x())));
@@ -142,7 +142,7 @@ fn exp_log_at_hard_angles<A: Algebra>() {
 }
 
 fn normalise_removes_drift<A: Algebra>() {
-    // SPEC §2: a 1e-4 drift inside the subalgebra is corrected to round-off.
+    // theory §2: a 1e-4 drift inside the subalgebra is corrected to round-off.
     let m = from_pose::<A>(
         Vector3::new(1.0, 2.0, -3.0),
         &UnitQuaternion::from_scaled_axis(Vector3::new(0.5, 0.2, -0.9)),
@@ -160,7 +160,7 @@ fn normalise_removes_drift<A: Algebra>() {
 }
 
 fn pairing_is_dual<A: Algebra>() {
-    // SPEC §1.4: ⟨lᵢ∧tⱼ⟩_Π = δᵢⱼ, lᵢ∧lⱼ = tᵢ∧tⱼ = 0.
+    // theory §1.4: ⟨lᵢ∧tⱼ⟩_Π = δᵢⱼ, lᵢ∧lⱼ = tᵢ∧tⱼ = 0.
     let unit = |k: usize| {
         let mut c = [0.0; 6];
         c[k] = 1.0;
@@ -185,7 +185,7 @@ fn energy_like_pairing_is_symmetric<A: Algebra>() {
 }
 
 /// Both algebras move points and screws like the same rigid motion, checked against nalgebra.
-/// CGA's error is larger: its points carry ½|x|² terms (SPEC §1.2), so round-off grows with
+/// CGA's error is larger: its points carry ½|x|² terms (theory §1.2), so round-off grows with
 /// squared distances; the measured worst cases here are about 1.4e-15 (PGA) and 2.5e-13 (CGA).
 #[test]
 fn cga_and_pga_motors_agree_through_coordinates() {

@@ -1,5 +1,5 @@
-//! The constraint machinery on one body held by the world: rows against finite differences (the SPEC §6–§9
-//! derivatives, E3), the ranks of the SPEC §7 and §9 tables, the dual line of E4, translator paths (§8), the
+//! The constraint machinery on one body held by the world: rows against finite differences (the theory §6–§9
+//! derivatives, E3), the ranks of the theory §7 and §9 tables, the dual line of E4, translator paths (§8), the
 //! reaction solve (§7.1) and the errors.
 
 use std::sync::Arc;
@@ -30,7 +30,7 @@ fn state<A: Algebra>() -> State<A> {
     )
 }
 
-/// The motion with constant body velocity Ḃ: `R(s) = R exp(−½ s Ḃ)` (SPEC §3), so B̈ = 0 and the rate of
+/// The motion with constant body velocity Ḃ: `R(s) = R exp(−½ s Ḃ)` (theory §3), so B̈ = 0 and the rate of
 /// the velocity residual along it is the row's bias alone.
 fn kinematics_along<A: Algebra>(state: &State<A>, s: f64, t: f64) -> Kinematics<A> {
     let velocity = state.body_velocity(&body());
@@ -224,7 +224,7 @@ fn numerical_rank<A: Algebra>(constraint: &dyn Constraint<A>, state: &State<A>) 
     values.iter().filter(|&&v| v > 1e-6 * largest).count()
 }
 
-/// SPEC §7 and §9 tables, checked on the manifold.
+/// theory §7 and §9 tables, checked on the manifold.
 #[test]
 fn ranks_match_the_spec_tables() {
     let s = state::<Pga>();
@@ -289,7 +289,7 @@ fn sphere_wrench_is_the_dual_line() {
     );
 }
 
-/// SPEC §8: the translator path is exactly `T(c) V₀ ~T(c)`, with derivatives matching finite differences.
+/// theory §8: the translator path is exactly `T(c) V₀ ~T(c)`, with derivatives matching finite differences.
 #[test]
 fn translated_paths_are_exact() {
     let c = |t: f64| PathPoint {
@@ -361,7 +361,7 @@ fn close(a: dynamics::ScrewCoordinates, b: dynamics::ScrewCoordinates, tolerance
 }
 
 /// The reaction of the kinetic-metric solve does no work on the motions the constraint allows, and equals
-/// that of a supplied basis of the same span (SPEC §7.1 methods 1 and 2); the reduction's two evaluations
+/// that of a supplied basis of the same span (theory §7.1 methods 1 and 2); the reduction's two evaluations
 /// (rows as they are, truncated decomposition of redundant rows) agree.
 #[test]
 fn reaction_solves_agree() {
@@ -559,7 +559,7 @@ fn failures_name_the_constraint() {
 }
 
 /// A point on a sphere whose centre moves, by virtual power (prescribed power `(c − a)·ċ`) and by pinning the
-/// translated CGA sphere (SPEC §8, §9): both hold it, and agree.
+/// translated CGA sphere (theory §8, §9): both hold it, and agree.
 #[test]
 fn moving_sphere_by_both_formulations() {
     let centre = |t: f64| PathPoint {

@@ -1,4 +1,4 @@
-//! The wrench of a force f along the line through a (SPEC §3) is the line itself, built from the
+//! The wrench of a force f along the line through a (theory §3) is the line itself, built from the
 //! algebras' own products: in CGA the dual of the OPNS line, `(up(a) ∧ up(a+f) ∧ n∞) I5`; in PGA
 //! `f I3 − (a∧f) I3 e0`. `forces::force_line` builds it from coordinates instead, `Σ fᵢlᵢ + (a⨯f)ᵢtᵢ`.
 
@@ -17,7 +17,7 @@ const CGA_TOLERANCE: f64 = 1e-13;
 const PGA_TOLERANCE: f64 = 1e-14;
 
 fn up(x: Vector3<f64>) -> cga::Vector {
-    // Written out here (SPEC §1.2), not taken from `Cga::point`: up(x) = x + ½|x|² n∞ + n0 with
+    // Written out here (theory §1.2), not taken from `Cga::point`: up(x) = x + ½|x|² n∞ + n0 with
     // n∞ = e4 + e5, n0 = (e5 − e4)/2.
     let half_square = 0.5 * x.norm_squared();
     cga::Vector {
@@ -114,7 +114,7 @@ fn force_line_is_the_pga_line() {
 }
 
 /// The PGA line passes through a and a + f and not through a point beside it: `L × X = 0` iff X is on L
-/// (SPEC §1.3).
+/// (theory §1.3).
 #[test]
 fn pga_force_line_passes_through_its_point() {
     let mut random = Random::new(29);

@@ -154,7 +154,7 @@ fn cases<A: PinningAlgebra>() -> Vec<Case<A>> {
             start: (turn(Vector3::new(1.0, 2.0, 0.5), 0.7), 0.1 * x),
             violation: |a, b| offset(a, b).cross(&Vector3::x()).norm(),
             freedom: |a0, b0, a1, b1| (offset(a0, b0).x - offset(a1, b1).x).abs(),
-            // The incidence `P ∧ L` (`L × P`) picks up spurious singular values off the manifold (SPEC E8), where
+            // The incidence `P ∧ L` (`L × P`) picks up spurious singular values off the manifold (theory §12, E8), where
             // the integrator's stages are, so its truncation error differs from the virtual-power rows': the runs
             // differ by 7.6e-8 m at dt = 1e-3, 4.8e-9 at 5e-4, 3.0e-10 at 2.5e-4 (order 4: the same motion).
             agreement: 3e-7,

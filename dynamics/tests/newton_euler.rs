@@ -1,4 +1,4 @@
-//! The equations of motion (SPEC §5) are the classical Newton–Euler equations.
+//! The equations of motion (theory §5) are the classical Newton–Euler equations.
 //!
 //! For random bodies and states under gravity and a force along a random world line, the GA rates
 //! `(dR/dt, dΩ/dt)` are followed for ±ε and the body velocity Ḃ = (ω, v) (body axes) read at both ends; its

@@ -506,7 +506,7 @@ mod tests {
         // docs/scenes.md prints the instants with 12 decimals.
         assert!(
             published_error < 1e-9,
-            "max flip-time error vs SCENES.md {published_error:e} s"
+            "max flip-time error vs docs/scenes.md {published_error:e} s"
         );
         assert!(matches!(
             flip_time_error(&flips[1..], &CUBOID_VALUES.flip_instants),

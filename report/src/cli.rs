@@ -22,11 +22,11 @@ pub enum SceneName {
     TopSteady,
     RodOnSphere,
     RodOnCircle,
-    /// M1 of MULTIBODY.md.
+    /// M1 of docs/scenes.md.
     DoublePendulum,
-    /// M2 of MULTIBODY.md.
+    /// M2 of docs/scenes.md.
     FourBar,
-    /// M3 of MULTIBODY.md: cost against N, and 64 links over 10 s.
+    /// M3 of docs/scenes.md: cost against N, and 64 links over 10 s.
     Chain,
 }
 
@@ -67,7 +67,7 @@ pub struct Options {
     /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub steps: Vec<f64>,
-    /// Simulated time in seconds for every scene (default: each scene's T from SCENES.md).
+    /// Simulated time in seconds for every scene (default: each scene's T from docs/scenes.md).
     #[arg(long, allow_hyphen_values = true)]
     pub duration: Option<f64>,
     /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).

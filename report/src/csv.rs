@@ -6,7 +6,7 @@ use std::path::Path;
 
 use dynamics::simulate::Sample;
 
-/// The header: the reference files' columns (SCENES.md "Files") and the energy.
+/// The header: the reference files' columns (docs/scenes.md "Files") and the energy.
 pub const HEADER: &str = "t,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,energy";
 
 /// Writes the samples to `path`.

@@ -311,7 +311,7 @@ pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Resu
         &dir.join(&name),
         &title,
         &panels,
-        "Energy drift per sample (every 0.01 s) relative to the scene's energy scale (SCENES.md). Dark, solid: \
+        "Energy drift per sample (every 0.01 s) relative to the scene's energy scale (docs/scenes.md). Dark, solid: \
              PGA; light, dashed: CGA.",
     )?;
     files.push(name);

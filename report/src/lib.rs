@@ -5,7 +5,7 @@
 //! against the `reference` crate) → [`markdown`] (the report), [`figures`] (the plots, drawn by
 //! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
 //!
-//! The mechanisms of MULTIBODY.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
+//! The mechanisms of docs/scenes.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
 //! one; measured by `scenarios::mechanism_measures`) → [`mechanism_report`] (their section and plots).
 //!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).

@@ -295,13 +295,13 @@ pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, 
     let _ = writeln!(out, "# Work-precision report\n");
     let _ = writeln!(
         out,
-        "Every reference scene of SCENES.md, simulated in CGA and PGA from one generic source, with each integrator \
+        "Every reference scene of docs/scenes.md, simulated in CGA and PGA from one generic source, with each integrator \
          over a sweep of step sizes. Errors are measured against the reference trajectories (scipy DOP853, \
-         rtol = atol = 1e-13, classical Newton–Euler equations; no GA code) and the analytic values of SCENES.md, \
+         rtol = atol = 1e-13, classical Newton–Euler equations; no GA code) and the analytic values of docs/scenes.md, \
          sampled every 0.01 s. CPU time is the stepping time of each run (sampling and metrics excluded) on this \
          machine, with {threads} runs in parallel; \"CPU per simulated s\" is that time divided by the simulated \
-         time. Energy drift is |E(T) − E₀| divided by the scene's energy scale (SCENES.md). Constrained scenes use the stabilisation chosen \
-         for the sweep; \"virtual power\" and \"pinning\" are the two constraint formulations (SPEC §6, §7–§9).\n"
+         time. Energy drift is |E(T) − E₀| divided by the scene's energy scale (docs/scenes.md). Constrained scenes use the stabilisation chosen \
+         for the sweep; \"virtual power\" and \"pinning\" are the two constraint formulations (docs/theory.md §6, §7–§9).\n"
     );
     let runs_by_scene: Vec<(SceneId, Vec<&RunResult>)> = SceneId::ALL
         .into_iter()

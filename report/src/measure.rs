@@ -1,4 +1,4 @@
-//! The error metrics of SCENES.md for one run, against the reference trajectories and analytic values of
+//! The error metrics of docs/scenes.md for one run, against the reference trajectories and analytic values of
 //! the `reference` crate (independent of any GA code).
 
 use reference::metrics::{self, MetricError};

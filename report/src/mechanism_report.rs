@@ -346,7 +346,7 @@ fn work_precision_figure(
              PGA; light, dashed: CGA."
         ),
         None => format!(
-            "Black triangles: MuJoCo 4.0 RK4 {what}, measured {} with MULTIBODY.md's scripts on the project's \
+            "Black triangles: MuJoCo 4.0 RK4 {what}, measured {} with the reference set's scripts on the project's \
              2-core machine type (thread CPU time); constants, not measured by this run. Dark, solid: PGA; light, \
              dashed: CGA.",
             mujoco::MECHANISMS_DATE
@@ -433,7 +433,7 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
         "M3 chain: cost against the number of links",
         &[panel],
         &format!(
-            "MuJoCo and Pinocchio: constants measured {date} with MULTIBODY.md's scripts on the project's 2-core \
+            "MuJoCo and Pinocchio: constants measured {date} with the reference set's scripts on the project's 2-core \
              machine type (thread CPU time), not by this run; ours: this run."
         ),
     )?;
@@ -448,7 +448,7 @@ pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<Stri
     }
     let _ = writeln!(
         out,
-        "## Mechanisms (MULTIBODY.md)\n\nSeveral bodies joined by hinges or ball joints, each body its own motor and \
+        "## Mechanisms (docs/scenes.md)\n\nSeveral bodies joined by hinges or ball joints, each body its own motor and \
          momentum, the reactions solved for the whole system in the kinetic metric (docs/mechanisms.md). Errors are \
          against the GA-independent references of `reference::multibody` (M1: reduced coordinates, DOP853; M2: the \
          crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}.\n",
@@ -461,7 +461,7 @@ pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<Stri
         (
             MechanismId::FourBar,
             "m2_four_bar",
-            "the loop (20 hinge rows of rank 17) holds; revolution period against MULTIBODY.md's 0.7906242901366745 s",
+            "the loop (20 hinge rows of rank 17) holds; revolution period against docs/scenes.md's 0.7906242901366745 s",
         ),
     ] {
         if !results.iter().any(|(c, _)| c.id == id) {

@@ -1,4 +1,4 @@
-//! The mechanisms of the main job (MULTIBODY.md): the configurations of M1 (double pendulum) and M2 (four-bar
+//! The mechanisms of the main job (docs/scenes.md): the configurations of M1 (double pendulum) and M2 (four-bar
 //! linkage) over algebra × joint formulation × integrator × step, the M3 chain's cost per step against its
 //! length, and running one configuration (its measures come from [`scenarios::mechanism_measures`]).
 
@@ -15,7 +15,7 @@ use crate::sweep::{AlgebraKind, RunError};
 /// M3's cost is measured as MuJoCo's is (`chain.py`): RK4 at dt = 1e-3, ball joints (virtual power: three
 /// reaction forces per joint), here over this much simulated time.
 pub const CHAIN_TIMING_DURATION: f64 = 1.0;
-/// M3's long run: the longest chain over MULTIBODY.md's 10 s with the most accurate method, for its energy
+/// M3's long run: the longest chain over docs/scenes.md's 10 s with the most accurate method, for its energy
 /// drift and joint violation.
 pub const CHAIN_LONG_RUN: (usize, Method, f64) = (64, Method::Rkmk6Body, 1e-3);
 
@@ -78,7 +78,7 @@ pub const DEFAULT_STEPS: [f64; 6] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4];
 
 impl MechanismPlan {
     /// Every run: M1 and M2 over algebra × formulation × method × step (splittings apply to free bodies only);
-    /// M3 in both algebras at each chain length of MULTIBODY.md (RK4, dt = 1e-3, for the cost), plus the long
+    /// M3 in both algebras at each chain length of docs/scenes.md (RK4, dt = 1e-3, for the cost), plus the long
     /// run. `duration` overrides every mechanism's.
     pub fn configurations(
         &self,

@@ -1,5 +1,5 @@
 //! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies from the project's issue
-//! tracker, measured by the team; the mechanisms from MULTIBODY.md's scripts, with the date below): orientation
+//! tracker, measured by the team; the mechanisms from the reference set's scripts, with the date below): orientation
 //! error at T (rad; the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per
 //! step. Drawn as reference markers on the work-precision
 //! plots: CPU per simulated second = time per step / dt.
@@ -134,7 +134,8 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
 /// the report. (The
 /// M1 and M2 times are those measured beside the benchmark run the README quotes; other runs the same day gave
 /// 5.2–6.8 µs and 11.0–15.6 µs per step: the shared machine varies by a third from hour to hour.)
-pub const MECHANISMS_MEASURED: &str = "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with MULTIBODY.md's \
+pub const MECHANISMS_MEASURED: &str =
+    "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with the reference set's \
      scripts on this project's machine type (2 cores, thread CPU time), beside `cargo bench -p scenarios --bench \
      mechanisms`";
 

@@ -35,9 +35,9 @@ impl From<IntegratorName> for Integrator {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StabilisationName {
-    /// Post-step projection onto the constraint manifold (SPEC §10).
+    /// Post-step projection onto the constraint manifold (theory §10).
     Projection,
-    /// Baumgarte feedback, α = β = 10 (SPEC §10).
+    /// Baumgarte feedback, α = β = 10 (theory §10).
     Baumgarte,
     /// None: bare acceleration-level constraints (they drift).
     None,

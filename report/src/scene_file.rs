@@ -287,7 +287,7 @@ pub enum Shape {
     },
 }
 
-/// The state at t = 0. Constrained scenes are projected onto their constraints first (SPEC §10), so the
+/// The state at t = 0. Constrained scenes are projected onto their constraints first (theory §10), so the
 /// values need to satisfy them only approximately.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -335,7 +335,7 @@ fn standard_gravity() -> [f64; 3] {
     [0.0, 0.0, -dynamics::forces::STANDARD_GRAVITY]
 }
 
-/// How a constraint is written (SPEC §6 and §7–§9).
+/// How a constraint is written (theory §6 and §7–§9).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FormulationName {
@@ -568,7 +568,7 @@ impl ForceSpec {
 }
 
 /// An algebra in which scene files run. Only CGA has the spheres and circles that pinning a point to one
-/// needs (SPEC §9, §13).
+/// needs (theory §9, §13).
 pub trait FileAlgebra: PinningAlgebra {
     fn point_on_sphere_pin(
         name: String,
@@ -1319,7 +1319,7 @@ impl SceneFile {
             system.add_joint(ids[joint.body], reference, constraint)?;
         }
         system.set_stabilisation(self.stabilisation()?)?;
-        // Onto the joints (SPEC §10); joints that cannot hold together are an error naming them.
+        // Onto the joints (theory §10); joints that cannot hold together are an error naming them.
         let mut initial = states;
         system.project(0.0, &mut initial)?;
         // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.

@@ -77,7 +77,7 @@ pub struct SweepPlan {
 }
 
 /// Whether a scene can be written by a formulation in an algebra (PGA has no spheres or circles, so scene 4
-/// pins only in CGA; SPEC §13).
+/// pins only in CGA; theory §13).
 fn expressible(scene: SceneId, algebra: AlgebraKind, formulation: Formulation) -> bool {
     let needs_round_objects = matches!(
         scene.parameters().constraint,

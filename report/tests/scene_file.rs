@@ -95,7 +95,7 @@ fn a_scene_file_writes_trajectories_plots_and_summary() {
         assert!(size > 10_000, "{name}: {size} bytes");
     }
     let text = std::fs::read_to_string(output.join("summary.md")).unwrap();
-    assert!(text.starts_with("# Heavy top, SCENES.md scene 3a"), "{text}");
+    assert!(text.starts_with("# Heavy top, docs/scenes.md scene 3a"), "{text}");
     let pga_row = format!(
         "| PGA | {:.1e} | {:.1e} |",
         summary.runs[0].energy_change.last().unwrap(),
@@ -330,7 +330,7 @@ fn difference_from_builtin<A: FileAlgebra + SceneAlgebra>(file: &str, id: Mechan
         .fold(0.0, f64::max)
 }
 
-/// The shipped mechanism files are MULTIBODY.md's M1, M2 and M3 (16 links): their states are the exact forward
+/// The shipped mechanism files are docs/scenes.md's M1, M2 and M3 (16 links): their states are the exact forward
 /// kinematics written to 17 digits, so after the same projection both runs agree to round-off. Measured (both
 /// algebras): at most 4e-16 m over 0.2 s.
 #[test]
@@ -353,7 +353,7 @@ fn mechanism_files_run_as_the_builtin_mechanisms() {
     }
 }
 
-/// The whole M1 file against the reference (reduced coordinates, DOP853): end state within 1e-9 (MULTIBODY.md's
+/// The whole M1 file against the reference (reduced coordinates, DOP853): end state within 1e-9 (docs/scenes.md's
 /// requirement; measured 3.7e-13 rad, 1.5e-13 m), hinges at round-off, and the CSV has every body's columns.
 #[test]
 fn double_pendulum_file_matches_the_reference() {
@@ -676,7 +676,7 @@ fn user_text_in_the_summary_is_escaped() {
     let file = dir.join("top.toml");
     let text = heavy_top_text()
         .replace(
-            "title = \"Heavy top, SCENES.md scene 3a\"",
+            "title = \"Heavy top, docs/scenes.md scene 3a\"",
             "title = \"top\\n# injected heading\\n| a | table |\"",
         )
         .replace("duration = 10.0", "duration = 0.1");

@@ -59,7 +59,7 @@ fn shortened_job_matches_the_references() {
             "{label}: energy drift {}",
             m.energy_drift_max
         );
-        // Projection holds every constraint at round-off (SPEC §10).
+        // Projection holds every constraint at round-off (theory §10).
         if let Some(violation) = m.violation_max {
             assert!(violation <= 1e-12, "{label}: constraint violation {violation}");
         }

@@ -1,4 +1,4 @@
-//! CPU time of one constrained step (with projection) of each constrained reference scene (SCENES.md 2–4), per
+//! CPU time of one constrained step (with projection) of each constrained reference scene (docs/scenes.md 2–4), per
 //! algebra, formulation and general integrator, from a state one second into the scene. MuJoCo 4.0's RK4 step
 //! on the same scenes and machine took 3.9–4.8 µs (the issue tracker's anchors).
 //!

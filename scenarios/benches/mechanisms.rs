@@ -1,4 +1,4 @@
-//! CPU time of one step of the mechanisms of MULTIBODY.md, per algebra, joint formulation and integrator, with
+//! CPU time of one step of the mechanisms of docs/scenes.md, per algebra, joint formulation and integrator, with
 //! projection onto the joints after each step: M1 (double pendulum), M2 (four-bar linkage, a redundant loop) and
 //! M3 (chains of N ball-jointed links, N = 1 … 64, with projection and with Baumgarte stabilisation), from a state
 //! 0.2 s into the motion. MuJoCo's RK4 steps on the same scenes are measured beside these with

@@ -1,4 +1,4 @@
-//! Scene 1 (the Dzhanibekov cuboid, SCENES.md) with every integrator in both algebras over a range of steps:
+//! Scene 1 (the Dzhanibekov cuboid, docs/scenes.md) with every integrator in both algebras over a range of steps:
 //! error at T = 10 s against the reference trajectory, energy drift, flip-time error, and CPU time per step
 //! and per simulated second; then the comparison with the anchor, and classic RK4 on (q, ω_body) for contrast.
 //!

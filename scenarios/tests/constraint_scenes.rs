@@ -1,4 +1,4 @@
-//! Scenes 2, 3a, 3b and 4 of SCENES.md with constraints by virtual power and by pinning, in both algebras,
+//! Scenes 2, 3a, 3b and 4 of docs/scenes.md with constraints by virtual power and by pinning, in both algebras,
 //! against the GA-independent reference crate (analytic values and DOP853 trajectories).
 //!
 //! Every tolerance is a measured value (quoted next to it) times a margin of 3–10, so a regression of the
@@ -53,7 +53,7 @@ fn run_for<A: SceneAlgebra>(
     }
 }
 
-/// A full-length run with projection (the SPEC §10 recommendation) and RK4.
+/// A full-length run with projection (the theory §10 recommendation) and RK4.
 fn run<A: SceneAlgebra>(id: SceneId, formulation: Formulation, dt: f64) -> Run<A> {
     run_for(
         id,
@@ -87,7 +87,7 @@ fn hinge_period_and_end_state<A: SceneAlgebra>() {
         let period = pendulum_period(&run.trajectory).unwrap();
         let relative = (period - PENDULUM_VALUES.exact_period).abs() / PENDULUM_VALUES.exact_period;
         // Measured 5.8e-12 (virtual power), 2.5e-11 (pinning); the metric is blind to the O(dt²) error of
-        // some methods at θ₀ = π/2 (SCENES.md), hence also the end state below.
+        // some methods at θ₀ = π/2 (docs/scenes.md), hence also the end state below.
         assert!(
             relative < 2e-10,
             "{} {}: period error {relative:e}",
@@ -108,7 +108,7 @@ fn hinge_period_and_end_state<A: SceneAlgebra>() {
     }
 }
 
-/// Angular momentum about the pivot (the world origin): the t-part of Ω (SPEC §3).
+/// Angular momentum about the pivot (the world origin): the t-part of Ω (theory §3).
 fn angular_momentum<A: Algebra>(state: &State<A>) -> Vector3<f64> {
     A::screw_coordinates(state.momentum).t
 }
@@ -120,7 +120,7 @@ fn top_nutation_and_invariants<A: SceneAlgebra>() {
         let reference = nutation_features(&SceneId::TopCusp.reference_trajectory().unwrap()).unwrap();
         let values = HEAVY_TOP_VALUES;
         // Measured: within 1.9e-9 of the same features of the reference trajectory, and within 9.3e-9 of the
-        // analytic values (the extraction's own floor on the 0.01 s grid is 1e-8, SCENES.md).
+        // analytic values (the extraction's own floor on the 0.01 s grid is 1e-8, docs/scenes.md).
         for (name, simulated, expected, analytic) in [
             ("θmax", features.theta_max, reference.theta_max, values.theta_max),
             (
@@ -216,7 +216,7 @@ fn rod_end_on_sphere_and_circle<A: SceneAlgebra>() {
                 id,
                 formulation.name()
             );
-            // Projection is not energy-conserving by construction (SPEC §10); measured 1.4e-7 J (sphere), 2.2e-12 J
+            // Projection is not energy-conserving by construction (theory §10); measured 1.4e-7 J (sphere), 2.2e-12 J
             // (circle), of |E₀| = 4.7 J.
             assert!(energy_drift(&run.energies) < 1e-6, "{}", energy_drift(&run.energies));
         }
@@ -280,7 +280,7 @@ fn pivot_distance<A: Algebra>(state: &State<A>) -> f64 {
     state.world_point(Vector3::new(0.0, 0.0, 0.5)).norm()
 }
 
-/// Without stabilisation the hinge drifts (SPEC §10: ∝ t³); with projection it stays at round-off for 100 s.
+/// Without stabilisation the hinge drifts (theory §10: ∝ t³); with projection it stays at round-off for 100 s.
 #[test]
 fn drift_grows_without_stabilisation_and_projection_holds_it() {
     let dt = 1e-2;
@@ -315,7 +315,7 @@ fn drift_grows_without_stabilisation_and_projection_holds_it() {
         },
         40.0,
     );
-    // SPEC §10: Baumgarte bounds it (5e-7 over 200 s at dt = 0.01); measured 9.2e-7 m over 40 s (the most
+    // theory §10: Baumgarte bounds it (5e-7 over 200 s at dt = 0.01); measured 9.2e-7 m over 40 s (the most
     // at the start), against 1.6e-3 m unstabilised.
     assert!(baumgarte < 5e-6, "{baumgarte:e}");
 }
@@ -355,9 +355,9 @@ fn drifting_circle(offset: f64, steps: usize) -> (f64, Result<(), dynamics::cons
     (worst, Ok(()))
 }
 
-/// 1 mm off the circle (the SPEC's robustness case, singular values [28.7, 11.7, 5.8e-3, 1.4e-6, 0, 0]) the
+/// 1 mm off the circle (the theory's robustness case, singular values [28.7, 11.7, 5.8e-3, 1.4e-6, 0, 0]) the
 /// fixed-rank solve ignores the spurious directions and runs on, finite, while the unstabilised drift grows
-/// (E9); a relative cut-off would switch them on and blow up (SPEC §7.1).
+/// (E9); a relative cut-off would switch them on and blow up (theory §7.1).
 #[test]
 fn circle_with_drift_stays_finite() {
     let (worst, outcome) = drifting_circle(1e-3, 200);

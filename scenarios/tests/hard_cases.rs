@@ -195,7 +195,7 @@ impl<A: Algebra> Dynamics<A> for Unnormalised<A> {
 
 /// 1e6 RK4 steps (scene 1 spinning in place, dt = 1e-3, 1000 s): with the renormalisation after every step
 /// the motor stays unit to round-off (measured max |R~R − 1| 6.7e-16), the world momentum is unchanged
-/// bit for bit, and the energy error reaches 2.3e-10. Without it (SPEC §10) R drifts off the motors:
+/// bit for bit, and the energy error reaches 2.3e-10. Without it (theory §10) R drifts off the motors:
 /// measured |R~R − 1| = 3.8e-7 after 2000 steps of 0.01 s.
 fn a_million_rk4_steps<A: Algebra>() {
     let scene = cuboid::<A>();

@@ -1,9 +1,9 @@
-//! The mechanisms of MULTIBODY.md against their references (GA-independent, `reference::multibody`): the
+//! The mechanisms of docs/scenes.md against their references (GA-independent, `reference::multibody`): the
 //! double pendulum's end state, energy and hinges (M1), the four-bar linkage's closed loop, crank period and end
 //! angles (M2), the 64-link chain's energy and joints over 10 s (M3), in both algebras and both joint
 //! formulations. Joint violations are measured from the sampled poses alone, not from the solver's residuals.
 //!
-//! Bounds are the measured values (quoted) times a margin of 3–10, or MULTIBODY.md's requirement where that is
+//! Bounds are the measured values (quoted) times a margin of 3–10, or docs/scenes.md's requirement where that is
 //! tighter, so a regression of the formulation fails while round-off does not.
 
 use dynamics::constraints::{PinningAlgebra, Stabilisation};
@@ -57,8 +57,8 @@ fn double_pendulum_to_the_reference<A: PinningAlgebra>() {
     }
 }
 
-/// SPEC §14.3: maximal coordinates cost almost no accuracy against reduced ones. A fourth-order method at
-/// MuJoCo's step (dt = 1e-3) reaches MuJoCo's RK4 error (2.2e-10 rad, 9.2e-11 m, MULTIBODY.md) within 2×: the
+/// theory §14.3: maximal coordinates cost almost no accuracy against reduced ones. A fourth-order method at
+/// MuJoCo's step (dt = 1e-3) reaches MuJoCo's RK4 error (2.2e-10 rad, 9.2e-11 m, docs/scenes.md) within 2×: the
 /// body-momentum RKMK4 measures 1.3e-10 rad and 6.8e-11 m (pinning: 1.7e-10, 9.2e-11). The paper's RK4 on the
 /// world momentum is 100× less accurate (2.2e-8 rad), as on the single body: its body velocity `M⁻¹[~RΩR]`
 /// inherits the truncation error of R.

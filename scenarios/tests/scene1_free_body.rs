@@ -1,4 +1,4 @@
-//! Scene 1 (SCENES.md): the free Dzhanibekov cuboid, T = 10 s, with every integrator in both algebras,
+//! Scene 1 (docs/scenes.md): the free Dzhanibekov cuboid, T = 10 s, with every integrator in both algebras,
 //! against the analytic flip instants, the reference trajectory and end state, and the invariants of a free
 //! body; the two algebras against each other; and each method's order of convergence.
 //!
@@ -28,7 +28,7 @@ struct Bounds {
     max_orientation: f64,
     /// Maximum centre-of-mass error against the reference (m).
     max_position: f64,
-    /// Angular velocity error at T against the end state printed in SCENES.md (rad/s).
+    /// Angular velocity error at T against the end state printed in docs/scenes.md (rad/s).
     end_angular_velocity: f64,
     /// max |E − E₀| / E₀ over the samples.
     energy: f64,

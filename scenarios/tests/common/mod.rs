@@ -12,7 +12,7 @@ use dynamics::simulate::Simulation;
 use dynamics::{Algebra, Body, FreeBody, State};
 use reference::{SceneId, SceneParameters, Trajectory};
 
-/// Scene 1 (SCENES.md): the free Dzhanibekov cuboid, its body and initial state.
+/// Scene 1 (docs/scenes.md): the free Dzhanibekov cuboid, its body and initial state.
 pub struct Cuboid<A: Algebra> {
     pub scene: SceneParameters,
     pub body: Body,
