@@ -33,15 +33,20 @@ pub const KEYWORDS: &[&str] = &[
 /// canonical blade `blade` (sign −1 for a permuted name such as `e31`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Field {
+    /// The field's identifier in the emitted struct (as declared, possibly a permuted name).
     pub name: String,
+    /// The canonical blade whose coefficient the field stores.
     pub blade: BladeMask,
+    /// +1, or −1 when the declared name permutes the canonical blade's basis vectors oddly.
     pub sign: i64,
 }
 
 /// A declared sparse type with its fields in storage order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SparseType {
+    /// The type's name, as declared.
     pub name: String,
+    /// One field per stored blade, in declaration (storage) order.
     pub fields: Vec<Field>,
 }
 
@@ -60,10 +65,15 @@ impl SparseType {
 /// A validated algebra: what the expansion and emission stages work on.
 #[derive(Clone, Debug)]
 pub struct Algebra {
+    /// The floating-point type of the emitted coefficients.
     pub scalar: ScalarType,
+    /// The basis vector names, in bit order (`basis_names[i]` is bit `i` of a blade mask).
     pub basis_names: Vec<String>,
+    /// The bilinear form: diagonal squares or a general symmetric matrix.
     pub metric: Metric,
+    /// How blade masks are named and blade names parsed in this basis.
     pub naming: BladeNaming,
+    /// The declared types, in declaration order.
     pub types: Vec<SparseType>,
     /// The operations to emit.
     pub operations: Vec<Operation>,

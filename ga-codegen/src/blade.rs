@@ -71,6 +71,7 @@ pub struct BladeNaming {
 pub const SCALAR_NAME: &str = "scalar";
 
 impl BladeNaming {
+    /// The naming for basis vectors with these names, in bit order: finds their common alphabetic prefix and the separator.
     pub fn new(basis_names: &[String]) -> Self {
         // The longest alphabetic prefix shared by every name that leaves each a non-empty suffix.
         let mut prefix: String = match basis_names.first() {

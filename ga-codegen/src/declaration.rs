@@ -9,7 +9,9 @@ use crate::operation::Operation;
 /// The floating-point type of every emitted coefficient.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ScalarType {
+    /// Single precision, `f32`.
     F32,
+    /// Double precision, `f64`.
     F64,
 }
 
@@ -35,6 +37,7 @@ impl ScalarType {
 /// One basis vector: its name and its square (+1, −1 or 0). Vectors are listed in bit order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BasisVectorDeclaration {
+    /// The basis vector's name, e.g. `e1` or `ninf`; blade names are formed from it.
     pub name: String,
     /// Not read when the algebra has a [`metric`](AlgebraDeclaration::metric) matrix, whose diagonal
     /// gives the squares.
@@ -56,18 +59,23 @@ pub enum Layout {
 /// A declared sparse type, e.g. `Motor = grades(0, 2, 4)`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TypeDeclaration {
+    /// The type's name, e.g. `Motor`: a Rust identifier.
     pub name: String,
+    /// Which blades the type stores, and in what order.
     pub layout: Layout,
 }
 
 /// The whole input of the compiler.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AlgebraDeclaration {
+    /// The floating-point type of the emitted coefficients.
     pub scalar: ScalarType,
+    /// The basis vectors, in bit order.
     pub basis: Vec<BasisVectorDeclaration>,
     /// A general symmetric bilinear form, `metric[i][j]` = B(eᵢ, eⱼ) (e.g. a null basis with
     /// `n0 · ninf = −1`); `None` for the orthogonal basis whose squares `basis` lists.
     pub metric: Option<Vec<Vec<Rational64>>>,
+    /// The sparse types to emit, in order.
     pub types: Vec<TypeDeclaration>,
     /// Emit only these operations (for big algebras); `None` emits all of them.
     pub operations: Option<Vec<Operation>>,

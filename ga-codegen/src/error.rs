@@ -11,7 +11,12 @@ pub enum Location {
     /// `types[index]` as a whole (its name).
     Type(usize),
     /// Item `item` (a grade or a blade name) of `types[ty]`'s layout.
-    TypeItem { ty: usize, item: usize },
+    TypeItem {
+        /// Index into `types`.
+        ty: usize,
+        /// Index into that type's layout list.
+        item: usize,
+    },
     /// `operations[index]`.
     Operation(usize),
     /// The `metric` matrix as a whole.
@@ -19,45 +24,100 @@ pub enum Location {
     /// Row `row` of the `metric` matrix.
     MetricRow(usize),
     /// The entry `metric[row][column]`.
-    MetricEntry { row: usize, column: usize },
+    MetricEntry {
+        /// Row index (the first basis vector).
+        row: usize,
+        /// Column index (the second basis vector).
+        column: usize,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
+/// A declaration the compiler rejects; [`Error::location`] says which part of it is at fault.
 pub enum Error {
     #[error("an algebra needs at least one basis vector")]
+    /// The declaration lists no basis vectors.
     EmptyBasis,
     #[error("{count} basis vectors declared; at most {max} are supported")]
-    TooManyBasisVectors { count: usize, max: usize },
+    /// More basis vectors than blade bit masks can hold.
+    TooManyBasisVectors {
+        /// How many basis vectors were declared.
+        count: usize,
+        /// The limit, [`MAX_DIMENSION`](crate::algebra::MAX_DIMENSION).
+        max: usize,
+    },
     #[error("basis vector `{name}` is declared twice")]
-    DuplicateBasisName { index: usize, name: String },
+    /// Two basis vectors share a name.
+    DuplicateBasisName {
+        /// Index of the second occurrence in `basis`.
+        index: usize,
+        /// The repeated name.
+        name: String,
+    },
     #[error("basis vector `{name}` squares to {square}; a square must be 1, -1 or 0")]
-    InvalidSquare { index: usize, name: String, square: i64 },
+    /// A basis vector (without a `metric` matrix) squares to something other than 1, −1 or 0.
+    InvalidSquare {
+        /// Index into `basis`.
+        index: usize,
+        /// The basis vector's name.
+        name: String,
+        /// The rejected square.
+        square: i64,
+    },
     #[error("the metric has {rows} rows, but the basis has {expected} vectors: it must be {expected}×{expected}")]
-    MetricSize { rows: usize, expected: usize },
+    /// The `metric` matrix does not have one row per basis vector.
+    MetricSize {
+        /// Rows the matrix has.
+        rows: usize,
+        /// Rows it needs: the number of basis vectors.
+        expected: usize,
+    },
     #[error("row {row} of the metric has {length} entries, but the metric is {expected}×{expected}")]
-    MetricRowLength { row: usize, length: usize, expected: usize },
+    /// A row of the `metric` matrix does not have one entry per basis vector.
+    MetricRowLength {
+        /// Index of the row.
+        row: usize,
+        /// Entries the row has.
+        length: usize,
+        /// Entries it needs: the number of basis vectors.
+        expected: usize,
+    },
+    /// The `metric` matrix is not symmetric.
     #[error(
         "the metric is not symmetric: entry ({row}, {column}) is {value} but entry ({column}, {row}) is {transposed}; \
          a bilinear form B(eᵢ, eⱼ) = B(eⱼ, eᵢ) has a symmetric matrix"
     )]
     MetricNotSymmetric {
+        /// Row of the offending entry.
         row: usize,
+        /// Column of the offending entry.
         column: usize,
+        /// The entry `metric[row][column]`, formatted.
         value: String,
+        /// The mirrored entry `metric[column][row]`, formatted.
         transposed: String,
     },
+    /// The metric's entries would overflow the exact 64-bit rational coefficients of the expansion.
     #[error(
         "the metric's entries are too large for exact 64-bit coefficients in {dimension} dimensions: \
          use smaller numerators and denominators, or fewer non-zero off-diagonal entries"
     )]
-    MetricTooLarge { dimension: usize },
+    MetricTooLarge {
+        /// The number of basis vectors.
+        dimension: usize,
+    },
+    /// A basis vector's name is not usable as a Rust identifier.
     #[error("basis vector name `{name}` {problem}")]
     InvalidBasisName {
+        /// Index into `basis`.
         index: usize,
+        /// The rejected name.
         name: String,
+        /// Why the name is rejected.
         problem: NameProblem,
     },
+    /// A basis vector's name contains `_`, which would make blade names ambiguous.
     #[error(
         "basis vector name `{name}` contains `_`, which joins the names of basis vectors into blade names \
          in this basis, so {}: name the basis vectors without `_`",
@@ -67,11 +127,14 @@ pub enum Error {
         }
     )]
     SeparatorInBasisName {
+        /// Index into `basis`.
         index: usize,
+        /// The rejected name.
         name: String,
         /// The basis vectors (without `_`) of another blade that `name` would also name, if any.
         clash: Option<Vec<String>>,
     },
+    /// A blade (in practice a basis vector) would be named `scalar`, the grade-0 blade's name.
     #[error(
         "`scalar` names the grade-0 blade, so it cannot also name {}: rename {}",
         describe_blade(factors),
@@ -83,6 +146,7 @@ pub enum Error {
         /// The basis vectors of the blade that would be called `scalar`.
         factors: Vec<String>,
     },
+    /// A blade's name, joined from its basis vector names, would be a Rust keyword.
     #[error(
         "the blade {} would be named `{blade}`, a Rust keyword, which cannot name its field: rename basis vector `{}`",
         wedge(factors),
@@ -91,22 +155,32 @@ pub enum Error {
     KeywordBladeName {
         /// The last basis vector of the blade.
         index: usize,
+        /// The blade name that is a keyword.
         blade: String,
+        /// The basis vectors of the blade.
         factors: Vec<String>,
     },
+    /// A type's name is not usable as a Rust identifier.
     #[error("type name `{name}` {problem}")]
     InvalidTypeName {
+        /// Index into `types`.
         index: usize,
+        /// The rejected name.
         name: String,
+        /// Why the name is rejected.
         problem: NameProblem,
     },
+    /// A type's name clashes with an item the emitted module defines itself.
     #[error("type name `{name}` clashes with {clash}: rename the type")]
     ReservedTypeName {
+        /// Index into `types`.
         index: usize,
+        /// The rejected name.
         name: String,
         /// What the emitted module already means by the name.
         clash: String,
     },
+    /// Two type names have the same snake case, so their `const fn` method names would collide.
     #[error(
         "types `{other}` and `{name}` would both give methods named `{operation}_{method_suffix}` (the `const fn` \
          form of `{operation}` with that type on the right): both names are `{method_suffix}` in snake case; \
@@ -115,6 +189,7 @@ pub enum Error {
     TypeMethodCollision {
         /// The later type.
         index: usize,
+        /// The later type's name.
         name: String,
         /// The earlier type with the same snake-case name.
         other: String,
@@ -123,75 +198,133 @@ pub enum Error {
         /// A binary operation the methods are emitted for.
         operation: String,
     },
+    /// A `grades(…)` or `blades(…)` layout asks for more than [`MAX_TYPE_FIELDS`](crate::algebra::MAX_TYPE_FIELDS) blades.
     #[error(
         "type `{ty}` would have {fields} fields; a declared type may have at most {max} \
          (a full multivector in {max_dimension} dimensions): declare fewer grades or blades"
     )]
     TooManyFields {
+        /// Index into `types`.
         ty_index: usize,
+        /// The type's name.
         ty: String,
         /// The number of blades the layout asks for.
         fields: u64,
+        /// The limit on fields per type.
         max: usize,
+        /// The dimension whose full multivector has `max` blades.
         max_dimension: usize,
     },
+    /// A blade name in a `blades(…)` layout is not usable as a Rust identifier.
     #[error("blade name `{blade}` in type `{ty}` {problem}")]
     InvalidBladeName {
+        /// Index into `types`.
         ty_index: usize,
+        /// Index into the type's blade list.
         item: usize,
+        /// The type's name.
         ty: String,
+        /// The rejected blade name.
         blade: String,
+        /// Why the name is rejected.
         problem: NameProblem,
     },
     #[error("type `{name}` is declared twice")]
-    DuplicateTypeName { index: usize, name: String },
+    /// Two types share a name.
+    DuplicateTypeName {
+        /// Index of the second occurrence in `types`.
+        index: usize,
+        /// The repeated name.
+        name: String,
+    },
     #[error("type `{name}` has no blades")]
-    EmptyType { index: usize, name: String },
+    /// A type's layout selects no blades.
+    EmptyType {
+        /// Index into `types`.
+        index: usize,
+        /// The type's name.
+        name: String,
+    },
+    /// A `blades(…)` layout names a blade that does not parse as basis vector names of this algebra.
     #[error("unknown blade `{blade}` in type `{ty}`: {reason}")]
     UnknownBlade {
+        /// Index into `types`.
         ty_index: usize,
+        /// Index into the type's blade list.
         item: usize,
+        /// The type's name.
         ty: String,
+        /// The unknown blade name.
         blade: String,
+        /// Why the name does not parse, for the message.
         reason: String,
     },
+    /// A type's layout lists the same blade (or grade) twice.
     #[error("blade `{blade}` appears twice in type `{ty}`")]
     DuplicateBlade {
+        /// Index into `types`.
         ty_index: usize,
+        /// Index of the second occurrence in the type's layout list.
         item: usize,
+        /// The type's name.
         ty: String,
+        /// The repeated blade (or grade), formatted.
         blade: String,
     },
+    /// A `grades(…)` layout lists a grade above the dimension of the algebra.
     #[error("grade {grade} in type `{ty}` is out of range: this algebra has grades 0 to {max}")]
     GradeOutOfRange {
+        /// Index into `types`.
         ty_index: usize,
+        /// Index into the type's grade list.
         item: usize,
+        /// The type's name.
         ty: String,
+        /// The rejected grade.
         grade: u32,
+        /// The highest grade: the number of basis vectors.
         max: u32,
     },
+    /// A type declared `all` in an algebra above [`MAX_FULL_MULTIVECTOR_DIMENSION`](crate::algebra::MAX_FULL_MULTIVECTOR_DIMENSION) dimensions.
     #[error(
         "`{ty} = all` would have 2^{dimension} = {blades} coefficients and products with {products} terms; \
          full multivectors are limited to {max_dimension} dimensions: declare smaller types (grades or blades) instead"
     )]
     AllTooLarge {
+        /// Index into `types`.
         ty_index: usize,
+        /// The type's name.
         ty: String,
+        /// The number of basis vectors.
         dimension: usize,
+        /// Coefficients the full multivector would have (2ⁿ).
         blades: u64,
+        /// Terms of a product of two full multivectors (4ⁿ).
         products: u64,
+        /// The largest dimension allowed for `all`.
         max_dimension: usize,
     },
     #[error("operation `{name}` is listed twice")]
-    DuplicateOperation { index: usize, name: String },
+    /// An operation is listed twice in `operations`.
+    DuplicateOperation {
+        /// Index of the second occurrence in `operations`.
+        index: usize,
+        /// The operation's name.
+        name: String,
+    },
+    /// The result of an operation on two declared types fits no declared type.
     #[error(
         "no declared type holds the result of `{lhs}.{operation}({rhs})`: it needs the blades [{}]; \
          declare a type with them (or `Multivector = all`)", blades.join(", ")
     )]
     NoResultType {
+        /// The operation's name.
         operation: String,
+        /// The left operand's type.
         lhs: String,
+        /// The right operand's type.
         rhs: String,
+        /// The blades the result needs.
         blades: Vec<String>,
     },
 }
@@ -229,10 +362,13 @@ impl Error {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum NameProblem {
+    /// Not a valid Rust identifier.
     #[error("is not a valid identifier")]
     NotAnIdentifier,
+    /// A Rust keyword (strict or reserved).
     #[error("is a Rust keyword")]
     Keyword,
+    /// A raw identifier (`r#…`).
     #[error("is a raw identifier, which is not supported here: choose a name that needs no `r#`")]
     Raw,
 }
@@ -260,6 +396,7 @@ fn last(factors: &[String]) -> &str {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum EvaluatorError {
+    /// A dense slice does not have 2ⁿ coefficients, one per blade.
     #[error(
         "the {operand} has {got} coefficients, but a dense multivector of this algebra has 2^n = {expected}, \
          one per blade"
@@ -267,7 +404,9 @@ pub enum EvaluatorError {
     DenseLength {
         /// Which argument: `"left operand"`, `"right operand"` or `"operand"`.
         operand: &'static str,
+        /// The length it needs: 2ⁿ.
         expected: usize,
+        /// The length it has.
         got: usize,
     },
 }

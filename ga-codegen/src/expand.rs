@@ -16,14 +16,18 @@ use crate::product::{reverse_sign, Rules};
 /// Which operand a variable belongs to: `self` or the right-hand side.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Operand {
+    /// The left operand, `self` (the only operand of a unary operation).
     Lhs,
+    /// The right-hand operand of a binary operation.
     Rhs,
 }
 
 /// One input coefficient: field number `field` of an operand.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Variable {
+    /// Which operand the coefficient belongs to.
     pub operand: Operand,
+    /// Index of the field in that operand's type.
     pub field: usize,
 }
 
@@ -100,6 +104,7 @@ impl std::ops::Deref for Monomial {
 /// A polynomial with exact coefficients; a zero coefficient is never stored.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Polynomial {
+    /// Each monomial with its non-zero coefficient.
     pub terms: BTreeMap<Monomial, Rational64>,
 }
 
@@ -121,6 +126,7 @@ impl Polynomial {
         }
     }
 
+    /// Whether the polynomial has no terms (is identically zero).
     pub fn is_zero(&self) -> bool {
         self.terms.is_empty()
     }
@@ -134,6 +140,7 @@ impl Polynomial {
 /// The expansion of one operation: the polynomial of every output blade that is not identically zero.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Expansion {
+    /// Each output blade with its (non-zero) polynomial in the input coefficients.
     pub outputs: BTreeMap<BladeMask, Polynomial>,
 }
 

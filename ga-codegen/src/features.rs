@@ -50,9 +50,13 @@ impl Feature {
 /// The `mint` type a declared type converts to and from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MintType {
+    /// `mint::Vector2`.
     Vector2,
+    /// `mint::Vector3`.
     Vector3,
+    /// `mint::Vector4`.
     Vector4,
+    /// `mint::Quaternion`.
     Quaternion,
 }
 
@@ -72,6 +76,7 @@ impl MintType {
 /// of a vector; `v.x`, `v.y`, `v.z`, `s` of a quaternion, in that order) is `sign ×` a field.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MintMapping {
+    /// The `mint` type the declared type converts to and from.
     pub mint: MintType,
     /// `(field index, sign)` per component.
     pub components: Vec<(usize, i64)>,

@@ -30,16 +30,23 @@ pub enum Finish {
 }
 
 #[derive(Clone, Debug)]
+/// One emitted function: an operation on a type (pair), with its lowered program and cost.
 pub struct Function {
     /// The operation, or `None` for the sum and difference (always emitted).
     pub operation: Option<Operation>,
     /// The method name (`geometric`, `grade_2`, …).
     pub method: String,
+    /// The left (or only) operand's type, an index into `Algebra::types`.
     pub lhs: usize,
+    /// The right operand's type (an index into `Algebra::types`), or `None` for a unary operation.
     pub rhs: Option<usize>,
+    /// What the function returns.
     pub output: Output,
+    /// The straight-line code that computes the outputs.
     pub program: Program,
+    /// How the program's outputs become the return value.
     pub finish: Finish,
+    /// The exact operation count of the program and the finish.
     pub cost: Cost,
 }
 

@@ -5,6 +5,29 @@
 //! operation and type pair, only the non-zero terms, cancellations found symbolically with exact
 //! rational coefficients.
 //!
+//! ```
+//! use ga_codegen::{AlgebraDeclaration, BasisVectorDeclaration, Evaluator, Layout, Operation};
+//! use ga_codegen::{ScalarType, TypeDeclaration};
+//!
+//! // The plane (e1² = e2² = 1) with vectors and rotors (grades 0 and 2).
+//! let basis = ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 });
+//! let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+//! let declaration = AlgebraDeclaration {
+//!     scalar: ScalarType::F32,
+//!     basis: basis.to_vec(),
+//!     metric: None,
+//!     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+//!     operations: None,
+//! };
+//! let code = ga_codegen::pretty(&ga_codegen::generate(&declaration)?)?;
+//! assert!(code.contains("pub struct Rotor"));
+//!
+//! // The same rules on dense multivectors (blade masks 1, e1, e2, e12): e1 e2 = e12.
+//! let e1e2 = Evaluator::new(&[1, 1]).binary(Operation::Geometric, &[0., 1., 0., 0.], &[0., 0., 1., 0.])?;
+//! assert_eq!(e1e2, [0., 0., 0., 1.]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! The pipeline, one module per stage:
 //! 1. [`declaration`] → [`algebra`]: the validated algebra model ([`blade`] masks and names, [`metric`]);
 //! 2. [`product`]: product rules computed per blade pair (never a dense 2ⁿ×2ⁿ table), a single
@@ -23,6 +46,7 @@
 //!
 //! Most users call it through the `algebra!` macro of `ga-macros`; [`generate`] is the library entry.
 
+#![deny(missing_docs)]
 pub mod algebra;
 pub mod blade;
 pub mod declaration;

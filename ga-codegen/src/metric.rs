@@ -105,6 +105,7 @@ impl Metric {
             .product()
     }
 
+    /// The number of basis vectors.
     pub fn dimension(&self) -> usize {
         self.dimension
     }

@@ -5,27 +5,46 @@
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Operation {
     // Binary.
+    /// The geometric product `a b`.
     Geometric,
+    /// The outer (wedge) product `a ∧ b`.
     Outer,
+    /// The left contraction `a ⌋ b`: ⟨a_r b_s⟩_{s−r}, zero if s < r.
     LeftContraction,
+    /// The right contraction `a ⌊ b`: ⟨a_r b_s⟩_{r−s}, zero if r < s.
     RightContraction,
+    /// The scalar product ⟨a b⟩₀.
     ScalarProduct,
+    /// The Hestenes inner product ⟨a_r b_s⟩_{|r−s|}, zero if either grade is 0.
     HestenesInner,
+    /// The "fat dot" inner product ⟨a_r b_s⟩_{|r−s|}, scalars included.
     FatDot,
+    /// The regressive product LC(RC(a) ∧ RC(b)), metric-free (the PGA join).
     Regressive,
+    /// The commutator product (a b − b a)/2.
     Commutator,
+    /// The sandwich `a x ~a`, for any `a`.
     Sandwich,
     /// The sandwich for unit versors (`a ~a = 1`), using that identity to do less work.
     Transform,
     // Unary.
+    /// The reverse: grade k times (−1)^{k(k−1)/2}.
     Reverse,
+    /// The grade involution: grade k times (−1)^k.
     Involute,
+    /// The Clifford conjugate: grade k times (−1)^{k(k+1)/2}.
     Conjugate,
+    /// The right complement, with `e_m ∧ RC(e_m) = I`.
     RightComplement,
+    /// The left complement, with `LC(e_m) ∧ e_m = I`.
     LeftComplement,
+    /// The polarity (metric dual) `a I⁻¹`; zero on a degenerate metric.
     Polarity,
+    /// The projections onto each grade of a type (one `grade_k` method per grade).
     Grade,
+    /// The squared norm ⟨a ~a⟩₀.
     NormSquared,
+    /// The inverse `~a / (a ~a)`, for types where `a ~a` is a scalar.
     Inverse,
 }
 

@@ -49,6 +49,7 @@ pub type Term = (BladeMask, Rational64);
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub enum Combination {
     #[default]
+    /// No terms: the rule gives zero.
     Zero,
     /// One blade with a non-zero coefficient.
     Blade(Term),
@@ -89,6 +90,7 @@ impl Combination {
         }
     }
 
+    /// Whether the combination has no terms.
     pub fn is_zero(&self) -> bool {
         matches!(self, Combination::Zero)
     }
@@ -141,6 +143,7 @@ fn factors(blade: BladeMask) -> impl Iterator<Item = (u32, usize)> {
 }
 
 impl<'a> Rules<'a> {
+    /// The product rules of the algebra with this metric.
     pub fn new(metric: &'a Metric) -> Self {
         let n = metric.dimension();
         let pseudoscalar = if n == 32 { u32::MAX } else { (1u32 << n) - 1 };

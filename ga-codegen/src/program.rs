@@ -24,14 +24,18 @@ use crate::expand::{CommutatorForm, Expansion, Operand, Polynomial, Variable};
 /// A value the program can read: an input field or a hoisted local.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Value {
+    /// A coefficient of one of the operands.
     Input(Variable),
+    /// The local at this index of [`Program::locals`].
     Local(usize),
 }
 
 /// `coefficient · Π factors`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Term {
+    /// The exact constant factor.
     pub coefficient: Rational64,
+    /// The values multiplied together (none for a constant term).
     pub factors: Vec<Value>,
 }
 
@@ -45,23 +49,31 @@ pub enum Definition {
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
+/// A hoisted intermediate value: a named `let` in the emitted code.
 pub struct Local {
+    /// The local's identifier, formed from the fields and blades it combines.
     pub name: String,
+    /// How the local is computed.
     pub definition: Definition,
 }
 
 /// A straight-line program: locals in dependency order, then one sum per output blade.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Program {
+    /// The hoisted locals, each defined only from inputs and earlier locals.
     pub locals: Vec<Local>,
+    /// The sum of terms that gives each non-zero output blade's coefficient.
     pub outputs: BTreeMap<BladeMask, Vec<Term>>,
 }
 
 /// The exact operation count of a program (sign flips are free and not counted).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Cost {
+    /// Multiplications, including those by a constant other than ±1.
     pub multiplies: usize,
+    /// Additions and subtractions (a doubling `v + v` counts as one).
     pub adds: usize,
+    /// Divisions (the `inverse`'s division by `a ~a`).
     pub divisions: usize,
 }
 
@@ -154,7 +166,9 @@ impl Program {
 
 /// Names locals after the fields and blades they combine.
 pub struct Names<'a> {
+    /// The name of an input coefficient.
     pub field: &'a dyn Fn(Variable) -> String,
+    /// The name of a blade.
     pub blade: &'a dyn Fn(BladeMask) -> String,
 }
 
