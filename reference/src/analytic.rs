@@ -9,24 +9,42 @@ use thiserror::Error;
 
 use crate::elliptic::{complete_elliptic_k, jacobi_elliptic, EllipticError, EllipticParameter};
 
+/// Why a closed form could not be evaluated: invalid physical parameters, an initial state outside the
+/// implemented branch, or a failure of the underlying elliptic functions or quadrature.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 #[non_exhaustive]
 pub enum AnalyticError {
+    /// An elliptic integral or function rejected its input (e.g. a parameter outside [0, 1]).
     #[error(transparent)]
     Elliptic(#[from] EllipticError),
+    /// A physical parameter or initial condition is non-finite or out of range (e.g. a non-positive mass).
     #[error("{name} = {value} is outside its valid range ({requirement})")]
     InvalidParameter {
+        /// Name of the offending parameter, e.g. `"mass"` or `"θ₀"`.
         name: &'static str,
+        /// The value that was passed.
         value: f64,
+        /// The range it must lie in, e.g. `"> 0"`.
         requirement: &'static str,
     },
     /// The closed form implemented here covers one branch of the motion only (see the function docs).
     #[error("initial state not covered by this closed form: {reason}")]
-    UnsupportedInitialState { reason: &'static str },
+    UnsupportedInitialState {
+        /// What about the initial state falls outside the covered branch.
+        reason: &'static str,
+    },
+    /// The heavy top has no steady precession at this tilt and spin (the spin is too slow).
     #[error("no steady precession exists: discriminant (I₃ω₃)² − 4 I₁ cos θ M g l = {discriminant} < 0")]
-    NoSteadyPrecession { discriminant: f64 },
+    NoSteadyPrecession {
+        /// (I₃ω₃)² − 4 I₁ cos θ M g l, negative.
+        discriminant: f64,
+    },
+    /// The numerical integral for the precession per nutation period did not reach its tolerance.
     #[error("the precession integral did not converge with {evaluations} integrand evaluations")]
-    QuadratureNotConverged { evaluations: usize },
+    QuadratureNotConverged {
+        /// Number of integrand evaluations spent before giving up.
+        evaluations: usize,
+    },
 }
 
 fn require(name: &'static str, value: f64, requirement: &'static str, valid: bool) -> Result<(), AnalyticError> {
@@ -149,9 +167,13 @@ impl DzhanibekovSolution {
 /// about the pivot axis I_p.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pendulum {
+    /// Mass m (kg).
     pub mass: f64,
+    /// Gravitational acceleration g (m/s²).
     pub gravity: f64,
+    /// Distance d from the pivot axis to the centre of mass (m).
     pub pivot_distance: f64,
+    /// Moment of inertia I_p about the pivot axis (kg m²).
     pub pivot_moment: f64,
 }
 
@@ -216,11 +238,14 @@ impl PendulumSolution {
         4.0 * self.quarter_period_integral / self.frequency
     }
 
+    /// The angle θ(t) from the downward vertical (rad) at time `t` (s) after release; fails only if the elliptic
+    /// functions reject the argument (a non-finite `t`).
     pub fn angle(&self, t: f64) -> Result<f64, AnalyticError> {
         let jacobi = jacobi_elliptic(self.argument(t), self.parameter)?;
         Ok(2.0 * (self.modulus * jacobi.sn).asin())
     }
 
+    /// The angular rate θ̇(t) (rad/s) at time `t` (s) after release; fails only for a non-finite `t`.
     pub fn angular_rate(&self, t: f64) -> Result<f64, AnalyticError> {
         let jacobi = jacobi_elliptic(self.argument(t), self.parameter)?;
         Ok(-2.0 * self.modulus * self.frequency * jacobi.cn)
@@ -236,17 +261,24 @@ impl PendulumSolution {
 /// vertical, φ the precession angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeavyTop {
+    /// Mass M (kg).
     pub mass: f64,
+    /// Gravitational acceleration g (m/s²).
     pub gravity: f64,
+    /// Distance l from the fixed point to the centre of mass along the symmetry axis (m).
     pub pivot_distance: f64,
+    /// Transverse moment of inertia I₁ about the fixed point (kg m²).
     pub transverse_moment: f64,
+    /// Axial moment of inertia I₃ about the symmetry axis (kg m²).
     pub axial_moment: f64,
 }
 
 /// The two steady precession rates at one tilt and spin, the smaller magnitude first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteadyPrecessionRates {
+    /// The slow precession rate φ̇ (rad/s), close to the gyroscopic M g l/(I₃ω₃) for a fast spin.
     pub slow: f64,
+    /// The fast precession rate φ̇ (rad/s).
     pub fast: f64,
 }
 

@@ -13,12 +13,23 @@ use thiserror::Error;
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 #[non_exhaustive]
 pub enum EllipticError {
+    /// The parameter m or its complement 1 − m lies outside [0, 1] (or is NaN).
     #[error("elliptic parameter m = {m} (complement {complement}) is outside [0, 1]")]
-    ParameterOutOfRange { m: f64, complement: f64 },
+    ParameterOutOfRange {
+        /// The parameter m that was requested.
+        m: f64,
+        /// Its complement m₁ = 1 − m.
+        complement: f64,
+    },
+    /// [`complete_elliptic_k`] was called with m = 1 (complement 0), where K is infinite.
     #[error("K(m) diverges at m = 1")]
     CompleteIntegralDiverges,
+    /// [`jacobi_elliptic`] was called with an infinite or NaN argument.
     #[error("elliptic function argument u = {u} is not finite")]
-    NonFiniteArgument { u: f64 },
+    NonFiniteArgument {
+        /// The argument that was passed.
+        u: f64,
+    },
 }
 
 /// The elliptic parameter m = k² together with its complement m₁ = 1 − m.
@@ -51,10 +62,12 @@ impl EllipticParameter {
         }
     }
 
+    /// The parameter m = k².
     pub fn m(self) -> f64 {
         self.m
     }
 
+    /// The complement m₁ = 1 − m, exact if the parameter was built with [`EllipticParameter::from_complement`].
     pub fn complement(self) -> f64 {
         self.complement
     }
@@ -82,8 +95,11 @@ pub fn complete_elliptic_k(parameter: EllipticParameter) -> Result<f64, Elliptic
 /// The three Jacobi elliptic functions at one argument.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobiElliptic {
+    /// sn(u | m) = sin φ, with φ = am(u | m).
     pub sn: f64,
+    /// cn(u | m) = cos φ.
     pub cn: f64,
+    /// dn(u | m) = √(1 − m sn²).
     pub dn: f64,
 }
 

@@ -17,31 +17,54 @@ use crate::trajectory::{Sample, Trajectory};
 /// simulators that accumulate t += 0.01 (drift ~1e-13 over 1000 steps) but not a different grid.
 pub const SAMPLE_TIME_TOLERANCE: f64 = 1e-9;
 
+/// Why a metric could not be computed from the trajectories given.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum MetricError {
+    /// The reference and simulated trajectories have different numbers of samples.
     #[error("the trajectories have {reference} and {simulated} samples; compare them on the same grid")]
-    SampleCountMismatch { reference: usize, simulated: usize },
+    SampleCountMismatch {
+        /// Samples in the reference trajectory.
+        reference: usize,
+        /// Samples in the simulated trajectory.
+        simulated: usize,
+    },
+    /// A pair of samples differs in time by more than [`SAMPLE_TIME_TOLERANCE`].
     #[error("sample {index}: reference time {reference} and simulated time {simulated} differ")]
     SampleTimeMismatch {
+        /// Index of the first mismatching sample.
         index: usize,
+        /// The reference sample's time (s).
         reference: f64,
+        /// The simulated sample's time (s).
         simulated: f64,
     },
+    /// The trajectory has too few samples or features (e.g. period crossings) for the metric.
     #[error("found {found} {feature}, need {needed}")]
     TooFewFeatures {
+        /// What was counted, e.g. `"samples"`.
         feature: &'static str,
+        /// How many were found.
         found: usize,
+        /// The minimum the metric needs.
         needed: usize,
     },
+    /// The number of detected features (e.g. flips) differs from the published number.
     #[error("found {found} {feature}, expected {expected}")]
     FeatureCountMismatch {
+        /// What was counted, e.g. `"flips"`.
         feature: &'static str,
+        /// How many were detected.
         found: usize,
+        /// How many the reference has.
         expected: usize,
     },
+    /// A constraint-violation metric was asked for a scene whose constraint is not a point on a sphere or circle.
     #[error("the metric needs a scene-4 constraint (point on sphere or circle), got {constraint:?}")]
-    NotAPointConstraint { constraint: SceneConstraint },
+    NotAPointConstraint {
+        /// The constraint that was passed.
+        constraint: SceneConstraint,
+    },
 }
 
 /// Geodesic angle (rad, in [0, π]) of R_refᵀ R_sim: the rotation angle of q_ref⁻¹ q_sim, computed with atan2 so it
@@ -58,9 +81,13 @@ pub fn position_error(reference: &Vector3<f64>, simulated: &Vector3<f64>) -> f64
 /// Position and orientation errors at the end (t = T) and their maxima over the run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrajectoryErrors {
+    /// CoM position error at the last sample (m).
     pub end_position: f64,
+    /// Largest CoM position error over all samples (m).
     pub max_position: f64,
+    /// Orientation error (geodesic angle) at the last sample (rad).
     pub end_orientation: f64,
+    /// Largest orientation error over all samples (rad).
     pub max_orientation: f64,
 }
 
@@ -204,11 +231,16 @@ pub fn pendulum_period(trajectory: &Trajectory) -> Result<f64, MetricError> {
 /// φ̇ = (a × ȧ)_z / (a_x² + a_y²) = (ω_z − a_z (a·ω)) / (1 − a_z²).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TopAxisAngles {
+    /// Tilt θ of the symmetry axis from the upward vertical (rad, in [0, π]).
     pub tilt: f64,
+    /// Precession angle φ (rad, in (−π, π], not unwrapped).
     pub precession: f64,
+    /// Precession rate φ̇ (rad/s).
     pub precession_rate: f64,
 }
 
+/// The tilt, precession angle and precession rate of the top's symmetry axis at one sample (see
+/// [`TopAxisAngles`]).
 pub fn top_axis_angles(sample: &Sample) -> TopAxisAngles {
     let axis = sample.orientation * Vector3::z();
     let omega = &sample.angular_velocity;
@@ -314,6 +346,8 @@ pub struct SteadyPrecessionFeatures {
     pub precession_rate: f64,
 }
 
+/// Scene 3b: the largest tilt deviation from `initial_tilt` (rad) and the mean precession rate over the run;
+/// fails with [`MetricError::TooFewFeatures`] if the trajectory has fewer than two samples.
 pub fn steady_precession_features(
     trajectory: &Trajectory,
     initial_tilt: f64,

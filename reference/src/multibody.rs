@@ -17,6 +17,7 @@ use crate::trajectory::TrajectoryError;
 /// A cuboid link.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Link {
+    /// Mass (kg).
     pub mass: f64,
     /// Side lengths along body x, y, z (m).
     pub extents: Vector3<f64>,
@@ -65,11 +66,14 @@ impl BodyState {
 /// A body's pose: centre of mass and orientation (body → world).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose {
+    /// Centre of mass in the world frame (m).
     pub position: Vector3<f64>,
+    /// Rotation body → world.
     pub orientation: UnitQuaternion<f64>,
 }
 
 impl Pose {
+    /// World position of a body point (body coordinates from the centre of mass, m).
     pub fn world_point(&self, body_point: &Vector3<f64>) -> Vector3<f64> {
         self.position + self.orientation * body_point
     }
@@ -78,8 +82,11 @@ impl Pose {
 /// One sample of a mechanism's reference: every body's pose and the energy.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MechanismSample {
+    /// Time (s).
     pub t: f64,
+    /// Every body's pose, in the mechanism's link order.
     pub bodies: Vec<Pose>,
+    /// Total mechanical energy of the mechanism (J).
     pub energy: f64,
 }
 
@@ -124,15 +131,21 @@ fn parse_rows(text: &str, columns: usize) -> Result<Vec<Vec<f64>>, TrajectoryErr
 /// about link 1's y), zero hanging straight down with all frames aligned with the world.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DoublePendulum {
+    /// Link 1 (upper) and link 2 (lower).
     pub links: [Link; 2],
     /// Hinge 1's world point and its body point on link 1; its axis is world x, link 1's body x.
     pub pivot: Vector3<f64>,
+    /// Hinge 1's point on link 1, in link 1's body coordinates from its centre of mass (m).
     pub hinge_1_on_link_1: Vector3<f64>,
     /// Hinge 2's body points on link 1 and link 2; its axis is link 1's body y (= link 2's).
     pub hinge_2_on_link_1: Vector3<f64>,
+    /// Hinge 2's point on link 2, in link 2's body coordinates from its centre of mass (m).
     pub hinge_2_on_link_2: Vector3<f64>,
+    /// Initial joint angles q1, q2 (rad).
     pub initial_angles: [f64; 2],
+    /// Initial joint rates q̇1, q̇2 (rad/s).
     pub initial_rates: [f64; 2],
+    /// Simulated time T (s).
     pub duration: f64,
 }
 
@@ -210,6 +223,7 @@ impl DoublePendulum {
         ]
     }
 
+    /// Both links' states at the initial joint angles and rates of `docs/scenes.md`.
     pub fn initial_state(&self) -> [BodyState; 2] {
         self.state(self.initial_angles, self.initial_rates)
     }
@@ -268,16 +282,23 @@ impl DoublePendulum {
 pub struct FourBar {
     /// Ground length A–D and the link lengths L1 (crank), L2 (coupler), L3 (rocker) (m).
     pub ground: f64,
+    /// Link lengths L1 (crank), L2 (coupler), L3 (rocker) (m).
     pub lengths: [f64; 3],
+    /// Cross-section side w of every link (m).
     pub width: f64,
+    /// Masses of the crank, coupler and rocker (kg).
     pub masses: [f64; 3],
+    /// Initial crank angle φ₀ (rad).
     pub initial_angle: f64,
+    /// Initial crank rate φ̇₀ (rad/s).
     pub initial_rate: f64,
+    /// Simulated time T (s).
     pub duration: f64,
     /// The crank returns to φ₀ + 2πk every this many seconds (`docs/scenes.md`).
     pub revolution_period: f64,
 }
 
+/// M2's parameters as `docs/scenes.md` gives them.
 pub const FOUR_BAR: FourBar = FourBar {
     ground: 1.0,
     lengths: [0.3, 1.0, 0.8],
@@ -300,6 +321,7 @@ pub const FOUR_BAR_END: ([f64; 3], f64) = (
 pub struct FourBarConfiguration {
     /// Joint B (crank–coupler) and C (coupler–rocker), in the x–z plane as (x, z).
     pub b: [f64; 2],
+    /// Joint C (coupler–rocker) as (x, z) (m).
     pub c: [f64; 2],
     /// Link direction angles: φ (crank), α2 (B→C), α3 (D→C).
     pub angles: [f64; 3],
@@ -377,6 +399,7 @@ impl FourBar {
         })
     }
 
+    /// The three links' states at the initial crank angle and rate of `docs/scenes.md`.
     pub fn initial_state(&self) -> [BodyState; 3] {
         self.state(self.initial_angle, self.initial_rate)
     }
@@ -492,10 +515,13 @@ pub fn revolution_times(samples: &[(f64, f64, f64)], start: f64) -> Vec<f64> {
 /// along +y (every link turned +90° about world x), at rest.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Chain {
+    /// The link every joint connects (all links are identical).
     pub link: Link,
+    /// Simulated time T (s).
     pub duration: f64,
 }
 
+/// M3's parameters as `docs/scenes.md` gives them; the number of links N is chosen by the caller.
 pub const CHAIN: Chain = Chain {
     link: Link {
         mass: 0.5,

@@ -38,29 +38,42 @@ pub enum SceneId {
 /// body frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SceneConstraint {
+    /// No constraint: the body moves freely.
     Free,
     /// Revolute joint: `body_anchor` stays at `pivot`, rotation only about the world `axis`.
     Hinge {
+        /// World point the anchor stays at (m).
         pivot: Vector3<f64>,
+        /// Unit rotation axis in the world frame.
         axis: Vector3<f64>,
+        /// Constrained body point, offset from the CoM in the body frame (m).
         body_anchor: Vector3<f64>,
     },
     /// Spherical joint: `body_anchor` stays at `pivot`.
     BallJoint {
+        /// World point the anchor stays at (m).
         pivot: Vector3<f64>,
+        /// Constrained body point, offset from the CoM in the body frame (m).
         body_anchor: Vector3<f64>,
     },
     /// |P − centre| = radius for the body point P at `body_anchor`.
     PointOnSphere {
+        /// Constrained body point P, offset from the CoM in the body frame (m).
         body_anchor: Vector3<f64>,
+        /// Sphere centre in the world frame (m).
         centre: Vector3<f64>,
+        /// Sphere radius (m).
         radius: f64,
     },
     /// |P − centre| = radius and (P − centre)·normal = 0.
     PointOnCircle {
+        /// Constrained body point P, offset from the CoM in the body frame (m).
         body_anchor: Vector3<f64>,
+        /// Circle centre in the world frame (m).
         centre: Vector3<f64>,
+        /// Circle radius (m).
         radius: f64,
+        /// Unit normal of the circle's plane, world frame.
         normal: Vector3<f64>,
     },
 }
@@ -68,17 +81,23 @@ pub enum SceneConstraint {
 /// Everything a simulator needs to set a scene up, and the energy conventions of the drift metric.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SceneParameters {
+    /// Mass of the body (kg).
     pub mass: f64,
     /// Principal moments of inertia about the CoM, along body x, y, z.
     pub principal_moments: Vector3<f64>,
     /// Gravitational acceleration along −z (0 when the scene has no gravity).
     pub gravity: f64,
+    /// Initial CoM position in the world frame (m).
     pub initial_com: Vector3<f64>,
+    /// Initial orientation, body → world.
     pub initial_orientation: UnitQuaternion<f64>,
+    /// Initial angular velocity in the body frame (rad/s).
     pub initial_body_angular_velocity: Vector3<f64>,
+    /// Initial CoM velocity in the world frame (m/s).
     pub initial_com_velocity: Vector3<f64>,
     /// Simulated time T (s).
     pub duration: f64,
+    /// How the body is constrained.
     pub constraint: SceneConstraint,
     /// CoM height at which the potential energy m g (z − z₀) is zero.
     pub potential_zero_height: f64,
@@ -125,6 +144,7 @@ pub const TOP_SPIN: f64 = 20.0;
 const TOP_SLOW_PRECESSION_RATE: f64 = 1.45562004496984;
 
 impl SceneId {
+    /// Every scene, in `docs/scenes.md` order.
     pub const ALL: [SceneId; 6] = [
         SceneId::Cuboid,
         SceneId::Pendulum,
@@ -146,6 +166,7 @@ impl SceneId {
         }
     }
 
+    /// The scene's physical parameters, initial state and constraint as `docs/scenes.md` defines them.
     pub fn parameters(self) -> SceneParameters {
         match self {
             SceneId::Cuboid => {
@@ -381,6 +402,7 @@ pub struct DzhanibekovValues {
     pub flip_instants: [f64; 4],
 }
 
+/// Scene 1's published Dzhanibekov values.
 pub const CUBOID_VALUES: DzhanibekovValues = DzhanibekovValues {
     twice_rotational_energy: 83.3441666666667,
     angular_momentum_norm: 8.33403747025147,
@@ -409,6 +431,7 @@ pub struct PendulumValues {
 
 // k is kept as printed in docs/scenes.md (15 digits), not replaced by FRAC_1_SQRT_2.
 #[allow(clippy::approx_constant)]
+/// Scene 2's published pendulum values.
 pub const PENDULUM_VALUES: PendulumValues = PendulumValues {
     small_amplitude_frequency: 3.83601355576333,
     small_amplitude_period: 1.63794658591328,
@@ -426,6 +449,7 @@ pub struct HeavyTopValues {
     pub beta: f64,
     /// Slow and fast steady precession rates at θ₀ = π/6, ω₃ = 20 (rad/s).
     pub slow_precession_rate: f64,
+    /// Fast steady precession rate at θ₀ = π/6, ω₃ = 20 (rad/s).
     pub fast_precession_rate: f64,
     /// Mgl/(I₃ω₃) (rad/s).
     pub gyroscopic_precession_rate: f64,
@@ -439,6 +463,7 @@ pub struct HeavyTopValues {
     pub cusp_roots: [f64; 3],
     /// 3a nutation bounds (rad).
     pub theta_min: f64,
+    /// 3a largest tilt θ_max (rad).
     pub theta_max: f64,
     /// 3a nutation period (s).
     pub nutation_period: f64,
@@ -448,6 +473,7 @@ pub struct HeavyTopValues {
     pub mean_precession_rate: f64,
 }
 
+/// Scene 3's published heavy-top values.
 pub const HEAVY_TOP_VALUES: HeavyTopValues = HeavyTopValues {
     a: 8.0,
     beta: 19.62,

@@ -50,24 +50,54 @@ impl Sample {
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum TrajectoryError {
+    /// The text is empty or blank, so it has no header line.
     #[error("the CSV text has no header line")]
     MissingHeader,
+    /// The first non-blank line is not [`CSV_HEADER`].
     #[error("line {line}: expected the header `{CSV_HEADER}`, found `{found}`")]
-    UnexpectedHeader { line: usize, found: String },
+    UnexpectedHeader {
+        /// 1-based line number of the header.
+        line: usize,
+        /// The header line as found.
+        found: String,
+    },
+    /// A data row has the wrong number of comma-separated fields.
     #[error("line {line}: expected 14 comma-separated fields, found {found}")]
-    FieldCount { line: usize, found: usize },
+    FieldCount {
+        /// 1-based line number of the row.
+        line: usize,
+        /// Number of fields in the row.
+        found: usize,
+    },
+    /// A field does not parse as a finite `f64`.
     #[error("line {line}, column {column}: `{text}` is not a finite number")]
     InvalidNumber {
+        /// 1-based line number of the row.
         line: usize,
+        /// Name of the column, e.g. `"qw"`.
         column: &'static str,
+        /// The field's text.
         text: String,
     },
+    /// A row's quaternion norm differs from 1 by more than [`UNIT_QUATERNION_TOLERANCE`].
     #[error("line {line}: the quaternion's norm {norm} is not 1 (tolerance {UNIT_QUATERNION_TOLERANCE})")]
-    NotUnitQuaternion { line: usize, norm: f64 },
+    NotUnitQuaternion {
+        /// 1-based line number of the row.
+        line: usize,
+        /// The stored quaternion's norm.
+        norm: f64,
+    },
+    /// [`Trajectory::new`] was given no samples.
     #[error("a trajectory needs at least one sample")]
     Empty,
+    /// A sample's time is not finite or does not exceed the previous sample's time.
     #[error("sample {index}: time {t} is not finite or not greater than the previous sample's")]
-    TimeNotIncreasing { index: usize, t: f64 },
+    TimeNotIncreasing {
+        /// Index of the offending sample.
+        index: usize,
+        /// Its time (s).
+        t: f64,
+    },
 }
 
 /// A non-empty sequence of samples with finite, strictly increasing times.
@@ -111,14 +141,17 @@ impl Trajectory {
         Self::new(samples)
     }
 
+    /// All samples, in time order.
     pub fn samples(&self) -> &[Sample] {
         &self.0
     }
 
+    /// The earliest sample (a trajectory is never empty).
     pub fn first(&self) -> &Sample {
         &self.0[0]
     }
 
+    /// The latest sample.
     pub fn last(&self) -> &Sample {
         &self.0[self.0.len() - 1]
     }

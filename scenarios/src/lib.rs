@@ -5,6 +5,21 @@
 //! This crate exists so that `dynamics` carries no scene catalogue and no reference data: tests, benchmarks,
 //! examples and the main job build their systems here, from the GA-independent parameters and reference
 //! trajectories of the `reference` crate.
+//!
+//! Building scene 2 (the hinged rod of `docs/scenes.md`) in PGA by pinning; scene 4 on a sphere needs CGA:
+//! ```
+//! use dynamics::constraints::Stabilisation;
+//! use dynamics::Pga;
+//! use reference::SceneId;
+//! use scenarios::{build, Formulation};
+//!
+//! let scene = build::<Pga>(SceneId::Pendulum, Formulation::Pinning, Stabilisation::None)?;
+//! assert_eq!(scene.duration, SceneId::Pendulum.parameters().duration);
+//! assert!(build::<Pga>(SceneId::RodOnSphere, Formulation::Pinning, Stabilisation::None).is_err());
+//! # Ok::<(), scenarios::SceneError>(())
+//! ```
+
+#![deny(missing_docs)]
 
 pub mod mechanism_measures;
 pub mod mechanisms;

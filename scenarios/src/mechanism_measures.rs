@@ -14,14 +14,23 @@ use crate::MechanismId;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum MeasureError {
+    /// The embedded reference trajectory of the mechanism could not be parsed.
     #[error("the reference trajectory: {0}")]
     Reference(#[from] TrajectoryError),
+    /// The run has no samples to measure.
     #[error("the run has no samples")]
     Empty,
+    /// The run's last sample time (s, the field) is not on the reference's 0.01 s grid.
     #[error("the reference has no sample at t = {0} s (it is sampled every 0.01 s)")]
     NoReferenceAt(f64),
+    /// The run's number of bodies differs from the mechanism's.
     #[error("the run has {found} bodies, the mechanism {expected}")]
-    BodyCount { found: usize, expected: usize },
+    BodyCount {
+        /// Bodies in the run.
+        found: usize,
+        /// Bodies the mechanism has ([`MechanismId::bodies`]).
+        expected: usize,
+    },
 }
 
 /// The measures of one run.

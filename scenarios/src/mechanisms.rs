@@ -32,6 +32,7 @@ pub enum MechanismId {
 }
 
 impl MechanismId {
+    /// Short name with the `docs/scenes.md` scene number, e.g. `"M3 chain of 8"`.
     pub fn label(self) -> String {
         match self {
             MechanismId::DoublePendulum => "M1 double pendulum".to_owned(),
@@ -62,9 +63,13 @@ impl MechanismId {
 /// A mechanism ready to run: the system and its initial state (one per body, projected onto the joints).
 #[derive(Clone, Debug)]
 pub struct MechanismScene<A: dynamics::Algebra> {
+    /// Which mechanism this is.
     pub id: MechanismId,
+    /// How its joints are written.
     pub formulation: Formulation,
+    /// The bodies, joints, gravity and stabilisation.
     pub system: Mechanism<A>,
+    /// Each body's initial state, in link order, projected onto the joint manifold.
     pub initial: Vec<State<A>>,
 }
 

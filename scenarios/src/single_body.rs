@@ -32,8 +32,10 @@ pub enum Formulation {
 }
 
 impl Formulation {
+    /// Both formulations, virtual power first.
     pub const ALL: [Formulation; 2] = [Formulation::VirtualPower, Formulation::Pinning];
 
+    /// Lower-case name for labels and error messages, e.g. `"virtual power"`.
     pub fn name(self) -> &'static str {
         match self {
             Formulation::VirtualPower => "virtual power",
@@ -46,16 +48,24 @@ impl Formulation {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneError {
+    /// The algebra cannot write the scene's constraint in this formulation (scene 4 by pinning in PGA, which has no
+    /// spheres or circles).
     #[error("scene {scene} cannot be written by {formulation} in {algebra}")]
     NotExpressible {
+        /// The scene's label.
         scene: &'static str,
+        /// The formulation's name.
         formulation: &'static str,
+        /// The algebra's name, e.g. `"PGA"`.
         algebra: &'static str,
     },
+    /// The scene's mass or moments of inertia were rejected.
     #[error(transparent)]
     Body(#[from] BodyError),
+    /// The scene's constraint could not be built.
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    /// Assembling the system or projecting the initial state onto the constraint failed.
     #[error(transparent)]
     Mechanism(#[from] MechanismError),
 }
@@ -115,11 +125,17 @@ impl SceneAlgebra for Cga {
 /// state (projected onto the constraint manifold, theory §10) and how long `docs/scenes.md` runs it.
 #[derive(Clone, Debug)]
 pub struct Scene<A: Algebra> {
+    /// Which reference scene this is.
     pub id: SceneId,
+    /// How its constraint is written.
     pub formulation: Formulation,
+    /// The GA-independent parameters it was built from.
     pub parameters: SceneParameters,
+    /// The body, its constraint, gravity and stabilisation.
     pub system: Mechanism<A>,
+    /// The initial state, projected onto the constraint manifold.
     pub initial: State<A>,
+    /// Simulated time T (s), as in `docs/scenes.md`.
     pub duration: f64,
 }
 
