@@ -26,7 +26,7 @@ fn simulate<A: PinningAlgebra>(hinge: bool, folder: &std::path::Path) -> output:
     // The hinge axis is world y through the origin; in the body it is R₀⁻¹ e_y = e_y.
     let axis = (HINGE_END, orientation.inverse() * Vector3::y());
     let world = (Vector3::zeros(), Vector3::y());
-    let system = Mechanism::<A>::single(rod).with_force(Force::gravity());
+    let system = Mechanism::<A>::single(rod).with_force(Force::gravity())?;
     let system = if hinge {
         system.with_constraint(pinning::hinge::<A>("hinge (line + point)", axis, world)?)?
     } else {

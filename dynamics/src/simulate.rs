@@ -579,7 +579,7 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
 /// let rod = Body::rod(1.0, 1.0, 1e-3)?; // 1 kg, 1 m, hinged at its top end
 /// let top = (Vector3::new(0.0, 0.0, 0.5), Vector3::x());
 /// let pendulum = Mechanism::<Pga>::single(rod)
-///     .with_force(Force::gravity())
+///     .with_force(Force::gravity())?
 ///     .with_constraint(VirtualPower::hinge("pivot", top, (Vector3::zeros(), Vector3::x()))?)?;
 /// let tilted = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.0, 0.0));
 /// let hanging = tilted * Vector3::new(0.0, 0.0, -0.5);

@@ -371,6 +371,7 @@ fn reaction_solves_agree() {
     let system = |reaction_basis: bool| {
         let system = Mechanism::<Pga>::single(body())
             .with_force(Force::gravity())
+            .unwrap()
             .with_constraint(pinning::point::<Pga>("tip", tip, pivot))
             .unwrap();
         if reaction_basis {
@@ -389,10 +390,12 @@ fn reaction_solves_agree() {
     let ball = || VirtualPower::<Pga>::ball_joint("ball", tip, pivot);
     let single = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(ball())
         .unwrap();
     let doubled = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(Doubled(ball()))
         .unwrap();
     let (a, b) = (reaction(&single, &s), reaction(&doubled, &s));
@@ -424,6 +427,7 @@ fn redundant_joints_run_and_contradictions_are_named() {
     let pivot = s.world_point(tip);
     let one = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(pinning::point::<Pga>("first", tip, pivot))
         .unwrap();
     // Two pins of the same point: 6 declared degrees of freedom, 3 real ones.
@@ -438,10 +442,12 @@ fn redundant_joints_run_and_contradictions_are_named() {
     let axis = s.pose().1 * Vector3::z();
     let hinge = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(pinning::hinge::<Pga>("hinge", (tip, Vector3::z()), (pivot, axis)).unwrap())
         .unwrap();
     let separate = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(pinning::line::<Pga>("line", (tip, Vector3::z()), (pivot, axis)).unwrap())
         .unwrap()
         .with_constraint(pinning::point::<Pga>("point", tip, pivot))
@@ -463,6 +469,7 @@ fn redundant_joints_run_and_contradictions_are_named() {
     // The same body point pulled to two places 10 cm apart, accelerating apart: contradictory rows.
     let apart = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(VirtualPower::ball_joint("left", tip, pivot))
         .unwrap()
         .with_constraint(VirtualPower::driven_ball_joint("right", tip, move |t: f64| PathPoint {
@@ -490,6 +497,7 @@ fn failures_name_the_constraint() {
     let couples = (0..2).map(|k| force_line::<Pga>(Vector3::ith(k, 1.0), pivot)).collect();
     let wrong_basis = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(pinning::point::<Pga>("pivot", tip, pivot))
         .unwrap()
         .with_reaction_basis(couples)
@@ -579,6 +587,7 @@ fn moving_sphere_by_both_formulations() {
     let system = |constraint: Arc<dyn Constraint<Cga>>| {
         Mechanism::<Cga>::single(rod)
             .with_force(Force::gravity())
+            .unwrap()
             .with_constraint(constraint)
             .unwrap()
             .with_stabilisation(Stabilisation::PROJECTION)
@@ -622,6 +631,7 @@ fn joints_that_cannot_hold_together_are_an_error() {
     let pivot = s.world_point(tip);
     let system = Mechanism::<Pga>::single(body())
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(pinning::point::<Pga>("here", tip, pivot))
         .unwrap()
         .with_constraint(pinning::point::<Pga>("there", tip, pivot + Vector3::new(0.0, 0.0, 3.0)))

@@ -43,6 +43,11 @@ fn unphysical_bodies_are_refused() {
 
 #[test]
 fn mechanisms_refuse_bad_bodies_and_joints_naming_them() {
+    // A force for body 0 of a mechanism without bodies is refused, not dropped.
+    assert!(matches!(
+        Mechanism::<Pga>::new().with_force(dynamics::Force::gravity()),
+        Err(MechanismError::UnknownBody(0))
+    ));
     let mut mechanism = Mechanism::<Pga>::new();
     assert_eq!(mechanism.add_body("", body()), Err(MechanismError::EmptyName));
     let arm = mechanism.add_body("arm", body()).unwrap();

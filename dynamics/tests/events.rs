@@ -34,6 +34,7 @@ fn pendulum_period<A: Algebra>(amplitude: f64) {
     .unwrap();
     let pendulum = Mechanism::<A>::single(rod)
         .with_force(Force::gravity())
+        .unwrap()
         .with_constraint(hinge)
         .unwrap();
     let tilted = UnitQuaternion::from_scaled_axis(Vector3::new(amplitude, 0.0, 0.0));

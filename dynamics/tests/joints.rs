@@ -431,6 +431,7 @@ fn a_moving_pivot_by_prescribed_power() {
         .map(|constraint| {
             let system = Mechanism::<Pga>::single(body)
                 .with_force(Force::gravity())
+                .unwrap()
                 .with_constraint(constraint)
                 .unwrap();
             let rotation = UnitQuaternion::from_scaled_axis(Vector3::new(0.4, 0.0, 0.0));

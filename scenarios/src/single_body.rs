@@ -233,7 +233,7 @@ pub fn build<A: SceneAlgebra>(
     if parameters.gravity != 0.0 {
         system = system.with_force(Force::Gravity {
             acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
-        });
+        })?;
     }
     if let Some(constraint) = scene_constraint::<A>(id, &parameters, formulation)? {
         system = system.with_constraint(constraint)?;

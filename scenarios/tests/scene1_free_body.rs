@@ -387,7 +387,9 @@ fn thrown_under_gravity<A: Algebra>() {
         check(integrator.name(), run, bound);
     }
     // The same body as a one-body mechanism (the general evaluation every mechanism takes).
-    let mechanism = dynamics::Mechanism::single(system.body).with_force(dynamics::Force::gravity());
+    let mechanism = dynamics::Mechanism::single(system.body)
+        .with_force(dynamics::Force::gravity())
+        .unwrap();
     let generic = simulate(&mechanism, &[scene.initial], Method::Rkmk4Body, &schedule).expect("the throw runs");
     check("RKMK4-body (one-body mechanism)", generic, generic_bounds);
 }

@@ -406,12 +406,11 @@ impl<A: Algebra> Mechanism<A> {
         self.settings = settings;
     }
 
-    /// [`Mechanism::add_force`] on body 0, builder style (for [`Mechanism::single`]).
-    pub fn with_force(mut self, force: Force<A>) -> Self {
-        if let Some(body) = self.bodies.first_mut() {
-            body.forces.push(force);
-        }
-        self
+    /// [`Mechanism::add_force`] on body 0, builder style (for [`Mechanism::single`]); a mechanism without bodies
+    /// refuses it ([`MechanismError::UnknownBody`]) rather than dropping the force.
+    pub fn with_force(mut self, force: Force<A>) -> Result<Self, MechanismError> {
+        self.add_force(BodyId(0), force)?;
+        Ok(self)
     }
 
     /// [`Mechanism::add_joint`] of body 0 to the world, builder style (for [`Mechanism::single`]).
