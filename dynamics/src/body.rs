@@ -69,6 +69,11 @@ pub struct Body {
     moments: Vector3<f64>,
 }
 
+/// A mass or moment a body may have: positive and at most [`MAX_MASS_PROPERTY`] (NaN fails).
+fn physical(value: f64) -> bool {
+    value > 0.0 && value <= MAX_MASS_PROPERTY
+}
+
 fn positive(values: &[f64]) -> Result<(), BodyError> {
     if values.iter().all(|v| v.is_finite() && *v > 0.0) {
         Ok(())
@@ -80,7 +85,6 @@ fn positive(values: &[f64]) -> Result<(), BodyError> {
 impl Body {
     /// A body with these principal moments, checked to be physical.
     pub fn new(mass: f64, moments: Vector3<f64>) -> Result<Body, BodyError> {
-        let physical = |v: f64| v > 0.0 && v <= MAX_MASS_PROPERTY;
         if !physical(mass) {
             return Err(BodyError::Mass(mass));
         }
@@ -131,7 +135,7 @@ impl Body {
                 return Err(BodyError::Point([point.x, point.y, point.z]));
             }
         }
-        if !(mass > 0.0 && mass <= MAX_MASS_PROPERTY) {
+        if !physical(mass) {
             return Err(BodyError::Mass(mass));
         }
         let d = centre_of_mass - about;

@@ -776,6 +776,7 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
 ) -> Result<(), ConstraintError> {
     let n = y.len();
     let zero = A::screw(ScrewCoordinates::default());
+    let conserving = dynamics.conserves_world_momenta();
     for (start, state) in buffers.start_momenta.iter_mut().zip(y.iter()) {
         *start = to_body::<A>(state.motor, state.momentum);
     }
@@ -808,7 +809,7 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
             )
         });
         let motor = A::compose(state.motor, exp::<A>(sigma));
-        *state = end_of_body_step(dynamics.conserves_world_momenta(), state, motor, momentum);
+        *state = end_of_body_step(conserving, state, motor, momentum);
     }
     Ok(())
 }
