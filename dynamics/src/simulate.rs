@@ -81,6 +81,16 @@ pub enum SimulationError {
         /// The number of initial states given.
         got: usize,
     },
+    /// An event's function returned NaN or an infinity (it would never cross zero, or cross it anywhere).
+    #[error("event {name}: its function is {value} at t = {t}")]
+    EventNotFinite {
+        /// The event's name.
+        name: String,
+        /// The time it was evaluated at (s).
+        t: f64,
+        /// The value it returned.
+        value: f64,
+    },
     /// Output times must be finite, positive and increasing.
     #[error("output time {index} ({time}) is not finite, not positive or not after the one before")]
     OutputTime {
@@ -347,6 +357,20 @@ impl<'a, A: Algebra> Event<'a, A> {
         self
     }
 
+    /// The function's value, which must be finite: a NaN would hide every crossing.
+    fn value(&mut self, t: f64, states: &[State<A>]) -> Result<f64, SimulationError> {
+        let value = (self.function)(t, states);
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(SimulationError::EventNotFinite {
+                name: self.name.clone(),
+                t,
+                value,
+            })
+        }
+    }
+
     fn crosses(&self, before: f64, after: f64) -> bool {
         let rising = before < 0.0 && after >= 0.0;
         let falling = before > 0.0 && after <= 0.0;
@@ -528,7 +552,7 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
     end: &[State<A>],
     (before, after): (f64, f64),
     probe: &mut [State<A>],
-) -> Result<(f64, Vec<State<A>>), StepError> {
+) -> Result<(f64, Vec<State<A>>), SimulationError> {
     let (mut a, mut value_a) = (0.0, before);
     let (mut b, mut value_b) = (h, after);
     let mut at_b = end.to_vec();
@@ -543,7 +567,7 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
         }
         probe.copy_from_slice(start);
         stepper.step(t, probe, m)?;
-        let value = (event.function)(t + m, probe);
+        let value = event.value(t + m, probe)?;
         if value == 0.0 || value.signum() != before.signum() {
             (b, value_b) = (m, value);
             at_b.copy_from_slice(probe);
@@ -624,7 +648,10 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
     record(dynamics, 0.0, initial, &mut bodies);
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
-    let mut values: Vec<f64> = events.iter_mut().map(|event| (event.function)(0.0, initial)).collect();
+    let mut values = events
+        .iter_mut()
+        .map(|event| event.value(0.0, initial))
+        .collect::<Result<Vec<f64>, _>>()?;
     let (mut hits, mut stopped) = (Vec::new(), None);
     let mut sample = 1;
     let mut last_recorded = 0.0;
@@ -646,7 +673,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             clock.stop();
             let mut found = Vec::new();
             for (index, event) in events.iter_mut().enumerate() {
-                let after = (event.function)(end, &next);
+                let after = event.value(end, &next)?;
                 if event.crosses(values[index], after) {
                     let (time, states) = locate(
                         event,

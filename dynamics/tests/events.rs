@@ -207,3 +207,26 @@ fn output_times_must_increase() {
         Err(SimulationError::NotPositive { .. })
     ));
 }
+
+/// An event function that is not finite would never (or always) cross zero: the run stops with an error naming
+/// the event and the time instead of running without it.
+#[test]
+fn an_event_that_is_not_finite_is_an_error() {
+    let ball = Body::sphere(1.0, 0.1).unwrap();
+    let system = FreeBody::<Pga>::new(ball);
+    let start = State::from_world_twist(
+        &ball,
+        Vector3::zeros(),
+        &UnitQuaternion::identity(),
+        Vector3::zeros(),
+        Vector3::x(),
+    );
+    let schedule = Schedule::new(1e-3, 1.0).unwrap();
+    let broken = |t: f64, _: &[State<Pga>]| if t > 0.5 { f64::NAN } else { 1.0 };
+    let plan = Plan::new(&schedule).event(Event::new("broken", broken));
+    let error = simulate(&system, &[start], Method::Rk4, plan).unwrap_err();
+    assert!(
+        matches!(error, SimulationError::EventNotFinite { ref name, t, .. } if name == "broken" && t > 0.5 && t < 0.502),
+        "{error}"
+    );
+}
