@@ -25,6 +25,17 @@ pub struct ScrewCoordinates {
 
 impl ScrewCoordinates {
     /// From `[a₁, a₂, a₃, b₁, b₂, b₃]`, the layout of the algebras' `const fn` coordinate maps.
+    ///
+    /// A force of 2 N along z acting through `(1, 0, 0)` m: the l-part is the force, the t-part its moment
+    /// `a × f` about the origin (N m).
+    ///
+    /// ```
+    /// use dynamics::{forces::force_line, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::Vector3;
+    ///
+    /// let wrench = ScrewCoordinates::from_array([0.0, 0.0, 2.0, 0.0, -2.0, 0.0]);
+    /// assert_eq!(Pga::screw(wrench), force_line::<Pga>(Vector3::new(0.0, 0.0, 2.0), Vector3::x()));
+    /// ```
     #[inline]
     pub fn from_array([a1, a2, a3, b1, b2, b3]: [f64; 6]) -> Self {
         ScrewCoordinates {

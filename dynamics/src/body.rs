@@ -84,6 +84,19 @@ fn positive(values: &[f64]) -> Result<(), BodyError> {
 
 impl Body {
     /// A body with these principal moments, checked to be physical.
+    ///
+    /// ```
+    /// use dynamics::{Body, BodyError};
+    /// use nalgebra::Vector3;
+    ///
+    /// let plate = Body::new(2.0, Vector3::new(0.1, 0.2, 0.3))?; // 2 kg; kg m², a thin plate: I₃ = I₁ + I₂
+    /// assert_eq!((plate.mass(), plate.moments().z), (2.0, 0.3));
+    /// // No mass distribution has one moment above the sum of the other two.
+    /// let impossible = Body::new(1.0, Vector3::new(0.1, 0.1, 0.3));
+    /// assert_eq!(impossible, Err(BodyError::Triangle([0.1, 0.1, 0.3])));
+    /// assert!(matches!(Body::new(-1.0, Vector3::repeat(0.1)), Err(BodyError::Mass(_))));
+    /// # Ok::<(), BodyError>(())
+    /// ```
     pub fn new(mass: f64, moments: Vector3<f64>) -> Result<Body, BodyError> {
         if !physical(mass) {
             return Err(BodyError::Mass(mass));
@@ -161,6 +174,16 @@ impl Body {
 
     /// A solid cylinder of this radius and length, axis along body z: axial moment `m r²/2`, transverse
     /// `m(3r² + h²)/12`.
+    ///
+    /// ```
+    /// use dynamics::Body;
+    ///
+    /// let (m, r, h) = (3.0, 0.2, 1.0); // kg, m, m
+    /// let can = Body::cylinder(m, r, h)?;
+    /// assert!((can.moments().z - m * r * r / 2.0).abs() < 1e-15); // kg m², about the axis
+    /// assert!((can.moments().x - m * (3.0 * r * r + h * h) / 12.0).abs() < 1e-15); // across, through the centre
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn cylinder(mass: f64, radius: f64, length: f64) -> Result<Body, BodyError> {
         positive(&[radius, length])?;
         let transverse = mass * (3.0 * radius * radius + length * length) / 12.0;
@@ -169,6 +192,17 @@ impl Body {
 
     /// A solid cuboid with side lengths `extents` along the body axes:
     /// `I = m/12 (b² + c², a² + c², a² + b²)` (theory §11).
+    ///
+    /// ```
+    /// use dynamics::Body;
+    /// use nalgebra::Vector3;
+    ///
+    /// let brick = Body::cuboid(1.2, Vector3::new(0.1, 0.2, 0.3))?; // kg; sides in m
+    /// let expected = 1.2 / 12.0 * Vector3::<f64>::new(0.04 + 0.09, 0.01 + 0.09, 0.01 + 0.04); // kg m²
+    /// assert!((brick.moments() - expected).norm() < 1e-15);
+    /// assert!(Body::cuboid(1.0, Vector3::new(0.1, 0.0, 0.3)).is_err()); // a side of zero
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn cuboid(mass: f64, extents: Vector3<f64>) -> Result<Body, BodyError> {
         positive(&[extents.x, extents.y, extents.z])?;
         let s = extents.component_mul(&extents);
@@ -177,6 +211,15 @@ impl Body {
 
     /// A thin rod of this length along the body z axis, with the given (small) axial moment, which a
     /// thin rod needs for a non-singular inertia map (the scenes use 1e-3).
+    ///
+    /// ```
+    /// use dynamics::Body;
+    ///
+    /// let rod = Body::rod(2.0, 1.5, 1e-3)?; // 2 kg, 1.5 m along body z
+    /// assert!((rod.moments().x - 2.0 * 1.5 * 1.5 / 12.0).abs() < 1e-15); // m l²/12 (kg m²)
+    /// assert_eq!(rod.moments().z, 1e-3); // the axial moment as given
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn rod(mass: f64, length: f64, axial_moment: f64) -> Result<Body, BodyError> {
         positive(&[length, axial_moment])?;
         let transverse = mass * length * length / 12.0;
@@ -186,6 +229,18 @@ impl Body {
     /// A solid cone of this height and base radius, axis along body z: transverse moment about the
     /// centre of mass `m(3h²/80 + 3r²/20)`, axial `3mr²/10`. The centre of mass is on the axis at
     /// `3h/4` from the tip, so the tip is at body `(0, 0, −3h/4)`.
+    ///
+    /// ```
+    /// use dynamics::Body;
+    ///
+    /// let (m, h, r) = (0.5, 0.4, 0.1); // kg, m, m
+    /// let top = Body::solid_cone(m, h, r)?;
+    /// assert!((top.moments().z - 0.3 * m * r * r).abs() < 1e-15); // 3mr²/10 about the axis (kg m²)
+    /// // About the tip, 3h/4 from the centre of mass (parallel axes): 3m(h²/5 + r²/20).
+    /// let about_tip = top.moments().x + m * (0.75 * h).powi(2);
+    /// assert!((about_tip - 3.0 * m * (h * h / 5.0 + r * r / 20.0)).abs() < 1e-15);
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn solid_cone(mass: f64, height: f64, radius: f64) -> Result<Body, BodyError> {
         positive(&[height, radius])?;
         let transverse = mass * (3.0 / 80.0 * height * height + 3.0 / 20.0 * radius * radius);
@@ -193,6 +248,15 @@ impl Body {
     }
 
     /// A solid sphere: `I = 2mr²/5` about every axis.
+    ///
+    /// ```
+    /// use dynamics::Body;
+    /// use nalgebra::Vector3;
+    ///
+    /// let ball = Body::sphere(5.0, 0.1)?; // 5 kg, radius 0.1 m
+    /// assert!((ball.moments() - Vector3::repeat(0.02)).norm() < 1e-15); // 2mr²/5 (kg m²) about every axis
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn sphere(mass: f64, radius: f64) -> Result<Body, BodyError> {
         positive(&[radius])?;
         Body::new(mass, Vector3::repeat(0.4 * mass * radius * radius))

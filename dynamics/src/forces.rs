@@ -71,6 +71,24 @@ pub const STANDARD_GRAVITY: f64 = 9.81;
 
 impl<A: Algebra> Force<A> {
     /// Gravity of 9.81 m/s² along −e₃.
+    ///
+    /// The weight of a 2 kg body whose centre of mass is at `(1, 0, 0.5)` m: 19.62 N down through it, a moment
+    /// `c × f` about the origin, and the potential energy `m g z`.
+    ///
+    /// ```
+    /// use dynamics::{Algebra, Body, Force, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::sphere(2.0, 0.1)?;
+    /// let centre = Vector3::new(1.0, 0.0, 0.5);
+    /// let state = State::<Pga>::new(&body, centre, &UnitQuaternion::identity(), Vector3::zeros(), Vector3::zeros());
+    /// let gravity = Force::gravity();
+    /// let weight = Pga::screw_coordinates(gravity.wrench(&body, 0.0, &state));
+    /// assert_eq!(weight.l, Vector3::new(0.0, 0.0, -2.0 * 9.81)); // N
+    /// assert_eq!(weight.t, centre.cross(&weight.l)); // N m
+    /// assert!((gravity.potential_energy(&body, &state) - 2.0 * 9.81 * 0.5).abs() < 1e-15); // J
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn gravity() -> Self {
         Force::Gravity {
             acceleration: Vector3::new(0.0, 0.0, -STANDARD_GRAVITY),

@@ -146,6 +146,23 @@ pub struct FreeBody<A: Algebra> {
 
 impl<A: Algebra> FreeBody<A> {
     /// The body with no forces.
+    ///
+    /// Without forces a tumbling body keeps its world momentum (here exactly: the body-momentum integrators
+    /// project onto it) and its energy.
+    ///
+    /// ```
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let brick = Body::cuboid(1.0, Vector3::new(0.1, 0.2, 0.3))?;
+    /// let system = FreeBody::<Pga>::new(brick);
+    /// let spin = Vector3::new(0.1, 5.0, 0.1); // rad/s about the unstable middle axis
+    /// let start = State::new(&brick, Vector3::zeros(), &UnitQuaternion::identity(), spin, Vector3::x());
+    /// let run = simulate(&system, &[start], Method::Rkmk4Body, &Schedule::new(1e-3, 1.0)?)?;
+    /// assert_eq!(run.final_state[0].momentum, start.momentum);
+    /// assert!((run.body(0)[100].energy - run.body(0)[0].energy).abs() < 1e-9); // J
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(body: Body) -> Self {
         FreeBody {
             body,

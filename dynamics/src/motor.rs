@@ -87,6 +87,21 @@ impl ScrewFrame {
     /// The frame of a motor. Q is the rotation matrix of the quaternion `(s, −l)` divided by its squared norm
     /// `⟨R~R⟩₀`, as the sandwich's linear part is (no square root, and no normalisation error that a round
     /// trip body ↔ world would accumulate step after step).
+    ///
+    /// ```
+    /// use dynamics::motor::{from_pose, ScrewFrame};
+    /// use dynamics::{Pga, ScrewCoordinates};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let (centre, turn) = (Vector3::new(1.0, 2.0, 0.0), UnitQuaternion::from_scaled_axis(Vector3::z() * 0.5));
+    /// let frame = ScrewFrame::of::<Pga>(from_pose::<Pga>(centre, &turn));
+    /// assert!((frame.position - centre).norm() < 1e-15); // m
+    /// assert!((frame.rotation.matrix() - turn.to_rotation_matrix().matrix()).norm() < 1e-15);
+    /// // A 1 N force along body x through the centre of mass, in the world: along turn·x, through the centre.
+    /// let world = frame.to_world(&ScrewCoordinates { l: Vector3::x(), t: Vector3::zeros() });
+    /// assert!((world.l - turn * Vector3::x()).norm() < 1e-15); // N
+    /// assert!((world.t - centre.cross(&world.l)).norm() < 1e-15); // its moment about the origin, N m
+    /// ```
     pub fn of<A: Algebra>(motor: A::Motor) -> Self {
         let c = A::motor_coordinates(motor);
         let (w, x, y, z) = (c.scalar, -c.l.x, -c.l.y, -c.l.z);
@@ -112,6 +127,22 @@ impl ScrewFrame {
 
     /// The frame of body b seen from body a (`~R_a R_b`, b → a), from the two frames: rotation `Q_aᵀQ_b`, position
     /// `Q_aᵀ(c_b − c_a)` (36 multiplies, against a motor product and a frame extraction).
+    ///
+    /// The same as the frame of the relative motor `~R_a R_b`:
+    ///
+    /// ```
+    /// use dynamics::motor::{from_pose, ScrewFrame};
+    /// use dynamics::{Algebra, Pga};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let turn = |x: f64, y: f64, z: f64| UnitQuaternion::from_scaled_axis(Vector3::new(x, y, z));
+    /// let a = from_pose::<Pga>(Vector3::new(1.0, 0.0, 0.0), &turn(0.0, 0.0, 1.0));
+    /// let b = from_pose::<Pga>(Vector3::new(0.0, 2.0, 1.0), &turn(0.3, -0.2, 0.1));
+    /// let seen_from_a = ScrewFrame::relative(&ScrewFrame::of::<Pga>(a), &ScrewFrame::of::<Pga>(b));
+    /// let direct = ScrewFrame::of::<Pga>(Pga::compose(Pga::reverse(a), b));
+    /// assert!((seen_from_a.position - direct.position).norm() < 1e-15); // b's centre in a's frame, m
+    /// assert!((seen_from_a.rotation.matrix() - direct.rotation.matrix()).norm() < 1e-15);
+    /// ```
     pub fn relative(reference: &ScrewFrame, body: &ScrewFrame) -> Self {
         ScrewFrame {
             rotation: reference.rotation.inverse() * body.rotation,

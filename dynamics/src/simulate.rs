@@ -144,12 +144,33 @@ fn positive(name: &'static str, value: f64) -> Result<f64, SimulationError> {
 
 impl Schedule {
     /// Steps of `dt` for `duration`, sampled every [`SAMPLE_INTERVAL`].
+    ///
+    /// ```
+    /// use dynamics::{Schedule, SimulationError};
+    ///
+    /// let schedule = Schedule::new(1e-3, 0.5)?; // 1 ms steps for 0.5 s
+    /// assert_eq!(schedule.sample_count(), 51); // every 10 ms, and t = 0
+    /// assert_eq!((schedule.step_count(), schedule.steps_per_sample()), (500, Some(10)));
+    /// // 3 ms steps would miss the 10 ms sample times.
+    /// assert!(matches!(Schedule::new(3e-3, 0.5), Err(SimulationError::StepDoesNotDivideInterval { .. })));
+    /// # Ok::<(), SimulationError>(())
+    /// ```
     pub fn new(dt: f64, duration: f64) -> Result<Self, SimulationError> {
         Schedule::with_sample_interval(dt, duration, SAMPLE_INTERVAL)
     }
 
     /// Steps of `dt` for `duration`, sampled every `sample_interval`, which `dt` must divide, as the
     /// interval must divide the duration.
+    ///
+    /// ```
+    /// use dynamics::Schedule;
+    ///
+    /// let schedule = Schedule::with_sample_interval(1e-3, 2.0, 0.1)?; // s
+    /// assert_eq!((schedule.sample_count(), schedule.step_count()), (21, 2000));
+    /// assert_eq!(schedule.sample_time(5), 0.5); // s
+    /// assert!(Schedule::with_sample_interval(1e-3, 2.0, 0.3).is_err()); // 0.3 s does not divide 2 s
+    /// # Ok::<(), dynamics::SimulationError>(())
+    /// ```
     pub fn with_sample_interval(dt: f64, duration: f64, sample_interval: f64) -> Result<Self, SimulationError> {
         let dt = positive("the step", dt)?;
         let duration = positive("the duration", duration)?;
@@ -336,6 +357,25 @@ pub struct Event<'a, A: Algebra> {
 
 impl<'a, A: Algebra> Event<'a, A> {
     /// Crossings of `function` in either direction, not terminal.
+    ///
+    /// A ball dropped from 1 m reaches the floor at `t = √(2h/g)`; the terminal event ends the run there.
+    ///
+    /// ```
+    /// use dynamics::simulate::{Event, Plan, Stop};
+    /// use dynamics::{simulate, Body, Force, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.1)?;
+    /// let system = FreeBody::<Pga>::new(ball).with_force(Force::gravity());
+    /// let start = State::new(&ball, Vector3::z(), &UnitQuaternion::identity(), Vector3::zeros(), Vector3::zeros());
+    /// let height = |_t: f64, states: &[State<Pga>]| states[0].pose().0.z; // m
+    /// let schedule = Schedule::new(1e-3, 1.0)?;
+    /// let plan = Plan::new(&schedule).event(Event::new("floor", height).terminal());
+    /// let run = simulate(&system, &[start], Method::Rkmk4Body, plan)?;
+    /// assert!((run.events[0].t - (2.0 / 9.81f64).sqrt()).abs() < 1e-12); // s
+    /// assert_eq!(run.stopped, Some(Stop::Event(0)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(name: impl Into<String>, function: impl FnMut(f64, &[State<A>]) -> f64 + 'a) -> Self {
         Event {
             name: name.into(),
@@ -395,6 +435,26 @@ pub struct Plan<'a, A: Algebra> {
 
 impl<'a, A: Algebra> Plan<'a, A> {
     /// The schedule alone: no events and no observer.
+    ///
+    /// An observer that ends the run once the body has moved 5 cm:
+    ///
+    /// ```
+    /// use std::ops::ControlFlow;
+    /// use dynamics::simulate::{Plan, Stop};
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.1)?;
+    /// let still = UnitQuaternion::identity();
+    /// let start = State::<Pga>::new(&ball, Vector3::zeros(), &still, Vector3::zeros(), Vector3::x()); // 1 m/s
+    /// let schedule = Schedule::new(1e-3, 1.0)?; // 1000 steps of 1 ms at most
+    /// let far_enough = |_t: f64, states: &[State<Pga>]| {
+    ///     if states[0].pose().0.x > 0.05 - 1e-9 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+    /// };
+    /// let run = simulate(&FreeBody::new(ball), &[start], Method::Rk4, Plan::new(&schedule).observer(far_enough))?;
+    /// assert_eq!((run.steps, run.stopped), (50, Some(Stop::Observer))); // 1 m/s for 50 ms
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(schedule: &'a Schedule) -> Self {
         Plan {
             schedule,

@@ -59,6 +59,21 @@ impl<A: Algebra> State<A> {
     /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`: the mixed
     /// frames of the reference scenes' files. [`State::from_body_twist`] and [`State::from_world_twist`] take
     /// both velocities in one frame.
+    ///
+    /// ```
+    /// use dynamics::{Body, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::cuboid(1.0, Vector3::new(0.1, 0.2, 0.3))?;
+    /// let quarter = UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.0, std::f64::consts::FRAC_PI_2));
+    /// // Spinning at 2 rad/s about its body x axis, which the quarter turn points along world y; moving along
+    /// // world x at 3 m/s.
+    /// let state = State::<Pga>::new(&body, Vector3::zeros(), &quarter, 2.0 * Vector3::x(), 3.0 * Vector3::x());
+    /// let velocity = state.world_velocity(&body);
+    /// assert!((velocity.angular - Vector3::y() * 2.0).norm() < 1e-15); // rad/s, world axes
+    /// assert!((velocity.linear - Vector3::x() * 3.0).norm() < 1e-15); // m/s, world axes
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn new(
         body: &Body,
         position: Vector3<f64>,
@@ -111,6 +126,20 @@ impl<A: Algebra> State<A> {
     /// The state of a body whose centre of mass is at `position` (world), oriented by `rotation` (body → world),
     /// moving with angular velocity `angular_body` and centre-of-mass velocity `linear_body`, both in body axes:
     /// `R₀ = T(c₀)R_rot`, `Ω₀ = R₀ M(Ḃ₀) ~R₀` (theory §11).
+    ///
+    /// ```
+    /// use dynamics::{Body, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::sphere(2.0, 0.1)?; // 2 kg
+    /// let quarter = UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.0, std::f64::consts::FRAC_PI_2));
+    /// // 1.5 m/s along its body x axis, which points along world y.
+    /// let state = State::<Pga>::from_body_twist(&body, Vector3::z(), &quarter, Vector3::zeros(), 1.5 * Vector3::x());
+    /// assert!((state.world_velocity(&body).linear - Vector3::y() * 1.5).norm() < 1e-15); // m/s
+    /// assert!((state.world_momentum().linear - Vector3::y() * 3.0).norm() < 1e-15); // m v (kg m/s)
+    /// assert!((state.kinetic_energy(&body) - 0.5 * 2.0 * 1.5 * 1.5).abs() < 1e-15); // J
+    /// # Ok::<(), dynamics::BodyError>(())
+    /// ```
     pub fn from_body_twist(
         body: &Body,
         position: Vector3<f64>,

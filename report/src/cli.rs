@@ -15,7 +15,7 @@ use crate::scene_job::run_scene_file;
 use crate::sweep::{SweepPlan, DEFAULT_STEPS};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SceneName {
+pub(crate) enum SceneName {
     Cuboid,
     Pendulum,
     TopCusp,
@@ -56,46 +56,46 @@ impl SceneName {
 /// work-precision report (report.md), PNG plots and the trajectories as CSV.
 #[derive(Debug, Parser)]
 #[command(name = "ga-dynamics", version, about)]
-pub struct Options {
+pub(crate) struct Options {
     /// Scenes to run (default: all): the single-body scenes and the mechanisms.
     #[arg(long, value_enum, value_delimiter = ',')]
-    pub scenes: Vec<SceneName>,
+    pub(crate) scenes: Vec<SceneName>,
     /// Integrators (default: all; splittings run on the free body only).
     #[arg(long, value_enum, value_delimiter = ',')]
-    pub integrators: Vec<IntegratorName>,
+    pub(crate) integrators: Vec<IntegratorName>,
     /// Step sizes in seconds; each must divide the 0.01 s sample interval (default: 1e-2, 5e-3, 2e-3, 1e-3,
     /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-    pub steps: Vec<f64>,
+    pub(crate) steps: Vec<f64>,
     /// Simulated time in seconds for every scene (default: each scene's T from docs/scenes.md).
     #[arg(long, allow_hyphen_values = true)]
-    pub duration: Option<f64>,
+    pub(crate) duration: Option<f64>,
     /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).
     #[arg(long)]
-    pub output: Option<PathBuf>,
+    pub(crate) output: Option<PathBuf>,
     /// Run the scene described in this TOML file (README, "Scene files") instead of the sweep: writes its
     /// trajectories (CSV), energy and constraint-violation plots and summary.md.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "duration", "stabilisation"])]
-    pub scene_file: Option<PathBuf>,
+    pub(crate) scene_file: Option<PathBuf>,
     /// Worker threads (default: one per core; at most four per core).
     #[arg(long)]
-    pub threads: Option<usize>,
+    pub(crate) threads: Option<usize>,
     /// How constrained scenes are kept on their constraint manifold.
     #[arg(long, value_enum, default_value_t = StabilisationName::Projection)]
-    pub stabilisation: StabilisationName,
+    pub(crate) stabilisation: StabilisationName,
     /// No progress bar.
     #[arg(long)]
-    pub quiet: bool,
+    pub(crate) quiet: bool,
 }
 
 /// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
-pub const MAX_DURATION: f64 = 1000.0;
+pub(crate) const MAX_DURATION: f64 = 1000.0;
 
 impl Options {
     /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,
     /// dividing the 0.01 s sample interval, and with `--duration` dividing it into whole samples), the duration
     /// must be positive and at most [`MAX_DURATION`], the thread count between one and four per core.
-    pub fn validate(&self) -> Result<(), String> {
+    pub(crate) fn validate(&self) -> Result<(), String> {
         if let Some(duration) = self.duration {
             if !(duration > 0.0 && duration <= MAX_DURATION) {
                 return Err(format!(
@@ -125,7 +125,7 @@ impl Options {
     }
 
     /// The sweep these options describe: the single-body scenes, and the mechanisms.
-    pub fn plan(&self) -> (SweepPlan, MechanismPlan) {
+    pub(crate) fn plan(&self) -> (SweepPlan, MechanismPlan) {
         let (mut scenes, mut mechanisms) = (Vec::new(), Vec::new());
         for name in &self.scenes {
             match name.named() {

@@ -42,7 +42,7 @@ pub fn write(path: &Path, samples: &[Sample]) -> std::io::Result<()> {
 /// Writes several bodies' samples (`bodies[i][k]`) to `path`: `t`, then per body `NAME.x`, `NAME.y`, `NAME.z`
 /// (centre of mass, world, m), `NAME.qw`, `NAME.qx`, `NAME.qy`, `NAME.qz` (orientation body → world), then
 /// `energy` (the whole system's, J).
-pub fn write_bodies(path: &Path, names: &[&str], bodies: &[Vec<Sample>]) -> std::io::Result<()> {
+pub(crate) fn write_bodies(path: &Path, names: &[&str], bodies: &[Vec<Sample>]) -> std::io::Result<()> {
     let mut text = String::from("t");
     for name in names {
         for column in ["x", "y", "z", "qw", "qx", "qy", "qz"] {

@@ -21,7 +21,7 @@ use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series, 
 use crate::sweep::{AlgebraKind, Outcome};
 
 /// A file-name stem for a scene.
-pub fn stem(scene: SceneId) -> &'static str {
+pub(crate) fn stem(scene: SceneId) -> &'static str {
     match scene {
         SceneId::Cuboid => "scene1_cuboid",
         SceneId::Pendulum => "scene2_pendulum",
@@ -34,7 +34,7 @@ pub fn stem(scene: SceneId) -> &'static str {
 
 /// The integrator families the plots put in panels of their own.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Family {
+pub(crate) enum Family {
     /// RK4 and RKMK4: the momentum integrated in the world frame.
     WorldFrame,
     /// RKMK4-body and RKMK6-body: the momentum carried in the body frame.
@@ -45,7 +45,7 @@ pub enum Family {
 
 impl Family {
     /// An integrator's family and its place in it (0 or 1).
-    pub fn of(integrator: Integrator) -> (Family, usize) {
+    pub(crate) fn of(integrator: Integrator) -> (Family, usize) {
         match integrator {
             Integrator::General(Method::Rk4) => (Family::WorldFrame, 0),
             Integrator::General(Method::Rkmk4) => (Family::WorldFrame, 1),
@@ -56,7 +56,7 @@ impl Family {
         }
     }
 
-    pub fn title(self) -> &'static str {
+    pub(crate) fn title(self) -> &'static str {
         match self {
             Family::WorldFrame => "RK4 and RKMK4 (momentum in the world frame)",
             Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
@@ -67,7 +67,7 @@ impl Family {
 
 /// The palette slot of a run: the hue pair (blue, vermilion) by the integrator's place in its family, the dark
 /// shade for PGA and the light one for CGA, so a colour means the same in every panel and never repeats in one.
-pub fn slot(algebra: AlgebraKind, member: usize) -> usize {
+pub(crate) fn slot(algebra: AlgebraKind, member: usize) -> usize {
     2 * member
         + match algebra {
             AlgebraKind::Pga => 0,
@@ -77,7 +77,7 @@ pub fn slot(algebra: AlgebraKind, member: usize) -> usize {
 
 /// A run's series in the style of its algebra: PGA solid with circles, CGA dashed with squares (so where the two
 /// algebras give the same curve, the PGA one shows through the CGA dashes).
-pub fn styled(series: Series, algebra: AlgebraKind, member: usize) -> Series {
+pub(crate) fn styled(series: Series, algebra: AlgebraKind, member: usize) -> Series {
     Series {
         slot: Some(slot(algebra, member)),
         dashed: algebra == AlgebraKind::Cga,
@@ -90,7 +90,7 @@ pub fn styled(series: Series, algebra: AlgebraKind, member: usize) -> Series {
 }
 
 /// A panel's title: its formulation, if any, and its family.
-pub fn panel_title(formulation: Option<Formulation>, family: Family) -> String {
+pub(crate) fn panel_title(formulation: Option<Formulation>, family: Family) -> String {
     match formulation {
         Some(f) => format!("{}: {}", f.name(), family.title()),
         None => family.title().to_owned(),
@@ -141,7 +141,7 @@ fn work_precision_error(scene: SceneId, outcome: &Outcome) -> f64 {
 }
 
 /// The step closest to 1e-3 among those run: the one the over-time plots and CSVs show.
-pub fn showcase_step(outcomes: &[&Outcome]) -> Option<f64> {
+pub(crate) fn showcase_step(outcomes: &[&Outcome]) -> Option<f64> {
     outcomes
         .iter()
         .map(|o| o.config.dt)
@@ -195,10 +195,10 @@ fn traced_path(scene: SceneId) -> (&'static str, &'static str, &'static str, Pro
 }
 
 /// Values below this are drawn at it on the log plots of drift and violation (round-off is about 1e-16).
-pub const LOG_FLOOR: f64 = 1e-17;
+pub(crate) const LOG_FLOOR: f64 = 1e-17;
 
 /// The running maximum of a sequence (the largest value up to each point).
-pub fn running_max(values: &[f64]) -> Vec<f64> {
+pub(crate) fn running_max(values: &[f64]) -> Vec<f64> {
     values
         .iter()
         .scan(f64::NEG_INFINITY, |largest, &v| {
@@ -209,7 +209,7 @@ pub fn running_max(values: &[f64]) -> Vec<f64> {
 }
 
 /// Draws every figure of one scene into `dir`; returns the file names.
-pub fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Result<Vec<String>, PlotError> {
+pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Result<Vec<String>, PlotError> {
     let outcomes: Vec<&Outcome> = results.iter().filter_map(|(_, r)| r.as_ref().ok()).collect();
     let mut files = Vec::new();
     if outcomes.is_empty() {

@@ -20,10 +20,18 @@ use crate::sweep::{run, Outcome, SweepPlan};
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum JobError {
+    /// An output folder or file could not be written.
     #[error("cannot write {path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        /// The folder or file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn.
     #[error(transparent)]
     Plot(#[from] PlotError),
+    /// The plans select no run (no scene, integrator or step), so there is nothing to report.
     #[error("the plan has no configuration to run (check the scenes, integrators and steps)")]
     Empty,
 }
@@ -31,8 +39,10 @@ pub enum JobError {
 /// What the job produced.
 #[derive(Debug)]
 pub struct JobSummary {
-    pub output: PathBuf,
+    pub(crate) output: PathBuf,
+    /// Each single-body configuration, in the plan's order, with its outcome or why it failed.
     pub results: Vec<RunResult>,
+    /// Each mechanism configuration, in the plan's order, with its outcome or why it failed.
     pub mechanisms: Vec<MechanismResult>,
     /// Failed runs, single bodies and mechanisms: each run's label and why it failed.
     pub failures: Vec<String>,

@@ -2,26 +2,28 @@
 //! sizes; work-precision tables (`report.md`), PNG plots and trajectories as CSV.
 //!
 //! The pipeline, one module per stage: [`sweep`] (configurations, running one) → [`measure`] (metrics
-//! against the `reference` crate) → [`markdown`] (the report), [`figures`] (the plots, drawn by
+//! against the `reference` crate) → [`markdown`] (the report), `figures` (the plots, drawn by
 //! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
 //!
 //! The mechanisms of docs/scenes.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
-//! one; measured by `scenarios::mechanism_measures`) → [`mechanism_report`] (their section and plots).
+//! one; measured by `scenarios::mechanism_measures`) → `mechanism_report` (their section and plots).
 //!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
 //!
 //! The command line is [`cli`]; the integrators and stabilisations by the names it and scene files use are in
 //! [`names`].
 
+#![deny(missing_docs)]
+
 pub mod cli;
 pub mod csv;
-pub mod figures;
+mod figures;
 pub mod job;
 pub mod markdown;
 pub mod measure;
-pub mod mechanism_report;
+mod mechanism_report;
 pub mod mechanism_sweep;
-pub mod mujoco;
+mod mujoco;
 pub mod names;
 pub mod plot;
 pub mod scene_file;

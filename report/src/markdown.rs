@@ -14,12 +14,12 @@ use crate::mujoco;
 use crate::sweep::{AlgebraKind, Config, Outcome, RunError};
 
 /// A run's result as the report sees it.
-pub type RunResult = (Config, Result<Outcome, RunError>);
+pub(crate) type RunResult = (Config, Result<Outcome, RunError>);
 
 /// User text (a scene's title, body and joint names, a path) as inline Markdown that shows as written: line
 /// breaks and other control characters become spaces (no new block, so no heading or list can start), and the
 /// characters that open emphasis, code, links, HTML or table cells are backslash-escaped.
-pub fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         if c.is_control() {
@@ -35,7 +35,7 @@ pub fn escape(text: &str) -> String {
 }
 
 /// A number for a table: two significant digits, or a plain 0.
-pub fn scientific(value: f64) -> String {
+pub(crate) fn scientific(value: f64) -> String {
     if value == 0.0 {
         "0".to_string()
     } else {
@@ -57,17 +57,17 @@ pub fn agreement(first: &[Sample], second: &[Sample]) -> (f64, f64) {
 }
 
 /// Where a table row goes: algebra, formulation and integrator (each in its declared order), then the step.
-pub type RowKey = (AlgebraKind, usize, usize, f64);
+pub(crate) type RowKey = (AlgebraKind, usize, usize, f64);
 
 /// A formulation's place in [`Formulation::ALL`] (the free body's `None` first).
-pub fn formulation_rank(formulation: Option<Formulation>) -> usize {
+pub(crate) fn formulation_rank(formulation: Option<Formulation>) -> usize {
     formulation.map_or(0, |f| {
         1 + Formulation::ALL.iter().position(|&g| g == f).unwrap_or(usize::MAX - 1)
     })
 }
 
 /// An integrator's place in [`Integrator::ALL`].
-pub fn integrator_rank(integrator: Integrator) -> usize {
+pub(crate) fn integrator_rank(integrator: Integrator) -> usize {
     Integrator::ALL
         .iter()
         .position(|&i| i == integrator)
@@ -75,7 +75,7 @@ pub fn integrator_rank(integrator: Integrator) -> usize {
 }
 
 /// A run's [`RowKey`].
-pub fn row_key(config: &Config) -> RowKey {
+pub(crate) fn row_key(config: &Config) -> RowKey {
     (
         config.algebra,
         formulation_rank(config.formulation),
@@ -86,7 +86,7 @@ pub fn row_key(config: &Config) -> RowKey {
 
 /// The order of table rows: by configuration, then by step from the coarsest to the finest, compared as numbers
 /// (as text, 1e-4 would come before 2e-3).
-pub fn compare_rows(a: &RowKey, b: &RowKey) -> Ordering {
+pub(crate) fn compare_rows(a: &RowKey, b: &RowKey) -> Ordering {
     (a.0, a.1, a.2).cmp(&(b.0, b.1, b.2)).then_with(|| b.3.total_cmp(&a.3))
 }
 
@@ -145,7 +145,7 @@ fn scene_table(out: &mut String, results: &[&RunResult]) {
 
 /// The CGA-vs-PGA rows: per configuration run in both algebras, its label and the largest orientation (rad) and
 /// position (m) difference, sorted by configuration and then numerically by step (coarse to fine).
-pub fn agreement_rows(results: &[&RunResult]) -> Vec<(String, f64, f64)> {
+pub(crate) fn agreement_rows(results: &[&RunResult]) -> Vec<(String, f64, f64)> {
     let mut rows: Vec<(RowKey, String, f64, f64)> = Vec::new();
     for (config, result) in results.iter().filter(|(c, _)| c.algebra == AlgebraKind::Cga) {
         // Pair each CGA run with the PGA run of the same configuration.
@@ -224,7 +224,7 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
 
 /// Why the runs of a scene cannot be compared with MuJoCo's error at the scene's T, if they cannot
 /// ([`mujoco::length_mismatch`]): the job's `--duration` makes every run of a scene that long.
-pub fn length_mismatch(scene: SceneId, runs: &[&RunResult]) -> Option<String> {
+pub(crate) fn length_mismatch(scene: SceneId, runs: &[&RunResult]) -> Option<String> {
     let full = scene.parameters().duration;
     runs.iter()
         .find_map(|(config, _)| mujoco::length_mismatch(config.duration, full))
@@ -290,7 +290,7 @@ fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>, mi
 }
 
 /// The whole report.
-pub fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, Vec<String>>) -> String {
+pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, Vec<String>>) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "# Work-precision report\n");
     let _ = writeln!(

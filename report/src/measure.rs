@@ -8,7 +8,7 @@ use reference::{Sample, SceneConstraint, SceneId, SceneParameters, Trajectory, T
 /// Why a run could not be measured.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum MeasureError {
+pub(crate) enum MeasureError {
     #[error(transparent)]
     Metric(#[from] MetricError),
     #[error("reference trajectory: {0}")]
@@ -19,13 +19,15 @@ pub enum MeasureError {
 /// reference.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Feature {
+    /// As the report names it: "period", "nutation period"….
     pub name: &'static str,
-    pub unit: &'static str,
-    pub simulated: f64,
-    pub reference: f64,
+    pub(crate) unit: &'static str,
+    pub(crate) simulated: f64,
+    pub(crate) reference: f64,
 }
 
 impl Feature {
+    /// |simulated − reference|, in the feature's unit.
     pub fn error(&self) -> f64 {
         (self.simulated - self.reference).abs()
     }
@@ -34,26 +36,31 @@ impl Feature {
 /// Everything the report states about one run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurements {
-    /// Geodesic angle between simulated and reference orientation (rad), at T and the maximum.
+    /// Geodesic angle between simulated and reference orientation at T (rad).
     pub orientation_end: f64,
+    /// The largest such angle over the run (rad).
     pub orientation_max: f64,
-    /// Centre-of-mass distance from the reference (m), at T and the maximum.
-    pub position_end: f64,
+    /// Centre-of-mass distance from the reference (m), at T.
+    pub(crate) position_end: f64,
+    /// The largest such distance over the run (m).
     pub position_max: f64,
-    /// |E(T) − E₀| / E_scale, and its maximum over the run.
-    pub energy_drift_end: f64,
+    /// |E(T) − E₀| / E_scale.
+    pub(crate) energy_drift_end: f64,
+    /// The largest |E(t) − E₀| / E_scale over the run.
     pub energy_drift_max: f64,
     /// The largest constraint violation over the run (m); `None` for the free body.
     pub violation_max: Option<f64>,
+    /// The scene's features of docs/scenes.md (none for scene 4, nor for a cuboid run that ends before its
+    /// first flip).
     pub features: Vec<Feature>,
     /// Energy drift per sample (for the drift-over-time plot).
-    pub energy_drift: Vec<f64>,
+    pub(crate) energy_drift: Vec<f64>,
     /// Constraint violation per sample (empty for the free body).
-    pub violation: Vec<f64>,
+    pub(crate) violation: Vec<f64>,
 }
 
 /// The constraint violation of one sample (m): how far the constrained body point is from where it must be.
-pub fn violation(constraint: &SceneConstraint, sample: &Sample) -> Option<f64> {
+pub(crate) fn violation(constraint: &SceneConstraint, sample: &Sample) -> Option<f64> {
     match *constraint {
         SceneConstraint::Free => None,
         SceneConstraint::Hinge { pivot, body_anchor, .. } | SceneConstraint::BallJoint { pivot, body_anchor } => {
@@ -162,7 +169,7 @@ fn features(
 }
 
 /// All metrics of one run of `scene`.
-pub fn measure(scene: SceneId, simulated: &Trajectory) -> Result<Measurements, MeasureError> {
+pub(crate) fn measure(scene: SceneId, simulated: &Trajectory) -> Result<Measurements, MeasureError> {
     let parameters = scene.parameters();
     let full_reference = scene.reference_trajectory()?;
     let reference = truncated(&full_reference, simulated.samples().len())?;

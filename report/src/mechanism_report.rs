@@ -441,7 +441,7 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
 }
 
 /// The mechanisms' section of `report.md`, writing its plots into `dir`.
-pub fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<String, PlotError> {
+pub(crate) fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<String, PlotError> {
     let mut out = String::new();
     if results.is_empty() {
         return Ok(out);

@@ -14,20 +14,24 @@ use crate::sweep::{AlgebraKind, RunError};
 
 /// M3's cost is measured as MuJoCo's is (`chain.py`): RK4 at dt = 1e-3, ball joints (virtual power: three
 /// reaction forces per joint), here over this much simulated time.
-pub const CHAIN_TIMING_DURATION: f64 = 1.0;
+pub(crate) const CHAIN_TIMING_DURATION: f64 = 1.0;
 /// M3's long run: the longest chain over docs/scenes.md's 10 s with the most accurate method, for its energy
 /// drift and joint violation.
-pub const CHAIN_LONG_RUN: (usize, Method, f64) = (64, Method::Rkmk6Body, 1e-3);
+pub(crate) const CHAIN_LONG_RUN: (usize, Method, f64) = (64, Method::Rkmk6Body, 1e-3);
 
 /// Which mechanisms the job runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MechanismKind {
+    /// M1, the double pendulum.
     DoublePendulum,
+    /// M2, the four-bar linkage.
     FourBar,
+    /// M3, the chain: its cost per step at each length, and the long run.
     Chain,
 }
 
 impl MechanismKind {
+    /// M1, M2 and M3, in the report's order.
     pub const ALL: [MechanismKind; 3] = [
         MechanismKind::DoublePendulum,
         MechanismKind::FourBar,
@@ -38,13 +42,14 @@ impl MechanismKind {
 /// One mechanism run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MechanismConfig {
+    /// The mechanism (a chain with its number of links).
     pub id: MechanismId,
-    pub algebra: AlgebraKind,
-    pub formulation: Formulation,
-    pub method: Method,
-    pub dt: f64,
-    pub duration: f64,
-    pub stabilisation: Stabilisation,
+    pub(crate) algebra: AlgebraKind,
+    pub(crate) formulation: Formulation,
+    pub(crate) method: Method,
+    pub(crate) dt: f64,
+    pub(crate) duration: f64,
+    pub(crate) stabilisation: Stabilisation,
 }
 
 impl MechanismConfig {
@@ -67,6 +72,7 @@ impl MechanismConfig {
 /// What the mechanism part of the job covers (the integrators, duration and stabilisation are the job's).
 #[derive(Clone, Debug, Default)]
 pub struct MechanismPlan {
+    /// The mechanisms to run; none if empty.
     pub mechanisms: Vec<MechanismKind>,
     /// Step sizes of the M1 and M2 sweeps.
     pub steps: Vec<f64>,
@@ -74,13 +80,13 @@ pub struct MechanismPlan {
 
 /// The M1 and M2 steps without `--steps`: from MuJoCo's coarsest to well past its accuracy at dt = 1e-3 for
 /// the fourth-order methods (the sixth-order one reaches round-off near dt = 2e-3).
-pub const DEFAULT_STEPS: [f64; 6] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4];
+pub(crate) const DEFAULT_STEPS: [f64; 6] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4];
 
 impl MechanismPlan {
     /// Every run: M1 and M2 over algebra × formulation × method × step (splittings apply to free bodies only);
     /// M3 in both algebras at each chain length of docs/scenes.md (RK4, dt = 1e-3, for the cost), plus the long
     /// run. `duration` overrides every mechanism's.
-    pub fn configurations(
+    pub(crate) fn configurations(
         &self,
         integrators: &[Integrator],
         duration: Option<f64>,
@@ -145,18 +151,20 @@ impl MechanismPlan {
 /// A finished mechanism run.
 #[derive(Clone, Debug)]
 pub struct MechanismOutcome {
-    pub config: MechanismConfig,
+    pub(crate) config: MechanismConfig,
     /// Stepping time divided by the simulated time (s/s).
-    pub cpu_per_simulated_second: f64,
+    pub(crate) cpu_per_simulated_second: f64,
     /// Stepping time per step (s).
-    pub time_per_step: f64,
+    pub(crate) time_per_step: f64,
+    /// Errors against the references, energy drift and joint violation.
     pub measures: MechanismMeasures,
 }
 
+/// A mechanism run and its outcome, or why it failed.
 pub type MechanismResult = (MechanismConfig, Result<MechanismOutcome, RunError>);
 
 /// Runs one configuration.
-pub fn run_mechanism(config: &MechanismConfig) -> Result<MechanismOutcome, RunError> {
+pub(crate) fn run_mechanism(config: &MechanismConfig) -> Result<MechanismOutcome, RunError> {
     match config.algebra {
         AlgebraKind::Cga => run_in::<Cga>(config),
         AlgebraKind::Pga => run_in::<Pga>(config),

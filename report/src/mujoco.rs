@@ -13,25 +13,25 @@ use reference::SceneId;
 use crate::measure::Measurements;
 
 /// (dt, error) points and the time per step (s).
-pub struct Anchor {
-    pub points: [(f64, f64); 3],
-    pub time_per_step: f64,
+pub(crate) struct Anchor {
+    pub(crate) points: [(f64, f64); 3],
+    pub(crate) time_per_step: f64,
 }
 
 impl Anchor {
     /// MuJoCo's error at dt = 1e-3, the accuracy at which the report compares costs.
-    pub fn reference_error(&self) -> f64 {
+    pub(crate) fn reference_error(&self) -> f64 {
         self.points[1].1
     }
 
     /// MuJoCo's CPU per simulated second at dt = 1e-3 (s/s).
-    pub fn reference_cost(&self) -> f64 {
+    pub(crate) fn reference_cost(&self) -> f64 {
         self.time_per_step / self.points[1].0
     }
 }
 
 /// The error measure of the anchors: end orientation (rad), except the circle scene's end position (m).
-pub fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
+pub(crate) fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
     match scene {
         SceneId::RodOnCircle | SceneId::RodOnSphere => measurements.position_end,
         _ => measurements.orientation_end,
@@ -42,7 +42,7 @@ pub fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
 /// linearly in log–log between the two runs that bracket it (a fixed-step method's error is a power of its
 /// cost), the cheapest run's cost if that already reaches it, None if no run does. `points` are
 /// (CPU per simulated second, error).
-pub fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
+pub(crate) fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
     let mut sorted: Vec<(f64, f64)> = points
         .iter()
         .copied()
@@ -67,27 +67,28 @@ pub fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
 
 /// The day the single-body figures below entered the code (commit b6f0a06): the day they were measured is not
 /// recorded; the README calls it an earlier day than the mechanisms' 2026-11-25.
-pub const SINGLE_BODY_RECORDED: &str = "2026-11-22";
+pub(crate) const SINGLE_BODY_RECORDED: &str = "2026-11-22";
 
 /// Where the single-body scenes' MuJoCo figures come from, as far as the repository records it; printed beside
 /// them in the report.
-pub const SINGLE_BODY_MEASURED: &str = "MuJoCo 4.0 (RK4) figures from the project's issue tracker, measured by the \
+pub(crate) const SINGLE_BODY_MEASURED: &str =
+    "MuJoCo 4.0 (RK4) figures from the project's issue tracker, measured by the \
      team on the project's 2-core machine and recorded in this code on 2026-11-22 (the day of the measurement is \
      not recorded); constants, not measured by this run";
 
 /// The legend of the single-body MuJoCo points on the plots.
-pub fn single_body_legend() -> String {
+pub(crate) fn single_body_legend() -> String {
     // No-break space: the legend wraps before "(recorded", not inside it.
     format!("MuJoCo 4.0 RK4 (recorded\u{a0}{SINGLE_BODY_RECORDED})")
 }
 
 /// The day the mechanisms' MuJoCo and Pinocchio figures were measured ([`MECHANISMS_MEASURED`]).
-pub const MECHANISMS_DATE: &str = "2026-11-25";
+pub(crate) const MECHANISMS_DATE: &str = "2026-11-25";
 
 /// Why runs of `duration` (s) cannot be compared with MuJoCo's error at the full length `full` (s), if they
 /// cannot: "n/a: shortened run (2 s of T = 10 s)". Errors grow with time, so a shorter run's error at its end is
 /// not comparable with MuJoCo's at T.
-pub fn length_mismatch(duration: f64, full: f64) -> Option<String> {
+pub(crate) fn length_mismatch(duration: f64, full: f64) -> Option<String> {
     if (duration - full).abs() <= 1e-9 * full.abs() {
         None
     } else if duration < full {
@@ -97,7 +98,7 @@ pub fn length_mismatch(duration: f64, full: f64) -> Option<String> {
     }
 }
 
-pub fn anchor(scene: SceneId) -> Option<Anchor> {
+pub(crate) fn anchor(scene: SceneId) -> Option<Anchor> {
     let points = |errors: [f64; 3]| [(1e-2, errors[0]), (1e-3, errors[1]), (1e-4, errors[2])];
     match scene {
         SceneId::Cuboid => Some(Anchor {
@@ -121,7 +122,7 @@ pub fn anchor(scene: SceneId) -> Option<Anchor> {
 }
 
 /// The anchor as (CPU per simulated second, error) points.
-pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
+pub(crate) fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
     anchor(scene).map(|a| {
         a.points
             .iter()
@@ -134,25 +135,25 @@ pub fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
 /// the report. (The
 /// M1 and M2 times are those measured beside the benchmark run the README quotes; other runs the same day gave
 /// 5.2–6.8 µs and 11.0–15.6 µs per step: the shared machine varies by a third from hour to hour.)
-pub const MECHANISMS_MEASURED: &str =
+pub(crate) const MECHANISMS_MEASURED: &str =
     "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with the reference set's \
      scripts on this project's machine type (2 cores, thread CPU time), beside `cargo bench -p scenarios --bench \
      mechanisms`";
 
 /// M1, the double pendulum: MuJoCo's end orientation error (rad) at dt = 1e-2, 1e-3, 1e-4 and its time per step.
-pub const DOUBLE_PENDULUM: Anchor = Anchor {
+pub(crate) const DOUBLE_PENDULUM: Anchor = Anchor {
     points: [(1e-2, 2.06e-6), (1e-3, 2.22e-10), (1e-4, 2.58e-13)],
     time_per_step: 5.19e-6,
 };
 
 /// M2, the four-bar, its loop closed by MuJoCo's soft equality `connect`: coupler centre-of-mass error at T (m),
 /// the largest loop violation (m) and the time per step (s), at dt = 1e-3 (the error does not fall with dt).
-pub const FOUR_BAR_COUPLER_ERROR: f64 = 4.45e-2;
-pub const FOUR_BAR_VIOLATION: f64 = 4.43e-4;
-pub const FOUR_BAR_TIME_PER_STEP: f64 = 11.0e-6;
+pub(crate) const FOUR_BAR_COUPLER_ERROR: f64 = 4.45e-2;
+pub(crate) const FOUR_BAR_VIOLATION: f64 = 4.43e-4;
+pub(crate) const FOUR_BAR_TIME_PER_STEP: f64 = 11.0e-6;
 
 /// M3: MuJoCo's time per RK4 step (s) at dt = 1e-3 for the chain of N links, ball joints and (about x) hinges.
-pub const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
+pub(crate) const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
     (1, 5.1e-6),
     (2, 6.7e-6),
     (4, 9.5e-6),
@@ -161,7 +162,7 @@ pub const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
     (32, 228.0e-6),
     (64, 1239.1e-6),
 ];
-pub const CHAIN_HINGE_TIME_PER_STEP: [(usize, f64); 7] = [
+pub(crate) const CHAIN_HINGE_TIME_PER_STEP: [(usize, f64); 7] = [
     (1, 6.0e-6),
     (2, 6.8e-6),
     (4, 6.7e-6),
@@ -173,7 +174,7 @@ pub const CHAIN_HINGE_TIME_PER_STEP: [(usize, f64); 7] = [
 
 /// Pinocchio 4.1's articulated-body algorithm on the ball chain, s per dynamics evaluation (Python's call
 /// overhead of about 0.15 µs included), measured beside MuJoCo by `pinocchio/chain.py`.
-pub const PINOCCHIO_CHAIN_EVALUATION: [(usize, f64); 7] = [
+pub(crate) const PINOCCHIO_CHAIN_EVALUATION: [(usize, f64); 7] = [
     (1, 0.68e-6),
     (2, 1.12e-6),
     (4, 1.95e-6),

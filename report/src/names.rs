@@ -10,11 +10,17 @@ use serde::Deserialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum IntegratorName {
+    /// Classic RK4, then renormalisation (the paper's method).
     Rk4,
+    /// Runge–Kutta–Munthe-Kaas of order 4, world momentum.
     Rkmk4,
+    /// RKMK4 with the momentum in the body frame.
     Rkmk4Body,
+    /// RKMK of order 6 with the momentum in the body frame.
     Rkmk6Body,
+    /// Strang splitting, order 2; a free body only.
     Strang,
+    /// Yoshida's triple jump of Strang steps, order 4; a free body only.
     Yoshida4,
 }
 
@@ -34,7 +40,7 @@ impl From<IntegratorName> for Integrator {
 /// The stabilisations by name, on the command line and in scene files.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum StabilisationName {
+pub(crate) enum StabilisationName {
     /// Post-step projection onto the constraint manifold (theory §10).
     Projection,
     /// Baumgarte feedback, α = β = 10 (theory §10).

@@ -24,8 +24,8 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 #[derive(Debug, thiserror::Error)]
 #[error("cannot draw {path}: {message}")]
 pub struct PlotError {
-    pub path: String,
-    pub message: String,
+    pub(crate) path: String,
+    pub(crate) message: String,
 }
 
 /// Width and height of a single chart; a figure's panels are as wide and [`FIGURE_PANEL_HEIGHT`] high.
@@ -62,7 +62,7 @@ pub const PALETTE: [RGBColor; 6] = [
     RGBColor(204, 121, 167), // reddish purple
 ];
 /// The colour of reference series.
-pub const REFERENCE_COLOUR: RGBColor = RGBColor(0, 0, 0);
+pub(crate) const REFERENCE_COLOUR: RGBColor = RGBColor(0, 0, 0);
 /// The colour of notes and captions.
 const NOTE_COLOUR: RGBColor = RGBColor(60, 60, 60);
 /// The most colours (reference black included) one panel may use.
@@ -85,17 +85,23 @@ fn register_font() {
 /// The marker drawn at a series' points.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Shape {
+    /// ●, the default.
     #[default]
     Circle,
+    /// ■
     Square,
+    /// ▲, as reference points.
     Triangle,
+    /// ◆
     Diamond,
 }
 
 /// One labelled curve.
 #[derive(Clone, Debug)]
 pub struct Series {
+    /// The legend entry.
     pub label: String,
+    /// (x, y) in the axes' units, joined in this order.
     pub points: Vec<(f64, f64)>,
     /// Draw markers at the points as well as the line (for sparse data such as dt sweeps).
     pub markers: bool,
@@ -115,6 +121,18 @@ pub struct Series {
 }
 
 impl Series {
+    /// A plain line in the panel's next free colour; set the other fields with struct update syntax.
+    ///
+    /// ```
+    /// use report::plot::Series;
+    ///
+    /// let sweep = Series {
+    ///     markers: true, // sparse points: mark each one
+    ///     ..Series::line("RK4, PGA", vec![(1e-3, 1e-6), (1e-2, 1e-10)])
+    /// };
+    /// assert_eq!((sweep.label.as_str(), sweep.points.len()), ("RK4, PGA", 2));
+    /// assert!(!sweep.dashed && !sweep.reference && sweep.slot.is_none());
+    /// ```
     pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Series {
             label: label.into(),
@@ -130,7 +148,7 @@ impl Series {
     }
 
     /// A reference path: a thick dashed black line drawn over the other series.
-    pub fn reference_line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+    pub(crate) fn reference_line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Series {
             reference: true,
             ..Series::line(label, points)
@@ -138,7 +156,7 @@ impl Series {
     }
 
     /// Reference points (such as MuJoCo's): black triangles drawn over the other series.
-    pub fn reference_points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+    pub(crate) fn reference_points(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Series {
             reference: true,
             markers_only: true,
@@ -151,12 +169,23 @@ impl Series {
 /// Axis titles (with units) and the chart title.
 #[derive(Clone, Debug)]
 pub struct Labels<'a> {
+    /// Above the plotting area.
     pub title: &'a str,
+    /// The x axis title, with its unit: "time (s)".
     pub x: &'a str,
+    /// The y axis title, with its unit.
     pub y: &'a str,
 }
 
 impl<'a> Labels<'a> {
+    /// The labels in reading order: title, x axis, y axis.
+    ///
+    /// ```
+    /// use report::plot::Labels;
+    ///
+    /// let labels = Labels::new("Energy drift", "time (s)", "|E(t) − E₀| / |E₀|");
+    /// assert_eq!((labels.title, labels.x), ("Energy drift", "time (s)"));
+    /// ```
     pub const fn new(title: &'a str, x: &'a str, y: &'a str) -> Self {
         Labels { title, x, y }
     }
@@ -164,7 +193,7 @@ impl<'a> Labels<'a> {
 
 /// How an axis maps values to lengths.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scale {
+pub(crate) enum Scale {
     Linear,
     /// Decades; only positive values are drawn (or, with a floor, values from zero up).
     Log,
@@ -173,21 +202,32 @@ pub enum Scale {
 /// One chart: its labels, curves and axes.
 #[derive(Clone, Debug)]
 pub struct Panel<'a> {
-    pub labels: Labels<'a>,
-    pub series: Vec<Series>,
-    pub x_scale: Scale,
-    pub y_scale: Scale,
+    pub(crate) labels: Labels<'a>,
+    pub(crate) series: Vec<Series>,
+    pub(crate) x_scale: Scale,
+    pub(crate) y_scale: Scale,
     /// One unit has the same length on both axes (paths seen from one side, as in the paper's figures).
-    pub equal_aspect: bool,
+    pub(crate) equal_aspect: bool,
     /// On a log y axis: values from zero up to this floor (exact zeros included) are drawn at the floor, which the
     /// panel's note states.
-    pub floor: Option<f64>,
+    pub(crate) floor: Option<f64>,
     /// A line or two under the panel.
-    pub note: Option<String>,
+    pub(crate) note: Option<String>,
 }
 
 impl<'a> Panel<'a> {
-    /// A chart with linear axes.
+    /// A chart with linear axes; the methods below change them.
+    ///
+    /// ```
+    /// use report::plot::{chart, Labels, Panel, Series};
+    ///
+    /// let drift = Series::line("RK4", vec![(0.0, 1e-16), (5.0, 1e-12), (10.0, 1e-10)]);
+    /// let panel = Panel::new(Labels::new("Energy drift", "time (s)", "|E(t) − E₀| / |E₀|"), vec![drift]).log_y();
+    /// let path = std::env::temp_dir().join("report-doc-panel.png");
+    /// chart(&path, &panel)?;
+    /// assert!(std::fs::metadata(&path)?.len() > 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(labels: Labels<'a>, series: Vec<Series>) -> Self {
         Panel {
             labels,
@@ -200,6 +240,7 @@ impl<'a> Panel<'a> {
         }
     }
 
+    /// A logarithmic x axis: decades, only positive values drawn.
     pub fn log_x(self) -> Self {
         Panel {
             x_scale: Scale::Log,
@@ -207,6 +248,7 @@ impl<'a> Panel<'a> {
         }
     }
 
+    /// A logarithmic y axis: decades, only positive values drawn.
     pub fn log_y(self) -> Self {
         Panel {
             y_scale: Scale::Log,
@@ -215,7 +257,7 @@ impl<'a> Panel<'a> {
     }
 
     /// A log y axis on which values below `floor`, zeros included, are drawn at `floor`.
-    pub fn log_y_with_floor(self, floor: f64) -> Self {
+    pub(crate) fn log_y_with_floor(self, floor: f64) -> Self {
         Panel {
             y_scale: Scale::Log,
             floor: Some(floor),
@@ -223,6 +265,7 @@ impl<'a> Panel<'a> {
         }
     }
 
+    /// One unit as long on both axes, for paths seen from one side.
     pub fn equal_aspect(self) -> Self {
         Panel {
             equal_aspect: true,
@@ -230,7 +273,7 @@ impl<'a> Panel<'a> {
         }
     }
 
-    pub fn note(self, note: impl Into<String>) -> Self {
+    pub(crate) fn note(self, note: impl Into<String>) -> Self {
         Panel {
             note: Some(note.into()),
             ..self
@@ -310,7 +353,7 @@ pub fn figure(path: &Path, title: &str, panels: &[Panel]) -> Result<(), PlotErro
 }
 
 /// [`figure`] with a caption under the panels (where the figure's data come from).
-pub fn figure_with_caption(path: &Path, title: &str, panels: &[Panel], caption: &str) -> Result<(), PlotError> {
+pub(crate) fn figure_with_caption(path: &Path, title: &str, panels: &[Panel], caption: &str) -> Result<(), PlotError> {
     render(path, Some(title), panels, Some(caption))
 }
 

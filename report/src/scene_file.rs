@@ -5,7 +5,7 @@
 //! Two layouts, one system: a single `[body]` with its `[initial]` state, `[[forces]]` and `[[constraints]]`
 //! to the world; or named `[[body]]` entries, each with its `initial` state and `forces`, and `[[joint]]`
 //! entries `between = ["body", "other body" or "world"]`. Both become the same list of bodies and joints
-//! ([`SceneFile::layout`]) and one [`Mechanism`]. A joint is any constraint kind ([`Geometry`]: ball, hinge,
+//! ([`SceneFile::layout`]) and one [`Mechanism`]. A joint is any constraint kind (`Geometry`: ball, hinge,
 //! cylindrical, prismatic, planar, point on plane, line, sphere or circle) in either formulation, its body's
 //! side in body coordinates and the rest in its reference's frame. The run's output, its CSV columns included,
 //! is described in [`crate::scene_job`].
@@ -37,33 +37,55 @@ use crate::sweep::AlgebraKind;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneFileError {
+    /// The file could not be read.
     #[error("cannot read the file: {0}")]
     Read(std::io::Error),
     /// Not TOML, or not this format (unknown key or kind, missing field, wrong type); the message gives
     /// the line and column.
     #[error("{0}")]
     Format(#[from] toml::de::Error),
+    /// A value the format allows but a run cannot use.
     #[error("{what}: {reason}")]
-    Invalid { what: String, reason: String },
+    Invalid {
+        /// The entry and key, as the file names them: "body arm: initial.position".
+        what: String,
+        /// What is wrong with the value.
+        reason: String,
+    },
+    /// The body's mass or moments of inertia are not physical.
     #[error("body: {0}")]
     Body(#[from] BodyError),
+    /// `dt`, `duration` and `sample_interval` make no schedule.
     #[error("dt, duration, sample_interval: {0}")]
     Schedule(SimulationError),
+    /// A joint's geometry was refused, or the joints cannot hold at the initial state or their reactions cannot
+    /// be solved for; the message names the joints.
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    /// A body, force, joint or the stabilisation was refused while building the system.
     #[error(transparent)]
     Mechanism(#[from] MechanismError),
+    /// A pinned joint needs a sphere or a circle, which only CGA has.
     #[error(
         "constraint {name}: pinning needs a {object}, which {algebra} does not have; write \
          formulation = \"virtual_power\", or algebra = \"cga\""
     )]
     NotExpressible {
+        /// The joint's name in messages.
         name: String,
+        /// "sphere" or "circle".
         object: &'static str,
+        /// The algebra that lacks it.
         algebra: &'static str,
     },
+    /// The run itself failed.
     #[error("the {algebra} run failed: {message}")]
-    Run { algebra: &'static str, message: String },
+    Run {
+        /// The algebra it ran in.
+        algebra: &'static str,
+        /// The simulator's message.
+        message: String,
+    },
 }
 
 fn invalid(what: impl Into<String>, reason: impl Into<String>) -> SceneFileError {
@@ -77,14 +99,17 @@ fn invalid(what: impl Into<String>, reason: impl Into<String>) -> SceneFileError
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AlgebraChoice {
+    /// `"pga"`
     Pga,
+    /// `"cga"`
     Cga,
-    /// Both, to compare them.
+    /// `"both"`, to compare them (the default).
     #[default]
     Both,
 }
 
 impl AlgebraChoice {
+    /// The algebras, in the order they run.
     pub fn algebras(self) -> Vec<AlgebraKind> {
         match self {
             AlgebraChoice::Pga => vec![AlgebraKind::Pga],
@@ -100,9 +125,11 @@ impl AlgebraChoice {
 pub struct SceneFile {
     /// A title for the summary and the plots.
     #[serde(default)]
-    pub title: Option<String>,
+    pub(crate) title: Option<String>,
+    /// Which algebras run the scene.
     #[serde(default)]
     pub algebra: AlgebraChoice,
+    /// Default `"rk4"`; the splittings run a single body without constraints only.
     #[serde(default = "default_integrator")]
     pub integrator: IntegratorName,
     /// The step (s); it must divide the sample interval.
@@ -113,30 +140,30 @@ pub struct SceneFile {
     #[serde(default = "default_sample_interval")]
     pub sample_interval: f64,
     #[serde(default = "default_stabilisation")]
-    pub stabilisation: StabilisationName,
+    pub(crate) stabilisation: StabilisationName,
     /// Gains for `stabilisation = "baumgarte"` (default α = β = 10, as on the command line).
     #[serde(default)]
-    pub baumgarte: Option<BaumgarteGains>,
+    pub(crate) baumgarte: Option<BaumgarteGains>,
     /// `[body]`, one body, or `[[body]]`, named bodies.
-    pub body: Bodies,
+    pub(crate) body: Bodies,
     /// The single body's initial state.
     #[serde(default)]
-    pub initial: Option<InitialSpec>,
+    pub(crate) initial: Option<InitialSpec>,
     /// The single body's forces.
     #[serde(default)]
-    pub forces: Vec<ForceSpec>,
+    pub(crate) forces: Vec<ForceSpec>,
     /// The single body's constraints to the world.
     #[serde(default)]
     pub constraints: Vec<ConstraintSpec>,
     /// Joints between named bodies, or a named body and the world.
     #[serde(default)]
-    pub joint: Vec<JointSpec>,
+    pub(crate) joint: Vec<JointSpec>,
 }
 
 /// The `body` key: a table (`[body]`, one body) or an array of tables (`[[body]]`, named bodies). Deserialized
 /// by peeking at which it is, so that toml's messages keep their line and column.
 #[derive(Clone, Debug)]
-pub enum Bodies {
+pub(crate) enum Bodies {
     One(BodySpec),
     Named(Vec<NamedBody>),
 }
@@ -166,18 +193,18 @@ impl<'de> Deserialize<'de> for Bodies {
 /// A `[[body]]` entry: a name, the body as in `[body]`, its initial state and its forces.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct NamedBody {
+pub(crate) struct NamedBody {
     /// Letters, digits, `_` and `-` (it heads CSV columns and names the body in messages).
-    pub name: String,
-    pub mass: f64,
+    pub(crate) name: String,
+    pub(crate) mass: f64,
     #[serde(default)]
-    pub shape: Option<Shape>,
+    pub(crate) shape: Option<Shape>,
     #[serde(default)]
-    pub principal_moments: Option<[f64; 3]>,
+    pub(crate) principal_moments: Option<[f64; 3]>,
     #[serde(default)]
-    pub initial: InitialSpec,
+    pub(crate) initial: InitialSpec,
     #[serde(default)]
-    pub forces: Vec<ForceSpec>,
+    pub(crate) forces: Vec<ForceSpec>,
 }
 
 /// A `[[joint]]`: `between = [body, reference]`, the reference another body or `"world"`. The geometry is that
@@ -185,41 +212,43 @@ pub struct NamedBody {
 /// `world_axis`, also written `reference_point`, `reference_axis`; normals, offsets, centres) in the
 /// reference's: its body coordinates, or the world's.
 #[derive(Clone, Debug, Deserialize)]
-pub struct JointSpec {
-    pub name: String,
-    pub between: [String; 2],
+pub(crate) struct JointSpec {
+    pub(crate) name: String,
+    pub(crate) between: [String; 2],
     #[serde(default)]
-    pub formulation: FormulationName,
+    pub(crate) formulation: FormulationName,
     #[serde(flatten)]
-    pub geometry: Geometry,
+    pub(crate) geometry: Geometry,
 }
 
 /// A body of the scene, whichever layout it came from.
 #[derive(Clone, Debug)]
 pub struct LayoutBody {
-    pub name: String,
-    pub spec: BodySpec,
+    pub(crate) name: String,
+    pub(crate) spec: BodySpec,
+    /// Its state at t = 0, as the file gives it.
     pub initial: InitialSpec,
-    pub forces: Vec<ForceSpec>,
+    pub(crate) forces: Vec<ForceSpec>,
 }
 
 /// A joint of the scene: its name in messages, its body and reference (`None`: the world) by index.
 #[derive(Clone, Debug)]
-pub struct LayoutJoint {
-    pub name: String,
-    pub body: usize,
-    pub reference: Option<usize>,
-    pub formulation: FormulationName,
-    pub geometry: Geometry,
+pub(crate) struct LayoutJoint {
+    pub(crate) name: String,
+    pub(crate) body: usize,
+    pub(crate) reference: Option<usize>,
+    pub(crate) formulation: FormulationName,
+    pub(crate) geometry: Geometry,
 }
 
 /// The scene's bodies and joints.
 #[derive(Clone, Debug)]
 pub struct Layout {
+    /// In file order.
     pub bodies: Vec<LayoutBody>,
-    pub joints: Vec<LayoutJoint>,
+    pub(crate) joints: Vec<LayoutJoint>,
     /// Whether the bodies are named `[[body]]` entries (else the single `[body]`, named "body").
-    pub named: bool,
+    pub(crate) named: bool,
 }
 
 impl Layout {
@@ -247,27 +276,27 @@ fn default_stabilisation() -> StabilisationName {
 
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BaumgarteGains {
-    pub alpha: f64,
-    pub beta: f64,
+pub(crate) struct BaumgarteGains {
+    pub(crate) alpha: f64,
+    pub(crate) beta: f64,
 }
 
 /// The body: its mass (kg) and either a shape or its principal moments of inertia (kg m², about the centre
 /// of mass along the body axes).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BodySpec {
-    pub mass: f64,
+pub(crate) struct BodySpec {
+    pub(crate) mass: f64,
     #[serde(default)]
-    pub shape: Option<Shape>,
+    pub(crate) shape: Option<Shape>,
     #[serde(default)]
-    pub principal_moments: Option<[f64; 3]>,
+    pub(crate) principal_moments: Option<[f64; 3]>,
 }
 
 /// A solid of uniform density, centred on its centre of mass; lengths in metres.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Shape {
+pub(crate) enum Shape {
     /// Side lengths along body x, y, z.
     Cuboid {
         size: [f64; 3],
@@ -294,15 +323,16 @@ pub enum Shape {
 pub struct InitialSpec {
     /// Centre of mass, world (m).
     #[serde(default)]
-    pub position: [f64; 3],
+    pub(crate) position: [f64; 3],
+    /// Body → world; the identity if absent.
     #[serde(default)]
     pub orientation: OrientationSpec,
     /// Angular velocity in body axes (rad/s).
     #[serde(default)]
-    pub body_angular_velocity: [f64; 3],
+    pub(crate) body_angular_velocity: [f64; 3],
     /// Centre-of-mass velocity, world (m/s).
     #[serde(default)]
-    pub velocity: [f64; 3],
+    pub(crate) velocity: [f64; 3],
 }
 
 /// Body → world rotation: `axis` with `angle` (rad) or `degrees`, or a `quaternion` [w, x, y, z]
@@ -310,16 +340,16 @@ pub struct InitialSpec {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OrientationSpec {
-    pub axis: Option<[f64; 3]>,
-    pub angle: Option<f64>,
-    pub degrees: Option<f64>,
-    pub quaternion: Option<[f64; 4]>,
+    pub(crate) axis: Option<[f64; 3]>,
+    pub(crate) angle: Option<f64>,
+    pub(crate) degrees: Option<f64>,
+    pub(crate) quaternion: Option<[f64; 4]>,
 }
 
 /// An external force on the body (world frame).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum ForceSpec {
+pub(crate) enum ForceSpec {
     /// Uniform gravity at the centre of mass (m/s²; default 9.81 along −z).
     Gravity {
         #[serde(default = "standard_gravity")]
@@ -338,7 +368,7 @@ fn standard_gravity() -> [f64; 3] {
 /// How a constraint is written (theory §6 and §7–§9).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub enum FormulationName {
+pub(crate) enum FormulationName {
     #[default]
     VirtualPower,
     Pinning,
@@ -357,16 +387,16 @@ impl From<FormulationName> for Formulation {
 #[derive(Clone, Debug, Deserialize)]
 pub struct ConstraintSpec {
     #[serde(default)]
-    pub formulation: FormulationName,
+    pub(crate) formulation: FormulationName,
     #[serde(flatten)]
-    pub geometry: Geometry,
+    pub(crate) geometry: Geometry,
 }
 
 /// What a constraint holds. Body points and axes are in body coordinates, the rest in world coordinates;
 /// lengths in metres. Axes and normals need not be unit.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Geometry {
+pub(crate) enum Geometry {
     /// The body point stays at the world point (rank 3).
     BallJoint {
         body_point: [f64; 3],
@@ -434,13 +464,13 @@ pub enum Geometry {
 /// A body axis through a body point, held on a world axis through a world point.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct AxisJoint {
-    pub body_point: [f64; 3],
-    pub body_axis: [f64; 3],
+pub(crate) struct AxisJoint {
+    pub(crate) body_point: [f64; 3],
+    pub(crate) body_axis: [f64; 3],
     #[serde(alias = "reference_point")]
-    pub world_point: [f64; 3],
+    pub(crate) world_point: [f64; 3],
     #[serde(alias = "reference_axis")]
-    pub world_axis: [f64; 3],
+    pub(crate) world_axis: [f64; 3],
 }
 
 /// The values as a vector, if all are finite.
@@ -494,7 +524,7 @@ impl Shape {
 }
 
 impl BodySpec {
-    pub fn body(&self) -> Result<Body, SceneFileError> {
+    pub(crate) fn body(&self) -> Result<Body, SceneFileError> {
         let body = match (&self.shape, self.principal_moments) {
             (Some(shape), None) => shape.body(self.mass),
             (None, Some(moments)) => Body::new(self.mass, Vector3::from(moments)),
@@ -506,6 +536,8 @@ impl BodySpec {
 }
 
 impl OrientationSpec {
+    /// The rotation, or an error naming what is wrong: keys given in another combination, a non-finite
+    /// angle, a zero axis or quaternion.
     pub fn rotation(&self) -> Result<UnitQuaternion<f64>, SceneFileError> {
         const WHAT: &str = "initial.orientation";
         let axis_angle = |axis: [f64; 3], angle: f64| {
@@ -553,7 +585,7 @@ impl ForceSpec {
         })
     }
 
-    pub fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             ForceSpec::Gravity { .. } => "gravity",
             ForceSpec::Force { .. } => "constant force",
@@ -562,7 +594,7 @@ impl ForceSpec {
     }
 
     /// Whether the force has a potential, so that the energy is conserved under it.
-    pub fn conservative(&self) -> bool {
+    pub(crate) fn conservative(&self) -> bool {
         matches!(self, ForceSpec::Gravity { .. })
     }
 }
@@ -570,12 +602,15 @@ impl ForceSpec {
 /// An algebra in which scene files run. Only CGA has the spheres and circles that pinning a point to one
 /// needs (theory §9, §13).
 pub trait FileAlgebra: PinningAlgebra {
+    /// The pin holding the body point (body coordinates) on the sphere (world, m); `None` without spheres.
     fn point_on_sphere_pin(
         name: String,
         body_point: Vector3<f64>,
         centre: Vector3<f64>,
         radius: f64,
     ) -> Option<Arc<dyn Constraint<Self>>>;
+    /// The pin holding the body point on the circle (centre, radius, unit normal of its plane; world, m);
+    /// `None` without circles.
     fn point_on_circle_pin(
         name: String,
         body_point: Vector3<f64>,
@@ -626,42 +661,64 @@ pub enum AxisFreedom {
     /// Sliding along it: a prismatic joint, whose body normal stays along the world normal (unit, normal to
     /// their axes).
     Slide {
+        /// Body coordinates.
         body_normal: Vector3<f64>,
+        /// The reference's coordinates.
         world_normal: Vector3<f64>,
     },
 }
 
 /// A constraint's geometry with every value checked: finite points, unit axes and normals, positive radii.
+/// `body` values are in body coordinates, `world` values and the rest in the reference's (the world's, or a
+/// reference body's until [`CheckedGeometry::in_world`]); points and lengths in metres.
 #[derive(Clone, Copy, Debug)]
 pub enum CheckedGeometry {
+    /// A body point held at a world point.
     Ball {
+        /// The held point.
         body_point: Vector3<f64>,
+        /// Where it is held.
         world_point: Vector3<f64>,
     },
     /// A body axis (point, unit direction) held on a world axis.
     Axis {
+        /// Turning, sliding or both.
         freedom: AxisFreedom,
+        /// The body axis.
         body: (Vector3<f64>, Vector3<f64>),
+        /// The axis it is held on.
         world: (Vector3<f64>, Vector3<f64>),
     },
     /// A body plane (point, unit normal) held on a world plane.
     Planar {
+        /// The body plane.
         body: (Vector3<f64>, Vector3<f64>),
+        /// The plane it is held on.
         world: (Vector3<f64>, Vector3<f64>),
     },
     /// A body point held on a world line (point, unit direction).
     Line {
+        /// The held point.
         body_point: Vector3<f64>,
+        /// The line.
         world: (Vector3<f64>, Vector3<f64>),
     },
+    /// A body point held on the plane `normal · x = offset`.
     Plane {
+        /// The held point.
         body_point: Vector3<f64>,
+        /// Unit.
         normal: Vector3<f64>,
+        /// The plane's signed distance from the origin along `normal`.
         offset: f64,
     },
+    /// A body point held on a sphere, or on a circle of it.
     Round {
+        /// The held point.
         body_point: Vector3<f64>,
+        /// The sphere's and the circle's centre.
         centre: Vector3<f64>,
+        /// Positive.
         radius: f64,
         /// The circle's plane normal; `None` for a sphere.
         normal: Option<Vector3<f64>>,
@@ -669,7 +726,7 @@ pub enum CheckedGeometry {
 }
 
 impl Geometry {
-    pub fn kind(&self) -> &'static str {
+    pub(crate) fn kind(&self) -> &'static str {
         match self {
             Geometry::BallJoint { .. } => "ball joint",
             Geometry::Hinge(_) => "hinge",
@@ -1047,8 +1104,8 @@ pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> i
 
 /// A system ready to run in one algebra, and its initial state (one per body) on the joints.
 pub struct SceneSystem<A: Algebra> {
-    pub system: Mechanism<A>,
-    pub initial: Vec<State<A>>,
+    pub(crate) system: Mechanism<A>,
+    pub(crate) initial: Vec<State<A>>,
 }
 
 /// Scene files larger than this are refused before they are read to the end (the largest shipped one is 5 KiB).
@@ -1067,6 +1124,17 @@ const WORLD: &str = "world";
 
 impl SceneFile {
     /// Reads and checks a scene file (at most [`MAX_FILE_BYTES`]).
+    ///
+    /// ```
+    /// use std::path::Path;
+    /// use report::scene_file::SceneFile;
+    ///
+    /// // The heavy top shipped in the workspace's `scenes` folder: a cone on a ball joint at its tip.
+    /// let scene = SceneFile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml"))?;
+    /// assert_eq!((scene.dt, scene.duration), (1e-3, 10.0));
+    /// assert_eq!(scene.constraints.len(), 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn load(path: &Path) -> Result<SceneFile, SceneFileError> {
         use std::io::Read as _;
         let file = std::fs::File::open(path).map_err(SceneFileError::Read)?;
@@ -1084,6 +1152,36 @@ impl SceneFile {
     /// Parses a scene file and checks that it can run: the bodies, the timing, the integrator and, in every
     /// requested algebra, the forces, joints, stabilisation, the projection of the initial state onto the
     /// joints and the reaction solve there.
+    ///
+    /// ```
+    /// use report::scene_file::SceneFile;
+    ///
+    /// // A pendulum: a 1 m rod hung from the world by a ball joint at its top end.
+    /// let pendulum = r#"
+    ///     dt = 1e-3
+    ///     duration = 0.5
+    ///
+    ///     [body]
+    ///     mass = 1.0
+    ///     shape = { kind = "rod", length = 1.0, axial_moment = 1e-3 }
+    ///
+    ///     [[forces]]
+    ///     kind = "gravity"
+    ///
+    ///     [[constraints]]
+    ///     kind = "ball_joint"
+    ///     body_point = [0.0, 0.0, 0.5]
+    ///     world_point = [0.0, 0.0, 0.0]
+    /// "#;
+    /// let scene = SceneFile::parse(pendulum)?;
+    /// assert_eq!(scene.layout()?.bodies.len(), 1);
+    /// assert_eq!(scene.schedule()?.step_count(), 500);
+    ///
+    /// // A bad value fails here, naming it, before anything runs.
+    /// let error = SceneFile::parse(&pendulum.replace("mass = 1.0", "mass = -1.0")).unwrap_err();
+    /// assert!(error.to_string().contains("mass"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
         let scene: SceneFile = toml::from_str(text)?;
         scene.schedule()?;
@@ -1138,6 +1236,8 @@ impl SceneFile {
         Ok(schedule)
     }
 
+    /// How the joints are held: `stabilisation`, with the `baumgarte` gains if given; an error if gains are
+    /// given for another stabilisation.
     pub fn stabilisation(&self) -> Result<Stabilisation, SceneFileError> {
         match (self.stabilisation, self.baumgarte) {
             (StabilisationName::Baumgarte, Some(BaumgarteGains { alpha, beta })) => {

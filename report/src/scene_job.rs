@@ -26,10 +26,18 @@ use crate::sweep::AlgebraKind;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneJobError {
+    /// The file cannot run, or its run failed.
     #[error(transparent)]
     Scene(#[from] SceneFileError),
+    /// An output folder or file could not be written.
     #[error("cannot write {path}: {source}")]
-    Write { path: PathBuf, source: std::io::Error },
+    Write {
+        /// The folder or file.
+        path: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn.
     #[error(transparent)]
     Plot(#[from] PlotError),
 }
@@ -37,18 +45,18 @@ pub enum SceneJobError {
 /// The run in one algebra, with what the summary states about it.
 #[derive(Clone, Debug)]
 pub struct AlgebraRun {
-    pub algebra: AlgebraKind,
+    pub(crate) algebra: AlgebraKind,
     /// Every body's samples, `bodies[i][k]`; the energy in each sample is the whole system's.
     pub bodies: Vec<Vec<Sample>>,
     /// Stepping time divided by the simulated time (s/s).
-    pub cpu_per_simulated_second: f64,
+    pub(crate) cpu_per_simulated_second: f64,
     /// Stepping time per step (s).
-    pub time_per_step: f64,
+    pub(crate) time_per_step: f64,
     /// The energy change per sample, |E(t) − E₀| relative to |E₀| (absolute, in J, if |E₀| is below
     /// [`ABSOLUTE_ENERGY_BELOW`]).
     pub energy_change: Vec<f64>,
     /// The largest joint violation per sample (m).
-    pub violation: Vec<f64>,
+    pub(crate) violation: Vec<f64>,
 }
 
 /// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
@@ -56,10 +64,12 @@ pub struct AlgebraRun {
 pub const ABSOLUTE_ENERGY_BELOW: f64 = 1e-6;
 
 impl AlgebraRun {
+    /// The largest of [`AlgebraRun::energy_change`].
     pub fn max_energy_change(&self) -> f64 {
         self.energy_change.iter().copied().fold(0.0, f64::max)
     }
 
+    /// The largest joint violation over the run (m); 0 without joints.
     pub fn max_violation(&self) -> f64 {
         self.violation.iter().copied().fold(0.0, f64::max)
     }
@@ -74,9 +84,8 @@ pub const ENERGY_WARNING: f64 = 1e-6;
 /// What the job wrote.
 #[derive(Clone, Debug)]
 pub struct SceneJobSummary {
+    /// One per requested algebra, PGA first.
     pub runs: Vec<AlgebraRun>,
-    /// Every file written, `summary.md` last.
-    pub files: Vec<PathBuf>,
     /// Runs whose result is suspect (a conservative scene whose energy changed by more than
     /// [`ENERGY_WARNING`]), said in words; also in `summary.md`.
     pub warnings: Vec<String>,
@@ -226,8 +235,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         let _ = writeln!(text, "\n**Warning**: {warning}.");
     }
     std::fs::write(&summary_path, text).map_err(write_error(&summary_path))?;
-    files.push(summary_path);
-    Ok(SceneJobSummary { runs, files, warnings })
+    Ok(SceneJobSummary { runs, warnings })
 }
 
 /// What `summary.md` says about the scene besides the runs.

@@ -13,14 +13,16 @@ use crate::measure::{measure, Measurements};
 /// The two algebras, as a value (the simulators are generic; this picks the instantiation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum AlgebraKind {
+    /// Conformal GA, [`dynamics::Cga`].
     Cga,
+    /// Projective GA, [`dynamics::Pga`].
     Pga,
 }
 
 impl AlgebraKind {
-    pub const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
+    pub(crate) const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
 
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             AlgebraKind::Cga => "CGA",
             AlgebraKind::Pga => "PGA",
@@ -31,15 +33,17 @@ impl AlgebraKind {
 /// One run of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Config {
+    /// The reference scene.
     pub scene: SceneId,
+    /// The algebra it runs in.
     pub algebra: AlgebraKind,
     /// `None` for the free body, which has no constraint to formulate.
-    pub formulation: Option<Formulation>,
-    pub integrator: Integrator,
-    pub dt: f64,
+    pub(crate) formulation: Option<Formulation>,
+    pub(crate) integrator: Integrator,
+    pub(crate) dt: f64,
     /// Simulated time (the scene's T unless shortened).
-    pub duration: f64,
-    pub stabilisation: Stabilisation,
+    pub(crate) duration: f64,
+    pub(crate) stabilisation: Stabilisation,
 }
 
 impl Config {
@@ -63,16 +67,20 @@ impl Config {
 }
 
 /// The single-body scenes' steps without `--steps`.
-pub const DEFAULT_STEPS: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
+pub(crate) const DEFAULT_STEPS: [f64; 7] = [1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4];
 
 /// What the sweep covers.
 #[derive(Clone, Debug)]
 pub struct SweepPlan {
+    /// The reference scenes to run.
     pub scenes: Vec<SceneId>,
+    /// The integrators; splittings run the free body only.
     pub integrators: Vec<Integrator>,
+    /// Step sizes (s); each must divide the 0.01 s sample interval.
     pub steps: Vec<f64>,
     /// Overrides every scene's duration (for quick runs); must be a multiple of 0.01 s.
     pub duration: Option<f64>,
+    /// How the constrained scenes are held on their constraints.
     pub stabilisation: Stabilisation,
 }
 
@@ -89,7 +97,7 @@ fn expressible(scene: SceneId, algebra: AlgebraKind, formulation: Formulation) -
 impl SweepPlan {
     /// Every configuration of the plan that can run: splitting integrators only on the free body, and
     /// formulations only where the algebra has the geometry.
-    pub fn configurations(&self) -> Vec<Config> {
+    pub(crate) fn configurations(&self) -> Vec<Config> {
         let mut configs = Vec::new();
         for &scene in &self.scenes {
             let parameters = scene.parameters();
@@ -130,13 +138,14 @@ impl SweepPlan {
 /// A finished run.
 #[derive(Clone, Debug)]
 pub struct Outcome {
-    pub config: Config,
+    pub(crate) config: Config,
     /// The samples every 0.01 s.
     pub samples: Vec<Sample>,
     /// Stepping time of the run divided by the simulated time (s/s).
-    pub cpu_per_simulated_second: f64,
+    pub(crate) cpu_per_simulated_second: f64,
     /// Stepping time per step (s).
-    pub time_per_step: f64,
+    pub(crate) time_per_step: f64,
+    /// The errors against the reference, energy drift and constraint violation.
     pub measurements: Measurements,
 }
 
@@ -144,16 +153,19 @@ pub struct Outcome {
 #[derive(Clone, Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum RunError {
+    /// The scene could not be built.
     #[error("scene: {0}")]
     Scene(#[from] scenarios::SceneError),
+    /// The schedule, the body or the run failed: the simulator's message.
     #[error("simulation: {0}")]
     Simulation(String),
+    /// The samples could not be measured: the metric's message.
     #[error("metrics: {0}")]
     Metrics(String),
 }
 
 /// Runs one configuration.
-pub fn run(config: &Config) -> Result<Outcome, RunError> {
+pub(crate) fn run(config: &Config) -> Result<Outcome, RunError> {
     match config.algebra {
         AlgebraKind::Cga => run_in::<Cga>(config),
         AlgebraKind::Pga => run_in::<Pga>(config),
@@ -197,7 +209,7 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
 }
 
 /// The default integrators: every general method, and the splittings for the free body.
-pub fn default_integrators() -> Vec<Integrator> {
+pub(crate) fn default_integrators() -> Vec<Integrator> {
     let mut integrators: Vec<Integrator> = Method::ALL.iter().copied().map(Integrator::General).collect();
     integrators.extend(
         Integrator::ALL

@@ -35,11 +35,46 @@ pub struct Kinematics<A: Algebra> {
 
 impl<A: Algebra> Kinematics<A> {
     /// The kinematics of a body with motor `motor` moving with body velocity `body_velocity`.
+    ///
+    /// What a constraint sees of its body: here a body at the origin spinning at 2 rad/s about world z, whose body
+    /// point one metre out along its x axis (turned to world y) moves at 2 m/s along −x.
+    ///
+    /// ```
+    /// use dynamics::constraints::Kinematics;
+    /// use dynamics::{motor, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let quarter = UnitQuaternion::from_scaled_axis(Vector3::z() * std::f64::consts::FRAC_PI_2);
+    /// let spin = Pga::screw(ScrewCoordinates { l: Vector3::z() * 2.0, t: Vector3::zeros() }); // body frame, rad/s
+    /// let at = Kinematics::<Pga>::new(0.0, motor::from_pose::<Pga>(Vector3::zeros(), &quarter), spin);
+    /// assert!((at.world_point(&Vector3::x()) - Vector3::y()).norm() < 1e-15); // m
+    /// assert!((at.world_point_velocity(&Vector3::x()) + Vector3::x() * 2.0).norm() < 1e-15); // m/s
+    /// ```
     pub fn new(t: f64, motor: A::Motor, body_velocity: A::Screw) -> Self {
         Self::with_frame(t, motor, ScrewFrame::of::<A>(motor), body_velocity)
     }
 
     /// [`Kinematics::new`] with the motor's frame already computed.
+    ///
+    /// The kinematics a constraint's rows are evaluated at: a ball joint holding the body point `(0, 0, 1)` at the
+    /// world origin, for a body hanging below it and turning about the pivot, has zero residuals.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, Kinematics, RowBuffer, VirtualPower};
+    /// use dynamics::motor::{from_pose, ScrewFrame};
+    /// use dynamics::{Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let motor = from_pose::<Pga>(-Vector3::z(), &UnitQuaternion::identity());
+    /// // 1 rad/s about body x, the centre moving at ω × (c − pivot) = 1 m/s along y (body frame).
+    /// let swing = Pga::screw(ScrewCoordinates { l: Vector3::x(), t: Vector3::y() });
+    /// let at = Kinematics::<Pga>::with_frame(0.0, motor, ScrewFrame::of::<Pga>(motor), swing);
+    /// let mut rows = RowBuffer::new();
+    /// VirtualPower::<Pga>::ball_joint("pivot", Vector3::z(), Vector3::zeros()).rows(&at, &mut rows)?;
+    /// assert_eq!(rows.len(), 3);
+    /// assert!(rows.rows().iter().all(|row| row.position_residual == Some(0.0) && row.velocity_residual == 0.0));
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
     pub fn with_frame(t: f64, motor: A::Motor, frame: ScrewFrame, body_velocity: A::Screw) -> Self {
         let ScrewCoordinates { l: omega, t: v } = A::screw_coordinates(body_velocity);
         let angular_velocity = frame.rotation * omega;

@@ -151,6 +151,30 @@ pub struct Composite<A: Algebra> {
 
 impl<A: Algebra> Composite<A> {
     /// The parts act together with `rank` constrained degrees of freedom.
+    ///
+    /// A point kept on the x axis as the meet of two planes: two rows, rank 2, and the point free to slide along
+    /// the axis.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use dynamics::constraints::{Composite, Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let planes: Vec<Arc<dyn Constraint<Pga>>> = vec![
+    ///     Arc::new(VirtualPower::point_on_plane("y = 0", Vector3::zeros(), (Vector3::y(), 0.0))?),
+    ///     Arc::new(VirtualPower::point_on_plane("z = 0", Vector3::zeros(), (Vector3::z(), 0.0))?),
+    /// ];
+    /// let on_axis = Composite::new("on the x axis", planes, 2);
+    /// assert_eq!((on_axis.rank(), on_axis.row_count()), (2, 2));
+    /// let bead = Body::sphere(0.1, 0.01)?;
+    /// let system = Mechanism::single(bead).with_constraint(on_axis)?;
+    /// let still = UnitQuaternion::identity();
+    /// let sliding = State::new(&bead, Vector3::x() * 3.0, &still, Vector3::zeros(), Vector3::x());
+    /// let on = system.violation(0.0, &[sliding])?;
+    /// assert!(on.position == 0.0 && on.velocity == 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(name: impl Into<String>, parts: Vec<Arc<dyn Constraint<A>>>, rank: usize) -> Self {
         Composite {
             name: name.into(),

@@ -27,6 +27,28 @@ pub struct PathPoint<X> {
 
 impl<X: Coefficients> PathPoint<X> {
     /// A value at rest.
+    ///
+    /// A pivot path that stays put: a pendulum hanging still from it is on its joint, and the pivot carries
+    /// its weight.
+    ///
+    /// ```
+    /// use dynamics::constraints::{PathPoint, VirtualPower};
+    /// use dynamics::{Algebra, Body, Force, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let pivot = |_t: f64| PathPoint::at_rest(Vector3::new(0.0, 0.0, 2.0)); // m
+    /// assert_eq!((pivot(1.0).rate, pivot(1.0).acceleration), (Vector3::zeros(), Vector3::zeros()));
+    /// let rod = Body::rod(1.5, 1.0, 1e-3)?; // 1.5 kg, 1 m
+    /// let top = Vector3::new(0.0, 0.0, 0.5);
+    /// let pendulum = Mechanism::single(rod).with_force(Force::gravity())?
+    ///     .with_constraint(VirtualPower::driven_ball_joint("pivot", top, pivot))?;
+    /// let still = UnitQuaternion::identity();
+    /// let hanging = State::<Pga>::new(&rod, Vector3::z() * 1.5, &still, Vector3::zeros(), Vector3::zeros());
+    /// assert_eq!(pendulum.violation(0.0, &[hanging])?.velocity, 0.0);
+    /// let reaction = Pga::screw_coordinates(pendulum.reactions(0.0, &[hanging])?[0]);
+    /// assert!((reaction.l - Vector3::new(0.0, 0.0, 1.5 * 9.81)).norm() < 1e-12); // N
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn at_rest(value: X) -> Self {
         PathPoint {
             value,
@@ -104,6 +126,29 @@ where
     P: Path<Vector3<f64>>,
 {
     /// `base` moved along the offset path `offset(t)` (value, velocity, acceleration).
+    ///
+    /// The plane z = 0 lifted along `c(t) = (0, 0, t²)`: at t = 1.5 s it is the plane z = 2.25 m, moving up
+    /// at 3 m/s.
+    ///
+    /// ```
+    /// use dynamics::constraints::paths::TranslatedPath;
+    /// use dynamics::constraints::{Coefficients, Path, PathPoint, PinningAlgebra};
+    /// use dynamics::Pga;
+    /// use nalgebra::Vector3;
+    ///
+    /// let lift = |t: f64| PathPoint {
+    ///     value: Vector3::z() * (t * t),
+    ///     rate: Vector3::z() * (2.0 * t),
+    ///     acceleration: Vector3::z() * 2.0,
+    /// };
+    /// let floor = TranslatedPath::<Pga, _, _>::new(Pga::plane_object(Vector3::z(), 0.0), lift);
+    /// let at = floor.at(1.5);
+    /// let expected = Pga::plane_object(Vector3::z(), 2.25).coefficients();
+    /// let expected_rate = Pga::plane_object(Vector3::zeros(), 3.0).coefficients();
+    /// let (value, rate) = (at.value.coefficients(), at.rate.coefficients());
+    /// assert!(value.iter().zip(expected).all(|(ours, exact)| (ours - exact).abs() < 1e-15));
+    /// assert!(rate.iter().zip(expected_rate).all(|(ours, exact)| (ours - exact).abs() < 1e-15));
+    /// ```
     pub fn new(base: X, offset: P) -> Self {
         TranslatedPath {
             base,
@@ -148,6 +193,22 @@ where
 
 /// The point at `position(t)`: the origin point translated along the path, so its derivatives are exact
 /// (theory §8 gives them per algebra: `ṗ + (p·ṗ)n∞` in CGA, `e₀ṗI₃` in PGA).
+///
+/// ```
+/// use dynamics::constraints::paths::moving_point;
+/// use dynamics::constraints::{Path, PathPoint};
+/// use dynamics::{Algebra, Cga};
+/// use nalgebra::Vector3;
+///
+/// // A point going round the unit circle at 1 rad/s.
+/// let circle = |t: f64| PathPoint {
+///     value: Vector3::new(t.cos(), t.sin(), 0.0),
+///     rate: Vector3::new(-t.sin(), t.cos(), 0.0),
+///     acceleration: Vector3::new(-t.cos(), -t.sin(), 0.0),
+/// };
+/// let point = moving_point::<Cga, _>(circle);
+/// assert!((Cga::position(point.at(0.7).value) - circle(0.7).value).norm() < 1e-15); // m
+/// ```
 pub fn moving_point<A, P>(position: P) -> TranslatedPath<A, A::PointObject, P>
 where
     A: PinningAlgebra,
@@ -199,6 +260,24 @@ pub struct ScrewMotion<A: Algebra, P> {
 
 impl<A: Algebra, P: Path<f64>> ScrewMotion<A, P> {
     /// The motion from `start` along `screw` by the parameter path `parameter` (θ with its exact derivatives).
+    ///
+    /// A turn about the body z axis at 1 rad/s: after π/2 s the motor is a quarter turn, and the velocity is the
+    /// screw times θ̇.
+    ///
+    /// ```
+    /// use dynamics::constraints::{MotorPath, PathPoint, ScrewMotion};
+    /// use dynamics::{motor, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let about_z = Pga::screw(ScrewCoordinates { l: Vector3::z(), t: Vector3::zeros() });
+    /// let theta = |t: f64| PathPoint { value: t, rate: 1.0, acceleration: 0.0 }; // rad
+    /// let turning = ScrewMotion::<Pga, _>::new(motor::identity::<Pga>(), about_z, theta);
+    /// let quarter = turning.at(std::f64::consts::FRAC_PI_2);
+    /// let (position, rotation) = motor::pose::<Pga>(quarter.motor);
+    /// let expected = UnitQuaternion::from_scaled_axis(Vector3::z() * std::f64::consts::FRAC_PI_2);
+    /// assert!(position.norm() < 1e-15 && rotation.angle_to(&expected) < 1e-15);
+    /// assert_eq!(quarter.velocity, about_z); // rad/s about z
+    /// ```
     pub fn new(start: A::Motor, screw: A::Screw, parameter: P) -> Self {
         ScrewMotion {
             start,
@@ -232,6 +311,22 @@ pub struct CarriedPath<A: Algebra, X> {
 
 impl<A: Algebra, X: Pinnable<A>> CarriedPath<A, X> {
     /// The body-frame object `object` carried by the motor path `path`.
+    ///
+    /// The body x axis carried by a quarter turn about z is the world y axis:
+    ///
+    /// ```
+    /// use dynamics::constraints::{CarriedPath, Coefficients, Path, PathPoint, PinningAlgebra, ScrewMotion};
+    /// use dynamics::{motor, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::Vector3;
+    ///
+    /// let about_z = Pga::screw(ScrewCoordinates { l: Vector3::z(), t: Vector3::zeros() });
+    /// let theta = |t: f64| PathPoint { value: t, rate: 1.0, acceleration: 0.0 }; // rad
+    /// let turning = ScrewMotion::<Pga, _>::new(motor::identity::<Pga>(), about_z, theta);
+    /// let x_axis = CarriedPath::new(Pga::line_object(Vector3::zeros(), Vector3::x()), turning);
+    /// let carried = x_axis.at(std::f64::consts::FRAC_PI_2).value.coefficients();
+    /// let y_axis = Pga::line_object(Vector3::zeros(), Vector3::y()).coefficients();
+    /// assert!(carried.iter().zip(y_axis).all(|(a, b)| (a - b).abs() < 1e-15));
+    /// ```
     pub fn new(object: X, path: impl MotorPath<A> + 'static) -> Self {
         CarriedPath::shared(object, Arc::new(path))
     }

@@ -44,6 +44,25 @@ pub struct RowBuffer {
 
 impl RowBuffer {
     /// An empty buffer.
+    ///
+    /// The buffer a constraint pushes its rows into: a hinge about x by virtual power pushes five, and a body
+    /// turning about the hinge axis has zero velocity residual on each.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, Kinematics, RowBuffer, VirtualPower};
+    /// use dynamics::{motor, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::Vector3;
+    ///
+    /// let axis = (Vector3::zeros(), Vector3::x()); // (point, direction): the x axis, in the body and the world
+    /// let hinge = VirtualPower::<Pga>::hinge("hinge", axis, axis)?;
+    /// let turning = Pga::screw(ScrewCoordinates { l: Vector3::x() * 3.0, t: Vector3::zeros() }); // rad/s
+    /// let at = Kinematics::<Pga>::new(0.0, motor::identity::<Pga>(), turning);
+    /// let mut rows = RowBuffer::new();
+    /// hinge.rows(&at, &mut rows)?;
+    /// assert_eq!((rows.len(), rows.requested()), (5, 5));
+    /// assert!(rows.rows().iter().all(|row| row.velocity_residual == 0.0));
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
     pub fn new() -> Self {
         Self::default()
     }

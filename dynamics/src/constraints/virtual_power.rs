@@ -67,6 +67,24 @@ pub struct WrenchPoint<A: Algebra> {
 
 impl<A: Algebra> WrenchPoint<A> {
     /// A fixed wrench: no rate, no prescribed power.
+    ///
+    /// A constraint wrench's row is its power: a unit force along z through the centre of mass against a body
+    /// rising at 2 m/s gives the velocity residual 2 W (the condition is zero power).
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, Kinematics, RowBuffer, VirtualPower, WrenchPoint};
+    /// use dynamics::{forces::force_line, motor, Algebra, Pga, ScrewCoordinates};
+    /// use nalgebra::Vector3;
+    ///
+    /// let vertical = WrenchPoint::<Pga>::fixed(force_line::<Pga>(Vector3::z(), Vector3::zeros())); // 1 N
+    /// assert_eq!((vertical.power, vertical.power_rate), (0.0, 0.0));
+    /// let level = VirtualPower::from_wrenches("level", [move |_t: f64| vertical]);
+    /// let rising = Pga::screw(ScrewCoordinates { l: Vector3::zeros(), t: Vector3::new(1.0, 0.0, 2.0) }); // m/s
+    /// let mut rows = RowBuffer::new();
+    /// level.rows(&Kinematics::new(0.0, motor::identity::<Pga>(), rising), &mut rows)?;
+    /// assert_eq!(rows.rows()[0].velocity_residual, 2.0); // W
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
     pub fn fixed(wrench: A::Screw) -> Self {
         let zero = A::screw(ScrewCoordinates::default());
         WrenchPoint {
@@ -191,6 +209,29 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// Ball joint: the body point `body_point` (body coordinates) stays at `world_point`. Rank 3.
+    ///
+    /// A rod's top end held at the origin: a state swinging about the pivot keeps it; one moved 1 cm off breaks it
+    /// by 1 cm (the force rows' residuals are distances).
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?; // 1 kg, 1 m along body z
+    /// let top = Vector3::new(0.0, 0.0, 0.5); // body point, m
+    /// let ball = VirtualPower::<Pga>::ball_joint("pivot", top, Vector3::zeros());
+    /// assert_eq!(ball.rank(), 3);
+    /// let pendulum = Mechanism::single(rod).with_constraint(ball)?;
+    /// let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(0.4, -0.3, 0.0));
+    /// let (centre, spin) = (-(tilt * top), Vector3::new(1.0, 0.5, 2.0)); // m, rad/s
+    /// let swinging = State::from_world_twist(&rod, centre, &tilt, spin, spin.cross(&centre));
+    /// let on = pendulum.violation(0.0, &[swinging])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// let off = State::from_world_twist(&rod, centre + Vector3::y() * 0.01, &tilt, spin, spin.cross(&centre));
+    /// assert!((pendulum.violation(0.0, &[off])?.position - 0.01).abs() < 1e-15); // m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn ball_joint(name: impl Into<String>, body_point: Vector3<f64>, world_point: Vector3<f64>) -> Self {
         Self::point_joint(
             name.into(),
@@ -204,6 +245,30 @@ impl<A: Algebra> VirtualPower<A> {
     /// A driven ball joint: the body point stays at a pivot moving along `pivot(t)` (value, velocity,
     /// acceleration, world or reference frame). The pivot's motion does work: force k's velocity condition is
     /// `⟨Ḃ ∧ T_bk⟩_Π = ṗₖ`, the prescribed power of the driven motion (theory §14.1). Rank 3.
+    ///
+    /// A pivot raised at 0.5 m/s: a rod hanging from it and rising with it is on the joint, velocities included;
+    /// the same rod at rest is not.
+    ///
+    /// ```
+    /// use dynamics::constraints::{PathPoint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let lift = |t: f64| PathPoint {
+    ///     value: Vector3::z() * (0.5 * t),
+    ///     rate: Vector3::z() * 0.5,
+    ///     acceleration: Vector3::zeros(),
+    /// };
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let top = Vector3::new(0.0, 0.0, 0.5);
+    /// let lifted = Mechanism::<Pga>::single(rod).with_constraint(VirtualPower::driven_ball_joint("hook", top, lift))?;
+    /// let still = UnitQuaternion::identity();
+    /// let at = |v: f64| State::new(&rod, Vector3::zeros(), &still, Vector3::zeros(), Vector3::z() * v);
+    /// let rising = lifted.violation(1.0, &[at(0.5)])?; // at t = 1 s the hook is at z = 0.5 m
+    /// assert!(rising.position < 1e-15 && rising.velocity < 1e-15);
+    /// assert!((lifted.violation(1.0, &[at(0.0)])?.velocity - 0.5).abs() < 1e-15); // m/s behind the hook
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn driven_ball_joint(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -214,6 +279,30 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// Hinge: a ball joint at the point plus two couples normal to the axis, so the body turns only about
     /// the world axis through `world_point`; `body_axis` is the axis in body coordinates. Rank 5.
+    ///
+    /// A door hinged about the world z axis at its edge: swinging about the axis keeps the hinge, a tilt about x
+    /// breaks it.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let door = Body::cuboid(20.0, Vector3::new(0.8, 0.04, 2.0))?; // kg; m
+    /// let edge = Vector3::new(-0.4, 0.0, 0.0); // body point on the hinge line, m
+    /// let hinge = VirtualPower::<Pga>::hinge("hinge", (edge, Vector3::z()), (Vector3::zeros(), Vector3::z()))?;
+    /// assert_eq!(hinge.rank(), 5);
+    /// let system = Mechanism::single(door).with_constraint(hinge)?;
+    /// let state = |turn: Vector3<f64>, spin: Vector3<f64>| {
+    ///     let rotation = UnitQuaternion::from_scaled_axis(turn);
+    ///     let centre = -(rotation * edge);
+    ///     State::from_world_twist(&door, centre, &rotation, spin, spin.cross(&centre))
+    /// };
+    /// let open = system.violation(0.0, &[state(Vector3::z() * 1.2, Vector3::z() * 0.5)])?; // rad, rad/s
+    /// assert!(open.position < 1e-15 && open.velocity < 1e-15);
+    /// assert!(system.violation(0.0, &[state(Vector3::x() * 0.1, Vector3::zeros())])?.position > 0.09);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn hinge(
         name: impl Into<String>,
         (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
@@ -236,6 +325,27 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// Cylindrical joint: two forces normal to the axis at the body point plus two couples normal to the axis,
     /// so the body slides along and turns about the world axis. Rank 4.
+    ///
+    /// A sleeve on the vertical line through (1, 0, 0): it may slide along and turn about it.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let sleeve = Body::cylinder(1.0, 0.05, 0.3)?;
+    /// let (on_body, on_world) = ((Vector3::zeros(), Vector3::z()), (Vector3::x(), Vector3::z())); // (point, axis)
+    /// let joint = VirtualPower::<Pga>::cylindrical("sleeve", on_body, on_world)?;
+    /// assert_eq!(joint.rank(), 4);
+    /// let system = Mechanism::single(sleeve).with_constraint(joint)?;
+    /// let turned = UnitQuaternion::from_scaled_axis(Vector3::z() * 2.0);
+    /// // 0.7 m up the line, turning at 3 rad/s and sliding at 1 m/s.
+    /// let (centre, spin) = (Vector3::new(1.0, 0.0, 0.7), Vector3::z() * 3.0);
+    /// let state = State::from_world_twist(&sleeve, centre, &turned, spin, Vector3::z());
+    /// let on = system.violation(0.0, &[state])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn cylindrical(
         name: impl Into<String>,
         (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
@@ -259,6 +369,28 @@ impl<A: Algebra> VirtualPower<A> {
     /// Prismatic joint (slider): the body slides along the world axis without turning. The cylindrical joint's
     /// two forces and two couples, plus a couple about the axis keeping the body direction `body_normal`
     /// (normal to the body axis) along the world direction `world_normal` (normal to the world axis). Rank 5.
+    ///
+    /// A carriage on a rail along world x: it slides, but a turn about the rail breaks the joint.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let carriage = Body::cuboid(2.0, Vector3::new(0.3, 0.2, 0.1))?;
+    /// let (x, z) = (Vector3::x(), Vector3::z());
+    /// let rail = VirtualPower::<Pga>::prismatic("rail", (Vector3::zeros(), x, z), (Vector3::zeros(), x, z))?;
+    /// assert_eq!(rail.rank(), 5);
+    /// let system = Mechanism::single(carriage).with_constraint(rail)?;
+    /// let still = UnitQuaternion::identity();
+    /// let sliding = State::new(&carriage, x * 1.5, &still, Vector3::zeros(), x * 2.0); // m, m/s
+    /// let on = system.violation(0.0, &[sliding])?;
+    /// assert!(on.position == 0.0 && on.velocity == 0.0);
+    /// let rolled = UnitQuaternion::from_scaled_axis(x * 0.2);
+    /// let off = State::new(&carriage, x * 1.5, &rolled, Vector3::zeros(), Vector3::zeros());
+    /// assert!((system.violation(0.0, &[off])?.position - 0.2f64.sin()).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn prismatic(
         name: impl Into<String>,
         (body_point, body_axis, body_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
@@ -294,6 +426,27 @@ impl<A: Algebra> VirtualPower<A> {
     /// Planar joint: the body plane through `body_point` with normal `body_normal` stays on the world plane
     /// through `world_point` with normal `world_normal`: a force along the normal and two couples keeping the
     /// normals aligned. Rank 3.
+    ///
+    /// A puck whose bottom face (body plane through `(0, 0, −0.02)`, normal z) stays on the floor z = 0: it slides
+    /// and turns about the vertical.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let puck = Body::cylinder(0.2, 0.04, 0.04)?;
+    /// let bottom = (Vector3::new(0.0, 0.0, -0.02), Vector3::z());
+    /// let floor = VirtualPower::<Pga>::planar("floor", bottom, (Vector3::zeros(), Vector3::z()))?;
+    /// assert_eq!(floor.rank(), 3);
+    /// let system = Mechanism::single(puck).with_constraint(floor)?;
+    /// let turned = UnitQuaternion::from_scaled_axis(Vector3::z() * 2.0);
+    /// let (centre, spin) = (Vector3::new(1.0, -2.0, 0.02), Vector3::z() * 5.0); // m, rad/s
+    /// let gliding = State::from_world_twist(&puck, centre, &turned, spin, Vector3::x());
+    /// let on = system.violation(0.0, &[gliding])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-13); // m, m/s: round-off
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn planar(
         name: impl Into<String>,
         (body_point, body_normal): (Vector3<f64>, Vector3<f64>),
@@ -314,6 +467,25 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// The body point stays on the world plane `{x : normal·x = offset}`. Rank 1.
+    ///
+    /// The normal need not be unit: `(0, 0, 2)·x = 1` is the plane z = 0.5 m.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let foot = Vector3::new(0.0, 0.0, -0.5); // body point, m
+    /// let on_plane = VirtualPower::<Pga>::point_on_plane("foot", foot, (Vector3::new(0.0, 0.0, 2.0), 1.0))?;
+    /// assert_eq!(on_plane.rank(), 1);
+    /// let system = Mechanism::single(rod).with_constraint(on_plane)?;
+    /// let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.2, 0.0));
+    /// let centre = Vector3::new(3.0, -1.0, 0.5) - tilt * foot; // the foot anywhere on z = 0.5
+    /// let on = system.violation(0.0, &[State::new(&rod, centre, &tilt, Vector3::zeros(), Vector3::x())])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn point_on_plane(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -340,6 +512,24 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// The body point stays on the world line through `line_point` along `direction`: two forces normal to the
     /// line. Rank 2.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let end = Vector3::new(0.0, 0.0, 0.5); // body point, m
+    /// // The end on the line through (0, 0, 1) along (1, 1, 0): two rows, rank 2.
+    /// let on_line = VirtualPower::<Pga>::point_on_line("end", end, (Vector3::z(), Vector3::new(1.0, 1.0, 0.0)))?;
+    /// assert_eq!(on_line.rank(), 2);
+    /// let system = Mechanism::single(rod).with_constraint(on_line)?;
+    /// let tilt = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.6, 0.1));
+    /// let centre = Vector3::new(0.4, 0.4, 1.0) - tilt * end; // the end 0.4√2 m along the line
+    /// let on = system.violation(0.0, &[State::new(&rod, centre, &tilt, Vector3::zeros(), Vector3::zeros())])?;
+    /// assert!(on.position < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn point_on_line(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -357,6 +547,28 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// The body point stays on the sphere `|a − centre| = radius`. Rank 1.
+    ///
+    /// A spherical pendulum's bob as a point on a sphere: one row, whose residual `½(ρ² − |a − c|²)` vanishes
+    /// anywhere on the sphere.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let bob = Body::sphere(1.0, 0.05)?;
+    /// let on_sphere = VirtualPower::<Pga>::point_on_sphere("string", Vector3::zeros(), Vector3::z() * 2.0, 1.5)?;
+    /// assert_eq!(on_sphere.rank(), 1);
+    /// let system = Mechanism::single(bob).with_constraint(on_sphere)?;
+    /// let direction = Vector3::new(0.3, -0.4, -1.0).normalize();
+    /// let at = Vector3::z() * 2.0 + direction * 1.5; // m
+    /// let velocity = direction.cross(&Vector3::z()); // tangent, m/s
+    /// let state = State::new(&bob, at, &UnitQuaternion::identity(), Vector3::zeros(), velocity);
+    /// let on = system.violation(0.0, &[state])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// assert!(VirtualPower::<Pga>::point_on_sphere("string", Vector3::zeros(), Vector3::z(), 0.0).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn point_on_sphere(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -367,6 +579,29 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// The body point stays on a sphere whose centre follows `centre` (value, velocity, acceleration). Rank 1.
+    ///
+    /// A bob on a string of 1.5 m whose top is carried along x at 1 m/s: a bob straight below it and moving with
+    /// it keeps the constraint.
+    ///
+    /// ```
+    /// use dynamics::constraints::{PathPoint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let carried = |t: f64| PathPoint {
+    ///     value: Vector3::new(t, 0.0, 2.0),
+    ///     rate: Vector3::x(),
+    ///     acceleration: Vector3::zeros(),
+    /// };
+    /// let bob = Body::sphere(1.0, 0.05)?;
+    /// let string = VirtualPower::<Pga>::point_on_moving_sphere("string", Vector3::zeros(), carried, 1.5)?;
+    /// let system = Mechanism::single(bob).with_constraint(string)?;
+    /// let still = UnitQuaternion::identity();
+    /// let below = State::new(&bob, Vector3::new(0.7, 0.0, 0.5), &still, Vector3::zeros(), Vector3::x());
+    /// let on = system.violation(0.7, &[below])?; // t = 0.7 s
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn point_on_moving_sphere(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -392,6 +627,31 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// The body point stays on the circle of `radius` about `centre` in the plane with `normal`: a sphere plus
     /// a plane through its centre (theory §6). Rank 2.
+    ///
+    /// A bead on a ring of radius 0.5 m about (0, 0, 1) in a horizontal plane: two rows, rank 2. A bead going round
+    /// the ring is on it; 0.1 m above the ring it is 0.1 m off the plane (the sphere's residual `½(ρ² − |a − c|²)` is
+    /// only −0.005 m² there). The radius must be positive.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ring = VirtualPower::<Pga>::point_on_circle("ring", Vector3::zeros(), (Vector3::z(), 0.5, Vector3::z()))?;
+    /// assert_eq!((ring.rank(), ring.row_count()), (2, 2));
+    /// let bead = Body::sphere(0.1, 0.01)?;
+    /// let system = Mechanism::single(bead).with_constraint(ring)?;
+    /// let (phi, still) = (0.8f64, UnitQuaternion::identity());
+    /// let at = Vector3::z() + Vector3::new(phi.cos(), phi.sin(), 0.0) * 0.5; // m
+    /// let along = Vector3::new(-phi.sin(), phi.cos(), 0.0) * 2.0; // tangent, m/s
+    /// let on = system.violation(0.0, &[State::new(&bead, at, &still, Vector3::zeros(), along)])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// let above = State::new(&bead, at + Vector3::z() * 0.1, &still, Vector3::zeros(), Vector3::zeros());
+    /// assert!((system.violation(0.0, &[above])?.position - 0.1).abs() < 1e-15); // m
+    /// let flat = (Vector3::z(), 0.0, Vector3::z()); // radius 0
+    /// assert!(VirtualPower::<Pga>::point_on_circle("ring", Vector3::zeros(), flat).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn point_on_circle(
         name: impl Into<String>,
         body_point: Vector3<f64>,
@@ -408,6 +668,28 @@ impl<A: Algebra> VirtualPower<A> {
     /// driven motion: velocity conditions `x = ξ(t)` on the relative body velocity x, position residuals the
     /// coordinates of `−2 log(~U M)` (the screw that carries the path's motor U to the relative motor M for unit
     /// time, zero on the path; its rate is `x − ξ` to first order). Rank 6.
+    ///
+    /// A turntable: the body's motor follows a turn about z at 1 rad/s. A body on the path, turning with it, has
+    /// zero violation; all six degrees of freedom are prescribed.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, PathPoint, ScrewMotion, VirtualPower};
+    /// use dynamics::{motor, Algebra, Body, Mechanism, Pga, ScrewCoordinates, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let about_z = Pga::screw(ScrewCoordinates { l: Vector3::z(), t: Vector3::zeros() });
+    /// let theta = |t: f64| PathPoint { value: t, rate: 1.0, acceleration: 0.0 }; // rad
+    /// let path = ScrewMotion::<Pga, _>::new(motor::identity::<Pga>(), about_z, theta);
+    /// let turntable = VirtualPower::motor_joint("turntable", path);
+    /// assert_eq!(turntable.rank(), 6);
+    /// let disc = Body::cylinder(1.0, 0.3, 0.02)?;
+    /// let system = Mechanism::single(disc).with_constraint(turntable)?;
+    /// let turned = UnitQuaternion::from_scaled_axis(Vector3::z() * 0.5);
+    /// let on_path = State::from_body_twist(&disc, Vector3::zeros(), &turned, Vector3::z(), Vector3::zeros());
+    /// let on = system.violation(0.5, &[on_path])?; // t = 0.5 s: turned by 0.5 rad at 1 rad/s
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn motor_joint(name: impl Into<String>, path: impl MotorPath<A> + 'static) -> Self {
         VirtualPower {
             name: name.into(),
@@ -417,6 +699,26 @@ impl<A: Algebra> VirtualPower<A> {
 
     /// The general form of theory §6: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in
     /// the body's state. Rank = the number of wrenches (they must be independent). No position residual.
+    ///
+    /// A body held by one vertical force line through its centre of mass: the reaction cancels its weight, so at
+    /// rest it does not accelerate. Such a constraint has no position residual.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower, WrenchPoint};
+    /// use dynamics::{forces::force_line, Algebra, Body, Force, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let vertical = WrenchPoint::<Pga>::fixed(force_line::<Pga>(Vector3::z(), Vector3::zeros()));
+    /// let held = VirtualPower::from_wrenches("held up", [move |_t: f64| vertical]);
+    /// assert_eq!((held.rank(), held.has_position_residual()), (1, false));
+    /// let ball = Body::sphere(2.0, 0.1)?;
+    /// let system = Mechanism::single(ball).with_force(Force::gravity())?.with_constraint(held)?;
+    /// let still = UnitQuaternion::identity();
+    /// let at_rest = State::new(&ball, Vector3::zeros(), &still, Vector3::zeros(), Vector3::zeros());
+    /// let rate = Pga::screw_coordinates(system.rates_at(0.0, &[at_rest])?[0].momentum_rate);
+    /// assert!(rate.l.norm() < 1e-12 && rate.t.norm() < 1e-12); // N, N m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_wrenches<W: WrenchPath<A> + 'static>(
         name: impl Into<String>,
         wrenches: impl IntoIterator<Item = W>,

@@ -254,6 +254,33 @@ enum Condition {
 
 impl<A: Algebra> Mechanism<A> {
     /// A mechanism with no bodies, no stabilisation and the default solver settings.
+    ///
+    /// Two rods joined end to end by a ball joint, floating free: the joint's reactions on the two bodies are equal
+    /// and opposite, so the total momentum does not change.
+    ///
+    /// ```
+    /// use dynamics::constraints::VirtualPower;
+    /// use dynamics::{Algebra, Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let (top, bottom) = (Vector3::new(0.0, 0.0, 0.5), Vector3::new(0.0, 0.0, -0.5)); // body points, m
+    /// let mut pair = Mechanism::<Pga>::new();
+    /// let (a, b) = (pair.add_body("a", rod)?, pair.add_body("b", rod)?);
+    /// pair.add_joint(b, a, VirtualPower::ball_joint("elbow", top, bottom))?;
+    /// // a spins about x at 1 rad/s, b follows a's bottom end (0.5 m/s along y) without turning.
+    /// let still = UnitQuaternion::identity();
+    /// let states = [
+    ///     State::new(&rod, Vector3::zeros(), &still, Vector3::x(), Vector3::zeros()),
+    ///     State::new(&rod, Vector3::z() * -1.0, &still, Vector3::zeros(), Vector3::y() * 0.5),
+    /// ];
+    /// let rates = pair.rates_at(0.0, &states)?;
+    /// let pull = Pga::screw_coordinates(rates[0].momentum_rate);
+    /// let total = Pga::screw_coordinates(rates[0].momentum_rate + rates[1].momentum_rate);
+    /// assert!(pull.l.norm() > 0.1); // N: the joint pulls
+    /// assert!(total.l.norm() < 1e-12 && total.t.norm() < 1e-12); // N, N m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new() -> Self {
         Mechanism {
             bodies: Vec::new(),
@@ -266,6 +293,24 @@ impl<A: Algebra> Mechanism<A> {
 
     /// One body, named "body", and nothing else: the constrained single body, with [`Mechanism::with_force`]
     /// and [`Mechanism::with_constraint`] holding it to the world.
+    ///
+    /// Without constraints it moves as a [`crate::FreeBody`]:
+    ///
+    /// ```
+    /// use dynamics::{Body, Force, FreeBody, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let top = Body::solid_cone(0.5, 0.4, 0.1)?;
+    /// let single = Mechanism::<Pga>::single(top).with_force(Force::gravity())?;
+    /// assert_eq!((single.body_names().collect::<Vec<_>>(), single.joint_count()), (vec!["body"], 0));
+    /// let free = FreeBody::<Pga>::new(top).with_force(Force::gravity());
+    /// let turned = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, 0.0, 0.1));
+    /// let state = State::new(&top, Vector3::z(), &turned, Vector3::new(0.5, 0.0, 30.0), Vector3::x());
+    /// let (ours, theirs) = (single.rates_at(0.0, &[state])?[0], free.rates_at(0.0, &state));
+    /// assert_eq!(ours.momentum_rate, theirs.momentum_rate);
+    /// assert_eq!(ours.body_velocity, theirs.body_velocity);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn single(body: Body) -> Self {
         let mut mechanism = Mechanism::new();
         mechanism.bodies.push(MechanismBody {

@@ -172,6 +172,35 @@ pub(crate) fn dot6(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 
 impl SystemMatrix {
     /// Sizes the buffers for `topology`.
+    ///
+    /// Made once per [`crate::mechanism::MechanismWorkspace`] (this type is internal); its solve gives the
+    /// reactions [`crate::Mechanism::reactions`] reports. A chain of two rods (1 kg above 2 kg) hanging at rest: the
+    /// shoulder carries both weights, the elbow the lower rod's.
+    ///
+    /// ```
+    /// use dynamics::constraints::VirtualPower;
+    /// use dynamics::{Algebra, Body, Force, Mechanism, Pga, Reference, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let (light, heavy) = (Body::rod(1.0, 1.0, 1e-3)?, Body::rod(2.0, 1.0, 1e-3)?);
+    /// let (top, bottom) = (Vector3::new(0.0, 0.0, 0.5), Vector3::new(0.0, 0.0, -0.5)); // body points, m
+    /// let mut chain = Mechanism::<Pga>::new();
+    /// let (upper, lower) = (chain.add_body("upper", light)?, chain.add_body("lower", heavy)?);
+    /// chain.add_force(upper, Force::gravity())?;
+    /// chain.add_force(lower, Force::gravity())?;
+    /// chain.add_joint(upper, Reference::World, VirtualPower::ball_joint("shoulder", top, Vector3::zeros()))?;
+    /// chain.add_joint(lower, upper, VirtualPower::ball_joint("elbow", top, bottom))?;
+    /// let still = UnitQuaternion::identity();
+    /// let states = [
+    ///     State::new(&light, Vector3::z() * -0.5, &still, Vector3::zeros(), Vector3::zeros()),
+    ///     State::new(&heavy, Vector3::z() * -1.5, &still, Vector3::zeros(), Vector3::zeros()),
+    /// ];
+    /// let reactions = chain.reactions(0.0, &states)?;
+    /// let force = |k: usize| Pga::screw_coordinates(reactions[k]).l;
+    /// assert!((force(0) - Vector3::z() * (3.0 * 9.81)).norm() < 1e-12); // N
+    /// assert!((force(1) - Vector3::z() * (2.0 * 9.81)).norm() < 1e-12); // N
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(topology: &Topology) -> Self {
         let (n, k) = (topology.tree_size, topology.loop_size);
         SystemMatrix {

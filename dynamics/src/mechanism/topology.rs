@@ -118,6 +118,35 @@ enum Vertex {
 
 impl Topology {
     /// The structure for `bodies` bodies and joints `(body, reference, rank)` (reference `None` = the world).
+    ///
+    /// Built by the [`crate::Mechanism`] whenever a body or joint is added (this type is internal); its split of
+    /// the joints shows in [`crate::Mechanism::loop_joints`]. A two-rod chain hung from the world is a tree. A third
+    /// joint holding the lower rod's end to a world plane closes a loop through the world; the breadth-first tree
+    /// then reaches both rods straight from the world, so the elbow is the joint that closes the loop. The reactions
+    /// are still solved.
+    ///
+    /// ```
+    /// use dynamics::constraints::VirtualPower;
+    /// use dynamics::{Body, Force, Mechanism, Pga, Reference, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let (top, bottom) = (Vector3::new(0.0, 0.0, 0.5), Vector3::new(0.0, 0.0, -0.5)); // body points, m
+    /// let mut chain = Mechanism::<Pga>::new();
+    /// let (upper, lower) = (chain.add_body("upper", rod)?, chain.add_body("lower", rod)?);
+    /// chain.add_force(upper, Force::gravity())?;
+    /// chain.add_force(lower, Force::gravity())?;
+    /// chain.add_joint(upper, Reference::World, VirtualPower::ball_joint("shoulder", top, Vector3::zeros()))?;
+    /// chain.add_joint(lower, upper, VirtualPower::ball_joint("elbow", top, bottom))?;
+    /// assert_eq!(chain.loop_joints().count(), 0);
+    /// chain.add_joint(lower, Reference::World, VirtualPower::point_on_plane("wrist", bottom, (Vector3::x(), 0.0))?)?;
+    /// assert_eq!(chain.loop_joints().map(|j| j.index()).collect::<Vec<_>>(), vec![1]); // the elbow
+    ///
+    /// let still = UnitQuaternion::identity();
+    /// let hanging = |z: f64| State::new(&rod, Vector3::z() * z, &still, Vector3::zeros(), Vector3::zeros());
+    /// assert!(chain.rates_at(0.0, &[hanging(-0.5), hanging(-1.5)]).is_ok());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(bodies: usize, joints: &[(usize, Option<usize>, usize)]) -> Topology {
         // Adjacency: per vertex (0 = world, 1 + i = body i), the joints at it.
         let vertex = |v: Vertex| match v {
