@@ -91,10 +91,27 @@ pub struct DzhanibekovSolution {
 impl DzhanibekovSolution {
     /// From the principal moments (I_x, I_y, I_z) and the initial body angular velocity, which must have ω_z = 0
     /// and ω_x ≠ 0 (that is L² > 2T I_y: the largest-axis component never changes sign).
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use reference::DzhanibekovSolution;
+    ///
+    /// // Scene 1: the cuboid spun about its intermediate axis, nudged about the largest.
+    /// let moments = Vector3::new(13.0, 10.0, 5.0) / 12.0;
+    /// let initial = Vector3::new(0.1, 10.0, 0.0);
+    /// let solution = DzhanibekovSolution::new(&moments, &initial)?;
+    /// assert!((solution.body_angular_velocity(0.0)? - initial).norm() < 1e-14);
+    /// // It flips every 2K/λ = 2.34189094968257 s (`docs/scenes.md`): one interval later ω_y = −10 rad/s.
+    /// assert!((solution.flip_interval() - 2.34189094968257).abs() < 1e-12);
+    /// assert!((solution.body_angular_velocity(solution.flip_interval())?.y + 10.0).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(principal_moments: &Vector3<f64>, body_angular_velocity: &Vector3<f64>) -> Result<Self, AnalyticError> {
         let (ix, iy, iz) = (principal_moments.x, principal_moments.y, principal_moments.z);
         let omega = body_angular_velocity;
-        require("I_z", iz, "I_x > I_y > I_z > 0", iz > 0.0 && ix > iy && iy > iz)?;
+        require("I_x", ix, "finite and I_x > I_y", ix.is_finite() && ix > iy)?;
+        require("I_y", iy, "I_y > I_z", iy > iz)?;
+        require("I_z", iz, "I_z > 0", iz > 0.0)?;
         require("ω_x", omega.x, "finite", omega.x.is_finite())?;
         require("ω_y", omega.y, "finite", omega.y.is_finite())?;
         if omega.z != 0.0 {
@@ -117,7 +134,10 @@ impl DzhanibekovSolution {
         let lambda = ((ix - iy) * l2_minus_2t_iz / (ix * iy * iz)).sqrt();
         // k² is close to 1 near the separatrix, so build it from its complement (denominator minus numerator of k²,
         // simplified): 1 − k² = (I_x − I_z)(L² − 2T I_y) / ((I_x − I_y)(L² − 2T I_z)).
-        let parameter = EllipticParameter::from_complement((ix - iz) * l2_minus_2t_iy / ((ix - iy) * l2_minus_2t_iz))?;
+        // The numerator never exceeds the denominator (their difference is (I_x − I_y) I_y (I_y − I_z) ω_y² ≥ 0),
+        // so a quotient above 1 is round-off (ω_y = 0 gives exactly 1: k = 0, no flip).
+        let complement = (ix - iz) * l2_minus_2t_iy / ((ix - iy) * l2_minus_2t_iz);
+        let parameter = EllipticParameter::from_complement(complement.min(1.0))?;
         let (sign_x, sign_y) = (omega.x.signum(), if omega.y < 0.0 { -1.0 } else { 1.0 });
         let amplitudes = Vector3::new(
             sign_x * (l2_minus_2t_iz / (ix * (ix - iz))).sqrt(),
@@ -152,9 +172,13 @@ impl DzhanibekovSolution {
         2.0 * self.quarter_period_integral / self.lambda
     }
 
-    /// The flip instants in [0, duration]: sn(λt + K) = 0 at λt + K = 2nK, so t_n = (2n − 1) K/λ.
+    /// The flip instants in [0, duration]: sn(λt + K) = 0 at λt + K = 2nK, so t_n = (2n − 1) K/λ. None when
+    /// ω_y is identically zero (a spin about the largest axis alone never flips).
     pub fn flip_instants(&self, duration: f64) -> Result<Vec<f64>, AnalyticError> {
         require("duration", duration, "finite", duration.is_finite())?;
+        if self.amplitudes.y == 0.0 {
+            return Ok(Vec::new());
+        }
         let half_interval = self.quarter_period_integral / self.lambda;
         Ok((1..)
             .map(|n| (2 * n - 1) as f64 * half_interval)
@@ -496,6 +520,32 @@ mod tests {
             transverse_moment: parameters.principal_moments.x + parameters.mass * pivot_distance.powi(2),
             axial_moment: parameters.principal_moments.z,
         }
+    }
+
+    /// A spin about the largest axis alone (ω_y = 0) is a steady rotation: k = 0 exactly, although the
+    /// complement 1 − k² rounds above 1 for some moments (it used to be refused as out of range).
+    #[test]
+    fn a_spin_about_the_largest_axis_is_steady() {
+        let moments = SceneId::Cuboid.parameters().principal_moments;
+        for spin in [0.1, 1.0, 7.3, 1e3] {
+            let solution = DzhanibekovSolution::new(&moments, &Vector3::new(spin, 0.0, 0.0)).unwrap();
+            assert_eq!(solution.parameter.m(), 0.0);
+            let omega = solution.body_angular_velocity(1.234).unwrap();
+            assert!((omega - Vector3::new(spin, 0.0, 0.0)).norm() <= 1e-15 * spin, "{omega}");
+            assert!(solution.flip_instants(100.0).unwrap().is_empty());
+        }
+    }
+
+    #[test]
+    fn invalid_moments_are_named() {
+        let named = |moments: Vector3<f64>| match DzhanibekovSolution::new(&moments, &Vector3::new(1.0, 0.1, 0.0)) {
+            Err(AnalyticError::InvalidParameter { name, .. }) => name,
+            other => panic!("expected a refusal, got {other:?}"),
+        };
+        assert_eq!(named(Vector3::new(1.0, 2.0, 3.0)), "I_x");
+        assert_eq!(named(Vector3::new(f64::INFINITY, 2.0, 1.0)), "I_x");
+        assert_eq!(named(Vector3::new(3.0, 1.0, 2.0)), "I_y");
+        assert_eq!(named(Vector3::new(3.0, 2.0, -1.0)), "I_z");
     }
 
     #[test]

@@ -45,11 +45,33 @@ pub struct EllipticParameter {
 
 impl EllipticParameter {
     /// From m ∈ [0, 1].
+    ///
+    /// ```
+    /// use reference::{complete_elliptic_k, EllipticParameter};
+    ///
+    /// // K(½) = 1.854074677301372 (A&S table 17.1; the pendulum of `docs/scenes.md` scene 2).
+    /// let half = EllipticParameter::new(0.5)?;
+    /// assert!((complete_elliptic_k(half)? - 1.854074677301372).abs() < 1e-14);
+    /// assert_eq!(half.complement(), 0.5);
+    /// assert!(EllipticParameter::new(1.5).is_err()); // m = k² lies in [0, 1]
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(m: f64) -> Result<Self, EllipticError> {
         Self::checked(m, 1.0 - m)
     }
 
     /// From the complement m₁ = 1 − m ∈ [0, 1].
+    ///
+    /// ```
+    /// use reference::{complete_elliptic_k, EllipticParameter};
+    ///
+    /// // The scene-1 cuboid, close to the separatrix: m₁ ≈ 2e-4, K(1 − m₁) = 5.625625086537179 (mpmath).
+    /// let complement = 2.0795674499704062e-4;
+    /// let parameter = EllipticParameter::from_complement(complement)?;
+    /// assert_eq!(parameter.complement(), complement); // kept exactly, not recomputed as 1 − m
+    /// assert!((complete_elliptic_k(parameter)? - 5.625625086537179).abs() < 1e-14);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_complement(complement: f64) -> Result<Self, EllipticError> {
         Self::checked(1.0 - complement, complement)
     }

@@ -106,6 +106,31 @@ pub struct Trajectory(Vec<Sample>);
 
 impl Trajectory {
     /// Checks the invariants (at least one sample, finite strictly increasing times).
+    ///
+    /// ```
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    /// use reference::{Sample, Trajectory, TrajectoryError};
+    ///
+    /// let start = Sample {
+    ///     t: 0.0,
+    ///     position: Vector3::zeros(),
+    ///     orientation: UnitQuaternion::identity(),
+    ///     velocity: Vector3::new(1.0, 0.0, 0.0),
+    ///     angular_velocity: Vector3::zeros(),
+    /// };
+    /// let later = Sample { t: 0.01, position: Vector3::new(0.01, 0.0, 0.0), ..start };
+    /// let trajectory = Trajectory::new(vec![start, later])?;
+    /// assert_eq!(trajectory.samples().len(), 2);
+    /// assert_eq!(trajectory.last().t, 0.01);
+    ///
+    /// // Times must increase strictly: the second sample is refused.
+    /// assert_eq!(
+    ///     Trajectory::new(vec![later, start]),
+    ///     Err(TrajectoryError::TimeNotIncreasing { index: 1, t: 0.0 })
+    /// );
+    /// assert_eq!(Trajectory::new(vec![]), Err(TrajectoryError::Empty));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(samples: Vec<Sample>) -> Result<Self, TrajectoryError> {
         if samples.is_empty() {
             return Err(TrajectoryError::Empty);
@@ -122,6 +147,22 @@ impl Trajectory {
 
     /// Parses the reference CSV format (see the module docs). Blank lines are skipped; whitespace
     /// around fields is allowed. Quaternions are renormalised after the unit-norm check.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use reference::Trajectory;
+    ///
+    /// // At t = 0.01 the body is turned 90° about z (q = (cos 45°, 0, 0, sin 45°)) and spins about world x.
+    /// let csv = "t,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz
+    ///            0,0,0,0,1,0,0,0,0,0,0,1,0,0
+    ///            0.01,1,2,3,0.7071067811865476,0,0,0.7071067811865476,0,0,0,1,0,0";
+    /// let trajectory = Trajectory::from_csv(csv)?;
+    /// let sample = trajectory.last();
+    /// assert_eq!((sample.t, sample.position), (0.01, Vector3::new(1.0, 2.0, 3.0)));
+    /// // World x is body −y once the body is turned 90° about z.
+    /// assert!((sample.body_angular_velocity() - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_csv(text: &str) -> Result<Self, TrajectoryError> {
         let mut lines = text.lines().enumerate().map(|(index, line)| (index + 1, line.trim()));
         let (header_line, header) = lines
