@@ -48,6 +48,7 @@ fn pga() -> AlgebraDeclaration {
             declared("Multivector", Layout::All),
         ],
         operations: None,
+        lowering: vec![],
         metric: None,
     }
 }
@@ -63,6 +64,7 @@ fn cga() -> AlgebraDeclaration {
             declared("Multivector", Layout::All),
         ],
         operations: None,
+        lowering: vec![],
         metric: None,
     }
 }
@@ -89,6 +91,7 @@ fn null_basis_cga() -> AlgebraDeclaration {
             declared("Multivector", Layout::All),
         ],
         operations: None,
+        lowering: vec![],
         metric: Some(
             metric
                 .iter()
@@ -124,6 +127,7 @@ fn cl_9_6() -> AlgebraDeclaration {
             Operation::HestenesInner,
             Operation::FatDot,
         ]),
+        lowering: vec![],
         metric: None,
     }
 }

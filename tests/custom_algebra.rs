@@ -190,7 +190,7 @@ impl AlgebraUnderTest {
         AlgebraUnderTest {
             basis,
             factors,
-            evaluator: Evaluator::new(squares),
+            evaluator: Evaluator::new(squares).unwrap(),
             precision,
             random: std::cell::RefCell::new(Random(0x5eed)),
         }

@@ -2,7 +2,7 @@
 //! form), blade naming, and the declared sparse types resolved to blade lists.
 
 use crate::blade::{self, BladeMask, BladeNaming, SCALAR_NAME};
-use crate::declaration::{AlgebraDeclaration, Layout, ScalarType};
+use crate::declaration::{AlgebraDeclaration, Layout, Lowering, ScalarType};
 use crate::error::{Error, NameProblem};
 use crate::metric::Metric;
 use crate::operation::Operation;
@@ -77,10 +77,40 @@ pub struct Algebra {
     pub types: Vec<SparseType>,
     /// The operations to emit.
     pub operations: Vec<Operation>,
+    /// The lowerings chosen per product; the others are chosen by size.
+    pub lowering: Vec<(Operation, Lowering)>,
 }
 
 impl Algebra {
     /// Validates a declaration. Every error names the offending item (see [`Error::location`]).
+    ///
+    /// ```
+    /// use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error};
+    /// use ga_codegen::{Layout, ScalarType, TypeDeclaration};
+    ///
+    /// // 3D PGA (e0² = 0) with a point stored as (e032, e013, e021, e123).
+    /// let basis = [("e0", 0), ("e1", 1), ("e2", 1), ("e3", 1)]
+    ///     .map(|(name, square)| BasisVectorDeclaration { name: name.into(), square });
+    /// let point = ["e032", "e013", "e021", "e123"].map(String::from).to_vec();
+    /// let mut declaration = AlgebraDeclaration {
+    ///     scalar: ScalarType::F64,
+    ///     basis: basis.to_vec(),
+    ///     metric: None,
+    ///     types: vec![TypeDeclaration { name: "Point".into(), layout: Layout::Blades(point) }],
+    ///     operations: None,
+    ///     lowering: vec![],
+    /// };
+    /// let algebra = Algebra::new(&declaration)?;
+    /// let point = algebra.type_named("Point").unwrap();
+    /// // The permuted name `e032` stores minus the coefficient of the canonical blade e023.
+    /// assert_eq!(algebra.blade_name(point.fields[0].blade), "e023");
+    /// assert_eq!(point.fields[0].sign, -1);
+    ///
+    /// // Without a metric matrix a basis vector must square to −1, 0 or +1.
+    /// declaration.basis[1].square = 2;
+    /// assert!(matches!(Algebra::new(&declaration), Err(Error::InvalidSquare { index: 1, square: 2, .. })));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn new(declaration: &AlgebraDeclaration) -> Result<Algebra, Error> {
         let basis = &declaration.basis;
         if basis.is_empty() {
@@ -118,7 +148,7 @@ impl Algebra {
         let naming = BladeNaming::new(&basis_names);
         check_blade_names(&basis_names, &naming)?;
         let metric = match &declaration.metric {
-            None => Metric::diagonal(basis.iter().map(|v| v.square).collect()),
+            None => Metric::diagonal(basis.iter().map(|v| v.square).collect())?,
             Some(rows) if rows.len() != basis.len() => {
                 return Err(Error::MetricSize {
                     rows: rows.len(),
@@ -129,6 +159,7 @@ impl Algebra {
         };
         let n = basis.len();
         let operations = listed_operations(declaration)?;
+        check_lowering(declaration, &operations)?;
 
         let mut types = Vec::with_capacity(declaration.types.len());
         for (ty_index, declared) in declaration.types.iter().enumerate() {
@@ -239,7 +270,14 @@ impl Algebra {
             naming,
             types,
             operations,
+            lowering: declaration.lowering.clone(),
         })
+    }
+
+    /// The lowering the declaration chooses for `operation`, if any (otherwise it is chosen by size, see
+    /// [`crate::table`]).
+    pub fn declared_lowering(&self, operation: Operation) -> Option<Lowering> {
+        self.lowering.iter().find(|(op, _)| *op == operation).map(|&(_, l)| l)
     }
 
     /// The number of basis vectors.
@@ -282,6 +320,23 @@ pub fn check_identifier(name: &str) -> Result<(), NameProblem> {
         Ok(ident) if ident == name => Ok(()),
         _ => Err(NameProblem::NotAnIdentifier),
     }
+}
+
+/// Every chosen lowering is of an emitted product, once.
+fn check_lowering(declaration: &AlgebraDeclaration, operations: &[Operation]) -> Result<(), Error> {
+    for (index, &(operation, _)) in declaration.lowering.iter().enumerate() {
+        let name = operation.name().to_string();
+        if !operation.is_binary() {
+            return Err(Error::LoweringOfUnary { index, name });
+        }
+        if !operations.contains(&operation) {
+            return Err(Error::LoweringNotEmitted { index, name });
+        }
+        if declaration.lowering[..index].iter().any(|&(op, _)| op == operation) {
+            return Err(Error::DuplicateLowering { index, name });
+        }
+    }
+    Ok(())
 }
 
 /// The operations to emit, each listed once.

@@ -72,6 +72,20 @@ pub const SCALAR_NAME: &str = "scalar";
 
 impl BladeNaming {
     /// The naming for basis vectors with these names, in bit order: finds their common alphabetic prefix and the separator.
+    ///
+    /// ```
+    /// use ga_codegen::blade::BladeNaming;
+    ///
+    /// // One character after the common prefix `e`: factors are joined directly.
+    /// let euclidean = BladeNaming::new(&["e1", "e2", "e3"].map(String::from));
+    /// assert_eq!(euclidean.name(0b101), "e13");
+    /// assert_eq!(euclidean.parse("e31"), Ok((0b101, -1))); // e31 = −e13
+    ///
+    /// // Longer suffixes (`inf`) are joined with `_`.
+    /// let conformal = BladeNaming::new(&["e1", "e2", "e3", "eo", "einf"].map(String::from));
+    /// assert_eq!(conformal.name(0b10001), "e1_inf");
+    /// assert_eq!(conformal.name(0), "scalar");
+    /// ```
     pub fn new(basis_names: &[String]) -> Self {
         // The longest alphabetic prefix shared by every name that leaves each a non-empty suffix.
         let mut prefix: String = match basis_names.first() {

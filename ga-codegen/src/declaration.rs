@@ -25,6 +25,14 @@ impl ScalarType {
     }
 
     /// Parses `f32` or `f64`.
+    ///
+    /// ```
+    /// use ga_codegen::ScalarType;
+    ///
+    /// assert_eq!(ScalarType::from_name("f64"), Some(ScalarType::F64));
+    /// assert_eq!(ScalarType::from_name("f32").map(ScalarType::name), Some("f32"));
+    /// assert_eq!(ScalarType::from_name("f16"), None);
+    /// ```
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
             "f32" => Some(ScalarType::F32),
@@ -79,4 +87,19 @@ pub struct AlgebraDeclaration {
     pub types: Vec<TypeDeclaration>,
     /// Emit only these operations (for big algebras); `None` emits all of them.
     pub operations: Option<Vec<Operation>>,
+    /// How to lower a product, per operation; an operation not listed is unrolled up to
+    /// [`MAX_UNROLLED_TERMS`](crate::table::MAX_UNROLLED_TERMS) monomials and
+    /// [`MAX_UNROLLED_LOCALS`](crate::table::MAX_UNROLLED_LOCALS) hoisted locals, and table-driven beyond.
+    pub lowering: Vec<(Operation, Lowering)>,
+}
+
+/// How the functions of a product (a binary operation) are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lowering {
+    /// Straight-line code, one sum per output blade: the fastest at run time, but its source (and rustc's
+    /// time) grows with the expansion's term count.
+    Unrolled,
+    /// Constant tables of products and a loop (see [`crate::table`]): compact source for products of
+    /// thousands of terms, slower at run time.
+    Table,
 }

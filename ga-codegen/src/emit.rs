@@ -13,13 +13,15 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote, ToTokens};
 
 use crate::algebra::{Algebra, SparseType};
+use crate::blade::BladeMask;
 use crate::declaration::ScalarType;
 use crate::error::Error;
 use crate::expand::{Operand, Variable};
-use crate::functions::{self, Finish, Function, Output};
+use crate::functions::{self, Code, Finish, Function, Output};
 use crate::operation::Operation;
 use crate::product::reverse_sign;
-use crate::program::{Definition, Term, Value};
+use crate::program::{Definition, Program, Term, Value};
+use crate::table::{Source, Table};
 
 /// The traits every emitted struct derives (it is also `#[repr(C)]`).
 pub const DERIVED_TRAITS: [&str; 5] = ["Clone", "Copy", "Debug", "PartialEq", "Default"];
@@ -351,7 +353,7 @@ impl Emitter<'_> {
         }
     }
 
-    fn value(&self, function: &Function, value: Value) -> TokenStream {
+    fn value(&self, function: &Function, program: &Program, value: Value) -> TokenStream {
         match value {
             Value::Input(Variable {
                 operand: Operand::Lhs,
@@ -369,15 +371,15 @@ impl Emitter<'_> {
                 quote! { rhs.#name }
             }
             Value::Local(index) => {
-                let name = format_ident!("{}", function.program.locals[index].name);
+                let name = format_ident!("{}", program.locals[index].name);
                 quote! { #name }
             }
         }
     }
 
     /// `c · x · y`, without the sign (the sum places it).
-    fn magnitude(&self, function: &Function, term: &Term) -> TokenStream {
-        let mut factors = term.factors.iter().map(|&v| self.value(function, v));
+    fn magnitude(&self, function: &Function, program: &Program, term: &Term) -> TokenStream {
+        let mut factors = term.factors.iter().map(|&v| self.value(function, program, v));
         let coefficient = term.coefficient.abs();
         let mut tokens = if coefficient.is_one() {
             factors
@@ -393,14 +395,19 @@ impl Emitter<'_> {
     }
 
     /// A signed sum of terms, positive terms first so that no leading negation is needed.
-    fn sum(&self, function: &Function, terms: &[Term], negate: bool) -> TokenStream {
+    fn sum(&self, function: &Function, program: &Program, terms: &[Term], negate: bool) -> TokenStream {
         if terms.is_empty() {
             let zero = self.literal(Rational64::zero());
             return quote! { #zero };
         }
         let mut ordered: Vec<(bool, TokenStream)> = terms
             .iter()
-            .map(|t| (t.coefficient.is_negative() != negate, self.magnitude(function, t)))
+            .map(|t| {
+                (
+                    t.coefficient.is_negative() != negate,
+                    self.magnitude(function, program, t),
+                )
+            })
             .collect();
         ordered.sort_by_key(|(negative, _)| *negative);
         let mut tokens = TokenStream::new();
@@ -415,36 +422,36 @@ impl Emitter<'_> {
         tokens
     }
 
-    /// The statements computing the locals, and the result expression.
+    /// The statements computing the outputs, and the result expression.
     fn body(&self, function: &Function) -> TokenStream {
-        let locals = function.program.locals.iter().map(|local| {
+        match &function.code {
+            Code::Unrolled(program) => self.unrolled_body(function, program),
+            Code::Table(table) => self.table_body(function, table),
+        }
+    }
+
+    /// The locals, then the result built from the output sums.
+    fn unrolled_body(&self, function: &Function, program: &Program) -> TokenStream {
+        let locals = program.locals.iter().map(|local| {
             let name = format_ident!("{}", local.name);
             let expression = match &local.definition {
-                Definition::Sum(terms) => self.sum(function, terms, false),
+                Definition::Sum(terms) => self.sum(function, program, terms, false),
                 Definition::Double(value) => {
-                    let value = self.value(function, *value);
+                    let value = self.value(function, program, *value);
                     quote! { #value + #value }
                 }
             };
             quote! { let #name = #expression; }
         });
+        let output_terms = |blade: BladeMask| program.outputs.get(&blade).map(Vec::as_slice).unwrap_or(&[]);
         let result = match (function.output, function.finish) {
-            (Output::Scalar, _) => {
-                let terms = function.program.outputs.get(&0).map(Vec::as_slice).unwrap_or(&[]);
-                self.sum(function, terms, false)
-            }
+            (Output::Scalar, _) => self.sum(function, program, output_terms(0), false),
             (Output::Type(index), Finish::Coefficients) => {
                 let ty = &self.algebra.types[index];
                 let name = format_ident!("{}", ty.name);
                 let fields = ty.fields.iter().map(|field| {
                     let ident = format_ident!("{}", field.name);
-                    let terms = function
-                        .program
-                        .outputs
-                        .get(&field.blade)
-                        .map(Vec::as_slice)
-                        .unwrap_or(&[]);
-                    let value = self.sum(function, terms, field.sign < 0);
+                    let value = self.sum(function, program, output_terms(field.blade), field.sign < 0);
                     quote! { #ident: #value }
                 });
                 quote! { #name { #(#fields),* } }
@@ -452,11 +459,7 @@ impl Emitter<'_> {
             (Output::Type(index), Finish::DivideReverseByNorm) => {
                 let ty = &self.algebra.types[index];
                 let name = format_ident!("{}", ty.name);
-                let norm = self.sum(
-                    function,
-                    function.program.outputs.get(&0).map(Vec::as_slice).unwrap_or(&[]),
-                    false,
-                );
+                let norm = self.sum(function, program, output_terms(0), false);
                 let one = self.literal(Rational64::one());
                 let fields = ty.fields.iter().map(|field| {
                     let ident = format_ident!("{}", field.name);
@@ -475,14 +478,108 @@ impl Emitter<'_> {
         quote! { #(#locals)* #result }
     }
 
+    /// Per stage a constant table `(i, j, k, c)` and a loop `stage[k] += c · left[i] · right[j]` (a `while`
+    /// loop: the function stays `const`), then the result read from the last stage.
+    fn table_body(&self, function: &Function, table: &Table) -> TokenStream {
+        let scalar = &self.scalar;
+        let zero = self.literal(Rational64::zero());
+        let array = |source: Source| match source {
+            Source::Lhs => format_ident!("lhs"),
+            Source::Rhs => format_ident!("rhs"),
+            Source::Stage(s) => format_ident!("stage_{s}"),
+        };
+        let reads_rhs = table
+            .stages
+            .iter()
+            .any(|s| s.left == Source::Rhs || s.right == Source::Rhs);
+        let rhs = reads_rhs.then(|| quote! { let rhs = rhs.to_array(); });
+        let stages = table.stages.iter().enumerate().map(|(s, stage)| {
+            let entries_name = format_ident!("STAGE_{s}");
+            let output = array(Source::Stage(s));
+            let (left, right) = (array(stage.left), array(stage.right));
+            let index = Literal::usize_unsuffixed;
+            let (count, size) = (index(stage.entries.len()), index(stage.blades.len()));
+            let entries = stage.entries.iter().map(|e| {
+                let (i, j, k) = (index(e.left), index(e.right), index(e.output));
+                let c = self.literal(e.coefficient.abs());
+                let c = if e.coefficient.is_negative() {
+                    quote! { -#c }
+                } else {
+                    quote! { #c }
+                };
+                quote! { (#i, #j, #k, #c) }
+            });
+            quote! {
+                const #entries_name: [(u32, u32, u32, #scalar); #count] = [#(#entries),*];
+                let mut #output = [#zero; #size];
+                let mut entry = 0;
+                while entry < #count {
+                    let (i, j, k, c) = #entries_name[entry];
+                    #output[k as usize] += c * #left[i as usize] * #right[j as usize];
+                    entry += 1;
+                }
+            }
+        });
+        let last = table.stages.last().expect("a table has a stage");
+        let result_array = array(Source::Stage(table.stages.len() - 1));
+        let read = |blade: BladeMask, negate: bool| match last
+            .blades
+            .iter()
+            .position(|&b| b == blade)
+            .map(Literal::usize_unsuffixed)
+        {
+            Some(k) if negate => quote! { -#result_array[#k] },
+            Some(k) => quote! { #result_array[#k] },
+            None => quote! { #zero },
+        };
+        let result = match function.output {
+            Output::Scalar => read(0, false),
+            Output::Type(index) => {
+                let ty = &self.algebra.types[index];
+                let name = format_ident!("{}", ty.name);
+                let fields = ty.fields.iter().map(|field| {
+                    let ident = format_ident!("{}", field.name);
+                    let value = read(field.blade, field.sign < 0);
+                    quote! { #ident: #value }
+                });
+                quote! { #name { #(#fields),* } }
+            }
+        };
+        quote! {
+            let lhs = self.to_array();
+            #rhs
+            #(#stages)*
+            #result
+        }
+    }
+
     /// One `#[doc]` per line (so formatted code shows `///` lines): what it computes, then its cost.
     fn doc(&self, function: &Function) -> TokenStream {
-        let what = match function.operation {
-            Some(Operation::Grade) => format!("The grade-{} part.", function.method.trim_start_matches("grade_")),
-            Some(operation) => operation_doc(operation).to_string(),
-            None => String::new(),
+        let what = match (function.operation, &function.code) {
+            (Some(Operation::Grade), _) => {
+                format!("The grade-{} part.", function.method.trim_start_matches("grade_"))
+            }
+            (Some(Operation::Sandwich), Code::Table(_)) => "The sandwich `a x ~a`.".to_string(),
+            (Some(Operation::Transform), Code::Table(_)) => "The sandwich `a x ~a` for a unit versor `a` \
+                 (`a ~a = 1`), keeping only the grades of `x` (a versor preserves grades)."
+                .to_string(),
+            (Some(operation), _) => operation_doc(operation).to_string(),
+            (None, _) => String::new(),
         };
-        doc_lines(&format!("{what}\n\nCost: {}.", function.cost))
+        let lowering = match &function.code {
+            Code::Unrolled(_) => String::new(),
+            Code::Table(table) if table.stages.len() == 2 => format!(
+                "\n\nTable-driven: {} products in two stages, `m = a x` then `m ~a`, each a constant table and a loop.",
+                table.entries()
+            ),
+            Code::Table(table) => {
+                format!(
+                    "\n\nTable-driven: {} products in a constant table and a loop.",
+                    table.entries()
+                )
+            }
+        };
+        doc_lines(&format!("{what}\n\nCost: {}.{lowering}", function.cost))
     }
 
     fn unary_method(&self, function: &Function) -> TokenStream {
@@ -500,28 +597,32 @@ impl Emitter<'_> {
     }
 
     fn uses_rhs(function: &Function) -> bool {
-        let reads_rhs = |term: &Term| {
-            term.factors.iter().any(|v| {
-                matches!(
-                    v,
-                    Value::Input(Variable {
-                        operand: Operand::Rhs,
-                        ..
-                    })
-                )
-            })
+        let reads_rhs = |value: &Value| {
+            matches!(
+                value,
+                Value::Input(Variable {
+                    operand: Operand::Rhs,
+                    ..
+                })
+            )
         };
-        function.program.outputs.values().flatten().any(reads_rhs)
-            || function.program.locals.iter().any(|local| match &local.definition {
-                Definition::Sum(terms) => terms.iter().any(reads_rhs),
-                Definition::Double(value) => matches!(
-                    value,
-                    Value::Input(Variable {
-                        operand: Operand::Rhs,
-                        ..
+        match &function.code {
+            Code::Unrolled(program) => {
+                program
+                    .outputs
+                    .values()
+                    .flatten()
+                    .any(|term| term.factors.iter().any(reads_rhs))
+                    || program.locals.iter().any(|local| match &local.definition {
+                        Definition::Sum(terms) => terms.iter().any(|term| term.factors.iter().any(reads_rhs)),
+                        Definition::Double(value) => reads_rhs(value),
                     })
-                ),
-            })
+            }
+            Code::Table(table) => table
+                .stages
+                .iter()
+                .any(|s| s.left == Source::Rhs || s.right == Source::Rhs),
+        }
     }
 
     fn binary_impl(&self, function: &Function) -> TokenStream {

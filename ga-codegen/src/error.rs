@@ -19,6 +19,8 @@ pub enum Location {
     },
     /// `operations[index]`.
     Operation(usize),
+    /// `lowering[index]`.
+    Lowering(usize),
     /// The `metric` matrix as a whole.
     Metric,
     /// Row `row` of the `metric` matrix.
@@ -312,6 +314,48 @@ pub enum Error {
         /// The operation's name.
         name: String,
     },
+    #[error("`{name}` is not a product: only binary operations can be lowered to tables")]
+    /// A lowering is chosen for a unary operation.
+    LoweringOfUnary {
+        /// Index into `lowering`.
+        index: usize,
+        /// The operation's name.
+        name: String,
+    },
+    #[error("a lowering is chosen for `{name}`, which is not emitted (it is missing from the operations)")]
+    /// A lowering is chosen for an operation the declaration does not emit.
+    LoweringNotEmitted {
+        /// Index into `lowering`.
+        index: usize,
+        /// The operation's name.
+        name: String,
+    },
+    #[error(
+        "`{name}` of `{lhs}` and `{rhs}` is declared unrolled, but its expansion has {products} products, too many \
+         to expand: declare it `table`"
+    )]
+    /// A product declared unrolled is too big to expand at all
+    /// ([`MAX_EXACT_SANDWICH_PRODUCTS`](crate::table::MAX_EXACT_SANDWICH_PRODUCTS)).
+    TooBigToUnroll {
+        /// Index into `lowering`.
+        index: usize,
+        /// The operation's name.
+        name: String,
+        /// The left operand's type.
+        lhs: String,
+        /// The right operand's type.
+        rhs: String,
+        /// The products of its expansion.
+        products: usize,
+    },
+    #[error("the lowering of `{name}` is chosen twice")]
+    /// Two lowerings are chosen for one operation.
+    DuplicateLowering {
+        /// Index of the second choice in `lowering`.
+        index: usize,
+        /// The operation's name.
+        name: String,
+    },
     /// The result of an operation on two declared types fits no declared type.
     #[error(
         "no declared type holds the result of `{lhs}.{operation}({rhs})`: it needs the blades [{}]; \
@@ -351,6 +395,10 @@ impl Error {
             | Error::DuplicateBlade { ty_index, item, .. }
             | Error::GradeOutOfRange { ty_index, item, .. } => Location::TypeItem { ty: ty_index, item },
             Error::DuplicateOperation { index, .. } => Location::Operation(index),
+            Error::LoweringOfUnary { index, .. }
+            | Error::LoweringNotEmitted { index, .. }
+            | Error::DuplicateLowering { index, .. }
+            | Error::TooBigToUnroll { index, .. } => Location::Lowering(index),
             Error::MetricSize { .. } | Error::MetricTooLarge { .. } => Location::Metric,
             Error::MetricRowLength { row, .. } => Location::MetricRow(row),
             Error::MetricNotSymmetric { row, column, .. } => Location::MetricEntry { row, column },

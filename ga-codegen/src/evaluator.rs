@@ -27,19 +27,70 @@ fn coefficient(c: Rational64) -> f64 {
 }
 
 impl Evaluator {
-    /// An evaluator for the diagonal metric with these squares (basis vector `i` = bit `i`).
-    pub fn new(squares: &[i64]) -> Self {
-        Evaluator {
-            metric: Metric::diagonal(squares.to_vec()),
-        }
+    /// An evaluator for the diagonal metric with these squares (basis vector `i` = bit `i`); refused, as
+    /// [`Metric::diagonal`] refuses them, for more than 32 vectors or squares too large for exact products.
+    ///
+    /// ```
+    /// use ga_codegen::{Evaluator, Operation};
+    ///
+    /// // Cl(3,0): 2³ = 8 coefficients, indexed by blade mask (e12 = 0b011 = 3).
+    /// let evaluator = Evaluator::new(&[1, 1, 1])?;
+    /// assert_eq!(evaluator.blade_count(), 8);
+    /// let e12 = [0., 0., 0., 1., 0., 0., 0., 0.];
+    /// // A unit bivector squares to −1.
+    /// let square = evaluator.binary(Operation::Geometric, &e12, &e12)?;
+    /// assert_eq!(square, [-1., 0., 0., 0., 0., 0., 0., 0.]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn new(squares: &[i64]) -> Result<Self, crate::Error> {
+        Ok(Evaluator {
+            metric: Metric::diagonal(squares.to_vec())?,
+        })
     }
 
     /// An evaluator for any metric, e.g. a general bilinear form from [`Metric::from_matrix`].
+    ///
+    /// ```
+    /// use ga_codegen::metric::Metric;
+    /// use ga_codegen::{Evaluator, Operation, Rational64};
+    ///
+    /// // The null basis n0 (bit 0), ninf (bit 1) with n0 · ninf = −1.
+    /// let (zero, one) = (Rational64::from_integer(0), Rational64::from_integer(1));
+    /// let evaluator = Evaluator::with_metric(Metric::from_matrix(&[vec![zero, -one], vec![-one, zero]])?);
+    /// let (n0, ninf) = ([0., 1., 0., 0.], [0., 0., 1., 0.]);
+    /// // n0 ninf = n0 · ninf + n0 ∧ ninf = −1 + n0∧ninf, and n0 is null.
+    /// assert_eq!(evaluator.binary(Operation::Geometric, &n0, &ninf)?, [-1., 0., 0., 1.]);
+    /// assert_eq!(evaluator.binary(Operation::Geometric, &n0, &n0)?, [0.; 4]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn with_metric(metric: Metric) -> Self {
         Evaluator { metric }
     }
 
-    /// From a validated algebra.
+    /// From a validated algebra: the evaluator uses the algebra's metric.
+    ///
+    /// ```
+    /// use ga_codegen::{Algebra, Evaluator};
+    /// # use ga_codegen::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+    /// # let basis = [("e0", 0), ("e1", 1), ("e2", 1), ("e3", 1)]
+    /// #     .map(|(name, square)| BasisVectorDeclaration { name: name.into(), square });
+    /// # let declaration = AlgebraDeclaration {
+    /// #     scalar: ScalarType::F64,
+    /// #     basis: basis.to_vec(),
+    /// #     metric: None,
+    /// #     types: vec![TypeDeclaration { name: "Motor".into(), layout: Layout::Grades(vec![0, 2, 4]) }],
+    /// #     operations: None,
+    /// #     lowering: vec![],
+    /// # };
+    /// // `declaration`: 3D PGA, e0² = 0 and e1² = e2² = e3² = 1.
+    /// let algebra = Algebra::new(&declaration)?;
+    /// let evaluator = Evaluator::of(&algebra);
+    /// assert_eq!(evaluator.blade_count(), 16);
+    /// let blade = |mask: usize| (0..16).map(|i| if i == mask { 1.0 } else { 0.0 }).collect::<Vec<f64>>();
+    /// assert_eq!(evaluator.norm_squared(&blade(0b0001))?, 0.0); // e0 is null
+    /// assert_eq!(evaluator.norm_squared(&blade(0b0010))?, 1.0); // e1 is not
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn of(algebra: &crate::Algebra) -> Self {
         Evaluator {
             metric: algebra.metric.clone(),
@@ -140,7 +191,7 @@ mod tests {
 
     #[test]
     fn wrong_lengths_are_errors_naming_the_operand() {
-        let evaluator = Evaluator::new(&[1, 1]);
+        let evaluator = Evaluator::new(&[1, 1]).unwrap();
         let (good, short) = ([1.0, 2.0, 3.0, 4.0], [1.0, 2.0, 3.0]);
         assert_eq!(
             evaluator.binary(Operation::Geometric, &good, &short),

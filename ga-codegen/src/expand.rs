@@ -50,6 +50,17 @@ impl Monomial {
     ///
     /// # Panics
     /// If there are more than three factors: every expansion the compiler builds is at most cubic.
+    ///
+    /// ```
+    /// use ga_codegen::expand::{Monomial, Operand, Variable};
+    ///
+    /// let (a0, a1) = (Variable { operand: Operand::Lhs, field: 0 }, Variable { operand: Operand::Lhs, field: 1 });
+    /// let x0 = Variable { operand: Operand::Rhs, field: 0 };
+    /// // The factors are sorted (left operand first), so the order they are given in does not matter.
+    /// let monomial = Monomial::new(&[x0, a1, a0]);
+    /// assert_eq!(monomial, Monomial::new(&[a0, a1, x0]));
+    /// assert_eq!(&*monomial, [a0, a1, x0]);
+    /// ```
     pub fn new(factors: &[Variable]) -> Self {
         assert!(factors.len() <= MAX_DEGREE, "expansions are at most cubic");
         let filler = Variable {
@@ -180,6 +191,35 @@ fn rhs(field: usize) -> Variable {
 
 /// Expands a blade-pair operation (every binary operation but the sandwich and transform) on two
 /// types.
+///
+/// ```
+/// use ga_codegen::{expand, Operation};
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # use ga_codegen::expand::{Monomial, Operand, Variable};
+/// # use ga_codegen::Rational64;
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// # let a = |field| Variable { operand: Operand::Lhs, field };
+/// # let x = |field| Variable { operand: Operand::Rhs, field };
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// // `a(i)` is field i of the left operand, `x(i)` field i of the right one.
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// // The product of two vectors: a scalar a0 x0 + a1 x1 and a bivector (a0 x1 − a1 x0) e12.
+/// let product = expand::binary(&algebra, Operation::Geometric, vector, vector);
+/// assert_eq!(product.blades(), [0b00, 0b11]);
+/// assert_eq!(product.term_count(), 4);
+/// assert_eq!(product.outputs[&0b11].terms[&Monomial::new(&[a(1), x(0)])], Rational64::from_integer(-1));
+/// // In the plane a rotor times a vector is a vector.
+/// assert_eq!(expand::binary(&algebra, Operation::Geometric, rotor, vector).blades(), [0b01, 0b10]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
@@ -197,6 +237,33 @@ pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right:
 /// Expands the sandwich `a x ~a` as one cubic polynomial (`a` = `versor`, `x` = `operand`): the
 /// symmetric terms `aᵢ x aⱼ` and `aⱼ x aᵢ` merge into one monomial, which is why the fused form
 /// costs less than two products.
+///
+/// ```
+/// use ga_codegen::expand;
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # use ga_codegen::expand::{Monomial, Operand, Variable};
+/// # use ga_codegen::Rational64;
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// # let a = |field| Variable { operand: Operand::Lhs, field };
+/// # let x = |field| Variable { operand: Operand::Rhs, field };
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// // `a(i)` is field i of the left operand, `x(i)` field i of the right one.
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// // R x ~R with R = s + b e12 is a vector again: its e1 is (s² − b²) x1 + 2 s b x2.
+/// let rotated = expand::sandwich(&algebra, rotor, vector);
+/// assert_eq!(rotated.blades(), [0b01, 0b10]);
+/// assert_eq!(rotated.term_count(), 6); // s x b and b x s merged into one monomial
+/// assert_eq!(rotated.outputs[&0b01].terms[&Monomial::new(&[a(0), a(1), x(1)])], Rational64::from_integer(2));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn sandwich(algebra: &Algebra, versor: &SparseType, operand: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
@@ -336,6 +403,33 @@ pub fn commutator_form(
 }
 
 /// Expands a unary blade map (reverse, involutions, complements, polarity).
+///
+/// ```
+/// use ga_codegen::{expand, Operation};
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # use ga_codegen::expand::{Monomial, Operand, Variable};
+/// # use ga_codegen::Rational64;
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// # let a = |field| Variable { operand: Operand::Lhs, field };
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// // `a(i)` is field i of the (left) operand.
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// // The reverse of s + b e12 is s − b e12.
+/// let reverse = expand::unary(&algebra, Operation::Reverse, rotor);
+/// assert_eq!(reverse.outputs[&0b00].terms[&Monomial::new(&[a(0)])], Rational64::from_integer(1));
+/// assert_eq!(reverse.outputs[&0b11].terms[&Monomial::new(&[a(1)])], Rational64::from_integer(-1));
+/// // A vector's reverse is itself.
+/// assert_eq!(expand::unary(&algebra, Operation::Reverse, vector).blades(), [0b01, 0b10]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
@@ -348,6 +442,25 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expans
 }
 
 /// The grade-`k` part of a type.
+///
+/// ```
+/// use ga_codegen::expand;
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// assert_eq!(expand::grade_part(rotor, 2).blades(), [0b11]);
+/// assert!(expand::grade_part(vector, 2).outputs.is_empty()); // a vector has no bivector part
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
     let mut expansion = Expansion::default();
     for (i, a) in ty.fields.iter().enumerate().filter(|(_, a)| grade(a.blade) == k) {
@@ -358,6 +471,34 @@ pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
 
 /// `a ~a` with both factors taken from `self` (so symmetric terms merge). Its scalar part is the
 /// squared norm; where it has nothing else, `~a / (a ~a)` is the inverse.
+///
+/// ```
+/// use ga_codegen::expand;
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # use ga_codegen::expand::{Monomial, Operand, Variable};
+/// # use ga_codegen::Rational64;
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// # let a = |field| Variable { operand: Operand::Lhs, field };
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// // `a(i)` is field i of the (left) operand.
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// // R ~R = s² + b²: the bivector terms s b e12 − b s e12 cancel, so a rotor has an inverse.
+/// let norm = expand::times_own_reverse(&algebra, rotor);
+/// assert_eq!(norm.blades(), [0b00]);
+/// assert_eq!(norm.term_count(), 2);
+/// assert_eq!(norm.outputs[&0b00].terms[&Monomial::new(&[a(1), a(1)])], Rational64::from_integer(1));
+/// // A vector times itself is a scalar too: x ~x = x1² + x2².
+/// assert_eq!(expand::times_own_reverse(&algebra, vector).blades(), [0b00]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
     let mut expansion = Expansion::default();
@@ -373,6 +514,31 @@ pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
 }
 
 /// The sum or difference of two types, blade by blade.
+///
+/// ```
+/// use ga_codegen::expand;
+/// # use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+/// # use ga_codegen::expand::{Monomial, Operand, Variable};
+/// # use ga_codegen::Rational64;
+/// # let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// # let algebra = Algebra::new(&AlgebraDeclaration {
+/// #     scalar: ScalarType::F64,
+/// #     basis: ["e1", "e2"].map(|name| BasisVectorDeclaration { name: name.into(), square: 1 }).to_vec(),
+/// #     metric: None,
+/// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
+/// #     operations: None,
+/// #     lowering: vec![],
+/// # })?;
+/// # let x = |field| Variable { operand: Operand::Rhs, field };
+/// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
+/// // `x(i)` is field i of the right operand.
+/// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
+/// // Vector − Rotor has every blade of the plane; its e12 coefficient is −x(1), minus the rotor's e12.
+/// let difference = expand::sum(vector, rotor, true);
+/// assert_eq!(difference.blades(), [0b00, 0b01, 0b10, 0b11]);
+/// assert_eq!(difference.outputs[&0b11].terms[&Monomial::new(&[x(1)])], Rational64::from_integer(-1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn sum(left: &SparseType, right: &SparseType, subtract: bool) -> Expansion {
     let mut expansion = Expansion::default();
     for (i, a) in left.fields.iter().enumerate() {

@@ -42,6 +42,15 @@ impl Feature {
     }
 
     /// The feature called `name`, if any.
+    ///
+    /// ```
+    /// use ga_codegen::Feature;
+    ///
+    /// assert_eq!(Feature::from_name("approx"), Some(Feature::Approx));
+    /// assert_eq!(Feature::from_name("serde"), None);
+    /// // Every feature is found by its own name.
+    /// assert!(Feature::ALL.into_iter().all(|feature| Feature::from_name(feature.name()) == Some(feature)));
+    /// ```
     pub fn from_name(name: &str) -> Option<Feature> {
         Feature::ALL.into_iter().find(|feature| feature.name() == name)
     }
@@ -392,6 +401,7 @@ mod tests {
                 })
                 .collect(),
             operations: Some(vec![]),
+            lowering: vec![],
         })
         .unwrap()
     }
@@ -513,6 +523,7 @@ mod tests {
                 layout: Layout::Grades(vec![1]),
             }],
             operations: Some(vec![Operation::Reverse]),
+            lowering: vec![],
         };
         let plain = crate::generate(&declaration).unwrap().to_string();
         assert_eq!(

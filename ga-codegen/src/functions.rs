@@ -1,15 +1,17 @@
 //! The catalogue of emitted functions: for each operation and type (pair), its expansion, result
-//! type and lowered program. Emission prints these; [`cost`] reports their exact operation counts.
+//! type and lowered code (unrolled, or tables for products too big to unroll). Emission prints these; [`cost`] reports their exact operation counts.
 
 use num_traits::Zero;
 
 use crate::algebra::{Algebra, SparseType};
 use crate::blade::{grade, BladeMask};
+use crate::declaration::Lowering;
 use crate::error::Error;
 use crate::expand::{self, Expansion, Norm, Operand, Side, Variable};
 use crate::operation::Operation;
 use crate::product::Rules;
 use crate::program::{self, Cost, Program};
+use crate::table::{too_big_to_expand, Table, MAX_UNROLLED_LOCALS, MAX_UNROLLED_TERMS};
 
 /// What a function returns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,6 +31,34 @@ pub enum Finish {
     DivideReverseByNorm,
 }
 
+/// How a function computes its outputs.
+#[derive(Clone, Debug)]
+pub enum Code {
+    /// Straight-line code: hoisted locals, then one sum per output blade.
+    Unrolled(Program),
+    /// Constant tables and a loop per stage, for products too big to unroll (see [`crate::table`]).
+    Table(Table),
+}
+
+impl Code {
+    /// Runs the code on numeric operands (field values in storage order), output blade by blade: what
+    /// the emitted function computes, before the result's field signs.
+    pub fn evaluate(&self, lhs: &[f64], rhs: &[f64]) -> std::collections::BTreeMap<BladeMask, f64> {
+        match self {
+            Code::Unrolled(program) => program.evaluate(lhs, rhs),
+            Code::Table(table) => table.evaluate(lhs, rhs),
+        }
+    }
+
+    /// The exact operation count of the code.
+    pub fn cost(&self) -> Cost {
+        match self {
+            Code::Unrolled(program) => program.cost(),
+            Code::Table(table) => table.cost(),
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 /// One emitted function: an operation on a type (pair), with its lowered program and cost.
 pub struct Function {
@@ -42,8 +72,8 @@ pub struct Function {
     pub rhs: Option<usize>,
     /// What the function returns.
     pub output: Output,
-    /// The straight-line code that computes the outputs.
-    pub program: Program,
+    /// The code that computes the outputs.
+    pub code: Code,
     /// How the program's outputs become the return value.
     pub finish: Finish,
     /// The exact operation count of the program and the finish.
@@ -105,6 +135,9 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
         return transform(algebra, lhs, rhs);
     }
     let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
+    if operation == Operation::Sandwich && too_big_to_expand(left, right) {
+        return sandwich_by_reach(algebra, operation, (lhs, rhs), None);
+    }
     let expansion = match operation {
         Operation::Sandwich => expand::sandwich(algebra, left, right),
         _ => expand::binary(algebra, operation, left, right),
@@ -115,6 +148,15 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
         let describe = || (operation.name().to_string(), left.name.clone(), right.name.clone());
         Output::Type(result_type(algebra, &expansion.blades(), describe)?)
     };
+    let blades = expansion.blades();
+    let table = || match operation {
+        Operation::Sandwich => Table::sandwich(algebra, left, right, Some(&blades)),
+        _ => Table::binary(algebra, operation, left, right, &blades),
+    };
+    let declared = algebra.declared_lowering(operation);
+    if declared == Some(Lowering::Table) || (declared.is_none() && expansion.term_count() > MAX_UNROLLED_TERMS) {
+        return Ok(tabled(operation, (lhs, rhs), output, table()));
+    }
     let mut function = finish(
         algebra,
         Some(operation),
@@ -125,15 +167,69 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
         &expansion,
     );
     if operation == Operation::Sandwich {
-        use_cheapest_commutator_form(
-            algebra,
-            &mut function,
-            (left, right),
-            Norm::General,
-            &expansion.blades(),
-        );
+        use_cheapest_commutator_form(algebra, &mut function, (left, right), Norm::General, &blades);
+    }
+    if declared.is_none() && too_many_locals(&function) {
+        return Ok(tabled(operation, (lhs, rhs), output, table()));
     }
     Ok(function)
+}
+
+/// Whether unrolled code would nest more `let`s than rustc's debug builds take.
+fn too_many_locals(function: &Function) -> bool {
+    matches!(&function.code, Code::Unrolled(program) if program.locals.len() > MAX_UNROLLED_LOCALS)
+}
+
+/// A sandwich (or a transform, keeping the operand's `grades`) too big to expand exactly: tabled, with the
+/// blades its products reach (see [`MAX_EXACT_SANDWICH_PRODUCTS`](crate::table::MAX_EXACT_SANDWICH_PRODUCTS)).
+fn sandwich_by_reach(
+    algebra: &Algebra,
+    operation: Operation,
+    (lhs, rhs): (usize, usize),
+    grades: Option<&[u32]>,
+) -> Result<Function, Error> {
+    let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
+    let declared_unrolled = algebra
+        .lowering
+        .iter()
+        .position(|&lowering| lowering == (operation, Lowering::Unrolled));
+    if let Some(index) = declared_unrolled {
+        return Err(Error::TooBigToUnroll {
+            index,
+            name: operation.name().to_string(),
+            lhs: left.name.clone(),
+            rhs: right.name.clone(),
+            products: left.fields.len() * left.fields.len() * right.fields.len(),
+        });
+    }
+    let mut table = Table::sandwich(algebra, left, right, None);
+    if let Some(grades) = grades {
+        let kept: Vec<BladeMask> = table
+            .output_blades()
+            .iter()
+            .copied()
+            .filter(|&b| grades.contains(&grade(b)))
+            .collect();
+        table = Table::sandwich(algebra, left, right, Some(&kept));
+    }
+    let describe = || (operation.name().to_string(), left.name.clone(), right.name.clone());
+    let output = Output::Type(result_type(algebra, table.output_blades(), describe)?);
+    Ok(tabled(operation, (lhs, rhs), output, table))
+}
+
+/// A product lowered to `table`.
+fn tabled(operation: Operation, (lhs, rhs): (usize, usize), output: Output, table: Table) -> Function {
+    let cost = table.cost();
+    Function {
+        operation: Some(operation),
+        method: operation.name().to_string(),
+        lhs,
+        rhs: Some(rhs),
+        output,
+        code: Code::Table(table),
+        finish: Finish::Coefficients,
+        cost,
+    }
 }
 
 /// `lhs.transform(rhs)`: the sandwich of a unit versor, `a x ~a` with `a ~a = 1`.
@@ -144,9 +240,13 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
 /// part (so it is never 1) the transform is the sandwich.
 fn transform(algebra: &Algebra, lhs: usize, rhs: usize) -> Result<Function, Error> {
     let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
+    let unit = expand::times_own_reverse(algebra, left).outputs.contains_key(&0);
+    let grades: Vec<u32> = right.fields.iter().map(|f| grade(f.blade)).collect();
+    if too_big_to_expand(left, right) {
+        return sandwich_by_reach(algebra, Operation::Transform, (lhs, rhs), unit.then_some(&grades));
+    }
     let mut sandwich = expand::sandwich(algebra, left, right);
-    let norm = if expand::times_own_reverse(algebra, left).outputs.contains_key(&0) {
-        let grades: Vec<u32> = right.fields.iter().map(|f| grade(f.blade)).collect();
+    let norm = if unit {
         sandwich.outputs.retain(|&blade, _| grades.contains(&grade(blade)));
         Norm::Unit
     } else {
@@ -161,6 +261,18 @@ fn transform(algebra: &Algebra, lhs: usize, rhs: usize) -> Result<Function, Erro
         )
     };
     let output = Output::Type(result_type(algebra, &blades, describe)?);
+    let declared = algebra.declared_lowering(Operation::Transform);
+    let table = || {
+        tabled(
+            Operation::Transform,
+            (lhs, rhs),
+            output,
+            Table::sandwich(algebra, left, right, Some(&blades)),
+        )
+    };
+    if declared == Some(Lowering::Table) || (declared.is_none() && sandwich.term_count() > MAX_UNROLLED_TERMS) {
+        return Ok(table());
+    }
     let mut function = finish(
         algebra,
         Some(Operation::Transform),
@@ -171,6 +283,9 @@ fn transform(algebra: &Algebra, lhs: usize, rhs: usize) -> Result<Function, Erro
         &sandwich,
     );
     use_cheapest_commutator_form(algebra, &mut function, (left, right), norm, &blades);
+    if declared.is_none() && too_many_locals(&function) {
+        return Ok(table());
+    }
     Ok(function)
 }
 
@@ -190,7 +305,7 @@ fn use_cheapest_commutator_form(
         });
         let cost = program.cost();
         if (cost.multiplies, cost.adds) < (function.cost.multiplies, function.cost.adds) {
-            (function.program, function.cost) = (program, cost);
+            (function.code, function.cost) = (Code::Unrolled(program), cost);
         }
     }
 }
@@ -212,7 +327,7 @@ fn finish(
         lhs,
         rhs,
         output,
-        program,
+        code: Code::Unrolled(program),
         finish: Finish::Coefficients,
         cost,
     }

@@ -18,12 +18,13 @@
 //!     metric: None,
 //!     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 //!     operations: None,
+//!     lowering: vec![],
 //! };
 //! let code = ga_codegen::pretty(&ga_codegen::generate(&declaration)?)?;
 //! assert!(code.contains("pub struct Rotor"));
 //!
 //! // The same rules on dense multivectors (blade masks 1, e1, e2, e12): e1 e2 = e12.
-//! let e1e2 = Evaluator::new(&[1, 1]).binary(Operation::Geometric, &[0., 1., 0., 0.], &[0., 0., 1., 0.])?;
+//! let e1e2 = Evaluator::new(&[1, 1])?.binary(Operation::Geometric, &[0., 1., 0., 0.], &[0., 0., 1., 0.])?;
 //! assert_eq!(e1e2, [0., 0., 0., 1.]);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -37,7 +38,8 @@
 //!    unit-versor `transform`, the two-stage form `x + a (x ~a − ~a x)`, equal to the sandwich when
 //!    `a ~a = 1`;
 //! 4. [`program`]: lowering to straight-line code (shared products, doubling), with the [`Cost`]
-//!    model (exact multiply and add counts); [`functions`] catalogues every emitted function;
+//!    model (exact multiply and add counts), or, for a product too big to unroll, [`table`]: constant
+//!    tables and a loop; [`functions`] catalogues every emitted function and chooses between the two;
 //! 5. [`emit`]: Rust tokens via `quote`; [`features`] emits the opt-in impls of ecosystem traits
 //!    (`Display`, `approx`, `mint`).
 //!
@@ -60,9 +62,10 @@ pub mod metric;
 pub mod operation;
 pub mod product;
 pub mod program;
+pub mod table;
 
 pub use algebra::{Algebra, Field, SparseType};
-pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
+pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, Lowering, ScalarType, TypeDeclaration};
 pub use error::{Error, EvaluatorError, Location, NameProblem};
 pub use evaluator::Evaluator;
 pub use features::Feature;

@@ -7,6 +7,7 @@
 use num_rational::Rational64;
 use num_traits::{Signed, ToPrimitive, Zero};
 
+use crate::algebra::MAX_DIMENSION;
 use crate::blade::BladeMask;
 use crate::error::Error;
 
@@ -27,23 +28,67 @@ pub struct Metric {
 
 impl Metric {
     /// A diagonal metric: basis vector `i` squares to `squares[i]`.
-    pub fn diagonal(squares: Vec<i64>) -> Self {
+    ///
+    /// ```
+    /// use ga_codegen::metric::Metric;
+    /// use ga_codegen::Rational64;
+    ///
+    /// // 3D PGA, Cl(3,0,1): e0² = 0, e1² = e2² = e3² = 1.
+    /// let pga = Metric::diagonal(vec![0, 1, 1, 1])?;
+    /// assert_eq!(pga.dimension(), 4);
+    /// assert_eq!(pga.square(0), Rational64::from_integer(0));
+    /// assert_eq!(pga.square(1), Rational64::from_integer(1));
+    /// assert_eq!(pga.inner(1, 2), Rational64::from_integer(0)); // an orthogonal basis
+    /// assert!(pga.is_diagonal());
+    ///
+    /// // Squares so large that products of blades would overflow exact 64-bit coefficients are refused.
+    /// assert!(matches!(Metric::diagonal(vec![1 << 40; 3]), Err(ga_codegen::Error::MetricTooLarge { .. })));
+    /// # Ok::<(), ga_codegen::Error>(())
+    /// ```
+    pub fn diagonal(squares: Vec<i64>) -> Result<Self, Error> {
         let n = squares.len();
+        if n > MAX_DIMENSION {
+            return Err(Error::TooManyBasisVectors {
+                count: n,
+                max: MAX_DIMENSION,
+            });
+        }
         let mut entries = vec![Rational64::zero(); n * n];
         for (i, square) in squares.into_iter().enumerate() {
             entries[i * n + i] = Rational64::from_integer(square);
         }
-        Metric {
+        let metric = Metric {
             entries,
             dimension: n,
             diagonal: true,
+        };
+        if metric.coefficient_bound() > MAX_COEFFICIENT_BOUND {
+            return Err(Error::MetricTooLarge { dimension: n });
         }
+        Ok(metric)
     }
 
     /// A general form from its rows: `rows[i][j]` = B(eᵢ, eⱼ). The matrix must be square and
     /// symmetric, and its entries small enough that every coefficient of every product stays exact in
     /// 64-bit arithmetic (ordinary metrics, with entries such as ±1, ±2 or ½, are far from the limit;
     /// see [`Error::MetricTooLarge`]).
+    ///
+    /// ```
+    /// use ga_codegen::metric::Metric;
+    /// use ga_codegen::{Error, Rational64};
+    ///
+    /// // A null basis of the Minkowski plane: n0² = ninf² = 0, n0 · ninf = −1.
+    /// let (zero, one) = (Rational64::from_integer(0), Rational64::from_integer(1));
+    /// let null_plane = Metric::from_matrix(&[vec![zero, -one], vec![-one, zero]])?;
+    /// assert!(!null_plane.is_diagonal());
+    /// assert_eq!(null_plane.square(0), zero);
+    /// assert_eq!(null_plane.inner(0, 1), -one);
+    ///
+    /// // A bilinear form is symmetric: B(n0, ninf) ≠ B(ninf, n0) is refused.
+    /// let asymmetric = Metric::from_matrix(&[vec![zero, -one], vec![one, zero]]);
+    /// assert!(matches!(asymmetric, Err(Error::MetricNotSymmetric { row: 1, column: 0, .. })));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_matrix(rows: &[Vec<Rational64>]) -> Result<Self, Error> {
         let n = rows.len();
         for (row, entries) in rows.iter().enumerate() {
@@ -201,7 +246,7 @@ mod tests {
 
     #[test]
     fn orthogonal_unit_metrics_have_unit_coefficients() {
-        let metric = Metric::diagonal(vec![1, -1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, -1, -1]);
+        let metric = Metric::diagonal(vec![1, -1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, -1, -1]).unwrap();
         assert_eq!(metric.coefficient_bound(), 1.0);
     }
 }

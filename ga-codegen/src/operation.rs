@@ -100,6 +100,15 @@ impl Operation {
     }
 
     /// Parses a method name.
+    ///
+    /// ```
+    /// use ga_codegen::Operation;
+    ///
+    /// let operation = Operation::from_name("left_contraction");
+    /// assert_eq!(operation, Some(Operation::LeftContraction));
+    /// assert!(operation.unwrap().is_binary());
+    /// assert_eq!(Operation::from_name("dot"), None); // the inner products are spelled out
+    /// ```
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|op| op.name() == name)
     }

@@ -59,6 +59,15 @@ pub enum Combination {
 
 impl Combination {
     /// `coefficient · blade` (zero if the coefficient is).
+    ///
+    /// ```
+    /// use ga_codegen::product::Combination;
+    /// use ga_codegen::Rational64;
+    ///
+    /// let half_e12 = Combination::blade(0b11, Rational64::new(1, 2));
+    /// assert_eq!(half_e12.terms(), [(0b11, Rational64::new(1, 2))]);
+    /// assert!(Combination::blade(0b11, Rational64::from_integer(0)).is_zero());
+    /// ```
     pub fn blade(blade: BladeMask, coefficient: Rational64) -> Self {
         if coefficient.is_zero() {
             Combination::Zero
@@ -68,6 +77,18 @@ impl Combination {
     }
 
     /// Collects terms, merging repeated blades and dropping those that cancel.
+    ///
+    /// ```
+    /// use ga_codegen::product::Combination;
+    /// use ga_codegen::Rational64;
+    ///
+    /// let r = Rational64::from_integer;
+    /// // e2 + e1 + 2 e2 − e1: the e1 terms cancel, the e2 terms merge.
+    /// let combination = Combination::from_terms([(0b10, r(1)), (0b01, r(1)), (0b10, r(2)), (0b01, r(-1))]);
+    /// assert_eq!(combination, Combination::Blade((0b10, r(3))));
+    /// // Several blades come out in increasing mask order.
+    /// assert_eq!(Combination::from_terms([(0b10, r(1)), (0b01, r(5))]).terms(), [(0b01, r(5)), (0b10, r(1))]);
+    /// ```
     pub fn from_terms(terms: impl IntoIterator<Item = Term>) -> Self {
         let mut merged: BTreeMap<BladeMask, Rational64> = BTreeMap::new();
         for (blade, coefficient) in terms {
@@ -144,6 +165,19 @@ fn factors(blade: BladeMask) -> impl Iterator<Item = (u32, usize)> {
 
 impl<'a> Rules<'a> {
     /// The product rules of the algebra with this metric.
+    ///
+    /// ```
+    /// use ga_codegen::metric::Metric;
+    /// use ga_codegen::product::{Combination, Rules};
+    /// use ga_codegen::{Operation, Rational64};
+    ///
+    /// let metric = Metric::diagonal(vec![1, 1])?;
+    /// let rules = Rules::new(&metric);
+    /// // e2 e1 = −e12, and e1 ∧ e1 = 0.
+    /// assert_eq!(rules.geometric(0b10, 0b01), Combination::blade(0b11, Rational64::from_integer(-1)));
+    /// assert!(rules.binary(Operation::Outer, 0b01, 0b01).is_zero());
+    /// # Ok::<(), ga_codegen::Error>(())
+    /// ```
     pub fn new(metric: &'a Metric) -> Self {
         let n = metric.dimension();
         let pseudoscalar = if n == 32 { u32::MAX } else { (1u32 << n) - 1 };
@@ -306,7 +340,7 @@ mod tests {
     use super::*;
 
     fn pga() -> Metric {
-        Metric::diagonal(vec![0, 1, 1, 1])
+        Metric::diagonal(vec![0, 1, 1, 1]).unwrap()
     }
 
     fn blade(blade: BladeMask, coefficient: i64) -> Combination {
@@ -347,7 +381,7 @@ mod tests {
 
     #[test]
     fn commutator_keeps_anticommuting_pairs_only() {
-        let metric = Metric::diagonal(vec![1, 1, 1]);
+        let metric = Metric::diagonal(vec![1, 1, 1]).unwrap();
         let rules = Rules::new(&metric);
         assert_eq!(rules.binary(Operation::Commutator, 0b001, 0b010), blade(0b011, 1));
         assert_eq!(rules.binary(Operation::Commutator, 0b011, 0b011), Combination::Zero);

@@ -40,6 +40,7 @@ fn compile(positive: usize, negative: usize) -> Compiled {
             common::grades("Bivector", &[2]),
         ],
         operations: Some(OPERATIONS.to_vec()),
+        lowering: vec![],
     };
     let algebra = Algebra::new(&declaration).unwrap();
     let mut compiled = Vec::new();
@@ -74,7 +75,7 @@ fn cl82() -> &'static Compiled {
 
 fn check(compiled: &Compiled, values: &[f64]) -> Result<(), TestCaseError> {
     let algebra = &compiled.algebra;
-    let evaluator = Evaluator::new(&compiled.squares);
+    let evaluator = Evaluator::new(&compiled.squares).unwrap();
     let blades = evaluator.blade_count();
     let fields = |ty: usize, offset: usize| &values[offset..offset + algebra.types[ty].fields.len()];
     let dense = |ty: usize, values: &[f64]| {
@@ -96,7 +97,7 @@ fn check(compiled: &Compiled, values: &[f64]) -> Result<(), TestCaseError> {
             expected
         };
         let mut got = vec![0.0; blades];
-        for (blade, value) in function.program.evaluate(a, b) {
+        for (blade, value) in function.code.evaluate(a, b) {
             got[blade as usize] = value;
         }
         prop_assert_eq!(got, expected, "{:?} {} {}", operation, function.lhs, rhs);

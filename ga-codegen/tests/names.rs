@@ -18,6 +18,7 @@ fn declaration(basis: &[&str], types: Vec<TypeDeclaration>) -> AlgebraDeclaratio
         metric: None,
         types,
         operations: None,
+        lowering: vec![],
     }
 }
 

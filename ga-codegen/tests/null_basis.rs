@@ -17,7 +17,7 @@ fn null_evaluator() -> Evaluator {
 }
 
 fn diagonal_evaluator() -> Evaluator {
-    Evaluator::new(&[1, 1, 1, 1, -1])
+    Evaluator::new(&[1, 1, 1, 1, -1]).unwrap()
 }
 
 /// Φ as a 32×32 matrix: column `a` holds the diagonal-basis coefficients of the null blade `a`, the
@@ -113,7 +113,7 @@ proptest! {
     /// metric over the same basis, and LC undoes RC.
     #[test]
     fn complements_ignore_the_metric(a in multivector()) {
-        let (null, euclidean) = (null_evaluator(), Evaluator::new(&[1; N]));
+        let (null, euclidean) = (null_evaluator(), Evaluator::new(&[1; N]).unwrap());
         for operation in [Operation::RightComplement, Operation::LeftComplement] {
             prop_assert_eq!(null.unary(operation, &a).unwrap(), euclidean.unary(operation, &a).unwrap());
         }
@@ -156,7 +156,7 @@ fn emitted_programs_equal_the_evaluator() {
     };
     let output = |function: &functions::Function, lhs: &[f64], rhs: &[f64]| {
         let mut dense = vec![0.0; BLADES];
-        for (blade, value) in function.program.evaluate(lhs, rhs) {
+        for (blade, value) in function.code.evaluate(lhs, rhs) {
             dense[blade as usize] = value;
         }
         dense

@@ -8,7 +8,10 @@ use std::sync::OnceLock;
 
 use common::{form, Form};
 use ga_codegen::blade::{grade, BladeNaming};
-use ga_codegen::{functions, Algebra, AlgebraDeclaration, Evaluator, Layout, Operation, ScalarType, TypeDeclaration};
+use ga_codegen::functions::Code;
+use ga_codegen::{
+    functions, Algebra, AlgebraDeclaration, Evaluator, Layout, Lowering, Operation, ScalarType, TypeDeclaration,
+};
 use proptest::prelude::*;
 
 fn dense(n: usize) -> impl Strategy<Value = Vec<f64>> {
@@ -63,7 +66,7 @@ fn products_are_grade_selected_geometric_products_on_blades() {
         vec![1, -1, 0, 1, -1],
         vec![0, 0, 1, -1],
     ] {
-        let ev = Evaluator::new(&squares);
+        let ev = Evaluator::new(&squares).unwrap();
         let count = ev.blade_count();
         let unit = |b: usize| (0..count).map(|i| f64::from(u8::from(i == b))).collect::<Vec<f64>>();
         for a in 0..count {
@@ -152,6 +155,7 @@ fn declaration(form: &Form, types: &[Vec<(u32, bool)>]) -> AlgebraDeclaration {
         metric,
         types: declared,
         operations: None,
+        lowering: vec![],
     }
 }
 
@@ -167,7 +171,7 @@ fn to_dense(algebra: &Algebra, ty: usize, values: &[f64]) -> Vec<f64> {
 /// The dense value of a function's program output, read through its result type's field signs.
 fn program_output(function: &functions::Function, lhs: &[f64], rhs: &[f64], n: usize) -> Vec<f64> {
     let mut dense = vec![0.0; 1 << n];
-    for (blade, value) in function.program.evaluate(lhs, rhs) {
+    for (blade, value) in function.code.evaluate(lhs, rhs) {
         dense[blade as usize] = value;
     }
     dense
@@ -189,12 +193,20 @@ proptest! {
         let lhs = &values[..algebra.types[0].fields.len()];
         let rhs = &values[..algebra.types[1].fields.len()];
         let (a, b) = (to_dense(&algebra, 0, lhs), to_dense(&algebra, 1, rhs));
+        // Every product unrolled (these types are small) and lowered to tables.
+        let mut tabled = declaration(&form, &types);
+        tabled.lowering = Operation::ALL.into_iter().filter(|op| op.is_binary()).map(|op| (op, Lowering::Table)).collect();
+        let tabled = Algebra::new(&tabled).unwrap();
         // `transform` equals these only for unit versors: see tests/transform.rs.
         for operation in Operation::ALL.into_iter().filter(|&op| op.is_binary() && op != Operation::Transform) {
-            let function = functions::binary(&algebra, operation, 0, 1).unwrap();
             let expected = ev.binary(operation, &a, &b).unwrap();
             let expected = if operation == Operation::ScalarProduct { ev.grade_part(&expected, 0) } else { expected };
-            prop_assert_eq!(program_output(&function, lhs, rhs, n), expected, "{:?}", operation);
+            let function = functions::binary(&algebra, operation, 0, 1).unwrap();
+            prop_assert!(matches!(function.code, Code::Unrolled(_)));
+            prop_assert_eq!(&program_output(&function, lhs, rhs, n), &expected, "{:?}", operation);
+            let function = functions::binary(&tabled, operation, 0, 1).unwrap();
+            prop_assert!(matches!(function.code, Code::Table(_)));
+            prop_assert_eq!(program_output(&function, lhs, rhs, n), expected, "{:?} by tables", operation);
         }
         for operation in [Operation::Reverse, Operation::Involute, Operation::Conjugate, Operation::RightComplement, Operation::LeftComplement] {
             for function in functions::unary(&algebra, operation, 0).unwrap() {

@@ -33,6 +33,14 @@ fn pga_motor_transform_point() {
     insta::assert_snapshot!(function_source(&common::pga(), Operation::Transform, "Motor", "Point"));
 }
 
+/// The same sandwich lowered to tables (two stages of products and loops), as big products are.
+#[test]
+fn pga_motor_sandwich_point_by_tables() {
+    let mut declaration = common::pga();
+    declaration.lowering = vec![(Operation::Sandwich, ga_codegen::Lowering::Table)];
+    insta::assert_snapshot!(function_source(&declaration, Operation::Sandwich, "Motor", "Point"));
+}
+
 #[test]
 fn null_cga_motor_times_motor() {
     insta::assert_snapshot!(function_source(
@@ -55,6 +63,7 @@ fn vga_features() {
             common::blades("Rotor", &["scalar", "e23", "e31", "e12"]),
         ],
         operations: Some(vec![]),
+        lowering: vec![],
     };
     let algebra = Algebra::new(&declaration).unwrap();
     let features = ga_codegen::features::emit(&algebra, &ga_codegen::Feature::ALL);

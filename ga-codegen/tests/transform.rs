@@ -4,7 +4,7 @@
 mod common;
 
 use ga_codegen::blade::BladeMask;
-use ga_codegen::{functions, Algebra, AlgebraDeclaration, Evaluator, Layout, Operation, TypeDeclaration};
+use ga_codegen::{functions, Algebra, AlgebraDeclaration, Evaluator, Layout, Lowering, Operation, TypeDeclaration};
 use proptest::prelude::*;
 
 /// A unit versor from raw vectors (dense, 2ⁿ coefficients each, only the grade-1 entries of the
@@ -55,7 +55,7 @@ fn assert_transform_is_sandwich(algebra: &Algebra, versor: &str, operand: &str, 
     let (lhs, rhs) = (index(versor), index(operand));
     let transform = functions::binary(algebra, Operation::Transform, lhs, rhs).unwrap();
     let sandwich = functions::binary(algebra, Operation::Sandwich, lhs, rhs).unwrap();
-    let (got, expected) = (transform.program.evaluate(a, x), sandwich.program.evaluate(a, x));
+    let (got, expected) = (transform.code.evaluate(a, x), sandwich.code.evaluate(a, x));
     let scale = expected.values().fold(1.0f64, |m, v| m.max(v.abs()));
     for (blade, value) in &expected {
         let transformed = got.get(blade).copied().unwrap_or(0.0);
@@ -141,6 +141,7 @@ proptest! {
                 TypeDeclaration { name: "Multivector".to_string(), layout: Layout::All },
             ],
             operations: Some(vec![Operation::Sandwich, Operation::Transform]),
+            lowering: vec![],
         };
         let algebra = Algebra::new(&declaration).unwrap();
         let evaluator = Evaluator::of(&algebra);
@@ -150,5 +151,11 @@ proptest! {
         let a = fields(&algebra, 1, &versor).unwrap();
         let values = x[..algebra.types[0].fields.len()].to_vec();
         assert_transform_is_sandwich(&algebra, "Multivector", "Operand", &a, &values);
+        // And both lowered to tables (two products each).
+        let tabled = AlgebraDeclaration {
+            lowering: vec![(Operation::Sandwich, Lowering::Table), (Operation::Transform, Lowering::Table)],
+            ..declaration
+        };
+        assert_transform_is_sandwich(&Algebra::new(&tabled).unwrap(), "Multivector", "Operand", &a, &values);
     }
 }

@@ -76,6 +76,7 @@
 //!   #         layout: ga_codegen::Layout::Grades(vec![0, 2, 4]),
 //!   #     }],
 //!   #     operations: None,
+//!   #     lowering: vec![],
 //!   # })
 //!   # .unwrap();
 //!   assert_eq!(cga::Motor::BLADES.len(), pga.types[0].fields.len());
@@ -119,6 +120,7 @@
 //!           .map(|(name, grades)| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) })
 //!           .to_vec(),
 //!       operations: None,
+//!       lowering: vec![],
 //!   })?;
 //!   let multiplies = |operation| {
 //!       functions::cost(&pga, operation, "Motor", Some("Point")).map(|cost| cost.unwrap().multiplies)
@@ -127,6 +129,13 @@
 //!   assert_eq!(multiplies(Operation::Sandwich)?, 30);
 //!   # Ok::<(), ga_codegen::Error>(())
 //!   ```
+//! - A product in `ops` may say how it is emitted: `sandwich(table)` or `geometric(unrolled)`. Unrolled
+//!   code (one sum per output blade, shared subexpressions hoisted) is the default and the fastest; a
+//!   product whose expansion has more than [`MAX_UNROLLED_TERMS`](ga_codegen::table::MAX_UNROLLED_TERMS)
+//!   monomials or more than [`MAX_UNROLLED_LOCALS`](ga_codegen::table::MAX_UNROLLED_LOCALS) hoisted
+//!   locals is emitted table-driven instead (a constant table of products and a loop, still a `const fn`;
+//!   its doc comment says so), so that it builds in seconds: the sandwich of two full Cl(5,1)
+//!   multivectors (133 thousand monomials) is two tables of 4096 products.
 //! - `features` takes `display`, `approx` and `mint` (see [Features](#features)).
 //!
 //! ## Attributes on types
@@ -244,6 +253,7 @@
 //!     metric: None,
 //!     types: vec![TypeDeclaration { name: "Middle".into(), layout: Layout::Grades(vec![16]) }],
 //!     operations: None,
+//!     lowering: vec![],
 //! };
 //! assert!(matches!(Algebra::new(&middle), Err(Error::TooManyFields { fields: 601_080_390, .. })));
 //! ```

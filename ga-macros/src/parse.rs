@@ -28,10 +28,34 @@ pub struct AlgebraInput {
     pub metric: Option<MetricSetting>,
     /// `types { Motor = grades(0, 2, 4); … }`
     pub types: Vec<TypeEntry>,
-    /// `ops = [geometric, reverse];`, if present.
-    pub ops: Option<Punctuated<Ident, Token![,]>>,
+    /// `ops = [geometric, reverse, sandwich(table)];`, if present.
+    pub ops: Option<Punctuated<OperationEntry, Token![,]>>,
     /// `features = [display, approx, mint];`, if present.
     pub features: Option<Punctuated<Ident, Token![,]>>,
+}
+
+/// An operation in `ops`, optionally with how to lower it: `sandwich(table)`, `geometric(unrolled)`.
+pub struct OperationEntry {
+    pub name: Ident,
+    pub lowering: Option<Ident>,
+}
+
+impl Parse for OperationEntry {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let name = input.parse()?;
+        let lowering = if input.peek(token::Paren) {
+            let inner;
+            parenthesized!(inner in input);
+            let lowering = inner.parse()?;
+            if !inner.is_empty() {
+                return Err(inner.error("expected one lowering: `table` or `unrolled`"));
+            }
+            Some(lowering)
+        } else {
+            None
+        };
+        Ok(OperationEntry { name, lowering })
+    }
 }
 
 /// The `basis` setting. Its key is kept as the place to report errors about the basis as a whole
@@ -147,7 +171,7 @@ impl Parse for AlgebraInput {
                     store(&mut types, entries, &key)
                 }
                 "ops" => {
-                    let names = assigned_list(&body, Ident::parse)?;
+                    let names = assigned_list(&body, OperationEntry::parse)?;
                     store(&mut ops, names, &key)
                 }
                 "features" => {

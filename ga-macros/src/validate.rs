@@ -6,8 +6,8 @@
 use ga_codegen::emit::DERIVED_TRAITS;
 use ga_codegen::features::mint_mapping;
 use ga_codegen::{
-    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Feature, Layout, Location, Operation, Rational64,
-    ScalarType, TypeDeclaration,
+    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Feature, Layout, Location, Lowering, Operation,
+    Rational64, ScalarType, TypeDeclaration,
 };
 use quote::ToTokens;
 use syn::parse::ParseStream;
@@ -15,7 +15,7 @@ use syn::punctuated::Punctuated;
 use syn::{BinOp, Expr, ExprBinary, ExprLit, ExprUnary, Ident, Lit, LitInt, Meta, Path, Token, UnOp};
 
 use crate::diagnostics::{both, collect};
-use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, MetricRow, TypeEntry};
+use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, MetricRow, OperationEntry, TypeEntry};
 
 /// What the macro emits: the compiler's declaration and the opt-in features.
 pub struct Validated {
@@ -33,11 +33,19 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<Validated> {
         .as_ref()
         .map(|metric| collect(metric.rows.iter().map(metric_row)));
     let types = collect(input.types.iter().map(|entry| type_declaration(entry, &input.scalar)));
-    let operations = input.ops.as_ref().map(|names| collect(names.iter().map(operation)));
+    let operations = input
+        .ops
+        .as_ref()
+        .map(|entries| collect(entries.iter().map(|entry| operation(&entry.name))));
+    let lowering =
+        collect(lowered_entries(input).map(|(entry, lowering)| Ok((operation(&entry.name)?, lowering_of(lowering)?))));
     let features = input.features.as_ref().map(feature_list).transpose();
     let (metric, operations) = (metric.transpose(), operations.transpose());
-    let (((((scalar, basis), metric), types), operations), features) = both(
-        both(both(both(both(scalar, basis), metric), types), operations),
+    let ((((((scalar, basis), metric), types), operations), lowering), features) = both(
+        both(
+            both(both(both(both(scalar, basis), metric), types), operations),
+            lowering,
+        ),
         features,
     )?;
     let declaration = AlgebraDeclaration {
@@ -46,6 +54,7 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<Validated> {
         metric,
         types,
         operations,
+        lowering,
     };
     // `generate` checks this too, but checking here makes every declaration that leaves this module
     // one the compiler accepts, which the tests can see without emitting any code.
@@ -110,7 +119,32 @@ pub fn locate(input: &AlgebraInput, error: &Error) -> syn::Error {
 
 /// The name of `operation` in the `ops` list, if the list names it.
 fn listed_operation<'a>(input: &'a AlgebraInput, operation: &str) -> Option<&'a Ident> {
-    input.ops.iter().flatten().find(|name| *name == operation)
+    input
+        .ops
+        .iter()
+        .flatten()
+        .map(|entry| &entry.name)
+        .find(|name| *name == operation)
+}
+
+/// The `ops` entries that choose a lowering, with it, in order (the declaration's `lowering` list).
+fn lowered_entries(input: &AlgebraInput) -> impl Iterator<Item = (&OperationEntry, &Ident)> {
+    input
+        .ops
+        .iter()
+        .flatten()
+        .filter_map(|entry| entry.lowering.as_ref().map(|lowering| (entry, lowering)))
+}
+
+fn lowering_of(name: &Ident) -> syn::Result<Lowering> {
+    match name.to_string().as_str() {
+        "table" => Ok(Lowering::Table),
+        "unrolled" => Ok(Lowering::Unrolled),
+        _ => Err(syn::Error::new(
+            name.span(),
+            format!("unknown lowering `{name}`: expected `table` or `unrolled`"),
+        )),
+    }
 }
 
 fn offending_tokens<'a>(input: &'a AlgebraInput, error: &Error) -> &'a dyn ToTokens {
@@ -159,8 +193,12 @@ fn offending_tokens<'a>(input: &'a AlgebraInput, error: &Error) -> &'a dyn ToTok
             Some(entry) => entry.layout.item(item).unwrap_or(&entry.name),
             None => module_name,
         },
-        Location::Operation(index) => match input.ops.as_ref().and_then(|names| names.get(index)) {
-            Some(name) => name,
+        Location::Operation(index) => match input.ops.as_ref().and_then(|entries| entries.get(index)) {
+            Some(entry) => &entry.name,
+            None => module_name,
+        },
+        Location::Lowering(index) => match lowered_entries(input).nth(index) {
+            Some((_, lowering)) => lowering,
             None => module_name,
         },
     }
@@ -449,6 +487,7 @@ mod tests {
                     },
                 ],
                 operations: Some(vec![Operation::Geometric, Operation::Reverse]),
+                lowering: vec![],
             }
         );
     }

@@ -149,7 +149,7 @@ macro_rules! conformance {
             use $module::*;
             let squares: Vec<i64> = $squares;
             let n = squares.len();
-            let evaluator = Evaluator::new(&squares);
+            let evaluator = Evaluator::new(&squares).unwrap();
             let names: Vec<String> = (1..=n).map(|i| format!("e{i}")).collect();
             let naming = BladeNaming::new(&names);
             let mut numbers = Numbers(0x853c_49e6_748f_ea9b ^ n as u64);

@@ -49,6 +49,7 @@ pub fn pga() -> AlgebraDeclaration {
             },
         ],
         operations: None,
+        lowering: vec![],
     }
 }
 
@@ -67,6 +68,7 @@ pub fn cga() -> AlgebraDeclaration {
             },
         ],
         operations: None,
+        lowering: vec![],
     }
 }
 
@@ -104,6 +106,7 @@ pub fn null_cga() -> AlgebraDeclaration {
             },
         ],
         operations: None,
+        lowering: vec![],
     }
 }
 
@@ -190,7 +193,7 @@ impl Form {
 
     pub fn evaluator(&self) -> Evaluator {
         match self {
-            Form::Squares(squares) => Evaluator::new(squares),
+            Form::Squares(squares) => Evaluator::new(squares).unwrap(),
             Form::Matrix(rows) => Evaluator::with_metric(Metric::from_matrix(rows).unwrap()),
         }
     }

@@ -1,0 +1,140 @@
+//! Which products are unrolled and which are tabled, and the checks on a declared lowering.
+mod common;
+
+use ga_codegen::functions::{self, Code};
+use ga_codegen::table::{MAX_UNROLLED_LOCALS, MAX_UNROLLED_TERMS};
+use ga_codegen::{
+    Algebra, AlgebraDeclaration, Error, Evaluator, Layout, Location, Lowering, Operation, TypeDeclaration,
+};
+
+fn cl51(lowering: Vec<(Operation, Lowering)>) -> AlgebraDeclaration {
+    let basis: Vec<(String, i64)> = (1..=6).map(|i| (format!("e{i}"), if i < 6 { 1 } else { -1 })).collect();
+    let basis: Vec<(&str, i64)> = basis.iter().map(|(n, s)| (n.as_str(), *s)).collect();
+    AlgebraDeclaration {
+        scalar: ga_codegen::ScalarType::F64,
+        basis: common::basis(&basis),
+        metric: None,
+        types: vec![TypeDeclaration {
+            name: "Multivector".into(),
+            layout: Layout::All,
+        }],
+        operations: Some(vec![Operation::Geometric, Operation::Sandwich, Operation::Reverse]),
+        lowering,
+    }
+}
+
+#[test]
+fn big_products_are_tabled_and_small_ones_unrolled() {
+    let algebra = Algebra::new(&cl51(vec![])).unwrap();
+    // 64 × 64 = 4096 monomials: unrolled.
+    let geometric = functions::binary(&algebra, Operation::Geometric, 0, 0).unwrap();
+    const { assert!(4096 <= MAX_UNROLLED_TERMS) };
+    assert!(matches!(geometric.code, Code::Unrolled(_)));
+    assert_eq!((geometric.cost.multiplies, geometric.cost.adds), (4096, 4032));
+    // The sandwich: far beyond the limit; two stages of 64 × 64 products.
+    let sandwich = functions::binary(&algebra, Operation::Sandwich, 0, 0).unwrap();
+    let Code::Table(table) = &sandwich.code else {
+        panic!("the full Cl(5,1) sandwich is tabled")
+    };
+    assert_eq!(table.stages.len(), 2);
+    assert_eq!(table.entries(), 2 * 4096);
+    assert_eq!((sandwich.cost.multiplies, sandwich.cost.adds), (4 * 4096, 2 * 4096));
+    // Declared unrolled, it is (with thousands of hoisted locals: what used to overflow rustc in debug).
+    let unrolled = Algebra::new(&cl51(vec![(Operation::Sandwich, Lowering::Unrolled)])).unwrap();
+    let sandwich = functions::binary(&unrolled, Operation::Sandwich, 0, 0).unwrap();
+    let Code::Unrolled(program) = &sandwich.code else {
+        panic!("declared unrolled")
+    };
+    assert!(program.locals.len() > MAX_UNROLLED_LOCALS);
+}
+
+#[test]
+fn declared_lowerings_are_checked() {
+    let error = |lowering| Algebra::new(&cl51(lowering)).unwrap_err();
+    let unary = error(vec![(Operation::Reverse, Lowering::Table)]);
+    assert!(matches!(unary, Error::LoweringOfUnary { index: 0, .. }), "{unary}");
+    let missing = error(vec![
+        (Operation::Geometric, Lowering::Table),
+        (Operation::Outer, Lowering::Table),
+    ]);
+    assert!(
+        matches!(missing, Error::LoweringNotEmitted { index: 1, .. }),
+        "{missing}"
+    );
+    assert_eq!(missing.location(), Location::Lowering(1));
+    let twice = error(vec![
+        (Operation::Sandwich, Lowering::Table),
+        (Operation::Sandwich, Lowering::Unrolled),
+    ]);
+    assert!(matches!(twice, Error::DuplicateLowering { index: 1, .. }), "{twice}");
+    assert_eq!(twice.to_string(), "the lowering of `sandwich` is chosen twice");
+}
+
+#[test]
+fn tabled_code_states_its_lowering_in_its_doc() {
+    let mut declaration = cl51(vec![]);
+    declaration.operations = Some(vec![Operation::Sandwich]);
+    let code = ga_codegen::pretty(&ga_codegen::generate(&declaration).unwrap()).unwrap();
+    assert!(code.contains("Table-driven: 8192 products in two stages"));
+    assert!(code.contains("pub const fn sandwich_multivector"));
+}
+
+/// The biggest sandwich a declaration can ask for (full multivectors in 10 dimensions: 2³⁰ products) is
+/// tabled without the exact expansion, and still equals the evaluator.
+#[test]
+fn sandwiches_too_big_to_expand_are_tabled_by_reach() {
+    let names: Vec<String> = (1..=10).map(|i| format!("e{i}")).collect();
+    let squares: Vec<i64> = (0..10).map(|i| if i < 7 { 1 } else { -1 }).collect();
+    let basis: Vec<(&str, i64)> = names.iter().map(String::as_str).zip(squares.iter().copied()).collect();
+    let declaration = |lowering| AlgebraDeclaration {
+        scalar: ga_codegen::ScalarType::F64,
+        basis: common::basis(&basis),
+        metric: None,
+        types: vec![TypeDeclaration {
+            name: "Multivector".into(),
+            layout: Layout::All,
+        }],
+        operations: Some(vec![Operation::Sandwich]),
+        lowering,
+    };
+    let algebra = Algebra::new(&declaration(vec![])).unwrap();
+    let sandwich = functions::binary(&algebra, Operation::Sandwich, 0, 0).unwrap();
+    let Code::Table(table) = &sandwich.code else {
+        panic!("tabled")
+    };
+    assert_eq!(table.entries(), 2 << 20);
+    // Sparse operands (a few blades each), exact in integers.
+    let mut a = vec![0.0; 1024];
+    let mut x = vec![0.0; 1024];
+    for (k, blade) in [0usize, 3, 96, 517, 1023].into_iter().enumerate() {
+        a[blade] = k as f64 - 2.0;
+        x[(blade * 7 + 5) % 1024] = 3.0 - k as f64;
+    }
+    // `Layout::All` stores blades in canonical order (grade, then lexicographic): map to masks.
+    let masks: Vec<usize> = algebra.types[0].fields.iter().map(|f| f.blade as usize).collect();
+    let to_fields = |dense: &[f64]| masks.iter().map(|&m| dense[m]).collect::<Vec<f64>>();
+    let got = sandwich.code.evaluate(&to_fields(&a), &to_fields(&x));
+    let expected = Evaluator::of(&algebra).binary(Operation::Sandwich, &a, &x).unwrap();
+    for (blade, value) in expected.iter().enumerate() {
+        assert_eq!(
+            got.get(&(blade as u32)).copied().unwrap_or(0.0),
+            *value,
+            "blade {blade:b}"
+        );
+    }
+    // Declared unrolled, it is refused at its lowering.
+    let error = Algebra::new(&declaration(vec![(Operation::Sandwich, Lowering::Unrolled)]))
+        .and_then(|algebra| functions::binary(&algebra, Operation::Sandwich, 0, 0))
+        .unwrap_err();
+    assert!(
+        matches!(
+            error,
+            Error::TooBigToUnroll {
+                index: 0,
+                products: 1_073_741_824,
+                ..
+            }
+        ),
+        "{error}"
+    );
+}
