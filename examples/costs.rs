@@ -10,8 +10,8 @@
 use std::time::Instant;
 
 use ga_codegen::{
-    functions, Algebra, AlgebraDeclaration, BasisVectorDeclaration, Cost, Layout, Operation, ScalarType,
-    TypeDeclaration,
+    functions, Algebra, AlgebraDeclaration, BasisVectorDeclaration, Cost, Expression, ExpressionDeclaration,
+    ExpressionKind, Layout, Operation, Parameter, ScalarType, TypeDeclaration,
 };
 
 fn basis(vectors: &[(&str, i64)]) -> Vec<BasisVectorDeclaration> {
@@ -49,6 +49,7 @@ fn pga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
         metric: None,
     }
 }
@@ -65,6 +66,7 @@ fn cga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
         metric: None,
     }
 }
@@ -92,6 +94,7 @@ fn null_basis_cga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
         metric: Some(
             metric
                 .iter()
@@ -128,6 +131,7 @@ fn cl_9_6() -> AlgebraDeclaration {
             Operation::FatDot,
         ]),
         lowering: vec![],
+        expressions: vec![],
         metric: None,
     }
 }
@@ -136,6 +140,29 @@ fn binary_cost(algebra: &Algebra, operation: Operation, lhs: &str, rhs: &str) ->
     functions::cost(algebra, operation, lhs, Some(rhs))
         .expect("the declared types have a result type")
         .unwrap_or_else(|| panic!("{lhs} {} {rhs} is emitted", operation.name()))
+}
+
+/// `declaration` with `fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;`, linear in `l`.
+fn moved_line(mut declaration: AlgebraDeclaration) -> AlgebraDeclaration {
+    let node = |kind| Box::new(Expression::new(kind));
+    let name = |n: &str| node(ExpressionKind::Parameter(n.into()));
+    let moved = ExpressionKind::Binary(
+        Operation::Geometric,
+        node(ExpressionKind::Binary(Operation::Geometric, name("m"), name("l"))),
+        node(ExpressionKind::Unary(Operation::Reverse, name("m"))),
+    );
+    let parameter = |name: &str, ty: &str| Parameter {
+        name: name.into(),
+        type_name: ty.into(),
+    };
+    declaration.expressions = vec![ExpressionDeclaration {
+        name: "moved_line".into(),
+        parameters: vec![parameter("m", "Motor"), parameter("l", "Line")],
+        result: Some("Line".into()),
+        body: Expression::new(moved),
+        linear: Some("l".into()),
+    }];
+    declaration
 }
 
 fn row(label: &str, cost: Cost) {
@@ -179,6 +206,25 @@ fn main() {
     row(
         "PGA (Motor × Point) × ~Motor, two products (Motor × Point + Multivector × Motor)",
         first + second,
+    );
+    // A motor on a line, m * l * ~m, fused into one function, and as the motor's 6×6 line map.
+    let pga_fused = Algebra::new(&moved_line(pga_declaration.clone())).expect("the expression is valid");
+    let fused = ga_codegen::fuse::fuse(&pga_fused, 0).expect("the expression fuses");
+    row("PGA `m * l * ~m` (Motor, Line), fused expression", fused.cost);
+    row(
+        "PGA Motor sandwich Line (the emitted `sandwich`)",
+        binary_cost(&pga, Operation::Sandwich, "Motor", "Line"),
+    );
+    let map = ga_codegen::fuse::linear_map(&pga_fused, 0, 1).expect("the expression is linear in the line");
+    row("PGA `moved_line_map(m)`: the 6×6 line map of a motor", map.cost);
+    let non_zero = map.entries.outputs.len();
+    row(
+        "PGA `MovedLineMap::apply` (each further line)",
+        Cost {
+            multiplies: non_zero,
+            adds: non_zero - map.shape.0,
+            divisions: 0,
+        },
     );
     row(
         "PGA Motor `transform` Point (unit motor)",

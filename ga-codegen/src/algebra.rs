@@ -4,6 +4,7 @@
 use crate::blade::{self, BladeMask, BladeNaming, SCALAR_NAME};
 use crate::declaration::{AlgebraDeclaration, Layout, Lowering, ScalarType};
 use crate::error::{Error, NameProblem};
+use crate::expression::ExpressionDeclaration;
 use crate::metric::Metric;
 use crate::operation::Operation;
 
@@ -79,6 +80,9 @@ pub struct Algebra {
     pub operations: Vec<Operation>,
     /// The lowerings chosen per product; the others are chosen by size.
     pub lowering: Vec<(Operation, Lowering)>,
+    /// The named expressions to fuse, their names, parameters and types checked (their bodies are
+    /// checked as they are fused, see [`crate::fuse`]).
+    pub expressions: Vec<ExpressionDeclaration>,
 }
 
 impl Algebra {
@@ -99,6 +103,7 @@ impl Algebra {
     ///     types: vec![TypeDeclaration { name: "Point".into(), layout: Layout::Blades(point) }],
     ///     operations: None,
     ///     lowering: vec![],
+    ///     expressions: vec![],
     /// };
     /// let algebra = Algebra::new(&declaration)?;
     /// let point = algebra.type_named("Point").unwrap();
@@ -271,6 +276,11 @@ impl Algebra {
             types,
             operations,
             lowering: declaration.lowering.clone(),
+            expressions: declaration.expressions.clone(),
+        })
+        .and_then(|algebra| {
+            check_expressions(&algebra)?;
+            Ok(algebra)
         })
     }
 
@@ -320,6 +330,81 @@ pub fn check_identifier(name: &str) -> Result<(), NameProblem> {
         Ok(ident) if ident == name => Ok(()),
         _ => Err(NameProblem::NotAnIdentifier),
     }
+}
+
+/// Every expression has a valid name of its own, parameters with distinct valid names, and parameter and
+/// result types that are declared types or the scalar type.
+fn check_expressions(algebra: &Algebra) -> Result<(), Error> {
+    let known = |name: &str| name == algebra.scalar.name() || algebra.type_named(name).is_some();
+    for (index, expression) in algebra.expressions.iter().enumerate() {
+        let name = &expression.name;
+        if let Err(problem) = check_identifier(name) {
+            return Err(Error::InvalidExpressionName {
+                index,
+                name: name.clone(),
+                problem,
+            });
+        }
+        if algebra.expressions[..index].iter().any(|earlier| earlier.name == *name) {
+            return Err(Error::DuplicateExpression {
+                index,
+                name: name.clone(),
+            });
+        }
+        let unknown_type = |parameter, type_name: &str| Error::UnknownExpressionType {
+            index,
+            parameter,
+            expression: name.clone(),
+            type_name: type_name.to_string(),
+            scalar: algebra.scalar.name().to_string(),
+        };
+        for (parameter, declared) in expression.parameters.iter().enumerate() {
+            if let Err(problem) = check_identifier(&declared.name) {
+                return Err(Error::InvalidParameterName {
+                    index,
+                    parameter,
+                    expression: name.clone(),
+                    name: declared.name.clone(),
+                    problem,
+                });
+            }
+            if expression.parameters[..parameter]
+                .iter()
+                .any(|p| p.name == declared.name)
+            {
+                return Err(Error::DuplicateParameter {
+                    index,
+                    parameter,
+                    expression: name.clone(),
+                    name: declared.name.clone(),
+                });
+            }
+            if !known(&declared.type_name) {
+                return Err(unknown_type(Some(parameter), &declared.type_name));
+            }
+        }
+        if let Some(result) = expression.result.as_ref().filter(|result| !known(result)) {
+            return Err(unknown_type(None, result));
+        }
+        if let Some(linear) = &expression.linear {
+            if !expression.parameters.iter().any(|p| p.name == *linear) {
+                return Err(Error::UnknownLinearParameter {
+                    index,
+                    expression: name.clone(),
+                    parameter: linear.clone(),
+                });
+            }
+            let map = expression.map_type_name();
+            if algebra.type_named(&map).is_some() {
+                return Err(Error::MapTypeClash {
+                    index,
+                    expression: name.clone(),
+                    name: map,
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Every chosen lowering is of an emitted product, once.

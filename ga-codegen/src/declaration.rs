@@ -4,6 +4,7 @@
 
 use num_rational::Rational64;
 
+use crate::expression::ExpressionDeclaration;
 use crate::operation::Operation;
 
 /// The floating-point type of every emitted coefficient.
@@ -91,6 +92,8 @@ pub struct AlgebraDeclaration {
     /// [`MAX_UNROLLED_TERMS`](crate::table::MAX_UNROLLED_TERMS) monomials and
     /// [`MAX_UNROLLED_LOCALS`](crate::table::MAX_UNROLLED_LOCALS) hoisted locals, and table-driven beyond.
     pub lowering: Vec<(Operation, Lowering)>,
+    /// Named expressions to fuse into one function each (see [`crate::fuse`]).
+    pub expressions: Vec<ExpressionDeclaration>,
 }
 
 /// How the functions of a product (a binary operation) are emitted.

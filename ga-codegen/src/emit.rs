@@ -17,7 +17,9 @@ use crate::blade::BladeMask;
 use crate::declaration::ScalarType;
 use crate::error::Error;
 use crate::expand::{Operand, Variable};
+use crate::expression::ExpressionDeclaration;
 use crate::functions::{self, Code, Finish, Function, Output};
+use crate::fuse::{self, Fused, LinearMap};
 use crate::operation::Operation;
 use crate::product::reverse_sign;
 use crate::program::{Definition, Program, Term, Value};
@@ -63,7 +65,30 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
             }
         }
     }
+    for index in 0..algebra.expressions.len() {
+        items.push(fused_function(algebra, index)?);
+    }
     Ok(quote! { #(#items)* })
+}
+
+/// The function of `algebra.expressions[index]`, fused (see [`crate::fuse`]), and its linear map if it asks
+/// for one, e.g. to inspect or snapshot them.
+///
+/// # Errors
+/// Those of [`fuse::fuse`].
+pub fn fused_function(algebra: &Algebra, index: usize) -> Result<TokenStream, Error> {
+    let emitter = Emitter {
+        algebra,
+        scalar: format_ident!("{}", algebra.scalar.name()),
+    };
+    let declared = &algebra.expressions[index];
+    let mut items = emitter.fused_function(declared, &fuse::fuse(algebra, index)?);
+    if let Some(linear) = &declared.linear {
+        let parameter = declared.parameters.iter().position(|p| p.name == *linear);
+        let parameter = parameter.expect("`Algebra::new` checks the linear parameter");
+        items.extend(emitter.linear_map(declared, &fuse::linear_map(algebra, index, parameter)?));
+    }
+    Ok(items)
 }
 
 /// The trait impl (and operator sugar) of one binary function, e.g. to inspect or snapshot it.
@@ -179,6 +204,9 @@ fn binary_trait(operation: Operation) -> TokenStream {
         }
     }
 }
+
+/// How emitted code reads an input variable (an operand's field).
+type Inputs<'a> = &'a dyn Fn(Variable) -> TokenStream;
 
 struct Emitter<'a> {
     algebra: &'a Algebra,
@@ -353,23 +381,9 @@ impl Emitter<'_> {
         }
     }
 
-    fn value(&self, function: &Function, program: &Program, value: Value) -> TokenStream {
+    fn value(&self, input: Inputs, program: &Program, value: Value) -> TokenStream {
         match value {
-            Value::Input(Variable {
-                operand: Operand::Lhs,
-                field,
-            }) => {
-                let name = field_ident(&self.algebra.types[function.lhs], field);
-                quote! { self.#name }
-            }
-            Value::Input(Variable {
-                operand: Operand::Rhs,
-                field,
-            }) => {
-                let rhs = function.rhs.expect("a right-hand variable implies a binary function");
-                let name = field_ident(&self.algebra.types[rhs], field);
-                quote! { rhs.#name }
-            }
+            Value::Input(variable) => input(variable),
             Value::Local(index) => {
                 let name = format_ident!("{}", program.locals[index].name);
                 quote! { #name }
@@ -377,9 +391,25 @@ impl Emitter<'_> {
         }
     }
 
+    /// How a product's function reads its operands' fields: `self.e12`, `rhs.e0`.
+    fn operand_fields(&self, function: &Function) -> impl Fn(Variable) -> TokenStream + '_ {
+        let (lhs, rhs) = (function.lhs, function.rhs);
+        move |variable: Variable| match variable.operand {
+            Operand::Lhs => {
+                let name = field_ident(&self.algebra.types[lhs], variable.field);
+                quote! { self.#name }
+            }
+            Operand::Rhs => {
+                let rhs = rhs.expect("a right-hand variable implies a binary function");
+                let name = field_ident(&self.algebra.types[rhs], variable.field);
+                quote! { rhs.#name }
+            }
+        }
+    }
+
     /// `c · x · y`, without the sign (the sum places it).
-    fn magnitude(&self, function: &Function, program: &Program, term: &Term) -> TokenStream {
-        let mut factors = term.factors.iter().map(|&v| self.value(function, program, v));
+    fn magnitude(&self, input: Inputs, program: &Program, term: &Term) -> TokenStream {
+        let mut factors = term.factors.iter().map(|&v| self.value(input, program, v));
         let coefficient = term.coefficient.abs();
         let mut tokens = if coefficient.is_one() {
             factors
@@ -395,19 +425,14 @@ impl Emitter<'_> {
     }
 
     /// A signed sum of terms, positive terms first so that no leading negation is needed.
-    fn sum(&self, function: &Function, program: &Program, terms: &[Term], negate: bool) -> TokenStream {
+    fn sum(&self, input: Inputs, program: &Program, terms: &[Term], negate: bool) -> TokenStream {
         if terms.is_empty() {
             let zero = self.literal(Rational64::zero());
             return quote! { #zero };
         }
         let mut ordered: Vec<(bool, TokenStream)> = terms
             .iter()
-            .map(|t| {
-                (
-                    t.coefficient.is_negative() != negate,
-                    self.magnitude(function, program, t),
-                )
-            })
+            .map(|t| (t.coefficient.is_negative() != negate, self.magnitude(input, program, t)))
             .collect();
         ordered.sort_by_key(|(negative, _)| *negative);
         let mut tokens = TokenStream::new();
@@ -425,33 +450,44 @@ impl Emitter<'_> {
     /// The statements computing the outputs, and the result expression.
     fn body(&self, function: &Function) -> TokenStream {
         match &function.code {
-            Code::Unrolled(program) => self.unrolled_body(function, program),
+            Code::Unrolled(program) => self.unrolled_body(
+                &self.operand_fields(function),
+                program,
+                function.output,
+                function.finish,
+            ),
             Code::Table(table) => self.table_body(function, table),
         }
     }
 
-    /// The locals, then the result built from the output sums.
-    fn unrolled_body(&self, function: &Function, program: &Program) -> TokenStream {
+    /// A program's hoisted locals, as `let` statements.
+    fn locals(&self, input: Inputs, program: &Program) -> TokenStream {
         let locals = program.locals.iter().map(|local| {
             let name = format_ident!("{}", local.name);
             let expression = match &local.definition {
-                Definition::Sum(terms) => self.sum(function, program, terms, false),
+                Definition::Sum(terms) => self.sum(input, program, terms, false),
                 Definition::Double(value) => {
-                    let value = self.value(function, program, *value);
+                    let value = self.value(input, program, *value);
                     quote! { #value + #value }
                 }
             };
             quote! { let #name = #expression; }
         });
+        quote! { #(#locals)* }
+    }
+
+    /// The locals, then the result built from the output sums.
+    fn unrolled_body(&self, input: Inputs, program: &Program, output: Output, finish: Finish) -> TokenStream {
+        let locals = self.locals(input, program);
         let output_terms = |blade: BladeMask| program.outputs.get(&blade).map(Vec::as_slice).unwrap_or(&[]);
-        let result = match (function.output, function.finish) {
-            (Output::Scalar, _) => self.sum(function, program, output_terms(0), false),
+        let result = match (output, finish) {
+            (Output::Scalar, _) => self.sum(input, program, output_terms(0), false),
             (Output::Type(index), Finish::Coefficients) => {
                 let ty = &self.algebra.types[index];
                 let name = format_ident!("{}", ty.name);
                 let fields = ty.fields.iter().map(|field| {
                     let ident = format_ident!("{}", field.name);
-                    let value = self.sum(function, program, output_terms(field.blade), field.sign < 0);
+                    let value = self.sum(input, program, output_terms(field.blade), field.sign < 0);
                     quote! { #ident: #value }
                 });
                 quote! { #name { #(#fields),* } }
@@ -459,7 +495,7 @@ impl Emitter<'_> {
             (Output::Type(index), Finish::DivideReverseByNorm) => {
                 let ty = &self.algebra.types[index];
                 let name = format_ident!("{}", ty.name);
-                let norm = self.sum(function, program, output_terms(0), false);
+                let norm = self.sum(input, program, output_terms(0), false);
                 let one = self.literal(Rational64::one());
                 let fields = ty.fields.iter().map(|field| {
                     let ident = format_ident!("{}", field.name);
@@ -475,7 +511,7 @@ impl Emitter<'_> {
                 }}
             }
         };
-        quote! { #(#locals)* #result }
+        quote! { #locals #result }
     }
 
     /// Per stage a constant table `(i, j, k, c)` and a loop `stage[k] += c · left[i] · right[j]` (a `while`
@@ -596,28 +632,179 @@ impl Emitter<'_> {
         }
     }
 
-    fn uses_rhs(function: &Function) -> bool {
-        let reads_rhs = |value: &Value| {
-            matches!(
-                value,
-                Value::Input(Variable {
-                    operand: Operand::Rhs,
-                    ..
-                })
-            )
-        };
-        match &function.code {
-            Code::Unrolled(program) => {
-                program
-                    .outputs
-                    .values()
-                    .flatten()
-                    .any(|term| term.factors.iter().any(reads_rhs))
-                    || program.locals.iter().any(|local| match &local.definition {
-                        Definition::Sum(terms) => terms.iter().any(|term| term.factors.iter().any(reads_rhs)),
-                        Definition::Double(value) => reads_rhs(value),
-                    })
+    /// How a fused expression's code reads its inputs: `m.e12`, or `t` for a scalar parameter.
+    fn parameter_fields<'f>(
+        &'f self,
+        declared: &'f ExpressionDeclaration,
+        fused: &'f Fused,
+    ) -> impl Fn(Variable) -> TokenStream + 'f {
+        move |variable: Variable| {
+            let index = fused.parameter_of(variable.field);
+            let parameter = format_ident!("{}", declared.parameters[index].name);
+            match fused.parameters[index] {
+                Output::Type(ty) => {
+                    let field = field_ident(&self.algebra.types[ty], variable.field - fused.offsets[index]);
+                    quote! { #parameter.#field }
+                }
+                Output::Scalar => quote! { #parameter },
             }
+        }
+    }
+
+    /// `name: Type` for the parameters of a fused expression (all, or all but one) that `program` reads;
+    /// one it does not read (every term of it cancelled) is named `_name`, which draws no warning.
+    fn parameter_list(
+        &self,
+        declared: &ExpressionDeclaration,
+        fused: &Fused,
+        program: &Program,
+        skip: Option<usize>,
+    ) -> Vec<TokenStream> {
+        (0..declared.parameters.len())
+            .filter(|&index| Some(index) != skip)
+            .map(|index| {
+                let ty = self.output_type(fused.parameters[index]);
+                let name = &declared.parameters[index].name;
+                let ident = match program.reads(|v| fused.parameter_of(v.field) == index) {
+                    true => format_ident!("{name}"),
+                    false => format_ident!("_{name}"),
+                };
+                quote! { #ident: #ty }
+            })
+            .collect()
+    }
+
+    /// `pub const fn name(parameters) -> Result`, computing a fused expression.
+    fn fused_function(&self, declared: &ExpressionDeclaration, fused: &Fused) -> TokenStream {
+        let name = format_ident!("{}", declared.name);
+        let parameters = self.parameter_list(declared, fused, &fused.program, None);
+        let input = self.parameter_fields(declared, fused);
+        let body = self.unrolled_body(&input, &fused.program, fused.output, Finish::Coefficients);
+        let output = self.output_type(fused.output);
+        let doc = doc_lines(&format!(
+            "`{}`, fused: expanded exactly as one polynomial per output blade, common subexpressions \
+             shared.\n\nCost: {}.",
+            declared.body, fused.cost
+        ));
+        quote! {
+            #doc
+            #[inline]
+            pub const fn #name(#(#parameters),*) -> #output {
+                #body
+            }
+        }
+    }
+
+    /// The matrix type of a linear map with its `apply`, and the `const fn` building it from the other
+    /// parameters.
+    fn linear_map(&self, declared: &ExpressionDeclaration, map: &LinearMap) -> TokenStream {
+        let fused = &map.fused;
+        let scalar = &self.scalar;
+        let (rows, columns) = map.shape;
+        let map_type = format_ident!("{}", declared.map_type_name());
+        let builder = format_ident!("{}_map", declared.name);
+        let linear = &declared.parameters[map.linear];
+        let linear_ident = format_ident!("{}", linear.name);
+        let linear_type = self.output_type(fused.parameters[map.linear]);
+        let output = self.output_type(fused.output);
+        let column_value = |column: usize| match fused.parameters[map.linear] {
+            Output::Type(ty) => {
+                let field = field_ident(&self.algebra.types[ty], column);
+                quote! { #linear_ident.#field }
+            }
+            Output::Scalar => quote! { #linear_ident },
+        };
+        let zero = self.literal(Rational64::zero());
+        // Apply: per result field, the products with the entries that do not vanish identically.
+        let row_sum = |row: usize| {
+            let products: Vec<TokenStream> = (0..columns)
+                .filter(|column| {
+                    map.entries
+                        .outputs
+                        .contains_key(&((row * columns + column) as BladeMask))
+                })
+                .map(|column| {
+                    let (r, c) = (Literal::usize_unsuffixed(row), Literal::usize_unsuffixed(column));
+                    let x = column_value(column);
+                    quote! { self.matrix[#r][#c] * #x }
+                })
+                .collect();
+            match products.is_empty() {
+                true => quote! { #zero },
+                false => quote! { #(#products)+* },
+            }
+        };
+        let result = match fused.output {
+            Output::Scalar => row_sum(0),
+            Output::Type(ty) => {
+                let ty = &self.algebra.types[ty];
+                let name = format_ident!("{}", ty.name);
+                let fields = ty.fields.iter().enumerate().map(|(row, field)| {
+                    let ident = format_ident!("{}", field.name);
+                    let value = row_sum(row);
+                    quote! { #ident: #value }
+                });
+                quote! { #name { #(#fields),* } }
+            }
+        };
+        let non_zero = map.entries.outputs.len();
+        let apply_cost = crate::program::Cost {
+            multiplies: non_zero,
+            adds: non_zero.saturating_sub(rows),
+            divisions: 0,
+        };
+        let input = self.parameter_fields(declared, fused);
+        let locals = self.locals(&input, &map.entries);
+        let matrix_rows = (0..rows).map(|row| {
+            let entries = (0..columns).map(|column| {
+                let terms = map.entries.outputs.get(&((row * columns + column) as BladeMask));
+                self.sum(&input, &map.entries, terms.map(Vec::as_slice).unwrap_or(&[]), false)
+            });
+            quote! { [#(#entries),*] }
+        });
+        let parameters = self.parameter_list(declared, fused, &map.entries, Some(map.linear));
+        let (rows_literal, columns_literal) = (Literal::usize_unsuffixed(rows), Literal::usize_unsuffixed(columns));
+        let type_doc = doc_lines(&format!(
+            "`{}` as a matrix in `{}`: `{}_map(…)` builds it once from the other parameters, `apply` maps \
+             each `{}` (a {rows}×{columns} matrix; {non_zero} entries do not vanish identically).",
+            declared.body, linear.name, declared.name, linear.type_name
+        ));
+        let apply_doc = doc_lines(&format!(
+            "`{}` for the parameters the map was built from.\n\nCost: {apply_cost}.",
+            declared.name
+        ));
+        let builder_doc = doc_lines(&format!(
+            "The matrix of `{}` in `{}` (see [`{map_type}`]).\n\nCost: {}.",
+            declared.body, linear.name, map.cost
+        ));
+        quote! {
+            #type_doc
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            pub struct #map_type {
+                /// Row `i`, column `j`: the coefficient of the argument's field `j` in the result's field `i`.
+                pub matrix: [[#scalar; #columns_literal]; #rows_literal],
+            }
+
+            impl #map_type {
+                #apply_doc
+                #[inline]
+                pub const fn apply(&self, #linear_ident: #linear_type) -> #output {
+                    #result
+                }
+            }
+
+            #builder_doc
+            #[inline]
+            pub const fn #builder(#(#parameters),*) -> #map_type {
+                #locals
+                #map_type { matrix: [#(#matrix_rows),*] }
+            }
+        }
+    }
+
+    fn uses_rhs(function: &Function) -> bool {
+        match &function.code {
+            Code::Unrolled(program) => program.reads(|variable| variable.operand == Operand::Rhs),
             Code::Table(table) => table
                 .stages
                 .iter()

@@ -32,6 +32,24 @@ pub enum Location {
         /// Column index (the second basis vector).
         column: usize,
     },
+    /// `expressions[index]` as a whole (its name).
+    Expression(usize),
+    /// Parameter `parameter` of `expressions[expression]`.
+    ExpressionParameter {
+        /// Index into `expressions`.
+        expression: usize,
+        /// Index into its parameters.
+        parameter: usize,
+    },
+    /// The declared result type of `expressions[index]`.
+    ExpressionResult(usize),
+    /// The node with id `node` in the body of `expressions[expression]` (ids are the front end's).
+    ExpressionNode {
+        /// Index into `expressions`.
+        expression: usize,
+        /// The node's [`id`](crate::expression::Expression::id).
+        node: usize,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -371,6 +389,221 @@ pub enum Error {
         /// The blades the result needs.
         blades: Vec<String>,
     },
+    #[error("expression name `{name}` {problem}")]
+    /// An expression's name cannot be a function name in the emitted code.
+    InvalidExpressionName {
+        /// Index into `expressions`.
+        index: usize,
+        /// The rejected name.
+        name: String,
+        /// Why it is rejected.
+        problem: NameProblem,
+    },
+    #[error("expression `{name}` is declared twice")]
+    /// Two expressions share a name.
+    DuplicateExpression {
+        /// Index of the second declaration in `expressions`.
+        index: usize,
+        /// The repeated name.
+        name: String,
+    },
+    #[error("parameter name `{name}` of expression `{expression}` {problem}")]
+    /// A parameter's name cannot be an identifier in the emitted code.
+    InvalidParameterName {
+        /// Index into `expressions`.
+        index: usize,
+        /// Index into its parameters.
+        parameter: usize,
+        /// The expression's name.
+        expression: String,
+        /// The rejected name.
+        name: String,
+        /// Why it is rejected.
+        problem: NameProblem,
+    },
+    #[error("parameter `{name}` of expression `{expression}` is declared twice")]
+    /// Two parameters of one expression share a name.
+    DuplicateParameter {
+        /// Index into `expressions`.
+        index: usize,
+        /// Index of the second occurrence in its parameters.
+        parameter: usize,
+        /// The expression's name.
+        expression: String,
+        /// The repeated name.
+        name: String,
+    },
+    #[error("unknown type `{type_name}` in expression `{expression}`: expected a declared type or `{scalar}`")]
+    /// A parameter or result type is neither a declared type nor the scalar type.
+    UnknownExpressionType {
+        /// Index into `expressions`.
+        index: usize,
+        /// The parameter with that type, or `None` for the result type.
+        parameter: Option<usize>,
+        /// The expression's name.
+        expression: String,
+        /// The unknown type name.
+        type_name: String,
+        /// The scalar type's name.
+        scalar: String,
+    },
+    #[error("`{name}` in expression `{expression}` is neither a parameter nor a declared expression")]
+    /// A name in an expression's body is not one of its parameters (or, called, not an expression).
+    UnknownName {
+        /// Index into `expressions`.
+        index: usize,
+        /// The node naming it.
+        node: usize,
+        /// The expression's name.
+        expression: String,
+        /// The unknown name.
+        name: String,
+    },
+    #[error("expression `{expression}` calls `{name}`, which calls `{expression}` back: expressions cannot recurse")]
+    /// A call that (directly or through other calls) reaches the expression it is in.
+    RecursiveCall {
+        /// Index into `expressions` of the expression holding the call.
+        index: usize,
+        /// The call's node.
+        node: usize,
+        /// The expression holding the call.
+        expression: String,
+        /// The called expression.
+        name: String,
+    },
+    #[error("`{name}` takes {expected} arguments, but {found} are given")]
+    /// A call with the wrong number of arguments.
+    ArgumentCount {
+        /// Index into `expressions` of the expression holding the call.
+        index: usize,
+        /// The call's node.
+        node: usize,
+        /// The called expression.
+        name: String,
+        /// Its parameter count.
+        expected: usize,
+        /// The arguments given.
+        found: usize,
+    },
+    #[error(
+        "argument `{parameter}` of `{name}` is a `{type_name}`, which has no blade {}: the argument does not fit",
+        blades.join(", ")
+    )]
+    /// A call's argument has blades its parameter's type cannot hold.
+    ArgumentDoesNotFit {
+        /// Index into `expressions` of the expression holding the call.
+        index: usize,
+        /// The argument's node.
+        node: usize,
+        /// The called expression.
+        name: String,
+        /// The parameter.
+        parameter: String,
+        /// The parameter's type.
+        type_name: String,
+        /// The argument's blades outside that type.
+        blades: Vec<String>,
+    },
+    #[error("`{operation}` cannot be fused: {reason}")]
+    /// An operation that is not a polynomial of its operands' fields (`inverse` divides) or whose
+    /// emitted meaning rests on an assumption the compiler cannot check (`transform`: a unit versor).
+    NotFusable {
+        /// Index into `expressions`.
+        index: usize,
+        /// The operation's node.
+        node: usize,
+        /// The operation's name.
+        operation: String,
+        /// Why, and what to write instead.
+        reason: &'static str,
+    },
+    #[error("grade {grade} is out of range: this algebra has grades 0 to {max}")]
+    /// A grade selection beyond the algebra's dimension.
+    ExpressionGradeOutOfRange {
+        /// Index into `expressions`.
+        index: usize,
+        /// The selection's node.
+        node: usize,
+        /// The selected grade.
+        grade: u32,
+        /// The dimension.
+        max: usize,
+    },
+    #[error(
+        "expression `{expression}` is declared to return `{result}`, which has no blade {}: declare a type that \
+         holds the result",
+        blades.join(", ")
+    )]
+    /// The result has blades the declared result type cannot hold.
+    ResultDoesNotFit {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The declared result type.
+        result: String,
+        /// The result's blades outside that type.
+        blades: Vec<String>,
+    },
+    #[error("no declared type holds the result of expression `{expression}` (blades {}): declare one", blades.join(", "))]
+    /// No declared type holds the result of an expression without a declared result type.
+    NoExpressionResultType {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The result's blades.
+        blades: Vec<String>,
+    },
+    #[error(
+        "expression `{expression}` expands to {terms} or more terms, above the limit of {max}: split it into \
+         several expressions"
+    )]
+    /// An expansion bigger than [`MAX_UNROLLED_TERMS`](crate::table::MAX_UNROLLED_TERMS) (a fused
+    /// expression is always unrolled).
+    ExpressionTooBig {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The terms counted when the limit was passed.
+        terms: usize,
+        /// The limit.
+        max: usize,
+    },
+    #[error(
+        "`{expression}` is not linear in `{parameter}`: a linear map needs the parameter in every term of the \
+         result exactly once"
+    )]
+    /// A linear map asked of an expression in a parameter it is not linear in.
+    NotLinear {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The parameter.
+        parameter: String,
+    },
+    #[error("`{parameter}` is not a parameter of `{expression}`: a linear map is taken in one of its parameters")]
+    /// A linear map asked in a name that is not one of the expression's parameters.
+    UnknownLinearParameter {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The name asked for.
+        parameter: String,
+    },
+    #[error("the linear map of `{expression}` would be the type `{name}`, which is declared: rename one of them")]
+    /// The type emitted for an expression's linear map has the name of a declared type.
+    MapTypeClash {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+        /// The map type's name.
+        name: String,
+    },
 }
 
 impl Error {
@@ -402,6 +635,35 @@ impl Error {
             Error::MetricSize { .. } | Error::MetricTooLarge { .. } => Location::Metric,
             Error::MetricRowLength { row, .. } => Location::MetricRow(row),
             Error::MetricNotSymmetric { row, column, .. } => Location::MetricEntry { row, column },
+            Error::InvalidExpressionName { index, .. }
+            | Error::DuplicateExpression { index, .. }
+            | Error::NoExpressionResultType { index, .. }
+            | Error::ExpressionTooBig { index, .. }
+            | Error::NotLinear { index, .. }
+            | Error::UnknownLinearParameter { index, .. }
+            | Error::MapTypeClash { index, .. } => Location::Expression(index),
+            Error::InvalidParameterName { index, parameter, .. }
+            | Error::DuplicateParameter { index, parameter, .. }
+            | Error::UnknownExpressionType {
+                index,
+                parameter: Some(parameter),
+                ..
+            } => Location::ExpressionParameter {
+                expression: index,
+                parameter,
+            },
+            Error::UnknownExpressionType { index, .. } | Error::ResultDoesNotFit { index, .. } => {
+                Location::ExpressionResult(index)
+            }
+            Error::UnknownName { index, node, .. }
+            | Error::RecursiveCall { index, node, .. }
+            | Error::ArgumentCount { index, node, .. }
+            | Error::ArgumentDoesNotFit { index, node, .. }
+            | Error::NotFusable { index, node, .. }
+            | Error::ExpressionGradeOutOfRange { index, node, .. } => Location::ExpressionNode {
+                expression: index,
+                node,
+            },
         }
     }
 }

@@ -81,6 +81,7 @@ impl Evaluator {
     /// #     types: vec![TypeDeclaration { name: "Motor".into(), layout: Layout::Grades(vec![0, 2, 4]) }],
     /// #     operations: None,
     /// #     lowering: vec![],
+    /// #     expressions: vec![],
     /// # };
     /// // `declaration`: 3D PGA, e0² = 0 and e1² = e2² = e3² = 1.
     /// let algebra = Algebra::new(&declaration)?;

@@ -205,6 +205,7 @@ fn rhs(field: usize) -> Variable {
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// # let a = |field| Variable { operand: Operand::Lhs, field };
 /// # let x = |field| Variable { operand: Operand::Rhs, field };
@@ -251,6 +252,7 @@ pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right:
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// # let a = |field| Variable { operand: Operand::Lhs, field };
 /// # let x = |field| Variable { operand: Operand::Rhs, field };
@@ -417,6 +419,7 @@ pub fn commutator_form(
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// # let a = |field| Variable { operand: Operand::Lhs, field };
 /// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
@@ -454,6 +457,7 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expans
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
 /// let (vector, rotor) = (algebra.type_named("Vector").unwrap(), algebra.type_named("Rotor").unwrap());
@@ -485,6 +489,7 @@ pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// # let a = |field| Variable { operand: Operand::Lhs, field };
 /// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).
@@ -528,6 +533,7 @@ pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
 /// #     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 /// #     operations: None,
 /// #     lowering: vec![],
+/// #     expressions: vec![],
 /// # })?;
 /// # let x = |field| Variable { operand: Operand::Rhs, field };
 /// // The plane (e1² = e2² = 1) with Vector = (e1, e2) and Rotor = (scalar, e12).

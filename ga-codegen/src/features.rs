@@ -402,6 +402,7 @@ mod tests {
                 .collect(),
             operations: Some(vec![]),
             lowering: vec![],
+            expressions: vec![],
         })
         .unwrap()
     }
@@ -524,6 +525,7 @@ mod tests {
             }],
             operations: Some(vec![Operation::Reverse]),
             lowering: vec![],
+            expressions: vec![],
         };
         let plain = crate::generate(&declaration).unwrap().to_string();
         assert_eq!(

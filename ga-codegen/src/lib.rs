@@ -19,6 +19,7 @@
 //!     types: vec![ty("Vector", vec![1]), ty("Rotor", vec![0, 2])],
 //!     operations: None,
 //!     lowering: vec![],
+//!     expressions: vec![],
 //! };
 //! let code = ga_codegen::pretty(&ga_codegen::generate(&declaration)?)?;
 //! assert!(code.contains("pub struct Rotor"));
@@ -43,6 +44,11 @@
 //! 5. [`emit`]: Rust tokens via `quote`; [`features`] emits the opt-in impls of ecosystem traits
 //!    (`Display`, `approx`, `mint`).
 //!
+//! Declared formulas ([`expression`], e.g. `m * l * ~m`) take the same path as a whole: [`fuse`] expands
+//! each exactly into one polynomial per output blade of any degree, lowers them together to one program
+//! (and, for a formula linear in a parameter, to the matrix of that linear map), which [`emit`] prints as
+//! a `const fn`.
+//!
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
 //!
@@ -56,8 +62,10 @@ pub mod emit;
 pub mod error;
 pub mod evaluator;
 pub mod expand;
+pub mod expression;
 pub mod features;
 pub mod functions;
+pub mod fuse;
 pub mod metric;
 pub mod operation;
 pub mod product;
@@ -68,6 +76,7 @@ pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, Lowering, ScalarType, TypeDeclaration};
 pub use error::{Error, EvaluatorError, Location, NameProblem};
 pub use evaluator::Evaluator;
+pub use expression::{Expression, ExpressionDeclaration, ExpressionKind, Parameter};
 pub use features::Feature;
 /// Exact rational numbers: metric entries and every coefficient of the expansion.
 pub use num_rational::Rational64;

@@ -126,6 +126,17 @@ impl Program {
 }
 
 impl Program {
+    /// Whether the program reads an input variable for which `predicate` holds.
+    pub fn reads(&self, predicate: impl Fn(Variable) -> bool) -> bool {
+        let read = |value: &Value| matches!(value, Value::Input(variable) if predicate(*variable));
+        let reads_any = |terms: &[Term]| terms.iter().any(|term| term.factors.iter().any(read));
+        self.outputs.values().any(|terms| reads_any(terms))
+            || self.locals.iter().any(|local| match &local.definition {
+                Definition::Sum(terms) => reads_any(terms),
+                Definition::Double(value) => read(value),
+            })
+    }
+
     /// Runs the program on numeric operands (field values in storage order): the emitted code's
     /// semantics, for testing it against the [`crate::Evaluator`] without compiling it.
     pub fn evaluate(&self, lhs: &[f64], rhs: &[f64]) -> BTreeMap<BladeMask, f64> {
@@ -174,8 +185,8 @@ pub struct Names<'a> {
 
 /// Builds programs. Local names are unique even where field names contain `_` (a pair `e1`·`e2_e3`
 /// and a pair `e1_e2`·`e3` would both be called `e1_e2_e3`).
-struct Builder<'a> {
-    program: Program,
+pub(crate) struct Builder<'a> {
+    pub(crate) program: Program,
     names: &'a Names<'a>,
     doubles: BTreeMap<Value, usize>,
     /// The values a ±2 term prefers to double (see [`Builder::plan_doubling`]).
@@ -184,7 +195,7 @@ struct Builder<'a> {
 }
 
 impl<'a> Builder<'a> {
-    fn new(names: &'a Names<'a>) -> Self {
+    pub(crate) fn new(names: &'a Names<'a>) -> Self {
         Builder {
             program: Program::default(),
             names,
@@ -215,7 +226,12 @@ impl<'a> Builder<'a> {
         }
     }
 
-    fn local(&mut self, name: String, definition: Definition) -> Value {
+    /// Keeps `name` free: no local is given it (a parameter of the emitted function has it).
+    pub(crate) fn reserve(&mut self, name: &str) {
+        self.taken.insert(name.to_string());
+    }
+
+    pub(crate) fn local(&mut self, name: String, definition: Definition) -> Value {
         let mut unique = name.clone();
         let mut suffix = 1;
         while !self.taken.insert(unique.clone()) {
@@ -230,7 +246,7 @@ impl<'a> Builder<'a> {
     }
 
     /// The name of a value, to name the locals built from it.
-    fn value_name(&self, value: Value) -> String {
+    pub(crate) fn value_name(&self, value: Value) -> String {
         match value {
             Value::Input(variable) => (self.names.field)(variable),
             Value::Local(index) => self.program.locals[index].name.clone(),
@@ -271,7 +287,7 @@ impl<'a> Builder<'a> {
 
     /// Sums of products, one per output blade. A product of several factors that more than one output
     /// uses is hoisted into a local (with the common integer factor of its uses folded in).
-    fn products(&mut self, outputs: &BTreeMap<BladeMask, Vec<(Vec<Value>, Rational64)>>) {
+    pub(crate) fn products(&mut self, outputs: &BTreeMap<BladeMask, Vec<(Vec<Value>, Rational64)>>) {
         let mut uses: BTreeMap<&[Value], Vec<Rational64>> = BTreeMap::new();
         for terms in outputs.values() {
             for (factors, c) in terms {

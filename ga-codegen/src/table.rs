@@ -1,7 +1,7 @@
 //! Table-driven lowering: the alternative to [`crate::program`] for a product too big to unroll.
 //!
 //! An unrolled function's source grows with its term count, and so do rustc's time and stack: the sandwich of
-//! a full Cl(5,1) multivector (133 thousand monomials, 4 thousand hoisted locals) took rustc two minutes in
+//! a full Cl(5,1) multivector (68 608 monomials, 4223 hoisted locals) took rustc two minutes in
 //! release and overflowed its stack in debug (every `let` opens a lexical scope nested in the previous one, and
 //! LLVM walks the debug-info scope chain recursively). Here a bilinear product is instead a constant table of
 //! entries `(i, j, k, c)` and one loop `out[k] += c · left[i] · right[j]`; a sandwich `a x ~a` is two such
@@ -25,11 +25,11 @@ use crate::program::Cost;
 
 /// Unroll at most this many monomials; a bigger expansion is lowered to tables (unless the declaration
 /// chooses per operation). Unrolled code of this size builds in about a second in debug; the full Cl(5,1)
-/// geometric product (4096 monomials) stays unrolled, its sandwich (about 133 thousand) does not.
+/// geometric product (4096 monomials) stays unrolled, its sandwich (68 608) does not.
 pub const MAX_UNROLLED_TERMS: usize = 8192;
 
 /// Unroll with at most this many hoisted locals (each a `let`, each a lexical scope nested in the previous
-/// one): rustc's debug builds overflowed their stack at about 3500 in a chain of `let`s.
+/// one): rustc 1.95 with debug info overflowed its stack between 3000 and 4000 chained `let`s.
 pub const MAX_UNROLLED_LOCALS: usize = 1024;
 
 /// Expand a sandwich exactly (to find which output blades cancel identically) only up to this many products
@@ -109,6 +109,7 @@ impl Table {
     ///     types: vec![TypeDeclaration { name: "Vector".into(), layout: Layout::Grades(vec![1]) }],
     ///     operations: None,
     ///     lowering: vec![],
+    ///     expressions: vec![],
     /// })?;
     /// let vector = &plane.types[0];
     /// let table = Table::binary(&plane, Operation::Geometric, vector, vector, &[0b00, 0b11]);
@@ -158,6 +159,7 @@ impl Table {
     ///     ],
     ///     operations: None,
     ///     lowering: vec![],
+    ///     expressions: vec![],
     /// })?;
     /// let table = Table::sandwich(&plane, &plane.types[0], &plane.types[1], None);
     /// assert_eq!(table.stages[1].left, Source::Stage(0)); // (a x) ~a

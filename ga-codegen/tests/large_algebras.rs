@@ -41,6 +41,7 @@ fn compile(positive: usize, negative: usize) -> Compiled {
         ],
         operations: Some(OPERATIONS.to_vec()),
         lowering: vec![],
+        expressions: vec![],
     };
     let algebra = Algebra::new(&declaration).unwrap();
     let mut compiled = Vec::new();

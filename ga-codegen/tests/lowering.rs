@@ -20,6 +20,7 @@ fn cl51(lowering: Vec<(Operation, Lowering)>) -> AlgebraDeclaration {
         }],
         operations: Some(vec![Operation::Geometric, Operation::Sandwich, Operation::Reverse]),
         lowering,
+        expressions: vec![],
     }
 }
 
@@ -46,6 +47,9 @@ fn big_products_are_tabled_and_small_ones_unrolled() {
         panic!("declared unrolled")
     };
     assert!(program.locals.len() > MAX_UNROLLED_LOCALS);
+    // The figures the docs quote (ga_codegen::table, the algebra! docs).
+    let expansion = ga_codegen::expand::sandwich(&algebra, &algebra.types[0], &algebra.types[0]);
+    assert_eq!((expansion.term_count(), program.locals.len()), (68_608, 4223));
 }
 
 #[test]
@@ -96,6 +100,7 @@ fn sandwiches_too_big_to_expand_are_tabled_by_reach() {
         }],
         operations: Some(vec![Operation::Sandwich]),
         lowering,
+        expressions: vec![],
     };
     let algebra = Algebra::new(&declaration(vec![])).unwrap();
     let sandwich = functions::binary(&algebra, Operation::Sandwich, 0, 0).unwrap();

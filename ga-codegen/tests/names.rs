@@ -19,6 +19,7 @@ fn declaration(basis: &[&str], types: Vec<TypeDeclaration>) -> AlgebraDeclaratio
         types,
         operations: None,
         lowering: vec![],
+        expressions: vec![],
     }
 }
 

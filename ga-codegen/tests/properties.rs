@@ -156,6 +156,7 @@ fn declaration(form: &Form, types: &[Vec<(u32, bool)>]) -> AlgebraDeclaration {
         types: declared,
         operations: None,
         lowering: vec![],
+        expressions: vec![],
     }
 }
 

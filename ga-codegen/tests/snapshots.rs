@@ -64,8 +64,33 @@ fn vga_features() {
         ],
         operations: Some(vec![]),
         lowering: vec![],
+        expressions: vec![],
     };
     let algebra = Algebra::new(&declaration).unwrap();
     let features = ga_codegen::features::emit(&algebra, &ga_codegen::Feature::ALL);
     insta::assert_snapshot!(ga_codegen::pretty(&features).unwrap());
+}
+
+/// A fused expression, `moved_line(m: Motor, l: Line) = m * l * ~m`: the 36 entries of the motor's line
+/// map as locals shared by the six outputs.
+#[test]
+fn pga_fused_moved_line() {
+    use ga_codegen::expression::{Expression, ExpressionKind, Parameter};
+    let name = |n: &str| Box::new(Expression::new(ExpressionKind::Parameter(n.into())));
+    let product = |a, b| Box::new(Expression::new(ExpressionKind::Binary(Operation::Geometric, a, b)));
+    let reverse = Box::new(Expression::new(ExpressionKind::Unary(Operation::Reverse, name("m"))));
+    let parameter = |name: &str, ty: &str| Parameter {
+        name: name.into(),
+        type_name: ty.into(),
+    };
+    let mut declaration = common::pga();
+    declaration.expressions = vec![ga_codegen::ExpressionDeclaration {
+        name: "moved_line".into(),
+        parameters: vec![parameter("m", "Motor"), parameter("l", "Line")],
+        result: Some("Line".into()),
+        body: *product(product(name("m"), name("l")), reverse),
+        linear: Some("l".into()),
+    }];
+    let algebra = Algebra::new(&declaration).unwrap();
+    insta::assert_snapshot!(ga_codegen::pretty(&emit::fused_function(&algebra, 0).unwrap()).unwrap());
 }

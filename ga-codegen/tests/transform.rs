@@ -142,6 +142,7 @@ proptest! {
             ],
             operations: Some(vec![Operation::Sandwich, Operation::Transform]),
             lowering: vec![],
+            expressions: vec![],
         };
         let algebra = Algebra::new(&declaration).unwrap();
         let evaluator = Evaluator::of(&algebra);
@@ -154,6 +155,7 @@ proptest! {
         // And both lowered to tables (two products each).
         let tabled = AlgebraDeclaration {
             lowering: vec![(Operation::Sandwich, Lowering::Table), (Operation::Transform, Lowering::Table)],
+            expressions: vec![],
             ..declaration
         };
         assert_transform_is_sandwich(&Algebra::new(&tabled).unwrap(), "Multivector", "Operand", &a, &values);

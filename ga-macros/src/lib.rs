@@ -77,6 +77,7 @@
 //!   #     }],
 //!   #     operations: None,
 //!   #     lowering: vec![],
+//!   #     expressions: vec![],
 //!   # })
 //!   # .unwrap();
 //!   assert_eq!(cga::Motor::BLADES.len(), pga.types[0].fields.len());
@@ -121,6 +122,7 @@
 //!           .to_vec(),
 //!       operations: None,
 //!       lowering: vec![],
+//!       expressions: vec![],
 //!   })?;
 //!   let multiplies = |operation| {
 //!       functions::cost(&pga, operation, "Motor", Some("Point")).map(|cost| cost.unwrap().multiplies)
@@ -135,8 +137,111 @@
 //!   monomials or more than [`MAX_UNROLLED_LOCALS`](ga_codegen::table::MAX_UNROLLED_LOCALS) hoisted
 //!   locals is emitted table-driven instead (a constant table of products and a loop, still a `const fn`;
 //!   its doc comment says so), so that it builds in seconds: the sandwich of two full Cl(5,1)
-//!   multivectors (133 thousand monomials) is two tables of 4096 products.
+//!   multivectors (68 608 monomials) is two tables of 4096 products.
 //! - `features` takes `display`, `approx` and `mint` (see [Features](#features)).
+//! - `fn name(parameters) -> Type = expression;` items, any number of them anywhere among the
+//!   settings, declare formulas to fuse into one function each (see [Fused expressions](#fused-expressions)).
+//!
+//! ## Fused expressions
+//!
+//! A `fn` item names a formula over the declared types; the module receives one `pub const fn` that
+//! computes the whole formula at once: the compiler expands it exactly into one polynomial per blade
+//! of the result, in the parameters' coefficients, so that whatever cancels (the grade-0 and grade-4
+//! parts of `m * l * ~m` for a motor and a line) costs nothing, and then shares the work common to the
+//! result's blades. The function's doc comment quotes the formula and states its exact cost
+//! (`Cost: … multiplies, … adds.`), to compare with the products it replaces.
+//!
+//! ```
+//! ga_macros::algebra! {
+//!     pub mod pga {
+//!         scalar = f64;
+//!         basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1];
+//!         types {
+//!             Motor = grades(0, 2, 4);
+//!             Line = grades(2);
+//!             Point = grades(3);
+//!         }
+//!         ops = [reverse, transform];  // the expressions need none of the operations emitted
+//!         fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;
+//!         fn moved_point(m: Motor, p: Point) = m * p * ~m;  // returns the smallest type that fits: Point
+//!         fn moved_twice(m: Motor, l: Line) -> Line = moved_line(m, moved_line(m, l));
+//!         fn blend(a: Motor, b: Motor, t: f64) -> Motor = (1 - t) * a + t * b;
+//!         fn parts(m: Motor, t: f64) -> Motor = 0.5 * m.grade_0() + t * m.grade_2() / 4 - m.outer(m).grade_4();
+//!     }
+//! }
+//!
+//! use pga::{Line, Motor, Point, Transform as _};
+//!
+//! // The translation by (10, 0, 0) moves the point (1, 2, 3) to (11, 2, 3); the functions are `const`.
+//! const STEP: Motor = Motor { scalar: 1.0, e01: -5.0, ..Motor::ZERO };
+//! const MOVED: Point = pga::moved_point(STEP, Point::from_array([-3.0, 2.0, -1.0, 1.0]));
+//!
+//! fn main() {
+//!     assert_eq!(MOVED, Point::from_array([-3.0, 2.0, -11.0, 1.0]));
+//!     let line = Line::from_array([1.0, 2.0, 3.0, 0.0, 1.0, 0.0]);
+//!     assert_eq!(pga::moved_line(STEP, line), STEP.transform(line));
+//!     let leap = Motor { scalar: 1.0, e01: -10.0, ..Motor::ZERO };
+//!     assert_eq!(pga::moved_twice(STEP, line), pga::moved_line(leap, line));
+//!     assert_eq!(pga::blend(Motor { scalar: 1.0, ..Motor::ZERO }, leap, 0.25), Motor { e01: -2.5, ..leap });
+//!     // 2 + e01 + 4 e12 + 6 e0123, whose outer square is 2 · 2 · 6 e0123 (e01 ∧ e12 = 0).
+//!     let motor = Motor { scalar: 2.0, e01: 1.0, e12: 4.0, e0123: 6.0, ..Motor::ZERO };
+//!     let expected = Motor { scalar: 1.0, e01: 0.5, e12: 2.0, e0123: -24.0, ..Motor::ZERO };
+//!     assert_eq!(pga::parts(motor, 2.0), expected);
+//! }
+//! ```
+//!
+//! - The expression is Rust syntax with Rust's precedence and left associativity, so it means what
+//!   the same text means with the emitted operators, from the loosest: `|` (left contraction), `^`
+//!   (outer), `&` (regressive), `+` and `-`, `*` (geometric) and `/`, then the prefix `-` and `~`
+//!   (the reverse, which is not Rust: `~m` is `m.reverse()`), then method calls. Parentheses group.
+//! - `/` divides only by a number literal (`x / 2.0`, the product with 1/2), since anything else
+//!   would not be a polynomial; `&&`, `||`, `!`, `%`, comparisons and assignments are refused.
+//! - Methods: `grade_k()` (the grade-k part), the unary operations by name (`reverse()`,
+//!   `involute()`, `conjugate()`, `right_complement()`, `left_complement()`, `polarity()`,
+//!   `norm_squared()`) and the products by name with one argument (`a.outer(b)`,
+//!   `a.left_contraction(b)`, `a.right_contraction(b)`, `a.scalar_product(b)`, `a.hestenes_inner(b)`,
+//!   `a.fat_dot(b)`, `a.commutator(b)`, `a.sandwich(b)`, …), all of them whether or not `ops` lists
+//!   them. `inverse()` divides and `transform(x)` assumes a unit versor, so neither can be fused.
+//! - Numbers are integer or decimal literals without a suffix (`2`, `0.5`, `1e-3`), taken exactly
+//!   as rationals (0.5 is 1/2), so the compiler's cancellations stay exact; a literal that is not a
+//!   rational with a 64-bit numerator and denominator is refused.
+//! - Parameters have a declared type or the scalar type (`t: f64`, a scalar on the blade `1`). The
+//!   result type after `->` is optional; without it, the function returns the smallest declared
+//!   type that holds the result's blades (`-> f64` returns a bare scalar). With it, the result's
+//!   blades must fit in it.
+//! - An expression may call another (`moved_line(m, l)`), declared before or after it: the call is
+//!   inlined and fused with the rest. Each argument must fit its parameter's type; calls must not
+//!   recurse.
+//! - `#[linear(l)]` before an expression linear in its parameter `l` (which enters every term exactly
+//!   once, as the line in `m * l * ~m`) also emits it as a matrix: `moved_line_map(m)` (a `const fn`
+//!   of the other parameters) builds a `MovedLineMap { matrix }` once, whose `apply(l)` then costs one
+//!   multiply per entry that does not vanish identically — the batched form for one motor moving many
+//!   lines (PGA: 26 multiplies to build the 6×6, 27 per line after).
+//!
+//! ```
+//! ga_macros::algebra! {
+//!     pub mod pga {
+//!         scalar = f64;
+//!         basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1];
+//!         types { Motor = grades(0, 2, 4); Line = grades(2); }
+//!         ops = [reverse];
+//!         #[linear(l)]
+//!         fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;
+//!     }
+//! }
+//! use pga::{Line, Motor};
+//!
+//! let motor = Motor { scalar: 0.6, e12: 0.8, e01: 0.3, ..Motor::ZERO };
+//! let map: pga::MovedLineMap = pga::moved_line_map(motor);
+//! for line in [Line { e12: 1.0, ..Line::ZERO }, Line { e01: 2.0, e23: -1.0, ..Line::ZERO }] {
+//!     let (applied, fused) = (map.apply(line), pga::moved_line(motor, line));
+//!     assert!(applied.to_array().iter().zip(fused.to_array()).all(|(a, b)| (a - b).abs() < 1e-12));
+//! }
+//! ```
+//!
+//! Mistakes are reported at their token: the unknown name in a body, the unknown parameter or
+//! result type, the call with the wrong number of arguments, the method `inverse`, the result type
+//! that does not hold the result, the operator `&&`.
 //!
 //! ## Attributes on types
 //!
@@ -254,6 +359,7 @@
 //!     types: vec![TypeDeclaration { name: "Middle".into(), layout: Layout::Grades(vec![16]) }],
 //!     operations: None,
 //!     lowering: vec![],
+//!     expressions: vec![],
 //! };
 //! assert!(matches!(Algebra::new(&middle), Err(Error::TooManyFields { fields: 601_080_390, .. })));
 //! ```

@@ -1,17 +1,20 @@
 //! The syntax of the `algebra!` input, parsed into an AST that keeps every token a later error may
-//! need to point at. Only the shape is checked here (which settings, in which form); what the values
-//! mean (scalar names, squares, blade names, operations) is checked in [`crate::validate`].
+//! need to point at. Only the shape is checked here (which settings, in which form; the grammar of
+//! expressions, with their methods and number literals); what the values mean (scalar names, squares,
+//! blade names, operations, the names in expressions) is checked in [`crate::validate`] and by the
+//! compiler.
 
-use proc_macro2::TokenStream;
+use ga_codegen::{Expression, ExpressionKind, Operation, Rational64};
+use proc_macro2::{TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
-use syn::{braced, bracketed, parenthesized, token, Attribute, Expr, Ident, LitInt, Token, Visibility};
+use syn::{braced, bracketed, parenthesized, token, Attribute, Expr, Ident, Lit, LitInt, Token, Visibility};
 
 use crate::diagnostics::{both, combine};
 
 /// The settings a module body accepts, as error messages list them.
-const SETTING_KEYS: &str = "`scalar`, `basis`, `metric`, `types`, `ops` or `features`";
+const SETTING_KEYS: &str = "`scalar`, `basis`, `metric`, `types`, `ops`, `features` or `fn` (a fused expression)";
 
 /// `#[attributes] visibility mod name { settings }`.
 pub struct AlgebraInput {
@@ -32,6 +35,8 @@ pub struct AlgebraInput {
     pub ops: Option<Punctuated<OperationEntry, Token![,]>>,
     /// `features = [display, approx, mint];`, if present.
     pub features: Option<Punctuated<Ident, Token![,]>>,
+    /// `fn moved(m: Motor, p: Point) -> Point = m * p * ~m;`, in order.
+    pub expressions: Vec<ExpressionItem>,
 }
 
 /// An operation in `ops`, optionally with how to lower it: `sandwich(table)`, `geometric(unrolled)`.
@@ -134,9 +139,21 @@ impl Parse for AlgebraInput {
         let mut types = None;
         let mut ops = None;
         let mut features = None;
-        // A repeated setting does not stop parsing, so that every repetition is reported at once.
+        let mut expressions = Vec::new();
+        // A repeated setting or a malformed expression does not stop parsing, so that every one is
+        // reported at once.
         let mut repeated = Vec::new();
         while !body.is_empty() {
+            if body.peek(Token![fn]) || body.peek(Token![#]) {
+                match body.parse() {
+                    Ok(expression) => expressions.push(expression),
+                    Err(error) => {
+                        repeated.push(error);
+                        skip_past_semicolon(&body)?;
+                    }
+                }
+                continue;
+            }
             if !body.peek(Ident) {
                 return Err(body.error(format!("expected a setting: {SETTING_KEYS}")));
             }
@@ -203,8 +220,23 @@ impl Parse for AlgebraInput {
             types,
             ops,
             features,
+            expressions,
         })
     }
+}
+
+/// Skips the rest of an item that failed to parse, up to and including its `;`.
+fn skip_past_semicolon(input: ParseStream) -> syn::Result<()> {
+    input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tree, next)) = rest.token_tree() {
+            rest = next;
+            if matches!(&tree, TokenTree::Punct(punct) if punct.as_char() == ';') {
+                break;
+            }
+        }
+        Ok(((), rest))
+    })
 }
 
 /// `= [item, item, …];`
@@ -317,5 +349,672 @@ impl Parse for LayoutSyntax {
             "all" => Ok(LayoutSyntax::All),
             _ => Err(syn::Error::new(keyword.span(), EXPECTED)),
         }
+    }
+}
+
+/// `fn name(parameter: Type, …) [-> Type] = body;`: a named expression, fused by the compiler into one
+/// function. The body is parsed into the compiler's own syntax tree; every node's id indexes `heads`.
+pub struct ExpressionItem {
+    /// From `#[linear(l)]`: the parameter to also emit the expression's matrix in.
+    pub linear: Option<Ident>,
+    pub name: Ident,
+    pub parameters: Punctuated<ParameterSyntax, Token![,]>,
+    /// The declared result type, if any.
+    pub result: Option<Ident>,
+    pub body: Expression,
+    /// By node id: the token that heads the node (its operator, method name, literal or name), where
+    /// an error about the node points.
+    pub heads: Vec<TokenStream>,
+}
+
+/// `name: Type`, the type being a declared type's name or the scalar type.
+pub struct ParameterSyntax {
+    pub name: Ident,
+    pub ty: Ident,
+}
+
+impl Parse for ParameterSyntax {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let name = input.parse()?;
+        input.parse::<Token![:]>()?;
+        if !input.peek(Ident) {
+            return Err(input.error("expected a type: a declared type's name or the scalar type"));
+        }
+        let ty = input.parse()?;
+        Ok(ParameterSyntax { name, ty })
+    }
+}
+
+impl Parse for ExpressionItem {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let mut linear = None;
+        for attribute in input.call(Attribute::parse_outer)? {
+            let refused = || {
+                syn::Error::new_spanned(
+                    &attribute,
+                    "an expression accepts one attribute, `#[linear(parameter)]` (emit its matrix in that parameter)",
+                )
+            };
+            if !attribute.path().is_ident("linear") || linear.is_some() {
+                return Err(refused());
+            }
+            linear = Some(attribute.parse_args::<Ident>().map_err(|_| refused())?);
+        }
+        if !input.peek(Token![fn]) {
+            return Err(input.error("expected `fn`: attributes in an algebra are only accepted on expressions"));
+        }
+        input.parse::<Token![fn]>()?;
+        let name = input.parse()?;
+        let list;
+        parenthesized!(list in input);
+        let parameters = list.parse_terminated(ParameterSyntax::parse, Token![,])?;
+        let result = if input.peek(Token![->]) {
+            input.parse::<Token![->]>()?;
+            if !input.peek(Ident) {
+                return Err(input.error("expected the result type: a declared type's name or the scalar type"));
+            }
+            Some(input.parse()?)
+        } else {
+            None
+        };
+        if input.peek(token::Brace) {
+            return Err(input.error("an expression's body follows `=`, without braces: `fn f(a: T) -> T = a * a;`"));
+        }
+        input.parse::<Token![=]>()?;
+        let mut parser = BodyParser::default();
+        let body = parser.expression(input, 0)?;
+        input.parse::<Token![;]>()?;
+        Ok(ExpressionItem {
+            linear,
+            name,
+            parameters,
+            result,
+            body,
+            heads: parser.heads,
+        })
+    }
+}
+
+/// The operators an expression accepts, as error messages list them.
+const OPERATORS: &str = "`*`, `^`, `&`, `|`, `+`, `-` or `/`";
+
+/// Operators of Rust that are not operators of expressions, though they begin with one.
+const COMPOUND_OPERATORS: [&str; 10] = ["||", "&&", "|=", "&=", "^=", "+=", "-=", "*=", "/=", "->"];
+
+/// A binary operator of expressions, with its precedence (higher binds tighter; all associate to
+/// the left): Rust's, so that an expression means what the same text means with the emitted
+/// operator impls.
+#[derive(Clone, Copy)]
+enum BinaryOperator {
+    /// `|`, the left contraction.
+    LeftContraction,
+    /// `^`, the outer product.
+    Outer,
+    /// `&`, the regressive product.
+    Regressive,
+    /// `+`.
+    Add,
+    /// `-`.
+    Subtract,
+    /// `*`, the geometric product.
+    Geometric,
+    /// `/`, by a number literal only: the product with its reciprocal.
+    Divide,
+}
+
+impl BinaryOperator {
+    fn precedence(self) -> u8 {
+        match self {
+            BinaryOperator::LeftContraction => 1,
+            BinaryOperator::Outer => 2,
+            BinaryOperator::Regressive => 3,
+            BinaryOperator::Add | BinaryOperator::Subtract => 4,
+            BinaryOperator::Geometric | BinaryOperator::Divide => 5,
+        }
+    }
+}
+
+/// Builds an expression's syntax tree, numbering its nodes in the order of their head tokens.
+#[derive(Default)]
+struct BodyParser {
+    heads: Vec<TokenStream>,
+}
+
+impl BodyParser {
+    /// A fresh node id, for the node headed by `head`.
+    fn id(&mut self, head: &dyn ToTokens) -> usize {
+        self.heads.push(head.to_token_stream());
+        self.heads.len() - 1
+    }
+
+    /// An expression whose binary operators all bind at least as tightly as `min_precedence`
+    /// (precedence climbing); it ends before `;`, `,` or the end of its group.
+    fn expression(&mut self, input: ParseStream, min_precedence: u8) -> syn::Result<Expression> {
+        let mut lhs = self.prefix(input)?;
+        while let Some(operator) = peek_binary_operator(input)? {
+            if operator.precedence() < min_precedence {
+                break;
+            }
+            let head: TokenTree = input.parse()?;
+            let id = self.id(&head);
+            let kind = match operator {
+                BinaryOperator::Divide => {
+                    let divisor = self.divisor(input)?;
+                    ExpressionKind::Binary(Operation::Geometric, Box::new(lhs), Box::new(divisor))
+                }
+                _ => {
+                    let rhs = Box::new(self.expression(input, operator.precedence() + 1)?);
+                    let lhs = Box::new(lhs);
+                    match operator {
+                        BinaryOperator::LeftContraction => ExpressionKind::Binary(Operation::LeftContraction, lhs, rhs),
+                        BinaryOperator::Outer => ExpressionKind::Binary(Operation::Outer, lhs, rhs),
+                        BinaryOperator::Regressive => ExpressionKind::Binary(Operation::Regressive, lhs, rhs),
+                        BinaryOperator::Geometric => ExpressionKind::Binary(Operation::Geometric, lhs, rhs),
+                        BinaryOperator::Add | BinaryOperator::Subtract => ExpressionKind::Sum {
+                            lhs,
+                            rhs,
+                            subtract: matches!(operator, BinaryOperator::Subtract),
+                        },
+                        BinaryOperator::Divide => unreachable!("handled above"),
+                    }
+                }
+            };
+            lhs = Expression { id, kind };
+        }
+        Ok(lhs)
+    }
+
+    /// `-x`, `~x` (the reverse) or a postfix expression.
+    fn prefix(&mut self, input: ParseStream) -> syn::Result<Expression> {
+        if input.peek(Token![-]) {
+            let minus: Token![-] = input.parse()?;
+            let id = self.id(&minus);
+            let operand = self.prefix(input)?;
+            Ok(Expression {
+                id,
+                kind: ExpressionKind::Negate(Box::new(operand)),
+            })
+        } else if input.peek(Token![~]) {
+            let tilde: Token![~] = input.parse()?;
+            let id = self.id(&tilde);
+            let operand = self.prefix(input)?;
+            Ok(Expression {
+                id,
+                kind: ExpressionKind::Unary(Operation::Reverse, Box::new(operand)),
+            })
+        } else {
+            self.postfix(input)
+        }
+    }
+
+    /// A primary expression followed by method calls: `x.grade_2()`, `x.involute()`, `a.outer(b)`.
+    fn postfix(&mut self, input: ParseStream) -> syn::Result<Expression> {
+        let mut receiver = self.primary(input)?;
+        while input.peek(Token![.]) && !input.peek(Token![..]) {
+            input.parse::<Token![.]>()?;
+            if !input.peek(Ident) {
+                return Err(input.error("expected a method name after `.`, such as `grade_2`, `reverse` or `outer`"));
+            }
+            let method: Ident = input.parse()?;
+            let id = self.id(&method);
+            if !input.peek(token::Paren) {
+                return Err(syn::Error::new(
+                    method.span(),
+                    format!("expected a method call `.{method}(…)`: expressions have no fields"),
+                ));
+            }
+            let list;
+            parenthesized!(list in input);
+            let arguments = self.arguments(&list)?;
+            receiver = Expression {
+                id,
+                kind: method_call(&method, receiver, arguments)?,
+            };
+        }
+        Ok(receiver)
+    }
+
+    /// A number, a parameter, a call of another expression or a parenthesised expression.
+    fn primary(&mut self, input: ParseStream) -> syn::Result<Expression> {
+        if input.peek(token::Paren) {
+            let inner;
+            parenthesized!(inner in input);
+            let expression = self.expression(&inner, 0)?;
+            if !inner.is_empty() {
+                return Err(inner.error("expected `)`: parentheses hold one expression"));
+            }
+            Ok(expression)
+        } else if input.peek(Lit) {
+            let (literal, value) = number(input)?;
+            Ok(Expression {
+                id: self.id(&literal),
+                kind: ExpressionKind::Scalar(value),
+            })
+        } else if input.peek(Ident) {
+            let name: Ident = input.parse()?;
+            let id = self.id(&name);
+            let kind = if input.peek(token::Paren) {
+                let list;
+                parenthesized!(list in input);
+                ExpressionKind::Call(name.to_string(), self.arguments(&list)?)
+            } else {
+                ExpressionKind::Parameter(name.to_string())
+            };
+            Ok(Expression { id, kind })
+        } else if input.peek(Token![!]) {
+            Err(input.error("`!` is not an operator of expressions: the reverse is `~x`, the negation `-x`"))
+        } else if input.is_empty() || input.peek(Token![;]) || input.peek(Token![,]) {
+            Err(input.error("expected an expression"))
+        } else {
+            Err(input.error("expected an expression: a parameter, a number, a call `f(…)`, `(…)`, `-x` or `~x`"))
+        }
+    }
+
+    /// The arguments of a call or method call: expressions separated by commas.
+    fn arguments(&mut self, list: ParseStream) -> syn::Result<Vec<Expression>> {
+        let mut arguments = Vec::new();
+        while !list.is_empty() {
+            arguments.push(self.expression(list, 0)?);
+            if list.is_empty() {
+                break;
+            }
+            list.parse::<Token![,]>()?;
+        }
+        Ok(arguments)
+    }
+
+    /// What follows `/`: a number literal, optionally negative, as its reciprocal.
+    fn divisor(&mut self, input: ParseStream) -> syn::Result<Expression> {
+        let minus: Option<Token![-]> = input.parse()?;
+        if !input.peek(Lit) {
+            return Err(input.error(
+                "`/` divides only by a number literal, such as `x / 2.0`: a division by anything else \
+                 would not be a polynomial in the parameters, which is what an expression fuses",
+            ));
+        }
+        let (literal, value) = number(input)?;
+        let head = quote::quote!(#minus #literal);
+        if value == Rational64::from(0) {
+            return Err(syn::Error::new_spanned(&head, "division by zero"));
+        }
+        let reciprocal = if minus.is_some() { -value.recip() } else { value.recip() };
+        Ok(Expression {
+            id: self.id(&head),
+            kind: ExpressionKind::Scalar(reciprocal),
+        })
+    }
+}
+
+/// The binary operator `input` starts with, if it starts with one; `None` at the end of an
+/// expression (`;`, `,` or the end of a group); an error at any other token.
+fn peek_binary_operator(input: ParseStream) -> syn::Result<Option<BinaryOperator>> {
+    if input.is_empty() || input.peek(Token![;]) || input.peek(Token![,]) {
+        return Ok(None);
+    }
+    if let Some((text, tokens)) = compound_operator(input) {
+        return Err(syn::Error::new_spanned(
+            tokens,
+            format!("`{text}` is not an operator of expressions: expected an operator {OPERATORS}"),
+        ));
+    }
+    let operator = if input.peek(Token![|]) {
+        BinaryOperator::LeftContraction
+    } else if input.peek(Token![^]) {
+        BinaryOperator::Outer
+    } else if input.peek(Token![&]) {
+        BinaryOperator::Regressive
+    } else if input.peek(Token![+]) {
+        BinaryOperator::Add
+    } else if input.peek(Token![-]) {
+        BinaryOperator::Subtract
+    } else if input.peek(Token![*]) {
+        BinaryOperator::Geometric
+    } else if input.peek(Token![/]) {
+        BinaryOperator::Divide
+    } else {
+        return Err(input.error(format!("expected an operator {OPERATORS}")));
+    };
+    Ok(Some(operator))
+}
+
+/// The two-character Rust operator (`&&`, `||`, `+=`, …) `input` starts with, if any, and its tokens.
+fn compound_operator(input: ParseStream) -> Option<(&'static str, TokenStream)> {
+    let (first, rest) = input.cursor().punct()?;
+    let (second, _) = rest.punct()?;
+    if first.spacing() != proc_macro2::Spacing::Joint {
+        return None;
+    }
+    let text = format!("{}{}", first.as_char(), second.as_char());
+    let compound = COMPOUND_OPERATORS.into_iter().find(|operator| *operator == text)?;
+    Some((compound, quote::quote!(#first #second)))
+}
+
+/// The node of a method call `receiver.method(arguments)`.
+fn method_call(method: &Ident, receiver: Expression, mut arguments: Vec<Expression>) -> syn::Result<ExpressionKind> {
+    let name = method.to_string();
+    let receiver = Box::new(receiver);
+    let given = match arguments.len() {
+        1 => "1 is given".to_string(),
+        count => format!("{count} are given"),
+    };
+    let count_error =
+        |expected: &str| syn::Error::new(method.span(), format!("`{name}` takes {expected}, but {given}"));
+    if let Some(grade) = name.strip_prefix("grade_").and_then(grade_number) {
+        return match arguments.is_empty() {
+            true => Ok(ExpressionKind::Grade(grade, receiver)),
+            false => Err(count_error("no argument")),
+        };
+    }
+    match Operation::from_name(&name).filter(|operation| *operation != Operation::Grade) {
+        Some(operation) if operation.is_binary() => match (arguments.pop(), arguments.is_empty()) {
+            (Some(argument), true) => Ok(ExpressionKind::Binary(operation, receiver, Box::new(argument))),
+            _ => Err(count_error("one argument")),
+        },
+        Some(operation) if arguments.is_empty() => Ok(ExpressionKind::Unary(operation, receiver)),
+        Some(_) => Err(count_error("no argument")),
+        None => {
+            let methods: Vec<String> = Operation::ALL
+                .iter()
+                .filter(|operation| **operation != Operation::Grade)
+                .map(|operation| match operation.is_binary() {
+                    true => format!("`{}(x)`", operation.name()),
+                    false => format!("`{}()`", operation.name()),
+                })
+                .collect();
+            Err(syn::Error::new(
+                method.span(),
+                format!(
+                    "unknown method `{name}`: expected `grade_k()` (e.g. `grade_2()`) or one of {}",
+                    methods.join(", ")
+                ),
+            ))
+        }
+    }
+}
+
+/// `k` in `grade_k`: decimal digits only.
+fn grade_number(digits: &str) -> Option<u32> {
+    match digits.bytes().all(|byte| byte.is_ascii_digit()) {
+        true => digits.parse().ok(),
+        false => None,
+    }
+}
+
+/// An integer or float literal (no suffix) as the exact rational it writes: `0.5` is 1/2, `1e-3`
+/// is 1/1000.
+fn number(input: ParseStream) -> syn::Result<(Lit, Rational64)> {
+    let literal: Lit = input.parse()?;
+    let (digits, suffix) = match &literal {
+        Lit::Int(int) => (int.base10_digits(), int.suffix()),
+        Lit::Float(float) => (float.base10_digits(), float.suffix()),
+        _ => {
+            return Err(syn::Error::new_spanned(
+                &literal,
+                "expected a number: expressions take integer and decimal literals, such as `2` or `0.5`",
+            ))
+        }
+    };
+    if !suffix.is_empty() {
+        return Err(syn::Error::new_spanned(
+            &literal,
+            format!("remove the suffix `{suffix}`: a number in an expression has the scalar type"),
+        ));
+    }
+    let value = exact_rational(digits).ok_or_else(|| {
+        syn::Error::new_spanned(
+            &literal,
+            "this number is not exactly a rational with a 64-bit numerator and denominator: \
+             use fewer significant digits or a smaller exponent",
+        )
+    })?;
+    Ok((literal, value))
+}
+
+/// The exact value of decimal digits such as `12`, `0.5`, `1.25e-3` or `2e10`, if its reduced
+/// numerator and denominator fit in an `i64`.
+fn exact_rational(digits: &str) -> Option<Rational64> {
+    let (mantissa, exponent) = match digits.find(['e', 'E']) {
+        Some(at) => (&digits[..at], digits[at + 1..].parse::<i32>().ok()?),
+        None => (digits, 0),
+    };
+    let (whole, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let significant = format!("{whole}{fraction}");
+    let significant = significant.trim_start_matches('0');
+    if significant.is_empty() {
+        return Some(Rational64::from(0));
+    }
+    // Trailing zeros move into the exponent, so that `0.50` or `1000e-3` need no large numbers.
+    let trimmed = significant.trim_end_matches('0');
+    let scale = i64::from(exponent) - fraction.len() as i64 + (significant.len() - trimmed.len()) as i64;
+    let numerator: u128 = trimmed.parse().ok()?;
+    let power = |exponent: i64| 10u128.checked_pow(u32::try_from(exponent).ok()?);
+    let (mut numerator, mut denominator) = match scale >= 0 {
+        true => (numerator.checked_mul(power(scale)?)?, 1),
+        false => (numerator, power(-scale)?),
+    };
+    let divisor = gcd(numerator, denominator);
+    numerator /= divisor;
+    denominator /= divisor;
+    Some(Rational64::new(
+        i64::try_from(numerator).ok()?,
+        i64::try_from(denominator).ok()?,
+    ))
+}
+
+fn gcd(mut a: u128, mut b: u128) -> u128 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn item(source: &str) -> syn::Result<ExpressionItem> {
+        syn::parse_str(source)
+    }
+
+    /// The body of `fn f(…) = <body>;` fully parenthesised, in prefix form.
+    fn tree(body: &str) -> String {
+        let item = item(&format!("fn f() = {body};")).unwrap();
+        prefix_form(&item.body)
+    }
+
+    fn prefix_form(expression: &Expression) -> String {
+        match &expression.kind {
+            ExpressionKind::Parameter(name) => name.clone(),
+            ExpressionKind::Scalar(value) => value.to_string(),
+            ExpressionKind::Negate(x) => format!("(neg {})", prefix_form(x)),
+            ExpressionKind::Sum { lhs, rhs, subtract } => {
+                let operator = if *subtract { "-" } else { "+" };
+                format!("({operator} {} {})", prefix_form(lhs), prefix_form(rhs))
+            }
+            ExpressionKind::Unary(operation, x) => format!("({} {})", operation.name(), prefix_form(x)),
+            ExpressionKind::Grade(k, x) => format!("(grade_{k} {})", prefix_form(x)),
+            ExpressionKind::Binary(operation, lhs, rhs) => {
+                format!("({} {} {})", operation.name(), prefix_form(lhs), prefix_form(rhs))
+            }
+            ExpressionKind::Call(name, arguments) => {
+                let arguments: Vec<String> = arguments.iter().map(prefix_form).collect();
+                format!("({name} {})", arguments.join(" "))
+            }
+        }
+    }
+
+    fn error(body: &str) -> String {
+        match item(&format!("fn f(a: V, b: V) = {body};")) {
+            Ok(item) => panic!("expected an error, got {}", prefix_form(&item.body)),
+            Err(error) => error.to_string(),
+        }
+    }
+
+    #[test]
+    fn binary_operators_have_rusts_precedence_and_associate_to_the_left() {
+        assert_eq!(
+            tree("a | b ^ c & d + e * f"),
+            "(left_contraction a (outer b (regressive c (+ d (geometric e f)))))"
+        );
+        assert_eq!(
+            tree("a * b + c & d ^ e | f"),
+            "(left_contraction (outer (regressive (+ (geometric a b) c) d) e) f)"
+        );
+        assert_eq!(tree("a - b + c - d"), "(- (+ (- a b) c) d)");
+        assert_eq!(tree("a ^ b ^ c"), "(outer (outer a b) c)");
+        assert_eq!(tree("a * (b + c)"), "(geometric a (+ b c))");
+        assert_eq!(tree("a | (b | c)"), "(left_contraction a (left_contraction b c))");
+    }
+
+    #[test]
+    fn prefix_operators_bind_tighter_than_binary_ones_and_methods_tighter_still() {
+        assert_eq!(tree("-a * ~b"), "(geometric (neg a) (reverse b))");
+        assert_eq!(tree("m * l * ~m"), "(geometric (geometric m l) (reverse m))");
+        assert_eq!(tree("-a.grade_2()"), "(neg (grade_2 a))");
+        assert_eq!(tree("~-a"), "(reverse (neg a))");
+        assert_eq!(tree("a - -b"), "(- a (neg b))");
+        assert_eq!(tree("(a + b).grade_0()"), "(grade_0 (+ a b))");
+        assert_eq!(
+            tree("a.outer(b + c).norm_squared().involute()"),
+            "(involute (norm_squared (outer a (+ b c))))"
+        );
+        assert_eq!(tree("a.sandwich(b).transform(c)"), "(transform (sandwich a b) c)");
+        assert_eq!(tree("a.inverse()"), "(inverse a)");
+        assert_eq!(tree("2.0.grade_0()"), "(grade_0 2)");
+    }
+
+    #[test]
+    fn division_is_by_a_literal_and_multiplies_by_its_reciprocal() {
+        assert_eq!(tree("a * b / 2"), "(geometric (geometric a b) 1/2)");
+        assert_eq!(tree("a / -0.25 + b"), "(+ (geometric a -4) b)");
+        assert_eq!(tree("a + b / 4 * c"), "(+ a (geometric (geometric b 1/4) c))");
+        assert!(error("a / b").starts_with("`/` divides only by a number literal"));
+        assert!(error("a / (2.0)").starts_with("`/` divides only by a number literal"));
+        assert_eq!(error("a / 0"), "division by zero");
+    }
+
+    #[test]
+    fn calls_take_any_number_of_arguments() {
+        assert_eq!(tree("f(a, g(b), h())"), "(f a (g b) (h ))");
+        assert_eq!(tree("f(a,)"), "(f a)");
+    }
+
+    #[test]
+    fn literals_are_exact_rationals() {
+        let value = |literal: &str| tree(literal);
+        assert_eq!(value("2"), "2");
+        assert_eq!(value("0.5"), "1/2");
+        assert_eq!(value("1e-3"), "1/1000");
+        assert_eq!(value("2.5E2"), "250");
+        assert_eq!(value("12.50"), "25/2");
+        assert_eq!(value("1_000.000_1"), "10000001/10000");
+        assert_eq!(value("0.0"), "0");
+        assert_eq!(value("0e-400"), "0");
+        assert_eq!(value("0x10"), "16");
+        assert_eq!(value("9223372036854775807"), "9223372036854775807");
+        assert_eq!(value("1e18"), "1000000000000000000");
+        assert_eq!(value("1e-18"), "1/1000000000000000000");
+        assert_eq!(value("0.500000000000000000000000000000000000000000"), "1/2");
+        assert_eq!(value("1000000000000000000000e-20"), "10");
+        for inexact in ["9223372036854775808", "1e19", "1e-19", "0.1234567890123456789", "1e400"] {
+            assert!(
+                error(inexact).starts_with("this number is not exactly a rational"),
+                "{inexact}"
+            );
+        }
+        assert!(error("2.0f32").starts_with("remove the suffix `f32`"));
+        assert!(error("\"2\"").starts_with("expected a number"));
+        assert!(error("true").starts_with("expected a number"));
+    }
+
+    #[test]
+    fn other_rust_operators_and_bad_methods_are_refused_at_their_tokens() {
+        for operator in ["&&", "||", "+=", "*=", "->"] {
+            assert_eq!(
+                error(&format!("a {operator} b")),
+                format!("`{operator}` is not an operator of expressions: expected an operator `*`, `^`, `&`, `|`, `+`, `-` or `/`")
+            );
+        }
+        for token in ["%", "==", "<", ".."] {
+            assert_eq!(
+                error(&format!("a {token} b")),
+                "expected an operator `*`, `^`, `&`, `|`, `+`, `-` or `/`",
+                "{token}"
+            );
+        }
+        assert!(error("!a").starts_with("`!` is not an operator of expressions"));
+        assert!(error("*a").starts_with("expected an expression: a parameter"));
+        assert_eq!(error("a +"), "expected an expression");
+        assert!(error("a.dual()").starts_with("unknown method `dual`: expected `grade_k()`"));
+        assert!(error("a.grade()").starts_with("unknown method `grade`"));
+        assert!(error("a.grade_x()").starts_with("unknown method `grade_x`"));
+        assert_eq!(error("a.reverse(b)"), "`reverse` takes no argument, but 1 is given");
+        assert_eq!(error("a.grade_1(b, b)"), "`grade_1` takes no argument, but 2 are given");
+        assert_eq!(error("a.outer()"), "`outer` takes one argument, but 0 are given");
+        assert_eq!(error("a.outer(b, b)"), "`outer` takes one argument, but 2 are given");
+        assert!(error("a.e1").starts_with("expected a method call `.e1(…)`"));
+        assert!(error("(a, b)").starts_with("expected `)`"));
+    }
+
+    #[test]
+    fn node_ids_follow_the_head_tokens_in_source_order() {
+        let item = item("fn moved(m: Motor, l: Line) -> Line = m * l * ~m.grade_2();").unwrap();
+        let heads: Vec<String> = item.heads.iter().map(ToString::to_string).collect();
+        assert_eq!(heads, ["m", "*", "l", "*", "~", "m", "grade_2"]);
+        // The root is the second `*`; every id indexes its own head.
+        assert_eq!(item.body.id, 3);
+        let mut ids = Vec::new();
+        let mut pending = vec![&item.body];
+        while let Some(node) = pending.pop() {
+            ids.push(node.id);
+            match &node.kind {
+                ExpressionKind::Negate(x) | ExpressionKind::Unary(_, x) | ExpressionKind::Grade(_, x) => {
+                    pending.push(x)
+                }
+                ExpressionKind::Sum { lhs, rhs, .. } | ExpressionKind::Binary(_, lhs, rhs) => {
+                    pending.extend([lhs.as_ref(), rhs.as_ref()])
+                }
+                ExpressionKind::Call(_, arguments) => pending.extend(arguments),
+                ExpressionKind::Parameter(_) | ExpressionKind::Scalar(_) => {}
+            }
+        }
+        ids.sort_unstable();
+        assert_eq!(ids, (0..heads.len()).collect::<Vec<_>>());
+        let names: Vec<String> = item
+            .parameters
+            .iter()
+            .map(|p| format!("{}: {}", p.name, p.ty))
+            .collect();
+        assert_eq!(names, ["m: Motor", "l: Line"]);
+        assert_eq!(item.result.unwrap(), "Line");
+    }
+
+    #[test]
+    fn the_result_type_is_optional() {
+        let item = item("fn moved(m: Motor, p: Point) = m * p * ~m;").unwrap();
+        assert!(item.result.is_none());
+        assert_eq!(item.body.to_string(), "m * p * ~m");
+    }
+
+    #[test]
+    fn every_malformed_expression_is_reported_and_the_settings_still_parse() {
+        let errors = match syn::parse_str::<AlgebraInput>(
+            "mod vga {
+                fn f(a: V) -> V = a && a;
+                scalar = f64;
+                fn g(a: V) -> V = a / a;
+                fn h(a: V) -> V = a;
+                basis = [e1 = 1];
+                types { V = grades(1); }
+                fn k(a: V) -> V = a.dual();
+            }",
+        ) {
+            Ok(_) => panic!("expected errors"),
+            Err(errors) => errors.into_iter().map(|error| error.to_string()).collect::<Vec<_>>(),
+        };
+        assert_eq!(errors.len(), 3, "{errors:?}");
+        assert!(errors[0].starts_with("`&&` is not an operator"));
+        assert!(errors[1].starts_with("`/` divides only by a number literal"));
+        assert!(errors[2].starts_with("unknown method `dual`"));
     }
 }

@@ -6,8 +6,8 @@
 use ga_codegen::emit::DERIVED_TRAITS;
 use ga_codegen::features::mint_mapping;
 use ga_codegen::{
-    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, Feature, Layout, Location, Lowering, Operation,
-    Rational64, ScalarType, TypeDeclaration,
+    Algebra, AlgebraDeclaration, BasisVectorDeclaration, Error, ExpressionDeclaration, Feature, Layout, Location,
+    Lowering, Operation, Parameter, Rational64, ScalarType, TypeDeclaration,
 };
 use quote::ToTokens;
 use syn::parse::ParseStream;
@@ -15,7 +15,7 @@ use syn::punctuated::Punctuated;
 use syn::{BinOp, Expr, ExprBinary, ExprLit, ExprUnary, Ident, Lit, LitInt, Meta, Path, Token, UnOp};
 
 use crate::diagnostics::{both, collect};
-use crate::parse::{AlgebraInput, BasisEntry, LayoutSyntax, MetricRow, OperationEntry, TypeEntry};
+use crate::parse::{AlgebraInput, BasisEntry, ExpressionItem, LayoutSyntax, MetricRow, OperationEntry, TypeEntry};
 
 /// What the macro emits: the compiler's declaration and the opt-in features.
 pub struct Validated {
@@ -55,6 +55,7 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<Validated> {
         types,
         operations,
         lowering,
+        expressions: input.expressions.iter().map(expression_declaration).collect(),
     };
     // `generate` checks this too, but checking here makes every declaration that leaves this module
     // one the compiler accepts, which the tests can see without emitting any code.
@@ -75,6 +76,25 @@ pub fn validate(input: &AlgebraInput) -> syn::Result<Validated> {
         }
     }
     Ok(Validated { declaration, features })
+}
+
+/// An expression item as the compiler's declaration: names as written (raw identifiers included, for
+/// the compiler to refuse), the body as parsed.
+fn expression_declaration(item: &ExpressionItem) -> ExpressionDeclaration {
+    ExpressionDeclaration {
+        name: item.name.to_string(),
+        parameters: item
+            .parameters
+            .iter()
+            .map(|parameter| Parameter {
+                name: parameter.name.to_string(),
+                type_name: parameter.ty.to_string(),
+            })
+            .collect(),
+        result: item.result.as_ref().map(Ident::to_string),
+        body: item.body.clone(),
+        linear: item.linear.as_ref().map(Ident::to_string),
+    }
 }
 
 /// The features listed in `features = [...]`, each at most once.
@@ -199,6 +219,35 @@ fn offending_tokens<'a>(input: &'a AlgebraInput, error: &Error) -> &'a dyn ToTok
         },
         Location::Lowering(index) => match lowered_entries(input).nth(index) {
             Some((_, lowering)) => lowering,
+            None => module_name,
+        },
+        Location::Expression(index) => match input.expressions.get(index) {
+            // An error about the linear map is at the parameter `#[linear(…)]` names.
+            Some(ExpressionItem {
+                linear: Some(linear), ..
+            }) if matches!(error, Error::NotLinear { .. } | Error::UnknownLinearParameter { .. }) => linear,
+            Some(item) => &item.name,
+            None => module_name,
+        },
+        Location::ExpressionParameter { expression, parameter } => {
+            let Some(item) = input.expressions.get(expression) else {
+                return module_name;
+            };
+            match item.parameters.get(parameter) {
+                Some(parameter) if matches!(error, Error::UnknownExpressionType { .. }) => &parameter.ty,
+                Some(parameter) => &parameter.name,
+                None => &item.name,
+            }
+        }
+        Location::ExpressionResult(index) => match input.expressions.get(index) {
+            Some(ExpressionItem {
+                result: Some(result), ..
+            }) => result,
+            Some(item) => &item.name,
+            None => module_name,
+        },
+        Location::ExpressionNode { expression, node } => match input.expressions.get(expression) {
+            Some(item) => item.heads.get(node).map_or(&item.name as &dyn ToTokens, |head| head),
             None => module_name,
         },
     }
@@ -488,6 +537,7 @@ mod tests {
                 ],
                 operations: Some(vec![Operation::Geometric, Operation::Reverse]),
                 lowering: vec![],
+                expressions: vec![],
             }
         );
     }
@@ -606,6 +656,112 @@ mod tests {
         };
         // Not the module: the type the operation is emitted for.
         assert_eq!(tokens(no_result), "Vector");
+    }
+
+    #[test]
+    fn expressions_map_to_the_declaration() {
+        let declaration = declaration(
+            "mod vga {
+                scalar = f64;
+                basis = [e1 = 1, e2 = 1];
+                types { Vector = grades(1); Rotor = grades(0, 2); }
+                fn turned(r: Rotor, v: Vector) -> Vector = r * v * ~r;
+                fn scaled(v: Vector, t: f64) = t * v / 2;
+            }",
+        )
+        .unwrap();
+        let [turned, scaled] = &declaration.expressions[..] else {
+            panic!("expected two expressions: {:?}", declaration.expressions);
+        };
+        let parameters = |expression: &ExpressionDeclaration| -> Vec<(String, String)> {
+            let named = expression.parameters.iter();
+            named.map(|p| (p.name.clone(), p.type_name.clone())).collect()
+        };
+        assert_eq!(turned.name, "turned");
+        assert_eq!(
+            parameters(turned),
+            [("r".into(), "Rotor".into()), ("v".into(), "Vector".into())]
+        );
+        assert_eq!(turned.result.as_deref(), Some("Vector"));
+        assert_eq!(turned.body.to_string(), "r * v * ~r");
+        assert_eq!(scaled.name, "scaled");
+        assert_eq!(
+            parameters(scaled),
+            [("v".into(), "Vector".into()), ("t".into(), "f64".into())]
+        );
+        assert_eq!(scaled.result, None);
+        assert_eq!(scaled.body.to_string(), "t * v * (1.0 / 2.0)");
+    }
+
+    #[test]
+    fn expression_errors_point_at_the_name_parameter_result_or_node() {
+        let input: AlgebraInput = syn::parse_str(
+            "mod vga {
+                scalar = f64;
+                basis = [e1 = 1, e2 = 1];
+                types { Vector = grades(1); }
+                fn squared(a: Vector, b: Bivector) -> Rotor = a * b.grade_2() + c(a);
+                fn plain(a: Vector) = a;
+            }",
+        )
+        .unwrap();
+        let tokens = |error: Error| offending_tokens(&input, &error).to_token_stream().to_string();
+        let name = |index| (index, if index == 0 { "squared" } else { "plain" }.to_string());
+        let (index, expression) = name(0);
+        assert_eq!(
+            tokens(Error::DuplicateExpression {
+                index,
+                name: expression.clone()
+            }),
+            "squared"
+        );
+        let unknown_type = |parameter| Error::UnknownExpressionType {
+            index,
+            parameter,
+            expression: expression.clone(),
+            type_name: String::new(),
+            scalar: "f64".to_string(),
+        };
+        assert_eq!(tokens(unknown_type(Some(1))), "Bivector");
+        assert_eq!(tokens(unknown_type(None)), "Rotor");
+        let duplicate = Error::DuplicateParameter {
+            index,
+            parameter: 1,
+            expression: expression.clone(),
+            name: "b".to_string(),
+        };
+        assert_eq!(tokens(duplicate), "b");
+        let does_not_fit = Error::ResultDoesNotFit {
+            index,
+            expression: expression.clone(),
+            result: "Rotor".to_string(),
+            blades: vec![],
+        };
+        assert_eq!(tokens(does_not_fit), "Rotor");
+        // Heads in source order: a, *, b, grade_2, +, c.
+        let node = |node| Error::UnknownName {
+            index,
+            node,
+            expression: expression.clone(),
+            name: String::new(),
+        };
+        let heads: Vec<String> = (0..6).map(|id| tokens(node(id))).collect();
+        assert_eq!(heads, ["a", "*", "b", "grade_2", "+", "c"]);
+        let (index, expression) = name(1);
+        let too_big = Error::ExpressionTooBig {
+            index,
+            expression: expression.clone(),
+            terms: 0,
+            max: 0,
+        };
+        assert_eq!(tokens(too_big), "plain");
+        // Without a declared result type, a result error is at the expression's name.
+        let no_type = Error::NoExpressionResultType {
+            index,
+            expression,
+            blades: vec![],
+        };
+        assert_eq!(tokens(no_type), "plain");
     }
 
     #[test]

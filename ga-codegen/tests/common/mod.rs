@@ -50,6 +50,7 @@ pub fn pga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
     }
 }
 
@@ -69,6 +70,7 @@ pub fn cga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
     }
 }
 
@@ -107,6 +109,7 @@ pub fn null_cga() -> AlgebraDeclaration {
         ],
         operations: None,
         lowering: vec![],
+        expressions: vec![],
     }
 }
 

@@ -1,0 +1,202 @@
+//! Named expressions over the declared types, e.g. `fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;`:
+//! what a user declares to have the compiler fuse a whole formula into one function (see [`crate::fuse`]).
+//!
+//! The syntax tree is the compiler's own, independent of any front end; each node carries an id that the
+//! front end chose, so that an error about a node (an unknown name, a call with the wrong arguments) can
+//! point back at its tokens ([`crate::Location::ExpressionNode`]).
+
+use num_rational::Rational64;
+
+use crate::operation::Operation;
+
+/// `fn name(parameter: Type, …) -> Result = body;`
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ExpressionDeclaration {
+    /// The emitted function's name.
+    pub name: String,
+    /// The parameters, in order.
+    pub parameters: Vec<Parameter>,
+    /// The declared result type (a type name, or the scalar type's name for a bare scalar); `None` takes
+    /// the smallest declared type holding the result's blades.
+    pub result: Option<String>,
+    /// The formula.
+    pub body: Expression,
+    /// A parameter the formula is linear in, to also emit the formula as a matrix in it (see
+    /// [`crate::fuse::linear_map`]): a type `{Name}Map` built by `{name}_map(other parameters)`, with `apply`.
+    pub linear: Option<String>,
+}
+
+impl ExpressionDeclaration {
+    /// The name of the type of its linear map: `moved_line` → `MovedLineMap`.
+    pub fn map_type_name(&self) -> String {
+        let mut name: String = self
+            .name
+            .split('_')
+            .filter(|part| !part.is_empty())
+            .map(|part| {
+                let mut chars = part.chars();
+                chars
+                    .next()
+                    .map(|c| c.to_uppercase().chain(chars).collect::<String>())
+                    .unwrap_or_default()
+            })
+            .collect();
+        name.push_str("Map");
+        name
+    }
+}
+
+/// `name: Type`: a declared type's name, or the scalar type's (`t: f64`, a scalar on the blade `1`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Parameter {
+    /// The parameter's name.
+    pub name: String,
+    /// The name of its type.
+    pub type_name: String,
+}
+
+/// A node of an expression with the front end's id for it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Expression {
+    /// Chosen by the front end, reported back in errors about this node.
+    pub id: usize,
+    /// What the node computes.
+    pub kind: ExpressionKind,
+}
+
+/// What an expression node computes. Binary products are the blade-pair products of [`Operation`]
+/// (`*` geometric, `^` outer, `&` regressive, `|` left contraction, or any product by name as a method);
+/// every one is linear in each operand, so a whole expression is a polynomial in its parameters' fields.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ExpressionKind {
+    /// A parameter.
+    Parameter(String),
+    /// A scalar constant (a literal, exact: `0.5` is 1/2).
+    Scalar(Rational64),
+    /// `-x`.
+    Negate(Box<Expression>),
+    /// `a + b`, or `a - b` when `subtract`.
+    Sum {
+        /// The left summand.
+        lhs: Box<Expression>,
+        /// The right summand.
+        rhs: Box<Expression>,
+        /// Whether `rhs` is subtracted.
+        subtract: bool,
+    },
+    /// A unary operation: `~x` (reverse), `x.involute()`, `x.norm_squared()`, … (not `inverse`: it divides).
+    Unary(Operation, Box<Expression>),
+    /// `x.grade_k()`: the grade-`k` part.
+    Grade(u32, Box<Expression>),
+    /// A binary operation: `a * b`, `a.sandwich(x)`, … (not `transform`, which assumes a unit versor).
+    Binary(Operation, Box<Expression>, Box<Expression>),
+    /// A call of another declared expression (by name), its body inlined.
+    Call(String, Vec<Expression>),
+}
+
+impl Expression {
+    /// A node with id 0: for building expressions in code, where no front end needs the ids.
+    ///
+    /// ```
+    /// use ga_codegen::expression::{Expression, ExpressionKind};
+    /// use ga_codegen::Operation;
+    ///
+    /// let name = |n: &str| Expression::new(ExpressionKind::Parameter(n.into()));
+    /// // m * l * ~m
+    /// let reverse = Expression::new(ExpressionKind::Unary(Operation::Reverse, Box::new(name("m"))));
+    /// let left = Expression::new(ExpressionKind::Binary(Operation::Geometric, Box::new(name("m")), Box::new(name("l"))));
+    /// let moved = Expression::new(ExpressionKind::Binary(Operation::Geometric, Box::new(left), Box::new(reverse)));
+    /// assert_eq!(moved.to_string(), "m * l * ~m");
+    /// ```
+    pub fn new(kind: ExpressionKind) -> Self {
+        Expression { id: 0, kind }
+    }
+
+    /// How tightly the node binds when printed, as in Rust: operands of a weaker operator get parentheses.
+    fn precedence(&self) -> u8 {
+        match &self.kind {
+            ExpressionKind::Binary(Operation::LeftContraction, ..) => 1,
+            ExpressionKind::Binary(Operation::Outer, ..) => 2,
+            ExpressionKind::Binary(Operation::Regressive, ..) => 3,
+            ExpressionKind::Sum { .. } => 4,
+            ExpressionKind::Binary(Operation::Geometric, ..) => 5,
+            ExpressionKind::Negate(_) | ExpressionKind::Unary(Operation::Reverse, _) => 6,
+            _ => 7,
+        }
+    }
+}
+
+/// The operator that writes `operation` in an expression, if any.
+pub fn operator(operation: Operation) -> Option<&'static str> {
+    match operation {
+        Operation::Geometric => Some("*"),
+        Operation::Outer => Some("^"),
+        Operation::Regressive => Some("&"),
+        Operation::LeftContraction => Some("|"),
+        _ => None,
+    }
+}
+
+impl std::fmt::Display for Expression {
+    /// Rust syntax with Rust's precedence (left-associative binary operators), parenthesised only
+    /// where needed: the formula a fused function's documentation quotes.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let operand = |f: &mut std::fmt::Formatter<'_>, child: &Expression, tighter: bool| {
+            let own = self.precedence();
+            if child.precedence() < own || (tighter && child.precedence() == own) {
+                write!(f, "({child})")
+            } else {
+                write!(f, "{child}")
+            }
+        };
+        match &self.kind {
+            ExpressionKind::Parameter(name) => write!(f, "{name}"),
+            ExpressionKind::Scalar(value) => match value.is_integer() {
+                true => write!(f, "{}.0", value.numer()),
+                false => write!(f, "({}.0 / {}.0)", value.numer(), value.denom()),
+            },
+            ExpressionKind::Negate(x) => {
+                write!(f, "-")?;
+                operand(f, x, false)
+            }
+            ExpressionKind::Unary(Operation::Reverse, x) => {
+                write!(f, "~")?;
+                operand(f, x, false)
+            }
+            ExpressionKind::Unary(operation, x) => {
+                operand(f, x, false)?;
+                write!(f, ".{}()", operation.name())
+            }
+            ExpressionKind::Grade(k, x) => {
+                operand(f, x, false)?;
+                write!(f, ".grade_{k}()")
+            }
+            ExpressionKind::Sum { lhs, rhs, subtract } => {
+                operand(f, lhs, false)?;
+                write!(f, " {} ", if *subtract { '-' } else { '+' })?;
+                operand(f, rhs, true)
+            }
+            ExpressionKind::Binary(operation, lhs, rhs) => match operator(*operation) {
+                Some(symbol) => {
+                    operand(f, lhs, false)?;
+                    write!(f, " {symbol} ")?;
+                    operand(f, rhs, true)
+                }
+                None => {
+                    operand(f, lhs, false)?;
+                    write!(f, ".{}({rhs})", operation.name())
+                }
+            },
+            ExpressionKind::Call(name, arguments) => {
+                write!(f, "{name}(")?;
+                for (index, argument) in arguments.iter().enumerate() {
+                    if index > 0 {
+                        write!(f, ", ")?;
+                    }
+                    write!(f, "{argument}")?;
+                }
+                write!(f, ")")
+            }
+        }
+    }
+}

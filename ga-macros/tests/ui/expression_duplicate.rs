@@ -1,0 +1,14 @@
+ga_macros::algebra! {
+    mod vga {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1];
+        types {
+            Vector = grades(1);
+            Rotor = grades(0, 2);
+        }
+        fn square(a: Vector) -> Rotor = a * a;
+        fn square(r: Rotor) -> Rotor = r * r;
+    }
+}
+
+fn main() {}
