@@ -672,3 +672,29 @@ fn pinned_lines_of_different_weights_are_refused() {
     let tilted = Vector3::new(1.0, 2.0, 3.0).normalize();
     assert!(pinning::line::<Pga>("slide", (p, tilted), (p, z)).is_ok());
 }
+
+/// At the centre of its sphere a point's constraint row vanishes (the gradient `a − c` is zero), so no reaction
+/// can be found there, but the residual `½(ρ² − |a − c|²)` is defined: `violation` reports it (it used to fail
+/// with the rank deficiency the reaction solve meets), while the equations of motion still refuse the state,
+/// naming the joint.
+#[test]
+fn a_violation_is_reported_where_the_rows_lose_rank() {
+    let bob = Body::sphere(1.0, 0.05).unwrap();
+    let centre = Vector3::z() * 2.0;
+    let on_sphere = VirtualPower::<Pga>::point_on_sphere("string", Vector3::zeros(), centre, 1.5).unwrap();
+    let system = Mechanism::single(bob).with_constraint(on_sphere).unwrap();
+    let at_centre = State::new(
+        &bob,
+        centre,
+        &UnitQuaternion::identity(),
+        Vector3::zeros(),
+        Vector3::x(),
+    );
+    let violation = system.violation(0.0, &[at_centre]).unwrap();
+    assert!((violation.position - 0.5 * 1.5 * 1.5).abs() < 1e-15, "{violation:?}");
+    assert_eq!(violation.velocity, 0.0);
+    match system.rates_at(0.0, &[at_centre]) {
+        Err(ConstraintError::RankDeficient { names, .. }) => assert_eq!(names, "string"),
+        other => panic!("expected a rank deficiency, got {other:?}"),
+    }
+}

@@ -18,7 +18,7 @@
 //!   uses is computed once (as for the products, [`crate::program`]).
 //!
 //! A fused expression is always unrolled; an expansion past
-//! [`MAX_UNROLLED_TERMS`](crate::table::MAX_UNROLLED_TERMS) terms is refused with
+//! [`MAX_UNROLLED_TERMS`] terms is refused with
 //! [`Error::ExpressionTooBig`] (split the expression, or use the table-driven products).
 
 use std::collections::BTreeMap;

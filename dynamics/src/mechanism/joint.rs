@@ -129,6 +129,9 @@ pub(crate) struct JointContext<'a> {
     pub inverse_metric: &'a [[f64; 6]],
     /// Whether the acceleration condition is wanted (false for the projection, which needs only e and ė).
     pub dynamics: bool,
+    /// Whether only the residuals are wanted (a violation query): the rows are not reduced, so a joint at a
+    /// configuration where they are rank deficient (a point at the centre of its sphere) still reports them.
+    pub residuals_only: bool,
 }
 
 impl<A: Algebra> Joint<A> {
@@ -223,6 +226,9 @@ impl<A: Algebra> Joint<A> {
             out.velocity_residual = out.velocity_residual.max(row.velocity_residual.abs());
         }
 
+        if context.residuals_only {
+            return Ok(());
+        }
         let rank = self.constraint.rank();
         let basis: Option<ArrayVec<[f64; 6], 6>> = self.reaction_basis.as_ref().map(|wrenches| {
             wrenches

@@ -252,6 +252,17 @@ enum Condition {
     Velocity = 2,
 }
 
+/// What the joints' rows are evaluated for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Rows {
+    /// The equations of motion: the acceleration condition, stabilised, reduced.
+    Dynamics,
+    /// The projection onto the joint manifold: position and velocity conditions, reduced.
+    Projection,
+    /// A violation query: the residuals alone, not reduced (they exist where the rows lose rank).
+    Residuals,
+}
+
 impl<A: Algebra> Mechanism<A> {
     /// A mechanism with no bodies, no stabilisation and the default solver settings.
     ///
@@ -677,7 +688,9 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Every joint's reduced rows at the bodies' kinematics.
-    fn joint_rows(&self, t: f64, workspace: &mut MechanismWorkspace<A>, dynamics: bool) -> Result<(), ConstraintError> {
+    /// Every joint's rows for `purpose` at the bodies' kinematics in `workspace`.
+    fn joint_rows(&self, t: f64, workspace: &mut MechanismWorkspace<A>, purpose: Rows) -> Result<(), ConstraintError> {
+        let dynamics = purpose == Rows::Dynamics;
         let context = JointContext {
             t,
             stabilisation: if dynamics {
@@ -688,6 +701,7 @@ impl<A: Algebra> Mechanism<A> {
             settings: &self.settings,
             inverse_metric: &workspace.inverse_metric,
             dynamics,
+            residuals_only: purpose == Rows::Residuals,
         };
         for (joint, rows) in self.joints.iter().zip(workspace.joints.iter_mut()) {
             joint.evaluate(&context, &workspace.bodies, &mut workspace.raw, rows)?;
@@ -780,7 +794,7 @@ impl<A: Algebra> Mechanism<A> {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
         }
-        self.joint_rows(t, workspace, true)?;
+        self.joint_rows(t, workspace, Rows::Dynamics)?;
         // The round-off floor of the loop consistency check: the size of the terms in the joints' conditions.
         let scale = workspace
             .joints
@@ -833,7 +847,7 @@ impl<A: Algebra> Mechanism<A> {
     /// The largest position and velocity residuals over the joints at this state.
     pub fn violation(&self, t: f64, states: &[State<A>]) -> Result<Violation, ConstraintError> {
         let mut workspace = self.new_workspace();
-        self.position_rows(t, states, &mut workspace)?;
+        self.position_rows(t, states, &mut workspace, Rows::Residuals)?;
         Ok(workspace.joints.iter().fold(Violation::default(), |v, rows| Violation {
             position: v.position.max(rows.position_residual),
             velocity: v.velocity.max(rows.velocity_residual),
@@ -885,6 +899,7 @@ impl<A: Algebra> Mechanism<A> {
         t: f64,
         states: &[State<A>],
         workspace: &mut MechanismWorkspace<A>,
+        purpose: Rows,
     ) -> Result<(), ConstraintError> {
         for (i, state) in states.iter().enumerate() {
             workspace.motors[i] = state.motor;
@@ -895,7 +910,7 @@ impl<A: Algebra> Mechanism<A> {
         self.body_kinematics(t, &motors, &momenta, workspace, false);
         workspace.motors = motors;
         workspace.momenta = momenta;
-        self.joint_rows(t, workspace, false)
+        self.joint_rows(t, workspace, purpose)
     }
 
     /// Projects states onto the joint manifold (theory §10, docs/mechanisms.md §M5): normalise every motor,
@@ -927,7 +942,7 @@ impl<A: Algebra> Mechanism<A> {
             return Ok(());
         }
         let position_level = self.joints.iter().all(|j| j.constraint.has_position_residual());
-        self.position_rows(t, states, workspace)?;
+        self.position_rows(t, states, workspace, Rows::Projection)?;
         let mut tolerances = Tolerances::of(workspace);
         let drift = largest_position_residual(workspace);
         if position_level && iterations > 0 && drift > tolerances.position && drift <= ONE_STEP_DRIFT {
@@ -943,7 +958,7 @@ impl<A: Algebra> Mechanism<A> {
             self.solve_factored(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
             if drift * tolerances.velocity_scale > tolerances.velocity {
-                self.position_rows(t, states, workspace)?;
+                self.position_rows(t, states, workspace, Rows::Projection)?;
                 if !workspace.joints.iter().all(|rows| rows.reduced.direct) {
                     self.factor_system(workspace)?;
                 }
@@ -958,7 +973,7 @@ impl<A: Algebra> Mechanism<A> {
             self.solve_reactions(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
             steps += 1;
-            self.position_rows(t, states, workspace)?;
+            self.position_rows(t, states, workspace, Rows::Projection)?;
             tolerances = Tolerances::of(workspace);
         }
         let unreachable: Vec<usize> = (0..self.joints.len())
