@@ -18,6 +18,8 @@ pub enum IntegratorName {
     Rkmk4Body,
     /// RKMK of order 6 with the momentum in the body frame.
     Rkmk6Body,
+    /// RKMK of order 8 (Cooper–Verner) with the momentum in the body frame.
+    Rkmk8Body,
     /// Strang splitting, order 2; a free body only.
     Strang,
     /// Yoshida's triple jump of Strang steps, order 4; a free body only.
@@ -31,6 +33,7 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rkmk4 => Integrator::General(Method::Rkmk4),
             IntegratorName::Rkmk4Body => Integrator::General(Method::Rkmk4Body),
             IntegratorName::Rkmk6Body => Integrator::General(Method::Rkmk6Body),
+            IntegratorName::Rkmk8Body => Integrator::General(Method::Rkmk8Body),
             IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
             IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
         }

@@ -49,7 +49,7 @@ fn scenes<A: PinningAlgebra>(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("{}/{}", A::NAME, id.label()));
         for formulation in Formulation::ALL {
             let scene = build_mechanism::<A>(id, formulation, Stabilisation::PROJECTION).expect("the scene builds");
-            for method in [Method::Rk4, Method::Rkmk4Body, Method::Rkmk6Body] {
+            for method in [Method::Rk4, Method::Rkmk4Body, Method::Rkmk6Body, Method::Rkmk8Body] {
                 bench_step(
                     &mut group,
                     format!("{}/{}", formulation.name(), method.name()),

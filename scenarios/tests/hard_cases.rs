@@ -84,7 +84,7 @@ fn far_offset(distance: f64) -> Vector3<f64> {
 /// round trip of the momentum each step rounds the world angular momentum c ⨯ p (~1e4) and so loses ~1e-13
 /// per step (RKMK4-body: orientation 1.2e-7 instead of 2.4e-10 at the origin). Measured (orientation rad,
 /// position m, energy): RK4 2.1e-8, 1.3e-9, 9.0e-11; RKMK4 1.3e-7, 5.1e-10, 6.0e-11; RKMK4-body 1.2e-7,
-/// 4.7e-8, 1.8e-10; RKMK6-body 8.2e-8, 1.3e-10, 1.7e-10; Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7,
+/// 4.7e-8, 1.8e-10; RKMK6-body 8.2e-8, 1.3e-10, 1.7e-10; RKMK8-body 2.8e-7, 1.5e-10, 2.4e-11; Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7,
 /// 3.0e-10, 1.3e-10. The orientations (except Strang's), the splittings' positions and the body methods'
 /// energies differ from their values at the origin, so they are round-off: margins of 10 on those, 3 on the
 /// rest.
@@ -95,6 +95,7 @@ fn pga_far_from_the_origin() {
         (1.3e-6, 1.2e-9, 1.5e-10),
         (1.2e-6, 1.5e-7, 1.8e-9),
         (8.2e-7, 4e-10, 1.7e-9),
+        (2.8e-6, 4.5e-10, 2.4e-10),
         (8e-5, 2e-9, 3e-6),
         (1.2e-6, 3e-9, 3e-10),
     ];
@@ -110,10 +111,11 @@ fn pga_far_from_the_origin() {
 /// it back onto the span, which keeps the loss at ~ε c³ per sandwich); the body-momentum methods move it
 /// through the motor's map on screw coordinates instead (`motor::ScrewFrame`), which never forms c² terms.
 /// Measured at 100 m (orientation rad, position m, energy): RK4 1.3e-7, 1.2e-9, 9.1e-11; RKMK4 1.1e-7,
-/// 4.9e-10, 8.3e-11; RKMK4-body 2.1e-9, 4.7e-8, 4.2e-11; RKMK6-body 1.0e-9, 1.6e-12, 4.2e-11; Strang 3.7e-5,
+/// 4.9e-10, 8.3e-11; RKMK4-body 2.1e-9, 4.7e-8, 4.2e-11; RKMK6-body 1.0e-9, 1.6e-12, 4.2e-11; RKMK8-body
+/// 1.2e-9, 2.6e-12, 4.4e-11; Strang 3.7e-5,
 /// 3.5e-12, 1.2e-6 (its truncation error); Yoshida4 2.1e-7, 4.3e-12, 1.3e-10: PGA gets 8e-8 rad for RK4.
 /// Bounds: 10× these. At 1e4 m (ε c³ ≈ 2e-4) the orientation degrades for every method (RK4 1.6e-2,
-/// RKMK4 5.1e-3, RKMK4-body and RKMK6-body 1.6e-4, Yoshida4 0.32 rad), so it is not asserted; positions (at
+/// RKMK4 5.1e-3, RKMK4-body, RKMK6-body and RKMK8-body 1.6e-4, Yoshida4 0.32 rad), so it is not asserted; positions (at
 /// most 4.8e-8 m) and energies (at most 4.1e-5) are, with a margin of 10.
 #[test]
 fn cga_far_from_the_origin() {
@@ -122,6 +124,7 @@ fn cga_far_from_the_origin() {
         (1.1e-6, 5.2e-9, 8.3e-10),
         (2.1e-8, 4.7e-7, 4.2e-10),
         (1e-8, 1.6e-11, 4.2e-10),
+        (1.2e-8, 2.6e-11, 4.4e-10),
         (3.7e-4, 3.5e-11, 1.2e-5),
         (2.1e-6, 4.3e-11, 1.3e-9),
     ];
@@ -136,7 +139,7 @@ fn cga_far_from_the_origin() {
 /// Scene 1 spun up 100×: ω₀ = (10, 1000, 0) rad/s, v₀ = (100, 50, 0) m/s, dt = 1e-5, 0.1 s. The same motion
 /// on a time axis compressed 100× (and the same hω per step) must give scene 1's errors at dt = 1e-3,
 /// as measured: orientation RK4 8.0e-8, RKMK4 8.4e-8, RKMK4-body 2.7e-10 (PGA) / 3.1e-10 (CGA), RKMK6-body
-/// 1.2e-10 (PGA) / 8.3e-11 (CGA), Strang 3.7e-5, Yoshida4 3.6e-8 rad (the body methods' values are round-off:
+/// 1.2e-10 (PGA) / 8.3e-11 (CGA), RKMK8-body 9.5e-11 (PGA) / 2.1e-10 (CGA), Strang 3.7e-5, Yoshida4 3.6e-8 rad (the body methods' values are round-off:
 /// margin 4–10); the splittings keep the line to 3.4e-13 m, RKMK6-body to 6e-13 m.
 fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
     let bounds: [(f64, f64, f64); Integrator::ALL.len()] = [
@@ -144,6 +147,7 @@ fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
         (2e-7, 1.2e-9, 1.5e-10),
         (1.2e-9, 1e-7, 1.5e-11),
         (1.2e-9, 2e-12, 5e-13),
+        (1.2e-9, 1.2e-12, 3.3e-13),
         (8e-5, 1e-12, 3e-6),
         (8e-8, 1e-12, 2.5e-10),
     ];

@@ -233,7 +233,10 @@ fn convergence_orders<A: Algebra>() {
     let horizon = 2.0;
     let samples = (horizon / reference::scenes::SAMPLE_INTERVAL).round() as usize + 1;
     let reference = Trajectory::new(reference.samples()[..samples].to_vec()).expect("a prefix of the reference");
-    for integrator in Integrator::ALL {
+    // RKMK8-body is below the reference's floor already at dt = 1e-2 (3.3e-13 rad; 3.2e-14 at 5e-3, PGA and
+    // CGA), the largest step on the sample grid: its order is observed on the heavy top instead
+    // (`constraint_scenes.rs`).
+    for integrator in Integrator::ALL.into_iter().filter(|i| i.order() <= 6) {
         let error = |dt: f64| {
             let run = run::<A>(integrator, scene.initial, horizon, dt);
             trajectory_errors(&reference, &trajectory(&run))
@@ -255,12 +258,12 @@ fn convergence_orders<A: Algebra>() {
 
 /// CGA and PGA take identical steps, so their trajectories differ only by round-off; what differs is CGA's
 /// ½|x|² terms. Over scene 1 (the centre of mass travels to (10, 5, 0)) the measured largest orientation
-/// differences are RK4 5.7e-11, RKMK4 1.5e-10, RKMK4-body 1.2e-10, RKMK6-body 4.2e-10, Strang 3.6e-10,
+/// differences are RK4 5.7e-11, RKMK4 1.5e-10, RKMK4-body 1.2e-10, RKMK6-body 4.2e-10, RKMK8-body 4.4e-10, Strang 3.6e-10,
 /// Yoshida4 1.9e-10 rad: round-off that the flips amplify. Positions agree to 4.7e-13 m. All of it is
 /// round-off: bounds 10× the measured values.
 #[test]
 fn algebras_agree_on_scene_1() {
-    let bounds: [f64; Integrator::ALL.len()] = [6e-10, 1.5e-9, 1.2e-9, 4.2e-9, 3.6e-9, 1.9e-9];
+    let bounds: [f64; Integrator::ALL.len()] = [6e-10, 1.5e-9, 1.2e-9, 4.2e-9, 4.5e-9, 3.6e-9, 1.9e-9];
     for (integrator, bound) in Integrator::ALL.into_iter().zip(bounds) {
         let (pga, cga) = (cuboid::<Pga>(), cuboid::<Cga>());
         let pga = run::<Pga>(integrator, pga.initial, pga.scene.duration, DT);
@@ -313,7 +316,8 @@ fn algebras_agree_at_the_origin() {
 ///
 /// Measured (orientation rad, distance from the parabola m, energy error / E₀), PGA:
 /// RK4 1.0e-3, 3.3e-6, 2.2e-6; RKMK4 5.3e-4, 5.9e-8, 2.2e-6; RKMK4-body 7.5e-9, 1.5e-6, 2.0e-9 (the generic
-/// path the same); RKMK6-body 4.3e-9, 2.5e-11, 2.4e-11; Strang 3.7e-5, 3.0e-11, 1.2e-6; Yoshida4 6.7e-8,
+/// path the same); RKMK6-body 4.3e-9, 2.5e-11, 2.4e-11; RKMK8-body 1.3e-8, 2.0e-11, 9.5e-12 (round-off: its
+/// truncation error is far below, 3.3e-13 rad on scene 1 at dt = 1e-2); Strang 3.7e-5, 3.0e-11, 1.2e-6; Yoshida4 6.7e-8,
 /// 1.3e-10, 1.0e-10.
 /// The world-frame momentum couples the translation into the rotation: Ḃ = M⁻¹[~RΩR] takes the angular
 /// momentum about the centre of mass as L_origin − c ⨯ p, so the centre of mass error δc of RK4 and RKMK4
@@ -323,11 +327,11 @@ fn algebras_agree_at_the_origin() {
 /// RKMK4-body keeps the angular momentum in the body frame, so neither couples.
 /// CGA, 490 m from the origin by the end, adds its ½|x|² round-off (`cga_far_from_the_origin` in
 /// hard_cases.rs) where the momentum is sandwiched: RK4 and RKMK4 as PGA; RKMK4-body (as a free body and as a one-body mechanism) 9.9e-9,
-/// 1.5e-6, 6.0e-9 and RKMK6-body 3.7e-8, 1.8e-11, 6.4e-9, which move the momentum through
+/// 1.5e-6, 6.0e-9, RKMK6-body 3.7e-8, 1.8e-11, 6.4e-9 and RKMK8-body 2.4e-8, 3.3e-11, 5.4e-9, which move the momentum through
 /// `motor::ScrewFrame` instead; Strang 3.7e-5, 1.2e-8, 1.2e-6; Yoshida4 7.3e-7, 1.1e-8, 7.5e-9.
 /// Margins: 2–3 on the truncation errors, 10 on those set by round-off (the orientation of RKMK4-body and
 /// Yoshida4, which a change in the generated arithmetic moved from 1.4e-8 to 5.3e-8 and from 2.5e-8 to
-/// 6.7e-8; the splittings' parabola; all of CGA's beyond RK4 and RKMK4).
+/// 6.7e-8; the splittings' parabola; all of RKMK8-body's; all of CGA's beyond RK4 and RKMK4).
 fn thrown_under_gravity<A: Algebra>() {
     let (bounds, generic_bounds): ([(f64, f64, f64); Integrator::ALL.len()], _) = if A::NAME == Cga::NAME {
         (
@@ -336,6 +340,7 @@ fn thrown_under_gravity<A: Algebra>() {
                 (1.2e-3, 1.5e-7, 5e-6),
                 (1e-7, 4.5e-6, 6e-8),
                 (3.7e-7, 5.5e-11, 6.4e-8),
+                (2.4e-7, 3.3e-10, 5.5e-8),
                 (8e-5, 1.5e-7, 3e-6),
                 (8e-6, 1.5e-7, 8e-8),
             ],
@@ -348,6 +353,7 @@ fn thrown_under_gravity<A: Algebra>() {
                 (1.2e-3, 1.5e-7, 5e-6),
                 (7.5e-8, 4e-6, 5e-9),
                 (4.3e-8, 7.5e-11, 2.4e-10),
+                (1.4e-7, 2e-10, 1e-10),
                 (8e-5, 3e-10, 3e-6),
                 (7e-7, 1.5e-9, 2.5e-10),
             ],
