@@ -37,21 +37,24 @@ pub(crate) fn stem(scene: SceneId) -> &'static str {
 pub(crate) enum Family {
     /// RK4 and RKMK4: the momentum integrated in the world frame.
     WorldFrame,
-    /// RKMK4-body, RKMK6-body and RKMK8-body: the momentum carried in the body frame.
+    /// RKMK4-body and RKMK6-body: the momentum carried in the body frame.
     BodyMomentum,
+    /// RKMK8-body, the same scheme at order 8, in a panel of its own (a third pair of colours would pass the six
+    /// an axis may carry with MuJoCo's points).
+    EighthOrder,
     /// Strang and Yoshida-4 (free bodies only).
     Splitting,
 }
 
 impl Family {
-    /// An integrator's family and its place in it (0, 1 or 2).
+    /// An integrator's family and its place in it (0 or 1).
     pub(crate) fn of(integrator: Integrator) -> (Family, usize) {
         match integrator {
             Integrator::General(Method::Rk4) => (Family::WorldFrame, 0),
             Integrator::General(Method::Rkmk4) => (Family::WorldFrame, 1),
             Integrator::General(Method::Rkmk4Body) => (Family::BodyMomentum, 0),
             Integrator::General(Method::Rkmk6Body) => (Family::BodyMomentum, 1),
-            Integrator::General(Method::Rkmk8Body) => (Family::BodyMomentum, 2),
+            Integrator::General(Method::Rkmk8Body) => (Family::EighthOrder, 0),
             Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
             Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
         }
@@ -60,7 +63,8 @@ impl Family {
     pub(crate) fn title(self) -> &'static str {
         match self {
             Family::WorldFrame => "RK4 and RKMK4 (momentum in the world frame)",
-            Family::BodyMomentum => "RKMK4-body, RKMK6-body and RKMK8-body (momentum in the body frame)",
+            Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
+            Family::EighthOrder => "RKMK8-body (order 8, momentum in the body frame)",
             Family::Splitting => "Strang and Yoshida-4 splittings",
         }
     }

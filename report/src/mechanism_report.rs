@@ -121,7 +121,7 @@ fn work_precision_table(out: &mut String, results: &[MechanismResult], id: Mecha
     let mut rows: Vec<&MechanismResult> = results.iter().filter(|(c, _)| c.id == id).collect();
     rows.sort_by(|a, b| compare_rows(&row_key(&a.0), &row_key(&b.0)));
     for (config, result) in rows {
-        let mut row = vec![config.series_label(), format!("{:.0e}", config.dt)];
+        let mut row = vec![config.series_label(), format!("{:e}", config.dt)];
         match result {
             Ok(o) => {
                 let m = &o.measures;
