@@ -264,21 +264,12 @@ proptest! {
             (Just(form), random_values(n, 3))
         })
     ) {
-        let names: Vec<String> = (1..=form.dimension()).map(|i| format!("e{i}")).collect();
-        let (basis, metric) = form.basis(&names);
-        let declaration = AlgebraDeclaration {
-            scalar: ga_codegen::ScalarType::F64,
-            basis,
-            metric,
-            types: vec![
-                common::grades("X", &[1]),
-                common::grades("V", &[0, 2]),
-                ga_codegen::TypeDeclaration { name: "Multivector".into(), layout: ga_codegen::Layout::All },
-            ],
-            operations: None,
-            lowering: vec![],
-            expressions: vec![],
-        };
+        let types = vec![
+            common::grades("X", &[1]),
+            common::grades("V", &[0, 2]),
+            ga_codegen::TypeDeclaration { name: "Multivector".into(), layout: ga_codegen::Layout::All },
+        ];
+        let declaration = form.declaration(types, None);
         // Degree 5 in six dimensions with a general form passes the term limit: kept to four.
         let small = form.dimension() <= 4;
         let expressions = mixed_expressions(1).into_iter().filter(|e| small || e.name != "twice_moved").collect();

@@ -130,20 +130,11 @@ proptest! {
             (Just(form), raw_vectors(n, 1..=3), operand(n), prop::collection::btree_set(0u32..=n as u32, 1..=2))
         })
     ) {
-        let names: Vec<String> = (0..form.dimension()).map(|i| format!("e{i}")).collect();
-        let (basis, metric) = form.basis(&names);
-        let declaration = AlgebraDeclaration {
-            scalar: ga_codegen::ScalarType::F64,
-            basis,
-            metric,
-            types: vec![
-                common::grades("Operand", &grades.iter().copied().collect::<Vec<_>>()),
-                TypeDeclaration { name: "Multivector".to_string(), layout: Layout::All },
-            ],
-            operations: Some(vec![Operation::Sandwich, Operation::Transform]),
-            lowering: vec![],
-            expressions: vec![],
-        };
+        let types = vec![
+            common::grades("Operand", &grades.iter().copied().collect::<Vec<_>>()),
+            TypeDeclaration { name: "Multivector".to_string(), layout: Layout::All },
+        ];
+        let declaration = form.declaration(types, Some(vec![Operation::Sandwich, Operation::Transform]));
         let algebra = Algebra::new(&declaration).unwrap();
         let evaluator = Evaluator::of(&algebra);
         let versor = unit_versor(&evaluator, &raw, |_| true);

@@ -3,7 +3,7 @@
 
 use ga_codegen::metric::Metric;
 use ga_codegen::{
-    AlgebraDeclaration, BasisVectorDeclaration, Evaluator, Layout, Rational64, ScalarType, TypeDeclaration,
+    AlgebraDeclaration, BasisVectorDeclaration, Evaluator, Layout, Operation, Rational64, ScalarType, TypeDeclaration,
 };
 use proptest::prelude::*;
 
@@ -192,6 +192,21 @@ impl Form {
         };
         let named: Vec<(&str, i64)> = names.iter().map(String::as_str).zip(squares).collect();
         (basis(&named), metric)
+    }
+
+    /// A declaration on this form (basis e1, e2, …) with these types and operations (`None`: all).
+    pub fn declaration(&self, types: Vec<TypeDeclaration>, operations: Option<Vec<Operation>>) -> AlgebraDeclaration {
+        let names: Vec<String> = (1..=self.dimension()).map(|i| format!("e{i}")).collect();
+        let (basis, metric) = self.basis(&names);
+        AlgebraDeclaration {
+            scalar: ScalarType::F64,
+            basis,
+            metric,
+            types,
+            operations,
+            lowering: vec![],
+            expressions: vec![],
+        }
     }
 
     pub fn evaluator(&self) -> Evaluator {
