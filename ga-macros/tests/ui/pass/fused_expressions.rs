@@ -20,6 +20,11 @@ ga_macros::algebra! {
         fn moved_point(m: Motor, p: Point) = m * p * ~m;
         fn twice(m: Motor, t: f64) -> Motor = 2.0 * t * m + m.grade_2() / 2.0 - (m ^ m).grade_4();
         fn weight(m: Motor) -> f64 = m.norm_squared();
+        // Linear maps in a scalar parameter (one column) and onto a bare scalar (one row).
+        #[linear(t)]
+        fn scaled(m: Motor, t: f64) -> Motor = t * m;
+        #[linear(l)]
+        fn inner(a: Line, l: Line) -> f64 = (a * l).grade_0();
         fn methods(m: Motor, l: Line) -> Motor = -m.geometric(l).reverse() + m.regressive(l) * 0.25e1 | m;
     }
 }
@@ -41,6 +46,11 @@ fn main() {
     assert_eq!(map.apply(l), reference);
     const MAP: pga::MovedLineMap = pga::moved_line_map(Motor::from_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
     assert_eq!(MAP.apply(l), l);
+
+    let scaled: pga::ScaledMap = pga::scaled_map(m);
+    assert_eq!(scaled.apply(3.0), pga::scaled(m, 3.0));
+    assert_eq!(pga::inner_map(l).apply(l), pga::inner(l, l));
+    assert_eq!(pga::inner(l, l), (l * l).scalar);
 
     let weight: f64 = pga::weight(m);
     assert_eq!(weight, (m * m.reverse()).scalar);
