@@ -217,15 +217,7 @@ fn main() {
     );
     let map = ga_codegen::fuse::linear_map(&pga_fused, 0, 1).expect("the expression is linear in the line");
     row("PGA `moved_line_map(m)`: the 6×6 line map of a motor", map.cost);
-    let non_zero = map.entries.outputs.len();
-    row(
-        "PGA `MovedLineMap::apply` (each further line)",
-        Cost {
-            multiplies: non_zero,
-            adds: non_zero - map.shape.0,
-            divisions: 0,
-        },
-    );
+    row("PGA `MovedLineMap::apply` (each further line)", map.apply_cost());
     row(
         "PGA Motor `transform` Point (unit motor)",
         binary_cost(&pga, Operation::Transform, "Motor", "Point"),

@@ -394,13 +394,23 @@ fn check_expressions(algebra: &Algebra) -> Result<(), Error> {
                     parameter: linear.clone(),
                 });
             }
+            let clash = |name: String, taken: String| Error::MapNameClash {
+                index,
+                expression: expression.name.clone(),
+                name,
+                taken,
+            };
             let map = expression.map_type_name();
             if algebra.type_named(&map).is_some() {
-                return Err(Error::MapTypeClash {
-                    index,
-                    expression: name.clone(),
-                    name: map,
-                });
+                return Err(clash(map, "is a declared type".to_string()));
+            }
+            let mut earlier_maps = algebra.expressions[..index].iter().filter(|e| e.linear.is_some());
+            if let Some(other) = earlier_maps.find(|e| e.map_type_name() == map) {
+                return Err(clash(map, format!("is the type of the linear map of `{}`", other.name)));
+            }
+            let builder = format!("{name}_map");
+            if let Some(other) = algebra.expressions.iter().find(|e| e.name == builder) {
+                return Err(clash(builder, format!("is the expression `{}`", other.name)));
             }
         }
     }

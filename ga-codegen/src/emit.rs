@@ -82,13 +82,20 @@ pub fn fused_function(algebra: &Algebra, index: usize) -> Result<TokenStream, Er
         scalar: format_ident!("{}", algebra.scalar.name()),
     };
     let declared = &algebra.expressions[index];
-    let mut items = emitter.fused_function(declared, &fuse::fuse(algebra, index)?);
-    if let Some(linear) = &declared.linear {
+    let linear = declared.linear.as_ref().map(|linear| {
         let parameter = declared.parameters.iter().position(|p| p.name == *linear);
-        let parameter = parameter.expect("`Algebra::new` checks the linear parameter");
-        items.extend(emitter.linear_map(declared, &fuse::linear_map(algebra, index, parameter)?));
-    }
-    Ok(items)
+        parameter.expect("`Algebra::new` checks the linear parameter")
+    });
+    // A linear map carries the fused function it was expanded with: one expansion for both.
+    Ok(match linear {
+        Some(parameter) => {
+            let map = fuse::linear_map(algebra, index, parameter)?;
+            let mut items = emitter.fused_function(declared, &map.fused);
+            items.extend(emitter.linear_map(declared, &map));
+            items
+        }
+        None => emitter.fused_function(declared, &fuse::fuse(algebra, index)?),
+    })
 }
 
 /// The trait impl (and operator sugar) of one binary function, e.g. to inspect or snapshot it.
@@ -747,12 +754,7 @@ impl Emitter<'_> {
                 quote! { #name { #(#fields),* } }
             }
         };
-        let non_zero = map.entries.outputs.len();
-        let apply_cost = crate::program::Cost {
-            multiplies: non_zero,
-            adds: non_zero.saturating_sub(rows),
-            divisions: 0,
-        };
+        let (non_zero, apply_cost) = (map.entries.outputs.len(), map.apply_cost());
         let input = self.parameter_fields(declared, fused);
         let locals = self.locals(&input, &map.entries);
         let matrix_rows = (0..rows).map(|row| {

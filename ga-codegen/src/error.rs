@@ -556,6 +556,17 @@ pub enum Error {
         blades: Vec<String>,
     },
     #[error(
+        "expression `{expression}` is identically zero (every term cancels), so no type follows from its blades: \
+         declare its result type"
+    )]
+    /// An expression without a declared result type whose every term cancels.
+    ZeroExpression {
+        /// Index into `expressions`.
+        index: usize,
+        /// The expression's name.
+        expression: String,
+    },
+    #[error(
         "expression `{expression}` expands to {terms} or more terms, above the limit of {max}: split it into \
          several expressions"
     )]
@@ -594,15 +605,18 @@ pub enum Error {
         /// The name asked for.
         parameter: String,
     },
-    #[error("the linear map of `{expression}` would be the type `{name}`, which is declared: rename one of them")]
-    /// The type emitted for an expression's linear map has the name of a declared type.
-    MapTypeClash {
+    #[error("the linear map of `{expression}` needs the name `{name}`, which {taken}: rename one of them")]
+    /// A name emitted for an expression's linear map (its type `{Name}Map`, its function `{name}_map`) is
+    /// taken: by a declared type, another expression, or another linear map.
+    MapNameClash {
         /// Index into `expressions`.
         index: usize,
         /// The expression's name.
         expression: String,
-        /// The map type's name.
+        /// The name the map needs.
         name: String,
+        /// What has it already.
+        taken: String,
     },
 }
 
@@ -638,10 +652,11 @@ impl Error {
             Error::InvalidExpressionName { index, .. }
             | Error::DuplicateExpression { index, .. }
             | Error::NoExpressionResultType { index, .. }
+            | Error::ZeroExpression { index, .. }
             | Error::ExpressionTooBig { index, .. }
             | Error::NotLinear { index, .. }
             | Error::UnknownLinearParameter { index, .. }
-            | Error::MapTypeClash { index, .. } => Location::Expression(index),
+            | Error::MapNameClash { index, .. } => Location::Expression(index),
             Error::InvalidParameterName { index, parameter, .. }
             | Error::DuplicateParameter { index, parameter, .. }
             | Error::UnknownExpressionType {

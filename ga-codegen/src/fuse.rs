@@ -446,8 +446,15 @@ struct Expanded {
 }
 
 impl Expanded {
-    /// A builder whose locals are named after the parameters' fields (`m_e12`), never a parameter's name.
-    fn lower_with<T>(&self, algebra: &Algebra, index: usize, lower: impl FnOnce(&mut Builder) -> T) -> T {
+    /// The program computing `outputs` (keyed as its outputs are to be), polynomials in the inputs of the
+    /// parameters `groups`; its locals are named after the parameters' fields (`m_e12`), never a parameter's name.
+    fn program(
+        &self,
+        algebra: &Algebra,
+        index: usize,
+        outputs: &BTreeMap<BladeMask, Polynomial>,
+        groups: &[Range<u32>],
+    ) -> Program {
         let declared = &algebra.expressions[index];
         let input_name = |variable: Variable| {
             let parameter = parameter_of(&self.offsets, variable.field);
@@ -469,7 +476,10 @@ impl Expanded {
         for parameter in &declared.parameters {
             builder.reserve(&parameter.name);
         }
-        lower(&mut builder)
+        let polynomials: Vec<&Polynomial> = outputs.values().collect();
+        let sums = lower(&mut builder, &polynomials, groups);
+        builder.program.outputs = outputs.keys().copied().zip(sums).collect();
+        builder.program
     }
 }
 
@@ -487,10 +497,7 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
     let mut next = 0;
     for (parameter, kind) in declared.parameters.iter().zip(&parameters) {
         let mut value = Symbolic::new();
-        let fields: Vec<(BladeMask, i64)> = match kind {
-            Output::Type(ty) => algebra.types[*ty].fields.iter().map(|f| (f.blade, f.sign)).collect(),
-            Output::Scalar => vec![(0, 1)],
-        };
+        let fields = blades_and_signs(algebra, *kind);
         offsets.push(next);
         for (offset, (blade, sign)) in fields.iter().enumerate() {
             let input = Polynomial([(vec![(next + offset) as u32], Rational64::from(*sign))].into());
@@ -509,11 +516,16 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
     expander.check_result(index, &value)?;
     let output = match &declared.result {
         Some(result) => value_type(algebra, result),
+        None if value.is_empty() => {
+            return Err(Error::ZeroExpression {
+                index,
+                expression: declared.name.clone(),
+            })
+        }
         None => {
             let blades: Vec<BladeMask> = value.keys().copied().collect();
-            let holding = algebra.types.iter().enumerate().filter(|(_, t)| t.holds(&blades));
-            match holding.min_by_key(|(_, t)| t.fields.len()) {
-                Some((ty, _)) => Output::Type(ty),
+            match algebra.smallest_type_holding(&blades) {
+                Some(ty) => value_type(algebra, &ty.name),
                 None => {
                     return Err(Error::NoExpressionResultType {
                         index,
@@ -538,27 +550,27 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
 /// # Errors
 /// An unknown name, a call with the wrong arguments or a recursive one, an operation that is not
 /// polynomial (`inverse`, `transform`), a grade out of range, a result that does not fit the declared type
-/// (or no declared type when none is declared), or an expansion past the term limit.
+/// (or no declared type when none is declared, or an identically zero result without one), or an expansion
+/// past the term limit.
 pub fn fuse(algebra: &Algebra, index: usize) -> Result<Fused, Error> {
-    let expanded = expand(algebra, index)?;
-    let generic = expanded.lower_with(algebra, index, |builder| {
-        let polynomials: Vec<&Polynomial> = expanded.value.values().collect();
-        let sums = lower(builder, &polynomials, &expanded.groups);
-        builder.program.outputs = expanded.value.keys().copied().zip(sums).collect();
-        std::mem::take(&mut builder.program)
-    });
+    Ok(fuse_expanded(algebra, index, expand(algebra, index)?))
+}
+
+/// Lowers an expansion of `algebra.expressions[index]`.
+fn fuse_expanded(algebra: &Algebra, index: usize, expanded: Expanded) -> Fused {
+    let generic = expanded.program(algebra, index, &expanded.value, &expanded.groups);
     let total = |cost: Cost| cost.multiplies + cost.adds;
     let program = match sandwich_program(algebra, index, &expanded) {
         Some(sandwich) if total(sandwich.cost()) < total(generic.cost()) => sandwich,
         _ => generic,
     };
-    Ok(Fused {
+    Fused {
         cost: program.cost(),
         parameters: expanded.parameters,
         offsets: expanded.offsets,
         output: expanded.output,
         program,
-    })
+    }
 }
 
 /// For an expression that is a sandwich of one parameter on another (`a * x * ~a` or `a.sandwich(x)`), the
@@ -647,6 +659,20 @@ pub struct LinearMap {
 }
 
 impl LinearMap {
+    /// The cost of `apply`: a product per entry that does not vanish identically, summed per row.
+    pub fn apply_cost(&self) -> Cost {
+        let columns = self.shape.1;
+        let rows_used = (0..self.shape.0)
+            .filter(|row| (0..columns).any(|c| self.entries.outputs.contains_key(&((row * columns + c) as BladeMask))))
+            .count();
+        let products = self.entries.outputs.len();
+        Cost {
+            multiplies: products,
+            adds: products - rows_used,
+            divisions: 0,
+        }
+    }
+
     /// The matrix for one slice of field values per parameter (the linear parameter's is not read): what
     /// the emitted `{name}_map` builds.
     ///
@@ -677,36 +703,24 @@ impl LinearMap {
 /// # Errors
 /// Those of [`fuse`], and [`Error::NotLinear`] if the parameter does not enter every term exactly once.
 pub fn linear_map(algebra: &Algebra, index: usize, linear: usize) -> Result<LinearMap, Error> {
-    let fused = fuse(algebra, index)?;
     let expanded = expand(algebra, index)?;
     let declared = &algebra.expressions[index];
     let group = expanded.groups[linear].clone();
-    let linear_in_every_term = expanded
-        .value
-        .values()
-        .all(|p| p.0.keys().all(|m| m.iter().filter(|v| group.contains(v)).count() == 1));
-    if !linear_in_every_term {
+    if !enters_every_term_once(expanded.value.values(), &group) {
         return Err(Error::NotLinear {
             index,
             expression: declared.name.clone(),
             parameter: declared.parameters[linear].name.clone(),
         });
     }
-    let rows: Vec<(BladeMask, i64)> = match expanded.output {
-        Output::Type(ty) => algebra.types[ty].fields.iter().map(|f| (f.blade, f.sign)).collect(),
-        Output::Scalar => vec![(0, 1)],
-    };
+    let rows = blades_and_signs(algebra, expanded.output);
     let columns = group.len();
     // Entry (i, j): the coefficient of the linear parameter's field j in the result's field i.
     let mut entries: BTreeMap<BladeMask, Polynomial> = BTreeMap::new();
     for (row, &(blade, sign)) in rows.iter().enumerate() {
         for (monomial, &c) in expanded.value.get(&blade).map(|p| &p.0).into_iter().flatten() {
-            let mut rest = monomial.clone();
-            let at = rest
-                .iter()
-                .position(|v| group.contains(v))
-                .expect("linear in every term");
-            let column = (rest.remove(at) - group.start) as usize;
+            let (field, rest) = split_off(monomial, &group);
+            let column = (field - group.start) as usize;
             let entry = entries.entry((row * columns + column) as BladeMask).or_default();
             entry.add_term(rest, c * Rational64::from(sign));
         }
@@ -716,14 +730,9 @@ pub fn linear_map(algebra: &Algebra, index: usize, linear: usize) -> Result<Line
         .filter(|&(p, _)| p != linear)
         .map(|(_, g)| g.clone())
         .collect();
-    let program = expanded.lower_with(algebra, index, |builder| {
-        let polynomials: Vec<&Polynomial> = entries.values().collect();
-        let sums = lower(builder, &polynomials, &others);
-        builder.program.outputs = entries.keys().copied().zip(sums).collect();
-        std::mem::take(&mut builder.program)
-    });
+    let program = expanded.program(algebra, index, &entries, &others);
     Ok(LinearMap {
-        fused,
+        fused: fuse_expanded(algebra, index, expanded),
         linear,
         shape: (rows.len(), columns),
         cost: program.cost(),
@@ -731,15 +740,36 @@ pub fn linear_map(algebra: &Algebra, index: usize, linear: usize) -> Result<Line
     })
 }
 
+/// The blades a value of this type stores, with the sign of each field (storage order; the bare scalar is `1`).
+fn blades_and_signs(algebra: &Algebra, kind: Output) -> Vec<(BladeMask, i64)> {
+    match kind {
+        Output::Type(ty) => algebra.types[ty].fields.iter().map(|f| (f.blade, f.sign)).collect(),
+        Output::Scalar => vec![(0, 1)],
+    }
+}
+
+/// Whether every term of every polynomial has exactly one factor among the inputs `group`.
+fn enters_every_term_once<'p>(mut set: impl Iterator<Item = &'p Polynomial>, group: &Range<u32>) -> bool {
+    set.all(|p| p.0.keys().all(|m| m.iter().filter(|v| group.contains(v)).count() == 1))
+}
+
+/// A monomial's one factor from `group`, and the product of the others.
+fn split_off(monomial: &Monomial, group: &Range<u32>) -> (u32, Monomial) {
+    let mut rest = monomial.clone();
+    let at = rest
+        .iter()
+        .position(|v| group.contains(v))
+        .expect("the group enters every term");
+    let field = rest.remove(at);
+    (field, rest)
+}
+
 /// Lowers each polynomial of `set` to a sum of terms, sharing work between them (see the module docs).
 fn lower(builder: &mut Builder, set: &[&Polynomial], groups: &[Range<u32>]) -> Vec<Vec<Term>> {
     if set.iter().all(|p| p.0.is_empty()) {
         return vec![Vec::new(); set.len()];
     }
-    let linear_in = |group: &Range<u32>| {
-        set.iter()
-            .all(|p| p.0.keys().all(|m| m.iter().filter(|v| group.contains(v)).count() == 1))
-    };
+    let linear_in = |group: &Range<u32>| enters_every_term_once(set.iter().copied(), group);
     match groups.iter().filter(|g| linear_in(g)).min_by_key(|g| g.len()) {
         Some(group) => factored(builder, set, group, groups),
         None => sums_of_products(builder, set),
@@ -755,12 +785,7 @@ fn factored(builder: &mut Builder, set: &[&Polynomial], group: &Range<u32>, grou
     for polynomial in set {
         let mut by_field: BTreeMap<u32, Polynomial> = BTreeMap::new();
         for (monomial, &c) in &polynomial.0 {
-            let mut rest = monomial.clone();
-            let at = rest
-                .iter()
-                .position(|v| group.contains(v))
-                .expect("the group enters every term");
-            let field = rest.remove(at);
+            let (field, rest) = split_off(monomial, group);
             by_field.entry(field).or_default().add_term(rest, c);
         }
         let mut split = Vec::new();

@@ -503,6 +503,20 @@ fn bad_expressions_are_refused_at_the_offending_node() {
         Error::NoExpressionResultType { index: 1, .. }
     ));
 
+    // Everything cancels: with a declared result type it is that type's zero, without one it is refused
+    // (it used to return whichever smallest type came first).
+    let cancels = || sum(name("a"), name("a"), true);
+    let algebra = with_expressions(
+        vga.clone(),
+        vec![
+            declare("zero", &[("a", "Vector")], Some("Rotor"), cancels()),
+            declare("cancels", &[("a", "Vector")], None, cancels()),
+        ],
+    );
+    let zero = fuse::fuse(&algebra, 0).unwrap();
+    assert!(zero.program.outputs.is_empty() && zero.output == Output::Type(1));
+    assert!(matches!(error_of(&algebra, 1), Error::ZeroExpression { index: 1, .. }));
+
     // Declarations: names, parameters and types, checked by `Algebra::new`.
     let mut refused = |expressions: Vec<ExpressionDeclaration>| {
         vga.expressions = expressions;
@@ -531,6 +545,23 @@ fn bad_expressions_are_refused_at_the_offending_node() {
     );
     let e = refused(vec![declare("f", &[("a", "Vector")], Some("Vectr"), identity())]);
     assert_eq!(e.location(), Location::ExpressionResult(0));
+    // Linear maps whose emitted names are taken: `moved_line` and `movedLine` both need `MovedLineMap`; `f`'s
+    // builder `f_map` is another expression's name.
+    let linear = |name: &str, body| ExpressionDeclaration {
+        linear: Some("a".into()),
+        ..declare(name, &[("a", "Vector")], None, body)
+    };
+    let e = refused(vec![linear("moved_line", identity()), linear("movedLine", identity())]);
+    assert_eq!(
+        e.to_string(),
+        "the linear map of `movedLine` needs the name `MovedLineMap`, which is the type of the linear map of \
+         `moved_line`: rename one of them"
+    );
+    let e = refused(vec![
+        declare("f_map", &[("a", "Vector")], None, identity()),
+        linear("f", identity()),
+    ]);
+    assert_eq!(e.location(), Location::Expression(1), "{e}");
 }
 
 /// An expansion past the term limit is refused, not emitted: eight full multivectors multiplied in 6D.

@@ -26,6 +26,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
 use crate::mechanism::solve::{dot6, SolverSettings};
+use crate::mechanism::Rows;
 use crate::motor::ScrewFrame;
 
 /// A joint of a mechanism: its constraint, the body it holds and the reference it holds it to.
@@ -127,11 +128,10 @@ pub(crate) struct JointContext<'a> {
     pub settings: &'a SolverSettings,
     /// The bodies' inverse inertias `H⁻¹` (diagonal, velocity coordinates).
     pub inverse_metric: &'a [[f64; 6]],
-    /// Whether the acceleration condition is wanted (false for the projection, which needs only e and ė).
-    pub dynamics: bool,
-    /// Whether only the residuals are wanted (a violation query): the rows are not reduced, so a joint at a
-    /// configuration where they are rank deficient (a point at the centre of its sphere) still reports them.
-    pub residuals_only: bool,
+    /// What the rows are for: the acceleration condition is wanted only for the dynamics (the projection
+    /// needs only e and ė), and a violation query wants the residuals alone, not reduced, so that a joint where
+    /// its rows lose rank (a point at the centre of its sphere) still reports them.
+    pub purpose: Rows,
 }
 
 impl<A: Algebra> Joint<A> {
@@ -160,7 +160,7 @@ impl<A: Algebra> Joint<A> {
                 let reference_velocity = frame.to_body(&A::screw_coordinates(reference.kinematics.body_velocity));
                 let relative_velocity = body.kinematics.body_velocity - A::screw(reference_velocity);
                 relative = Kinematics::with_frame(context.t, motor, frame, relative_velocity);
-                let (correction, acceleration) = if context.dynamics {
+                let (correction, acceleration) = if context.purpose == Rows::Dynamics {
                     (
                         velocity_vector(&A::screw_coordinates(A::commutator(
                             body.kinematics.body_velocity,
@@ -211,7 +211,7 @@ impl<A: Algebra> Joint<A> {
         out.has_position = true;
         for row in raw.rows() {
             let mut acceleration = 0.0;
-            if context.dynamics {
+            if context.purpose == Rows::Dynamics {
                 let drift = dot6(&row.jacobian, &relative_acceleration);
                 let feedback = context.stabilisation.feedback(row);
                 acceleration = -drift - row.bias - feedback;
@@ -226,7 +226,7 @@ impl<A: Algebra> Joint<A> {
             out.velocity_residual = out.velocity_residual.max(row.velocity_residual.abs());
         }
 
-        if context.residuals_only {
+        if context.purpose == Rows::Residuals {
             return Ok(());
         }
         let rank = self.constraint.rank();
@@ -253,7 +253,7 @@ impl<A: Algebra> Joint<A> {
             largest: deficiency.largest,
         })?;
         out.acceleration_scale = scale_squared.sqrt();
-        if context.dynamics {
+        if context.purpose == Rows::Dynamics {
             let consistency = crate::mechanism::solve::Consistency::Check {
                 scale: out.acceleration_scale,
             };

@@ -254,7 +254,7 @@ enum Condition {
 
 /// What the joints' rows are evaluated for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Rows {
+pub(crate) enum Rows {
     /// The equations of motion: the acceleration condition, stabilised, reduced.
     Dynamics,
     /// The projection onto the joint manifold: position and velocity conditions, reduced.
@@ -690,18 +690,16 @@ impl<A: Algebra> Mechanism<A> {
     /// Every joint's reduced rows at the bodies' kinematics.
     /// Every joint's rows for `purpose` at the bodies' kinematics in `workspace`.
     fn joint_rows(&self, t: f64, workspace: &mut MechanismWorkspace<A>, purpose: Rows) -> Result<(), ConstraintError> {
-        let dynamics = purpose == Rows::Dynamics;
         let context = JointContext {
             t,
-            stabilisation: if dynamics {
+            stabilisation: if purpose == Rows::Dynamics {
                 self.stabilisation
             } else {
                 Stabilisation::None
             },
             settings: &self.settings,
             inverse_metric: &workspace.inverse_metric,
-            dynamics,
-            residuals_only: purpose == Rows::Residuals,
+            purpose,
         };
         for (joint, rows) in self.joints.iter().zip(workspace.joints.iter_mut()) {
             joint.evaluate(&context, &workspace.bodies, &mut workspace.raw, rows)?;
