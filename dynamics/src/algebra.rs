@@ -103,8 +103,7 @@ pub trait Algebra: Copy + Debug + Default + Send + Sync + 'static {
     fn screw_coordinates(screw: Self::Screw) -> ScrewCoordinates;
     /// The motor with these coordinates.
     fn motor(coordinates: MotorCoordinates) -> Self::Motor;
-    /// The coordinates of a motor, projected onto the motor subalgebra (theory §2: in CGA the `tᵢ`
-    /// and `Π` each span two blades, whose coefficients are averaged).
+    /// The coordinates of a motor (in both algebras a motor's blades are exactly {1, lᵢ, tᵢ, Π}, theory §1.4).
     fn motor_coordinates(motor: Self::Motor) -> MotorCoordinates;
 
     /// The geometric product of two motors.

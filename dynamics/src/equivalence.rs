@@ -48,6 +48,6 @@ macro_rules! assert_same_screw_algebra {
 assert_same_screw_algebra!(
     crate::pga::line_from_coordinates, crate::pga::generated::Line::commutator_line,
     crate::pga::wedge_pi, crate::pga::line_coordinates;
-    crate::cga::bivector_from_coordinates, crate::cga::generated::Bivector::commutator_bivector,
-    crate::cga::wedge_pi, crate::cga::bivector_coordinates;
+    crate::cga::screw_from_coordinates, crate::cga::generated::Screw::commutator_screw,
+    crate::cga::wedge_pi, crate::cga::screw_coordinates;
 );

@@ -54,8 +54,8 @@ pub fn from_pose<A: Algebra>(position: Vector3<f64>, rotation: &UnitQuaternion<f
 ///
 /// The image of the origin comes from the motor's coordinates, `c = −2(s t + p l − l⨯t) / (s² + |l|²)`
 /// (the translation of `T(c) R`, divided by the sandwich's scale `⟨R~R⟩₀`), not from a sandwich of a point:
-/// the same in both algebras, and in CGA it avoids a 16 × 5-blade sandwich per call (10% of a constrained
-/// CGA step). `tests::pose_is_the_image_of_the_origin` checks it against the sandwich.
+/// one formula for both algebras, 15 multiplies against a motor sandwich of a point and a division.
+/// `tests::pose_is_the_image_of_the_origin` checks it against the sandwich.
 pub fn pose<A: Algebra>(motor: A::Motor) -> (Vector3<f64>, UnitQuaternion<f64>) {
     let c = A::motor_coordinates(motor);
     let rotation = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(c.scalar, -c.l.x, -c.l.y, -c.l.z));
@@ -72,9 +72,10 @@ fn origin_image(c: &MotorCoordinates) -> Vector3<f64> {
 /// `(Ql, Qt + c⨯Ql)` in the world frame, with Q the rotation and c the position of the motor ([`pose`]); a
 /// force f through a has `l = f`, `t = a⨯f` and moves with its line. This is the sandwich `RX~R` on
 /// span{lᵢ, tᵢ}, divided by the sandwich's scale `⟨R~R⟩₀` (so a motor normalised to round-off does not scale
-/// screws), at 24 multiplies once the 3×3 rotation is built, against a motor sandwich (PGA ~70, CGA several
-/// hundred); and in CGA it does not pass through the `½|x|²` terms that make sandwiches lose accuracy far
-/// from the origin. `constraints::kinematics::tests` checks it against the sandwich.
+/// screws), at 24 multiplies once the 3×3 rotation is built: the generated linear map of the sandwich on screws
+/// (`#[linear]`, 6×6 with 27 non-zero entries) costs 27 per screw and 26 to build, and needs a second map for
+/// the inverse direction; this is that map factored as a rotation and a cross product, and the fused sandwich
+/// costs 53. `constraints::kinematics::tests` checks it against the sandwich.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScrewFrame {
     /// Q, the rotation from body axes to world axes (see [`ScrewFrame::of`]).
@@ -174,19 +175,17 @@ impl ScrewFrame {
     }
 }
 
-/// Projects onto the motor subalgebra and normalises: with `K = R~R = a + bΠ`,
-/// `R ← (1 − ½(b/a)Π) R / √a` (theory §2). Valid for drift inside the subalgebra, which the
-/// projection guarantees.
+/// Normalises: with `K = R~R = a + bΠ`, `R ← (1 − ½(b/a)Π) R / √a` (theory §2). Both algebras store motors in
+/// the motor subalgebra (theory §1.4), so drift never leaves it.
 pub fn normalise<A: Algebra>(motor: A::Motor) -> A::Motor {
-    let projected = A::motor(A::motor_coordinates(motor));
-    let norm = A::motor_coordinates(A::compose(projected, A::reverse(projected)));
+    let norm = A::motor_coordinates(A::compose(motor, A::reverse(motor)));
     let (a, b) = (norm.scalar, norm.pseudoscalar);
     let correction = A::motor(MotorCoordinates {
         scalar: 1.0,
         pseudoscalar: -0.5 * b / a,
         ..MotorCoordinates::default()
     });
-    A::compose(correction, projected) * (1.0 / a.sqrt())
+    A::compose(correction, motor) * (1.0 / a.sqrt())
 }
 
 /// How far a motor is from unit norm: `|R~R − 1|` over the scalar and Π parts.

@@ -37,9 +37,9 @@ pub struct WorldVelocity {
 }
 
 /// The largest magnitude of a state coordinate (motor or momentum) that the dynamics accepts. The equations form
-/// products of a few coordinates with masses and moments (CGA's sandwiches square distances and multiply by the
-/// motor twice more), which stay finite far below this but overflow near `f64::MAX` (a body placed at 1e308 m
-/// used to fail inside its first joint as a "non-finite residual").
+/// products of a few coordinates with masses and moments (sandwiches multiply by the motor twice), which stay
+/// finite far below this but overflow near `f64::MAX` (a body placed at 1e308 m used to fail inside its first
+/// joint as a "non-finite residual").
 pub const MAX_COORDINATE: f64 = 1e50;
 
 impl<A: Algebra> State<A> {
@@ -152,13 +152,8 @@ impl<A: Algebra> State<A> {
             l: angular_body,
             t: linear_body,
         });
-        // Project the sandwich's result back onto span{lᵢ, tᵢ}: in CGA its round-off leaves components
-        // off the span (e45, eᵢ4 ≠ eᵢ5) that the next sandwich multiplies by |x|² again.
         let momentum = A::transform_screw(motor, body.momentum::<A>(velocity));
-        State {
-            motor,
-            momentum: A::screw(A::screw_coordinates(momentum)),
-        }
+        State { motor, momentum }
     }
 
     /// `Ω_b = ~R Ω R`.

@@ -272,21 +272,21 @@ fn ranks_match_the_spec_tables() {
 /// not the OPNS line itself.
 #[test]
 fn sphere_wrench_is_the_dual_line() {
-    use dynamics::cga::generated::{Pseudoscalar, Vector};
+    use dynamics::cga::generated::{Bivector, Pseudoscalar, Vector};
     let (a, c) = (Vector3::new(0.3, -0.5, 0.2), Vector3::new(-0.1, 0.4, 0.7));
     let infinity = Vector {
-        e4: 1.0,
-        e5: 1.0,
+        ninf: 1.0,
         ..Vector::ZERO
     };
     let line = Cga::point(a) ^ Cga::point(c) ^ infinity;
-    let dual = (line * Pseudoscalar { e12345: 1.0 }).grade_2();
-    let expected = Cga::screw_coordinates(force_line::<Cga>(c - a, a));
-    let got = Cga::screw_coordinates(dual);
-    assert!(
-        (got.l - expected.l).norm() < 1e-14 && (got.t - expected.t).norm() < 1e-14,
-        "{got:?} vs {expected:?}"
-    );
+    // I₅ = e12345 = −e1_e2_e3_n0_ninf (e4∧e5 = −n0∧n∞).
+    let dual = (line * Pseudoscalar { e1_e2_e3_n0_ninf: -1.0 }).grade_2();
+    let expected = Bivector::from(force_line::<Cga>(c - a, a));
+    let difference = (dual - expected)
+        .to_array()
+        .iter()
+        .fold(0.0f64, |worst, d| worst.max(d.abs()));
+    assert!(difference < 1e-14, "{dual:?} vs {expected:?}");
 }
 
 /// theory §8: the translator path is exactly `T(c) V₀ ~T(c)`, with derivatives matching finite differences.

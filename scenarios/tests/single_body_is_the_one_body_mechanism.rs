@@ -63,6 +63,25 @@ fn coordinates<A: Algebra>(state: &dynamics::State<A>) -> Vec<f64> {
     ]
 }
 
+/// The recorded end state a run is compared with: its own, except for CGA point pins (the ball joint of the tops,
+/// the point of the pendulum's hinge) under Baumgarte. Since the null-basis migration CGA pins the flat point
+/// `up(x) ∧ n∞`, whose rows are those of PGA's point, where the recording pinned the round point `up(x)` (five
+/// coefficients reduced to rank 3). On the manifold the two agree; Baumgarte feeds back the residual off it, which
+/// the two define differently, so the former CGA run ends 6.4e-9 from the new one on the top (RK4), and the new
+/// CGA run follows PGA's recording instead (to 7e-15 on that case).
+fn recorded_end<'a>(case: &'a Expected, expected: &'a [Expected]) -> &'a [f64] {
+    let point_pin = case.scene.starts_with("2 ") || case.scene.starts_with("3");
+    if case.algebra == Cga::NAME && case.formulation == "pinning" && case.stabilisation == "baumgarte" && point_pin {
+        let pga = expected.iter().find(|c| {
+            c.algebra == Pga::NAME
+                && (&c.scene, &c.formulation, &c.stabilisation, &c.method)
+                    == (&case.scene, &case.formulation, &case.stabilisation, &case.method)
+        });
+        return &pga.expect("every CGA case has its PGA twin").end;
+    }
+    &case.end
+}
+
 fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
@@ -93,7 +112,7 @@ fn compare<A: SceneAlgebra>(expected: &[Expected]) -> Vec<(String, f64, f64)> {
         let schedule = Schedule::new(1e-3, 2.0).unwrap();
         let run = simulate(&scene.system, &[scene.initial], method, &schedule).unwrap();
         let initial = largest_difference(&coordinates(&scene.initial), &case.initial);
-        let end = largest_difference(&coordinates(&run.final_state[0]), &case.end);
+        let end = largest_difference(&coordinates(&run.final_state[0]), recorded_end(case, expected));
         results.push((
             format!(
                 "{} {} {} {} {}",
@@ -124,10 +143,23 @@ fn check<A: SceneAlgebra>() {
     // end on the conserved world momentum (`integrate::end_of_body_step`). That projection changes the
     // trajectory by its local error, 2.0e-9 after 2 s (RKMK6-body's, sixth order, by 7.6e-14); it is held to
     // the recorded state within 1e-8, and to the reference trajectory by `scene1_free_body.rs`.
+    //
+    // A second changed with the null basis: the CGA rod end on a circle by pinning with Baumgarte. Its incidence
+    // `P ∧ C` has five coefficients of rank 2, now taken on the null basis' blades: a different linear combination of
+    // the same conditions, equivalent on the manifold, but the rank-2 truncation and Baumgarte's feedback act on
+    // them off it. Measured 1.8e-10 (RK4), 3.9e-10 (RKMK4), 5.2e-11 (RKMK4-body), 3.1e-13 (RKMK6-body) from the
+    // recording; with projection, which keeps the run on the manifold, the same case agrees to round-off.
     for (label, initial, end) in results {
         assert!(initial < 1e-15, "{label}: initial state differs by {initial:e}");
         let projected = label.starts_with("1 cuboid") && label.ends_with("RKMK4-body");
-        let bound = if projected { 1e-8 } else { 3e-11 };
+        let circle_feedback = label.starts_with("4 rod end on circle CGA pinning baumgarte");
+        let bound = if projected {
+            1e-8
+        } else if circle_feedback {
+            1e-9
+        } else {
+            3e-11
+        };
         assert!(end < bound, "{label}: end state differs by {end:e}");
     }
 }

@@ -22,7 +22,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::cga::{generated as cga_types, Cga};
 use crate::constraints::kinematics::Kinematics;
 use crate::constraints::objects::{cga_circle, cga_sphere, Coefficients, Pinnable, PinningAlgebra};
-use crate::constraints::paths::{moving_point, CarriedPath, Fixed, MotorPath, Path};
+use crate::constraints::paths::{CarriedPath, Fixed, MotorPath, Path, TranslatedPath};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 
@@ -310,7 +310,8 @@ impl<A: Algebra, X: Pinnable<A>, Y: Coefficients> Constraint<A> for Pin<A, X, Y>
     }
 }
 
-/// A body point (body coordinates) pinned to a world point: a ball joint, rank 3 (theory §7 table).
+/// A body point (body coordinates) pinned to a world point: a ball joint, rank 3 (theory §7 table). The pinned
+/// objects are [`PinningAlgebra::PinnedPoint`]s (in CGA flat points).
 ///
 /// The same ball joint in CGA and PGA: a pendulum's top end held at the origin, and its weight carried by the pivot
 /// (the reaction on a body hanging at rest is `m g` up).
@@ -338,8 +339,8 @@ pub fn point<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
     world_point: Vector3<f64>,
-) -> Pin<A, A::PointObject> {
-    Pin::new(name, A::point_object(body_point), A::point_object(world_point), 3)
+) -> Pin<A, A::PinnedPoint> {
+    Pin::new(name, A::pinned_point(body_point), A::pinned_point(world_point), 3)
 }
 
 /// A body line pinned to a world line: a **cylindrical** joint, rank 4 — the body may slide along and turn
@@ -612,7 +613,7 @@ pub fn motor_joint<A: PinningAlgebra>(name: impl Into<String>, path: impl MotorP
 }
 
 /// A body point pinned to a world point moving along `pivot(t)` (value, velocity, acceleration): a driven
-/// pivot (theory §8), exact through [`moving_point`].
+/// pivot (theory §8), exact through a [`TranslatedPath`] of the pinned point at the origin.
 ///
 /// The top of a rod held to a pivot that moves along a circle of radius 0.1 m at 2 rad/s; a rod carried along
 /// with the pivot keeps the joint.
@@ -641,8 +642,9 @@ pub fn driven_point<A: PinningAlgebra>(
     name: impl Into<String>,
     body_point: Vector3<f64>,
     pivot: impl Path<Vector3<f64>> + 'static,
-) -> Pin<A, A::PointObject> {
-    Pin::with_paths(name, Fixed(A::point_object(body_point)), moving_point::<A, _>(pivot), 3)
+) -> Pin<A, A::PinnedPoint> {
+    let pivot = TranslatedPath::new(A::pinned_point(Vector3::zeros()), pivot);
+    Pin::with_paths(name, Fixed(A::pinned_point(body_point)), pivot, 3)
 }
 
 /// An attachment point sliding on the body along `attachment(t)` (body coordinates), pinned to a fixed
@@ -675,11 +677,11 @@ pub fn sliding_attachment<A: PinningAlgebra>(
     name: impl Into<String>,
     attachment: impl Path<Vector3<f64>> + 'static,
     world_point: Vector3<f64>,
-) -> Pin<A, A::PointObject> {
+) -> Pin<A, A::PinnedPoint> {
     Pin::with_paths(
         name,
-        moving_point::<A, _>(attachment),
-        Fixed(A::point_object(world_point)),
+        TranslatedPath::new(A::pinned_point(Vector3::zeros()), attachment),
+        Fixed(A::pinned_point(world_point)),
         3,
     )
 }
