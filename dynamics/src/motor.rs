@@ -72,10 +72,12 @@ fn origin_image(c: &MotorCoordinates) -> Vector3<f64> {
 /// `(Ql, Qt + c⨯Ql)` in the world frame, with Q the rotation and c the position of the motor ([`pose`]); a
 /// force f through a has `l = f`, `t = a⨯f` and moves with its line. This is the sandwich `RX~R` on
 /// span{lᵢ, tᵢ}, divided by the sandwich's scale `⟨R~R⟩₀` (so a motor normalised to round-off does not scale
-/// screws), at 24 multiplies once the 3×3 rotation is built: the generated linear map of the sandwich on screws
-/// (`#[linear]`, 6×6 with 27 non-zero entries) costs 27 per screw and 26 to build, and needs a second map for
-/// the inverse direction; this is that map factored as a rotation and a cross product, and the fused sandwich
-/// costs 53. `constraints::kinematics::tests` checks it against the sandwich.
+/// screws), at 24 multiplies once the 3×3 rotation is built. It is hand-written because the kinematics need Q
+/// and c themselves (points, directions and velocities of body points, `constraints::kinematics`), which the
+/// generated 6×6 map of the sandwich (`moved_line_map`, 27 multiplies per screw) does not expose. Moving screws
+/// alone, the generated kernels are as fast or faster (`cargo bench -p dynamics --bench screw_frames`,
+/// 2026-11-26, PGA: one screw 34 ns through a frame, 22 ns fused, 22 ns through the map; eight screws 96, 165
+/// and 88 ns). `constraints::kinematics::tests` checks it against the sandwich.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScrewFrame {
     /// Q, the rotation from body axes to world axes (see [`ScrewFrame::of`]).

@@ -757,11 +757,30 @@ impl Emitter<'_> {
         let (non_zero, apply_cost) = (map.entries.outputs.len(), map.apply_cost());
         let input = self.parameter_fields(declared, fused);
         let locals = self.locals(&input, &map.entries);
-        let matrix_rows = (0..rows).map(|row| {
-            let entries = (0..columns).map(|column| {
+        // Each entry is bound to a local first: an array element that is a sum or a product would trip clippy's
+        // `possible_missing_comma` in the user's crate (every emitted token spans the whole macro invocation).
+        // Named apart from the parameters and the shared locals (`entry_0_1`, or `entry__0_1` if a parameter or local
+        // already starts with `entry_`, and so on).
+        let mut prefix = String::from("entry");
+        let taken = |prefix: &str| {
+            let start = format!("{prefix}_");
+            declared.parameters.iter().any(|p| p.name.starts_with(&start))
+                || map.entries.locals.iter().any(|local| local.name.starts_with(&start))
+        };
+        while taken(&prefix) {
+            prefix.push('_');
+        }
+        let entry = |row: usize, column: usize| format_ident!("{prefix}_{row}_{column}");
+        let entry_values = (0..rows)
+            .flat_map(|row| (0..columns).map(move |column| (row, column)))
+            .map(|(row, column)| {
                 let terms = map.entries.outputs.get(&((row * columns + column) as BladeMask));
-                self.sum(&input, &map.entries, terms.map(Vec::as_slice).unwrap_or(&[]), false)
+                let value = self.sum(&input, &map.entries, terms.map(Vec::as_slice).unwrap_or(&[]), false);
+                let name = entry(row, column);
+                quote! { let #name = #value; }
             });
+        let matrix_rows = (0..rows).map(|row| {
+            let entries = (0..columns).map(|column| entry(row, column));
             quote! { [#(#entries),*] }
         });
         let parameters = self.parameter_list(declared, fused, &map.entries, Some(map.linear));
@@ -799,6 +818,7 @@ impl Emitter<'_> {
             #[inline]
             pub const fn #builder(#(#parameters),*) -> #map_type {
                 #locals
+                #(#entry_values)*
                 #map_type { matrix: [#(#matrix_rows),*] }
             }
         }

@@ -25,6 +25,9 @@ ga_macros::algebra! {
         fn scaled(m: Motor, t: f64) -> Motor = t * m;
         #[linear(l)]
         fn inner(a: Line, l: Line) -> f64 = (a * l).grade_0();
+        // A parameter named like the map builder's entry locals (`entry_0_0`, …), which are then named apart.
+        #[linear(l)]
+        fn entries(entry_0_0: Motor, l: Line) -> Line = entry_0_0 * l * ~entry_0_0;
         fn methods(m: Motor, l: Line) -> Motor = -m.geometric(l).reverse() + m.regressive(l) * 0.25e1 | m;
     }
 }
@@ -46,6 +49,7 @@ fn main() {
     assert_eq!(map.apply(l), reference);
     const MAP: pga::MovedLineMap = pga::moved_line_map(Motor::from_array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
     assert_eq!(MAP.apply(l), l);
+    assert_eq!(pga::entries_map(m).apply(l), reference);
 
     let scaled: pga::ScaledMap = pga::scaled_map(m);
     assert_eq!(scaled.apply(3.0), pga::scaled(m, 3.0));
