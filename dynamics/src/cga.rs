@@ -53,6 +53,9 @@ ga_macros::algebra! {
         // also as the motor's 6×6 screw map (`moved_screw_map(m)`, then `apply`), see `benches/screw_frames.rs`.
         #[linear(s)]
         fn moved_screw(m: Motor, s: Screw) -> Screw = m * s * ~m;
+        // The exponential of a screw and the logarithm of a unit motor, in closed form (`ga_codegen::transcendental`).
+        fn exp_screw(b: Screw) -> Motor = exp(b);
+        fn log_motor(m: Motor) -> Screw = log(m);
     }
 }
 
@@ -143,6 +146,16 @@ impl Algebra for Cga {
     #[inline]
     fn transform_screw(motor: Motor, screw: Screw) -> Screw {
         generated::moved_screw(motor, screw)
+    }
+
+    #[inline]
+    fn exp(screw: Screw) -> Motor {
+        generated::exp_screw(screw)
+    }
+
+    #[inline]
+    fn log(motor: Motor) -> Screw {
+        generated::log_motor(motor)
     }
 
     #[inline]

@@ -36,6 +36,9 @@ ga_macros::algebra! {
         // compares with the hand-written `motor::ScrewFrame`.
         #[linear(l)]
         fn moved_line(m: Motor, l: Line) -> Line = m * l * ~m;
+        // The exponential of a screw and the logarithm of a unit motor, in closed form (`ga_codegen::transcendental`).
+        fn exp_line(b: Line) -> Motor = exp(b);
+        fn log_motor(m: Motor) -> Line = log(m);
     }
 }
 
@@ -126,6 +129,16 @@ impl Algebra for Pga {
     #[inline]
     fn transform_screw(motor: Motor, screw: Line) -> Line {
         generated::moved_line(motor, screw)
+    }
+
+    #[inline]
+    fn exp(screw: Line) -> Motor {
+        generated::exp_line(screw)
+    }
+
+    #[inline]
+    fn log(motor: Motor) -> Line {
+        generated::log_motor(motor)
     }
 
     #[inline]

@@ -24,6 +24,7 @@ use crate::operation::Operation;
 use crate::product::reverse_sign;
 use crate::program::{Definition, Program, Term, Value};
 use crate::table::{Source, Table};
+use crate::transcendental::{self, ClosedForm, Function as Closed};
 
 /// The traits every emitted struct derives (it is also `#[repr(C)]`).
 pub const DERIVED_TRAITS: [&str; 5] = ["Clone", "Copy", "Debug", "PartialEq", "Default"];
@@ -82,6 +83,9 @@ pub fn fused_function(algebra: &Algebra, index: usize) -> Result<TokenStream, Er
         scalar: format_ident!("{}", algebra.scalar.name()),
     };
     let declared = &algebra.expressions[index];
+    if transcendental::called(declared).is_some() {
+        return Ok(emitter.closed_form_function(declared, &transcendental::closed_form(algebra, index)?));
+    }
     let linear = declared.linear.as_ref().map(|linear| {
         let parameter = declared.parameters.iter().position(|p| p.name == *linear);
         parameter.expect("`Algebra::new` checks the linear parameter")
@@ -697,6 +701,225 @@ impl Emitter<'_> {
             #doc
             #[inline]
             pub const fn #name(#(#parameters),*) -> #output {
+                #body
+            }
+        }
+    }
+
+    /// A closed form of [`crate::transcendental`]: the pieces' polynomials as locals, then the scalar functions
+    /// of the invariants and the result blade by blade (derivations in that module).
+    fn closed_form_function(&self, declared: &ExpressionDeclaration, form: &ClosedForm) -> TokenStream {
+        let fused = &form.fused;
+        let name = format_ident!("{}", declared.name);
+        let parameter = &declared.parameters[0];
+        let parameter_ident = format_ident!("{}", parameter.name);
+        let parameter_type = self.output_type(fused.parameters[0]);
+        let output = self.output_type(fused.output);
+        let input = self.parameter_fields(declared, fused);
+        let locals = self.locals(&input, &fused.program);
+        // The function's own names start with a prefix that neither the parameter nor a shared local starts with.
+        let mut prefix = String::from("form");
+        let taken = |prefix: &str| {
+            let start = format!("{prefix}_");
+            parameter.name.starts_with(&start) || fused.program.locals.iter().any(|l| l.name.starts_with(&start))
+        };
+        while taken(&prefix) {
+            prefix.push('_');
+        }
+        let local = |name: &str| format_ident!("{prefix}_{name}");
+        let piece_ident = |piece: &str, blade: BladeMask| local(&format!("{piece}_{}", self.algebra.blade_name(blade)));
+        let mut pieces: Vec<TokenStream> = Vec::new();
+        for (piece, blades) in &form.pieces {
+            for (blade, terms) in blades {
+                let ident = piece_ident(piece, *blade);
+                let value = self.sum(&input, &fused.program, terms, false);
+                pieces.push(quote! { let #ident = #value; });
+            }
+        }
+        let zero = self.literal(Rational64::zero());
+        // The canonical coefficient of `blade` in a piece, as tokens (zero where the piece has no such blade).
+        let coefficient = |piece: &str, blade: BladeMask| {
+            form.blades(piece).contains(&blade).then(|| {
+                let ident = piece_ident(piece, blade);
+                quote! { #ident }
+            })
+        };
+        // `a₁ x₁ + a₂ x₂ + …` over the terms whose x is not identically zero (`0` if none is); a term without x is
+        // its factor alone.
+        let combination = |terms: Vec<(TokenStream, Option<Option<TokenStream>>)>| -> TokenStream {
+            let present: Vec<TokenStream> = terms
+                .into_iter()
+                .filter_map(|(factor, x)| {
+                    x.map(|x| match x {
+                        Some(x) => quote! { #factor * #x },
+                        None => factor,
+                    })
+                })
+                .collect();
+            if present.is_empty() {
+                quote! { #zero }
+            } else {
+                quote! { #(#present)+* }
+            }
+        };
+        let parameter_kind = fused.parameters[0];
+        let canonical_input = |blade: BladeMask| match parameter_kind {
+            Output::Type(ty) => {
+                let ty = &self.algebra.types[ty];
+                match ty.fields.iter().position(|f| f.blade == blade) {
+                    Some(index) => {
+                        let field = field_ident(ty, index);
+                        Some(match ty.fields[index].sign {
+                            1 => quote! { #parameter_ident.#field },
+                            _ => quote! { (-#parameter_ident.#field) },
+                        })
+                    }
+                    None => None,
+                }
+            }
+            Output::Scalar if blade == 0 => Some(quote! { #parameter_ident }),
+            Output::Scalar => None,
+        };
+        let [c, s, d, lambda, t, r, inverse, k] = ["c", "s", "d", "lambda", "t", "r", "inverse", "k"].map(local);
+        // c(λ), s(λ) and d(λ) = (c − s)/λ by their Taylor series for |λ| < 0.1 (terms to λ⁷: truncation below
+        // 1e-20), otherwise from the trigonometric or hyperbolic functions (cancellation in d at most 1e-15).
+        let series = quote! {{
+            let #c = 1.0 + #lambda * (1.0 / 2.0 + #lambda * (1.0 / 24.0 + #lambda * (1.0 / 720.0 + #lambda * (1.0 / 40320.0
+                + #lambda * (1.0 / 3628800.0 + #lambda * (1.0 / 479001600.0 + #lambda * (1.0 / 87178291200.0)))))));
+            let #s = 1.0 + #lambda * (1.0 / 6.0 + #lambda * (1.0 / 120.0 + #lambda * (1.0 / 5040.0 + #lambda * (1.0 / 362880.0
+                + #lambda * (1.0 / 39916800.0 + #lambda * (1.0 / 6227020800.0 + #lambda * (1.0 / 1307674368000.0)))))));
+            let #d = (1.0 / 2.0 - 1.0 / 6.0) + #lambda * ((1.0 / 24.0 - 1.0 / 120.0) + #lambda * ((1.0 / 720.0 - 1.0 / 5040.0)
+                + #lambda * ((1.0 / 40320.0 - 1.0 / 362880.0) + #lambda * ((1.0 / 3628800.0 - 1.0 / 39916800.0)
+                + #lambda * ((1.0 / 479001600.0 - 1.0 / 6227020800.0) + #lambda * (1.0 / 87178291200.0 - 1.0 / 1307674368000.0))))));
+            (#c, #s, #d)
+        }};
+        let output_blades: Vec<(proc_macro2::Ident, BladeMask, i64)> = match fused.output {
+            Output::Type(ty) => {
+                let ty = &self.algebra.types[ty];
+                ty.fields
+                    .iter()
+                    .enumerate()
+                    .map(|(i, f)| (field_ident(ty, i), f.blade, f.sign))
+                    .collect()
+            }
+            Output::Scalar => vec![],
+        };
+        let result = |value: &dyn Fn(BladeMask) -> TokenStream| -> TokenStream {
+            match fused.output {
+                Output::Type(_) => {
+                    let fields = output_blades.iter().map(|(field, blade, sign)| {
+                        let value = value(*blade);
+                        match sign {
+                            1 => quote! { #field: #value },
+                            _ => quote! { #field: -(#value) },
+                        }
+                    });
+                    quote! { #output { #(#fields),* } }
+                }
+                Output::Scalar => value(0),
+            }
+        };
+        let (body, what) = match form.function {
+            Closed::Exp => {
+                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #c }, (blade == 0).then_some(None)),
+                        (quote! { #s }, canonical_input(blade).map(Some)),
+                        (quote! { #s }, coefficient("half_wedge", blade).map(Some)),
+                        (quote! { #d }, coefficient("v", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                (
+                    quote! {
+                        let #lambda = #square;
+                        let (#c, #s, #d) = if #lambda.abs() < 0.1 #series else if #lambda < 0.0 {
+                            let #t = (-#lambda).sqrt();
+                            let (sin, cos) = #t.sin_cos();
+                            (cos, sin / #t, (cos - sin / #t) / #lambda)
+                        } else {
+                            let #t = #lambda.sqrt();
+                            let (cosh, sinh) = (#t.cosh(), #t.sinh());
+                            (cosh, sinh / #t, (cosh - sinh / #t) / #lambda)
+                        };
+                        #result
+                    },
+                    "the exponential: with λ = ⟨b²⟩₀, `c + s b + s ½(b∧b) + d ½⟨(b∧b) b⟩₂`, c = cos √−λ or cosh √λ, \
+                     s = sin √−λ / √−λ or sinh √λ / √λ, d = (c − s)/λ (series near λ = 0)",
+                )
+            }
+            Closed::Log => {
+                let a = coefficient("scalar", 0).unwrap_or_else(|| quote! { #zero });
+                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #inverse }, coefficient("bivector", blade).map(Some)),
+                        (quote! { #k }, coefficient("q_b", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                (
+                    quote! {
+                        let #r = #square.abs().sqrt();
+                        // The plane's angle (rotation) or rapidity (boost), λ = ∓t², then s(λ) and d(λ).
+                        let (#t, #lambda) = if #square < 0.0 {
+                            let #t = #r.atan2(#a);
+                            (#t, -#t * #t)
+                        } else {
+                            let #t = #r.asinh();
+                            (#t, #t * #t)
+                        };
+                        let (#c, #s, #d) = if #lambda.abs() < 0.1 #series else if #lambda < 0.0 {
+                            let #s = #t.sin() / #t;
+                            (#t.cos(), #s, (#t.cos() - #s) / #lambda)
+                        } else {
+                            let #s = #t.sinh() / #t;
+                            (#t.cosh(), #s, (#t.cosh() - #s) / #lambda)
+                        };
+                        // c is ⟨m⟩₀ itself for a unit element; only s and d enter B.
+                        let _ = #c;
+                        let #inverse = 1.0 / #s;
+                        let #k = -#d * #inverse * #inverse * #inverse;
+                        #result
+                    },
+                    "the logarithm of a unit element (`m ~m = 1`): with `b = ⟨m⟩₂`, `q = ⟨m⟩₄` and the plane's angle \
+                     from `⟨m⟩₀` and `⟨b²⟩₀`, `b/s − (d/s³)⟨q b⟩₂`; not defined where s = 0 (a turn by 2π)",
+                )
+            }
+            Closed::Sqrt | Closed::Normalized => {
+                let n0 = coefficient("n0", 0).unwrap_or_else(|| quote! { #zero });
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #inverse }, coefficient("value", blade).map(Some)),
+                        (quote! { #k }, coefficient("y_n4", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                let what = match form.function {
+                    Closed::Sqrt => "the square root of a unit element: `normalized(1 + m)`, exact where `⟨m⟩₀ > −1`",
+                    _ => "`m (m ~m)^(−1/2)`, with `(n₀ + N₄)^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))` (N₄² = 0)",
+                };
+                (
+                    quote! {
+                        let #inverse = 1.0 / #n0.sqrt();
+                        let #k = -0.5 * #inverse / #n0;
+                        #result
+                    },
+                    what,
+                )
+            }
+        };
+        let doc = doc_lines(&format!(
+            "`{}`, in closed form ([`ga_codegen::transcendental`]): {what}.\n\nCost of the polynomial part: {}.",
+            declared.body, fused.cost
+        ));
+        quote! {
+            #doc
+            #[inline]
+            pub fn #name(#parameter_ident: #parameter_type) -> #output {
+                #locals
+                #(#pieces)*
                 #body
             }
         }

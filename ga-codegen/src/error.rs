@@ -517,6 +517,31 @@ pub enum Error {
         /// Why, and what to write instead.
         reason: &'static str,
     },
+    #[error("`{function}` takes exactly one parameter of the expression and must be its whole body, as in `fn {function}_b(b: Bivector) -> Motor = {function}(b);`: {reason}")]
+    /// A call of `exp`, `log`, `sqrt` or `normalized` that is not the whole body of its expression, or whose
+    /// argument is not one of the expression's parameters.
+    TranscendentalUse {
+        /// Index into `expressions`.
+        index: usize,
+        /// The call's node.
+        node: usize,
+        /// `exp`, `log`, `sqrt` or `normalized`.
+        function: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    #[error("no closed form is generated for `{function}` of `{type_name}`: {reason}")]
+    /// A parameter type for which the closed form is not generated (see [`crate::transcendental`]).
+    NoClosedForm {
+        /// Index into `expressions`.
+        index: usize,
+        /// `exp`, `log`, `sqrt` or `normalized`.
+        function: &'static str,
+        /// The parameter's type.
+        type_name: String,
+        /// Why.
+        reason: String,
+    },
     #[error("grade {grade} is out of range: this algebra has grades 0 to {max}")]
     /// A grade selection beyond the algebra's dimension.
     ExpressionGradeOutOfRange {
@@ -656,7 +681,8 @@ impl Error {
             | Error::ExpressionTooBig { index, .. }
             | Error::NotLinear { index, .. }
             | Error::UnknownLinearParameter { index, .. }
-            | Error::MapNameClash { index, .. } => Location::Expression(index),
+            | Error::MapNameClash { index, .. }
+            | Error::NoClosedForm { index, .. } => Location::Expression(index),
             Error::InvalidParameterName { index, parameter, .. }
             | Error::DuplicateParameter { index, parameter, .. }
             | Error::UnknownExpressionType {
@@ -675,6 +701,7 @@ impl Error {
             | Error::ArgumentCount { index, node, .. }
             | Error::ArgumentDoesNotFit { index, node, .. }
             | Error::NotFusable { index, node, .. }
+            | Error::TranscendentalUse { index, node, .. }
             | Error::ExpressionGradeOutOfRange { index, node, .. } => Location::ExpressionNode {
                 expression: index,
                 node,

@@ -34,12 +34,13 @@ use crate::algebra::Algebra;
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
 use crate::expand::{Operand, Variable};
-use crate::expression::{Expression, ExpressionKind};
+use crate::expression::{Expression, ExpressionDeclaration, ExpressionKind};
 use crate::functions::Output;
 use crate::operation::Operation;
 use crate::product::{Combination, Rules};
 use crate::program::{self, Builder, Cost, Program, Term, Value};
 use crate::table::MAX_UNROLLED_TERMS;
+use crate::transcendental::Function;
 
 /// A fused expression: its parameters' types, its result, and the program computing the result's blades.
 #[derive(Clone, Debug)]
@@ -111,16 +112,16 @@ impl Fused {
     }
 }
 
-fn parameter_of(offsets: &[usize], input: usize) -> usize {
+pub(crate) fn parameter_of(offsets: &[usize], input: usize) -> usize {
     offsets.iter().rposition(|&offset| offset <= input).unwrap_or(0)
 }
 
 /// A product of inputs: their indices, sorted (repeated for powers).
-type Monomial = Vec<u32>;
+pub(crate) type Monomial = Vec<u32>;
 
 /// A polynomial in the inputs with exact coefficients; no zero coefficient is stored.
 #[derive(Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
-struct Polynomial(BTreeMap<Monomial, Rational64>);
+pub(crate) struct Polynomial(pub(crate) BTreeMap<Monomial, Rational64>);
 
 impl Polynomial {
     fn add_term(&mut self, monomial: Monomial, coefficient: Rational64) {
@@ -137,10 +138,10 @@ impl Polynomial {
 }
 
 /// A multivector with polynomial coefficients: each blade with a non-zero polynomial.
-type Symbolic = BTreeMap<BladeMask, Polynomial>;
+pub(crate) type Symbolic = BTreeMap<BladeMask, Polynomial>;
 
 /// Adds `factor · polynomial` to the blade's coefficient, dropping it if it cancels.
-fn accumulate(target: &mut Symbolic, blade: BladeMask, polynomial: &Polynomial, factor: Rational64) {
+pub(crate) fn accumulate(target: &mut Symbolic, blade: BladeMask, polynomial: &Polynomial, factor: Rational64) {
     let coefficient = target.entry(blade).or_default();
     for (monomial, &c) in &polynomial.0 {
         coefficient.add_term(monomial.clone(), c * factor);
@@ -166,10 +167,10 @@ fn linear(x: &Symbolic, map: impl Fn(BladeMask) -> Combination) -> Symbolic {
 }
 
 /// Expands one declared expression at a time; `top` is the expression being fused (calls inline others).
-struct Expander<'a> {
-    algebra: &'a Algebra,
-    rules: Rules<'a>,
-    top: usize,
+pub(crate) struct Expander<'a> {
+    pub(crate) algebra: &'a Algebra,
+    pub(crate) rules: Rules<'a>,
+    pub(crate) top: usize,
 }
 
 impl Expander<'_> {
@@ -216,11 +217,11 @@ impl Expander<'_> {
         Ok(out)
     }
 
-    fn product(&self, operation: Operation, a: &Symbolic, b: &Symbolic) -> Result<Symbolic, Error> {
+    pub(crate) fn product(&self, operation: Operation, a: &Symbolic, b: &Symbolic) -> Result<Symbolic, Error> {
         self.bilinear(a, b, |x, y| self.rules.binary(operation, x, y))
     }
 
-    fn reverse(&self, x: &Symbolic) -> Symbolic {
+    pub(crate) fn reverse(&self, x: &Symbolic) -> Symbolic {
         linear(x, |blade| self.rules.unary(Operation::Reverse, blade))
     }
 
@@ -344,6 +345,18 @@ impl Expander<'_> {
         calls: &mut Vec<usize>,
     ) -> Result<Symbolic, Error> {
         let expressions = &self.algebra.expressions;
+        let not_polynomial = |function: Function, reason: String| Error::TranscendentalUse {
+            index: at,
+            node: node.id,
+            function: function.name(),
+            reason,
+        };
+        if let Some(function) = Function::named(name) {
+            return Err(not_polynomial(
+                function,
+                "it is not a polynomial, so it cannot be part of a larger formula".to_string(),
+            ));
+        }
         let Some(callee) = expressions.iter().position(|e| e.name == name) else {
             return Err(Error::UnknownName {
                 index: at,
@@ -361,6 +374,12 @@ impl Expander<'_> {
             });
         }
         let declared = &expressions[callee];
+        if let Some(function) = crate::transcendental::called(declared) {
+            return Err(not_polynomial(
+                function,
+                format!("`{name}` is not a polynomial, so it cannot be called inside a formula; call it from Rust"),
+            ));
+        }
         if declared.parameters.len() != arguments.len() {
             return Err(Error::ArgumentCount {
                 index: at,
@@ -428,7 +447,7 @@ impl Expander<'_> {
 }
 
 /// The type a parameter or result named `type_name` has: a declared type, or the bare scalar.
-fn value_type(algebra: &Algebra, type_name: &str) -> Output {
+pub(crate) fn value_type(algebra: &Algebra, type_name: &str) -> Output {
     match algebra.types.iter().position(|ty| ty.name == type_name) {
         Some(index) => Output::Type(index),
         None => Output::Scalar,
@@ -455,32 +474,51 @@ impl Expanded {
         outputs: &BTreeMap<BladeMask, Polynomial>,
         groups: &[Range<u32>],
     ) -> Program {
-        let declared = &algebra.expressions[index];
-        let input_name = |variable: Variable| {
-            let parameter = parameter_of(&self.offsets, variable.field);
-            let name = &declared.parameters[parameter].name;
-            match self.parameters[parameter] {
-                Output::Type(ty) => {
-                    let field = &algebra.types[ty].fields[variable.field - self.offsets[parameter]];
-                    format!("{name}_{}", field.name)
-                }
-                Output::Scalar => name.clone(),
-            }
-        };
-        let blade_name = |blade| algebra.blade_name(blade);
-        let names = program::Names {
-            field: &input_name,
-            blade: &blade_name,
-        };
-        let mut builder = Builder::new(&names);
-        for parameter in &declared.parameters {
-            builder.reserve(&parameter.name);
-        }
         let polynomials: Vec<&Polynomial> = outputs.values().collect();
-        let sums = lower(&mut builder, &polynomials, groups);
-        builder.program.outputs = outputs.keys().copied().zip(sums).collect();
-        builder.program
+        let (mut program, sums) = lower_parameters(
+            algebra,
+            &algebra.expressions[index],
+            (&self.parameters, &self.offsets),
+            &polynomials,
+            groups,
+        );
+        program.outputs = outputs.keys().copied().zip(sums).collect();
+        program
     }
+}
+
+/// Lowers polynomials in the fields of `declared`'s parameters (of types `parameters`, first inputs at `offsets`)
+/// into one program sharing products, and each polynomial's sum; locals are named after the parameters' fields
+/// (`m_e12`), never a parameter's name.
+pub(crate) fn lower_parameters(
+    algebra: &Algebra,
+    declared: &ExpressionDeclaration,
+    (parameters, offsets): (&[Output], &[usize]),
+    polynomials: &[&Polynomial],
+    groups: &[Range<u32>],
+) -> (Program, Vec<Vec<Term>>) {
+    let input_name = |variable: Variable| {
+        let parameter = parameter_of(offsets, variable.field);
+        let name = &declared.parameters[parameter].name;
+        match parameters[parameter] {
+            Output::Type(ty) => {
+                let field = &algebra.types[ty].fields[variable.field - offsets[parameter]];
+                format!("{name}_{}", field.name)
+            }
+            Output::Scalar => name.clone(),
+        }
+    };
+    let blade_name = |blade| algebra.blade_name(blade);
+    let names = program::Names {
+        field: &input_name,
+        blade: &blade_name,
+    };
+    let mut builder = Builder::new(&names);
+    for parameter in &declared.parameters {
+        builder.reserve(&parameter.name);
+    }
+    let sums = lower(&mut builder, polynomials, groups);
+    (builder.program, sums)
 }
 
 /// Expands `algebra.expressions[index]` exactly and picks its result type.
@@ -553,6 +591,15 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
 /// (or no declared type when none is declared, or an identically zero result without one), or an expansion
 /// past the term limit.
 pub fn fuse(algebra: &Algebra, index: usize) -> Result<Fused, Error> {
+    let declared = &algebra.expressions[index];
+    if let Some(function) = crate::transcendental::called(declared) {
+        return Err(Error::TranscendentalUse {
+            index,
+            node: declared.body.id,
+            function: function.name(),
+            reason: "it is generated in closed form (`transcendental::closed_form`), not fused".to_string(),
+        });
+    }
     Ok(fuse_expanded(algebra, index, expand(algebra, index)?))
 }
 
@@ -741,7 +788,7 @@ pub fn linear_map(algebra: &Algebra, index: usize, linear: usize) -> Result<Line
 }
 
 /// The blades a value of this type stores, with the sign of each field (storage order; the bare scalar is `1`).
-fn blades_and_signs(algebra: &Algebra, kind: Output) -> Vec<(BladeMask, i64)> {
+pub(crate) fn blades_and_signs(algebra: &Algebra, kind: Output) -> Vec<(BladeMask, i64)> {
     match kind {
         Output::Type(ty) => algebra.types[ty].fields.iter().map(|f| (f.blade, f.sign)).collect(),
         Output::Scalar => vec![(0, 1)],
@@ -765,7 +812,7 @@ fn split_off(monomial: &Monomial, group: &Range<u32>) -> (u32, Monomial) {
 }
 
 /// Lowers each polynomial of `set` to a sum of terms, sharing work between them (see the module docs).
-fn lower(builder: &mut Builder, set: &[&Polynomial], groups: &[Range<u32>]) -> Vec<Vec<Term>> {
+pub(crate) fn lower(builder: &mut Builder, set: &[&Polynomial], groups: &[Range<u32>]) -> Vec<Vec<Term>> {
     if set.iter().all(|p| p.0.is_empty()) {
         return vec![Vec::new(); set.len()];
     }

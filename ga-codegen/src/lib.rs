@@ -71,6 +71,7 @@ pub mod operation;
 pub mod product;
 pub mod program;
 pub mod table;
+pub mod transcendental;
 
 pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, Lowering, ScalarType, TypeDeclaration};

@@ -98,7 +98,7 @@ impl std::fmt::Display for Cost {
     }
 }
 
-fn sum_cost(terms: &[Term]) -> Cost {
+pub(crate) fn sum_cost(terms: &[Term]) -> Cost {
     let multiplies = terms
         .iter()
         .map(|t| t.factors.len().saturating_sub(1) + usize::from(!t.coefficient.abs().is_one()))

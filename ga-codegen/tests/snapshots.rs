@@ -94,3 +94,35 @@ fn pga_fused_moved_line() {
     let algebra = Algebra::new(&declaration).unwrap();
     insta::assert_snapshot!(ga_codegen::pretty(&emit::fused_function(&algebra, 0).unwrap()).unwrap());
 }
+
+/// The closed forms of `exp` on PGA's lines and `log` on its motors (`ga_codegen::transcendental`): the invariants'
+/// polynomials as locals, then the series or trigonometric coefficients and the result blade by blade.
+#[test]
+fn pga_closed_forms() {
+    use ga_codegen::expression::{Expression, ExpressionKind, Parameter};
+    let call = |function: &str, argument: &str| {
+        let parameter = Expression::new(ExpressionKind::Parameter(argument.into()));
+        Expression::new(ExpressionKind::Call(function.into(), vec![parameter]))
+    };
+    let declared =
+        |name: &str, parameter: &str, ty: &str, result: &str, function: &str| ga_codegen::ExpressionDeclaration {
+            name: name.into(),
+            parameters: vec![Parameter {
+                name: parameter.into(),
+                type_name: ty.into(),
+            }],
+            result: Some(result.into()),
+            body: call(function, parameter),
+            linear: None,
+        };
+    let mut declaration = common::pga();
+    declaration.expressions = vec![
+        declared("exp_line", "b", "Line", "Motor", "exp"),
+        declared("log_motor", "m", "Motor", "Line", "log"),
+    ];
+    let algebra = Algebra::new(&declaration).unwrap();
+    let emitted: Vec<String> = (0..2)
+        .map(|index| ga_codegen::pretty(&emit::fused_function(&algebra, index).unwrap()).unwrap())
+        .collect();
+    insta::assert_snapshot!(emitted.join("\n"));
+}

@@ -243,6 +243,42 @@
 //! result type, the call with the wrong number of arguments, the method `inverse`, the result type
 //! that does not hold the result, the operator `&&`.
 //!
+//! ## exp, log, sqrt and normalized
+//!
+//! An expression whose whole body is `exp(x)`, `log(x)`, `sqrt(x)` or `normalized(x)` of its one
+//! parameter is emitted in closed form ([`ga_codegen::transcendental`] has the derivations): its
+//! invariants (`⟨b²⟩₀`, `b ∧ b`, …) expanded exactly as above, then series near zero or the
+//! trigonometric and hyperbolic functions (so these functions need `std` and are not `const`).
+//! `exp` takes a bivector type, the others an even type; `log` and `sqrt` are for unit elements
+//! (`m ~m = 1`, e.g. from `normalized`). They are generated for every type whose bivectors have at
+//! most one plane of non-zero square: every algebra with n ≤ 3 (2D PGA, Euclidean rotors, boosts of
+//! Cl(2,1)), 3D PGA's lines and CGA's rigid screws on the null basis; a type with two such planes
+//! (Cl(4), a general bivector of STA) is refused at the expression. These functions cannot be part
+//! of a larger formula.
+//!
+//! ```
+//! ga_macros::algebra! {
+//!     pub mod pga {
+//!         scalar = f64;
+//!         basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1];
+//!         types { Motor = grades(0, 2, 4); Line = grades(2); }
+//!         ops = [geometric, reverse];
+//!         fn exp_line(b: Line) -> Motor = exp(b);
+//!         fn log_motor(m: Motor) -> Line = log(m);
+//!         fn sqrt_motor(m: Motor) -> Motor = sqrt(m);
+//!     }
+//! }
+//! use pga::Line;
+//!
+//! // A quarter turn about the z axis through (1, 0, 0), and 2 along it: a screw motion.
+//! let screw = Line { e12: -std::f64::consts::FRAC_PI_4, e01: 0.25 * std::f64::consts::PI, e03: -1.0, ..Line::ZERO };
+//! let motor = pga::exp_line(screw);
+//! let back = pga::log_motor(motor);
+//! assert!(back.to_array().iter().zip(screw.to_array()).all(|(a, b)| (a - b).abs() < 1e-15));
+//! let half = pga::sqrt_motor(motor);
+//! assert!(((half * half).to_array().iter().zip(motor.to_array())).all(|(a, b)| (a - b).abs() < 1e-15));
+//! ```
+//!
 //! ## Attributes on types
 //!
 //! Attributes on a type declaration go onto its struct: doc comments before the generated ones, any

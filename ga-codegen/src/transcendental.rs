@@ -1,0 +1,396 @@
+//! `exp`, `log`, `sqrt` and `normalized`, generated in closed form: an expression whose whole body is one of
+//! them applied to a parameter (`fn exp_line(b: Line) -> Motor = exp(b);`) is emitted as a function that combines
+//! exact polynomial pieces of its argument (expanded and lowered as in [`crate::fuse`]) with a few scalar
+//! functions (`sqrt`, `sin`, `cos`, …, so the emitted function needs `std`, and is not `const`).
+//!
+//! **The class generated.** The invariant decomposition (Roelfs and De Keninck, "Graded symmetry groups: plane
+//! and simple", 2021) writes a bivector of an algebra with n ≤ 5 as the sum of at most two commuting simple
+//! bivectors `B = B₁ + B₂` with scalar squares `λᵢ = Bᵢ²`: `B² = λ₁ + λ₂ + W` with `W = B ∧ B = 2B₁B₂`, and
+//! `λ₁λ₂ = ¼W²`. The compiler generates the bivector types for which `W² = 0` identically (checked on the exact
+//! expansion): then `λ₂ = 0` and `λ = λ₁ = ⟨B²⟩₀` (any sign: rotations, boosts, translations), which covers every
+//! bivector of an algebra with n ≤ 3 (W = 0: 2D PGA, 3D VGA, Cl(2,1), Cl(1,1)), 3D PGA's lines and the rigid
+//! screws of CGA on the null basis. A type with two non-null planes (Cl(4), a general bivector of STA or of CGA)
+//! is refused with [`Error::NoClosedForm`]: its closed form needs the divided differences of two λ's, which
+//! lose accuracy as the λ's approach each other and are not generated yet.
+//!
+//! **exp.** With `c = c(λ) = Σ λᵏ/(2k)!` (cos √−λ, cosh √λ), `s = s(λ) = Σ λᵏ/(2k+1)!` (sin √−λ / √−λ, …)
+//! and `d = (c − s)/λ`, both planes' exponentials multiply out (the null plane's is `1 + B₂`) to
+//!
+//! ```text
+//! exp(B) = c + s B + s ½W + d ½⟨W B⟩₂.
+//! ```
+//!
+//! **log** (of a unit element `M ~M = 1` of that form). `⟨M⟩₀ = c`, `Bₘ = ⟨M⟩₂ = (s + d ½W) B`, `Q = ⟨M⟩₄ = s ½W`
+//! and `⟨Bₘ²⟩₀ = s²λ` (W² = 0 and W commutes with B), which with `c² − s²λ = 1` gives λ: a rotation by
+//! `θ = atan2(√(−s²λ), c)`, a boost by `x = asinh √(s²λ)`. Then `B = (s + (d/s) Q)⁻¹ Bₘ = Bₘ/s − (d/s³) ⟨Q Bₘ⟩₂`
+//! (Q² = 0). `s` vanishes at θ = π (M = −1 on the plane), where log is not defined.
+//!
+//! **normalized.** `N = M ~M = n₀ + N₄` with `N₄² = 0` and N₄ commuting with M (both checked), so
+//! `N^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))` and `M N^(−1/2)` has `(M N^(−1/2)) ~(…) = 1`.
+//!
+//! **sqrt** is `normalized(1 + M)`: for `M = exp(B)` of this class, `1 + M = 2c(λ/4)·exp(B/2)`-ish up to the
+//! null part, which the normalisation removes exactly, so `sqrt(M)² = M` for unit M (except M = −1 on the plane).
+
+use std::collections::BTreeMap;
+
+use num_rational::Rational64;
+use num_traits::One;
+
+use crate::algebra::Algebra;
+use crate::blade::{grade, BladeMask};
+use crate::error::Error;
+use crate::expression::{ExpressionDeclaration, ExpressionKind};
+use crate::functions::Output;
+use crate::fuse::{accumulate, blades_and_signs, lower_parameters, value_type, Expander, Fused, Polynomial, Symbolic};
+use crate::operation::Operation;
+use crate::product::Rules;
+use crate::program::{sum_cost, Cost, Term};
+
+/// The functions generated in closed form.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Function {
+    /// `exp(b)` of a bivector.
+    Exp,
+    /// `log(m)` of a unit even element.
+    Log,
+    /// `sqrt(m)` of a unit even element.
+    Sqrt,
+    /// `normalized(m)`: `m` scaled so that `m ~m = 1`.
+    Normalized,
+}
+
+impl Function {
+    /// All of them.
+    pub const ALL: [Function; 4] = [Function::Exp, Function::Log, Function::Sqrt, Function::Normalized];
+
+    /// The name used in expressions.
+    pub fn name(self) -> &'static str {
+        match self {
+            Function::Exp => "exp",
+            Function::Log => "log",
+            Function::Sqrt => "sqrt",
+            Function::Normalized => "normalized",
+        }
+    }
+
+    /// The function called `name`, if any.
+    ///
+    /// ```
+    /// use ga_codegen::transcendental::Function;
+    ///
+    /// assert_eq!(Function::named("exp"), Some(Function::Exp));
+    /// assert_eq!(Function::named("sin"), None);
+    /// ```
+    pub fn named(name: &str) -> Option<Function> {
+        Function::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The function an expression's whole body calls, if its body is a call of one of [`Function::ALL`].
+pub fn called(declared: &ExpressionDeclaration) -> Option<Function> {
+    match &declared.body.kind {
+        ExpressionKind::Call(name, _) => Function::named(name),
+        _ => None,
+    }
+}
+
+/// A generated closed form: the polynomial pieces of its argument, lowered together.
+#[derive(Clone, Debug)]
+pub struct ClosedForm {
+    /// Which function.
+    pub function: Function,
+    /// The parameter, the result type and the shared program (its locals; it has no outputs of its own).
+    pub fused: Fused,
+    /// Each piece by name, its non-zero blades and their sums over the program's values and inputs.
+    pub pieces: BTreeMap<&'static str, Vec<(BladeMask, Vec<Term>)>>,
+}
+
+impl ClosedForm {
+    /// The blades of a piece (empty if it vanishes identically).
+    pub fn blades(&self, piece: &str) -> Vec<BladeMask> {
+        self.pieces
+            .get(piece)
+            .map(|p| p.iter().map(|(b, _)| *b).collect())
+            .unwrap_or_default()
+    }
+}
+
+/// Expands `algebra.expressions[index]`, whose body calls a [`Function`], into its closed form's pieces.
+///
+/// ```
+/// use ga_codegen::expression::{Expression, ExpressionKind, Parameter};
+/// use ga_codegen::transcendental::{closed_form, Function};
+/// use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, ExpressionDeclaration, Layout};
+/// use ga_codegen::{ScalarType, TypeDeclaration};
+///
+/// // 3D PGA's lines: exp(b) needs ⟨b²⟩₀, ½ b∧b and ½⟨(b∧b) b⟩₂.
+/// let basis = [("e0", 0), ("e1", 1), ("e2", 1), ("e3", 1)]
+///     .map(|(name, square)| BasisVectorDeclaration { name: name.into(), square });
+/// let ty = |name: &str, grades| TypeDeclaration { name: name.into(), layout: Layout::Grades(grades) };
+/// let b = Expression::new(ExpressionKind::Parameter("b".into()));
+/// let exp_line = ExpressionDeclaration {
+///     name: "exp_line".into(),
+///     parameters: vec![Parameter { name: "b".into(), type_name: "Line".into() }],
+///     result: Some("Motor".into()),
+///     body: Expression::new(ExpressionKind::Call("exp".into(), vec![b])),
+///     linear: None,
+/// };
+/// let algebra = Algebra::new(&AlgebraDeclaration {
+///     scalar: ScalarType::F64,
+///     basis: basis.to_vec(),
+///     metric: None,
+///     types: vec![ty("Line", vec![2]), ty("Motor", vec![0, 2, 4]), ty("Odd", vec![1, 3])],
+///     operations: None,
+///     lowering: vec![],
+///     expressions: vec![exp_line],
+/// })?;
+/// let form = closed_form(&algebra, 0)?;
+/// assert_eq!(form.function, Function::Exp);
+/// assert_eq!(form.blades("square"), [0]); // ⟨b²⟩₀
+/// assert_eq!(form.blades("half_wedge").len(), 1); // e0123
+/// assert_eq!(form.blades("v").len(), 3); // e01, e02, e03
+/// # Ok::<(), ga_codegen::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::TranscendentalUse`] if the call's argument is not a parameter, [`Error::NoClosedForm`] if the
+/// parameter's type is not of the generated class, [`Error::ResultDoesNotFit`] or
+/// [`Error::NoExpressionResultType`] if no (declared) type holds the result.
+pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error> {
+    let declared = &algebra.expressions[index];
+    let ExpressionKind::Call(name, arguments) = &declared.body.kind else {
+        unreachable!("`closed_form` is called on calls of a function only")
+    };
+    let function = Function::named(name).expect("a call of a generated function");
+    let use_error = |reason: String| Error::TranscendentalUse {
+        index,
+        node: declared.body.id,
+        function: function.name(),
+        reason,
+    };
+    let [argument] = arguments.as_slice() else {
+        return Err(use_error(format!("it has {} arguments", arguments.len())));
+    };
+    let ExpressionKind::Parameter(parameter_name) = &argument.kind else {
+        return Err(use_error(format!("its argument `{argument}` is not a parameter")));
+    };
+    let Some(parameter) = declared.parameters.iter().position(|p| p.name == *parameter_name) else {
+        return Err(use_error(format!(
+            "`{parameter_name}` is not a parameter of `{}`",
+            declared.name
+        )));
+    };
+    if declared.parameters.len() != 1 {
+        return Err(use_error(format!(
+            "`{}` has {} parameters",
+            declared.name,
+            declared.parameters.len()
+        )));
+    }
+    if declared.linear.is_some() {
+        return Err(use_error("it is not linear, so it has no `#[linear]` map".to_string()));
+    }
+    let kind = value_type(algebra, &declared.parameters[parameter].type_name);
+    let no_closed_form = |reason: String| Error::NoClosedForm {
+        index,
+        function: function.name(),
+        type_name: declared.parameters[parameter].type_name.clone(),
+        reason,
+    };
+
+    // The parameter as a multivector of its fields (program inputs 0..k).
+    let fields = blades_and_signs(algebra, kind);
+    let mut x = Symbolic::new();
+    for (offset, (blade, sign)) in fields.iter().enumerate() {
+        let input = Polynomial([(vec![offset as u32], Rational64::from(*sign))].into());
+        accumulate(&mut x, *blade, &input, Rational64::one());
+    }
+    let expander = Expander {
+        algebra,
+        rules: Rules::new(&algebra.metric),
+        top: index,
+    };
+    let geometric = |a: &Symbolic, b: &Symbolic| expander.product(Operation::Geometric, a, b);
+    let part = |x: &Symbolic, k: u32| -> Symbolic {
+        x.iter()
+            .filter(|(b, _)| grade(**b) == k)
+            .map(|(b, p)| (*b, p.clone()))
+            .collect()
+    };
+    let grades: Vec<u32> = fields.iter().map(|(blade, _)| grade(*blade)).collect();
+    let half = Rational64::new(1, 2);
+    let scaled = |x: &Symbolic, factor: Rational64| -> Symbolic {
+        let mut out = Symbolic::new();
+        for (blade, polynomial) in x {
+            accumulate(&mut out, *blade, polynomial, factor);
+        }
+        out
+    };
+
+    let (pieces, result): (Vec<(&'static str, Symbolic)>, Vec<BladeMask>) = match function {
+        Function::Exp => {
+            if grades.iter().any(|&g| g != 2) {
+                return Err(no_closed_form(
+                    "exp is generated for bivector types (every blade of grade 2)".into(),
+                ));
+            }
+            let square = part(&geometric(&x, &x)?, 0);
+            let wedge = expander.product(Operation::Outer, &x, &x)?;
+            if !geometric(&wedge, &wedge)?.is_empty() {
+                return Err(no_closed_form(two_planes()));
+            }
+            let half_wedge = scaled(&wedge, half);
+            let v = part(&geometric(&half_wedge, &x)?, 2);
+            let mut blades: Vec<BladeMask> = vec![0];
+            blades.extend(x.keys().chain(half_wedge.keys()).chain(v.keys()));
+            (vec![("square", square), ("half_wedge", half_wedge), ("v", v)], blades)
+        }
+        Function::Log => {
+            if grades.iter().any(|g| ![0, 2, 4].contains(g)) || !grades.contains(&0) {
+                return Err(no_closed_form(
+                    "log is generated for even types of grades 0, 2 and 4 with a scalar".into(),
+                ));
+            }
+            let (scalar, bivector, quadvector) = (part(&x, 0), part(&x, 2), part(&x, 4));
+            let wedge = expander.product(Operation::Outer, &bivector, &bivector)?;
+            if !geometric(&wedge, &wedge)?.is_empty() || !geometric(&quadvector, &quadvector)?.is_empty() {
+                return Err(no_closed_form(two_planes()));
+            }
+            let square = part(&geometric(&bivector, &bivector)?, 0);
+            let q_b = part(&geometric(&quadvector, &bivector)?, 2);
+            let blades: Vec<BladeMask> = bivector.keys().chain(q_b.keys()).copied().collect();
+            let pieces = vec![
+                ("scalar", scalar),
+                ("bivector", bivector),
+                ("square", square),
+                ("q_b", q_b),
+            ];
+            (pieces, blades)
+        }
+        Function::Sqrt | Function::Normalized => {
+            if grades.iter().any(|g| g % 2 == 1) {
+                return Err(no_closed_form(format!(
+                    "{} is generated for even types",
+                    function.name()
+                )));
+            }
+            let mut y = x.clone();
+            if function == Function::Sqrt {
+                // 1 + M.
+                accumulate(
+                    &mut y,
+                    0,
+                    &Polynomial([(vec![], Rational64::one())].into()),
+                    Rational64::one(),
+                );
+            }
+            let norm = geometric(&y, &expander.reverse(&y))?;
+            let (n0, n4) = (part(&norm, 0), part(&norm, 4));
+            let rest: Vec<String> = norm
+                .keys()
+                .filter(|&&b| grade(b) != 0 && grade(b) != 4)
+                .map(|&b| algebra.blade_name(b))
+                .collect();
+            if !rest.is_empty() || !geometric(&n4, &n4)?.is_empty() {
+                return Err(no_closed_form(format!(
+                    "its `m ~m` must be a scalar plus a 4-vector that squares to zero (it has {})",
+                    if rest.is_empty() {
+                        "a 4-vector with a non-zero square".to_string()
+                    } else {
+                        format!("the blades {}", rest.join(", "))
+                    }
+                )));
+            }
+            let y_n4 = geometric(&y, &n4)?;
+            let n4_y = geometric(&n4, &y)?;
+            if y_n4 != n4_y {
+                return Err(no_closed_form(
+                    "the 4-vector part of its `m ~m` does not commute with it".into(),
+                ));
+            }
+            let blades: Vec<BladeMask> = y.keys().chain(y_n4.keys()).copied().collect();
+            (vec![("value", y), ("n0", n0), ("y_n4", y_n4)], blades)
+        }
+    };
+
+    // The result type: declared, or the smallest declared type holding the blades.
+    let mut blades = result;
+    blades.sort_unstable();
+    blades.dedup();
+    let output = match &declared.result {
+        Some(result) => {
+            let output = value_type(algebra, result);
+            let outside: Vec<String> = blades
+                .iter()
+                .filter(|&&b| match output {
+                    Output::Type(ty) => algebra.types[ty].field_of(b).is_none(),
+                    Output::Scalar => b != 0,
+                })
+                .map(|&b| algebra.blade_name(b))
+                .collect();
+            if !outside.is_empty() {
+                return Err(Error::ResultDoesNotFit {
+                    index,
+                    expression: declared.name.clone(),
+                    result: result.clone(),
+                    blades: outside,
+                });
+            }
+            output
+        }
+        None => match algebra.smallest_type_holding(&blades) {
+            Some(ty) => value_type(algebra, &ty.name),
+            None => {
+                return Err(Error::NoExpressionResultType {
+                    index,
+                    expression: declared.name.clone(),
+                    blades: blades.iter().map(|&b| algebra.blade_name(b)).collect(),
+                })
+            }
+        },
+    };
+
+    // Lower every piece's polynomials together, sharing products; one group of inputs, the parameter's fields.
+    let offsets = vec![0];
+    let inputs = 0..fields.len() as u32;
+    let keys: Vec<(&'static str, BladeMask)> = pieces
+        .iter()
+        .flat_map(|(name, value)| value.keys().map(move |&b| (*name, b)))
+        .collect();
+    let polynomials: Vec<&Polynomial> = pieces.iter().flat_map(|(_, value)| value.values()).collect();
+    let (program, sums) = lower_parameters(
+        algebra,
+        declared,
+        (&[kind], &offsets),
+        &polynomials,
+        std::slice::from_ref(&inputs),
+    );
+    let mut lowered: BTreeMap<&'static str, Vec<(BladeMask, Vec<Term>)>> =
+        pieces.iter().map(|(name, _)| (*name, Vec::new())).collect();
+    for ((name, blade), sum) in keys.into_iter().zip(sums) {
+        lowered.entry(name).or_default().push((blade, sum));
+    }
+    // The polynomial part's cost: the shared locals and each piece's sums.
+    let pieces_cost = lowered
+        .values()
+        .flatten()
+        .fold(Cost::default(), |total, (_, terms)| total + sum_cost(terms));
+    Ok(ClosedForm {
+        function,
+        fused: Fused {
+            parameters: vec![kind],
+            offsets,
+            output,
+            cost: program.cost() + pieces_cost,
+            program,
+        },
+        pieces: lowered,
+    })
+}
+
+fn two_planes() -> String {
+    "its bivectors can span two planes of non-zero square (`(B ∧ B)²` is not identically zero); the closed form \
+     is generated where at most one plane is not null: every algebra with n ≤ 3, 3D PGA's lines, CGA's screws on \
+     the null basis"
+        .to_string()
+}
