@@ -87,6 +87,32 @@ macro_rules! series {
     }};
 }
 
+/// `exp(b)` against the series, `log(exp(b)) = b` within `log_tolerance` and `sqrt(m)² = m` (both relative to the
+/// size of `exp(b)`); returns `exp(b)` for further checks.
+macro_rules! round_trips {
+    ($module:ident, $bivector:ident, $exp:ident, $log:ident, $sqrt:ident, $coefficients:expr, $log_tolerance:expr) => {{
+        let coefficients = $coefficients;
+        let b = $module::$bivector::from_array(coefficients);
+        let m = $module::$exp(b);
+        let reference = series!($module, $module::Multivector::from(b));
+        let scale = reference.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
+        let error = distance(&$module::Multivector::from(m).to_array(), &reference.to_array());
+        assert!(
+            error < 1e-14 * scale,
+            "exp({coefficients:?}) is {error:e} from the series"
+        );
+        let back = $module::$log(m);
+        let error = distance(&back.to_array(), &coefficients);
+        assert!(
+            error < $log_tolerance,
+            "log(exp({coefficients:?})) is {error:e} off: {back:?}"
+        );
+        let root = $module::$sqrt(m);
+        assert!(distance(&(root * root).to_array(), &m.to_array()) < 1e-14 * scale);
+        (b, m, root)
+    }};
+}
+
 #[test]
 fn pga_exp_is_the_series_and_log_inverts_it() {
     let lines = [
@@ -102,19 +128,16 @@ fn pga_exp_is_the_series_and_log_inverts_it() {
         },
     ];
     for coefficients in lines {
-        let b = pga::Line::from_array(coefficients);
-        let m = pga::exp_line(b);
-        let reference = series!(pga, pga::Multivector::from(b));
-        let error = distance(&pga::Multivector::from(m).to_array(), &reference.to_array());
-        assert!(error < 1e-14, "exp({coefficients:?}) is {error:e} from the series");
-        let back = pga::log_motor(m);
-        let error = distance(&back.to_array(), &coefficients);
-        assert!(
-            error < 1e-13 * (1.0 + coefficients.iter().fold(0.0f64, |a, x| a.max(x.abs()))),
-            "log(exp({coefficients:?})) off by {error:e}"
+        let size = coefficients.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let (b, m, root) = round_trips!(
+            pga,
+            Line,
+            exp_line,
+            log_motor,
+            sqrt_motor,
+            coefficients,
+            1e-13 * (1.0 + size)
         );
-        let root = pga::sqrt_motor(m);
-        assert!(distance(&(root * root).to_array(), &m.to_array()) < 1e-14);
         assert!(distance(&root.to_array(), &pga::exp_line(b * 0.5).to_array()) < 1e-14);
         // A scaled motor with a drifted e1230 part normalises back to a unit motor.
         let mut drifted = m * 2.5;
@@ -131,16 +154,7 @@ fn pga_exp_is_the_series_and_log_inverts_it() {
 #[test]
 fn plane_pga_exp_log_sqrt() {
     for coefficients in [[0.0, 0.0, 0.0], [0.7, -1.0, 2.0], [0.0, 3.0, -1.0], [1e-8, 2e-8, -3.0]] {
-        let b = pga2::Bivector::from_array(coefficients);
-        let m = pga2::exp_bivector(b);
-        let error = distance(
-            &pga2::Multivector::from(m).to_array(),
-            &series!(pga2, pga2::Multivector::from(b)).to_array(),
-        );
-        assert!(error < 1e-14, "{error:e}");
-        assert!(distance(&pga2::log_even(m).to_array(), &coefficients) < 1e-14);
-        let root = pga2::sqrt_even(m);
-        assert!(distance(&(root * root).to_array(), &m.to_array()) < 1e-14);
+        round_trips!(pga2, Bivector, exp_bivector, log_even, sqrt_even, coefficients, 1e-14);
     }
 }
 
@@ -152,16 +166,7 @@ fn null_basis_cga_exp_log_sqrt() {
         [0.4, -0.3, 0.2, 1.0, 0.5, -2.0],
         [1.1, 0.2, 0.9, -1.0, 0.0, 1.5],
     ] {
-        let b = cga::Screw::from_array(coefficients);
-        let m = cga::exp_screw(b);
-        let error = distance(
-            &cga::Multivector::from(m).to_array(),
-            &series!(cga, cga::Multivector::from(b)).to_array(),
-        );
-        assert!(error < 1e-14, "{error:e}");
-        assert!(distance(&cga::log_motor(m).to_array(), &coefficients) < 1e-13);
-        let root = cga::sqrt_motor(m);
-        assert!(distance(&(root * root).to_array(), &m.to_array()) < 1e-14);
+        round_trips!(cga, Screw, exp_screw, log_motor, sqrt_motor, coefficients, 1e-13);
     }
 }
 
@@ -176,22 +181,16 @@ fn lorentz_boosts_and_rotations() {
         [2.0, 0.5, 0.5],
         [1e-9, 0.0, 1e-9],
     ] {
-        let b = lorentz::Bivector::from_array(coefficients);
-        let m = lorentz::exp_bivector(b);
-        let reference = series!(lorentz, lorentz::Multivector::from(b));
-        let scale = reference.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
-        let error = distance(&lorentz::Multivector::from(m).to_array(), &reference.to_array());
-        assert!(
-            error < 1e-14 * scale,
-            "exp({coefficients:?}) is {error:e} from the series"
+        let (_, m, _) = round_trips!(
+            lorentz,
+            Bivector,
+            exp_bivector,
+            log_even,
+            sqrt_even,
+            coefficients,
+            1e-13
         );
-        let back = lorentz::log_even(m);
-        assert!(
-            distance(&back.to_array(), &coefficients) < 1e-13,
-            "log(exp({coefficients:?})) = {back:?}"
-        );
-        let root = lorentz::sqrt_even(m);
-        assert!(distance(&(root * root).to_array(), &m.to_array()) < 1e-14 * scale);
+        let scale = m.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
         let unit = lorentz::normalized_even(m * 3.0);
         assert!(distance(&unit.to_array(), &m.to_array()) < 1e-14 * scale);
     }
