@@ -28,8 +28,9 @@
 //! **normalized.** `N = M ~M = n₀ + N₄` with `N₄² = 0` and N₄ commuting with M (both checked), so
 //! `N^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))` and `M N^(−1/2)` has `(M N^(−1/2)) ~(…) = 1`.
 //!
-//! **sqrt** is `normalized(1 + M)`: for `M = exp(B)` of this class, `1 + M = 2c(λ/4)·exp(B/2)`-ish up to the
-//! null part, which the normalisation removes exactly, so `sqrt(M)² = M` for unit M (except M = −1 on the plane).
+//! **sqrt** is `normalized(1 + M)`: with `R = exp(B/2)`, `1 + M = 1 + R² = R(~R + R) = 2R(r₀ + R₄)`, where
+//! `r₀ + R₄` (R's scalar and 4-vector parts) commutes with R and has a null 4-vector part; normalising divides
+//! it out exactly, so `sqrt(M) = R` and `sqrt(M)² = M` wherever `r₀ > 0` (M short of a turn by 2π).
 
 use std::collections::BTreeMap;
 
