@@ -820,6 +820,96 @@ impl Emitter<'_> {
             }
         };
         let (body, what) = match form.function {
+            Closed::Exp if !form.blades("product").is_empty() => {
+                let scalar = &self.scalar;
+                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
+                let product = coefficient("product", 0).unwrap_or_else(|| quote! { #zero });
+                let [l1, l2, c1, s1, c2, s2, dc, ds, dh, alpha, beta, gamma, delta, plane, divided] = [
+                    "l1", "l2", "c1", "s1", "c2", "s2", "dc", "ds", "dh", "alpha", "beta", "gamma", "delta", "plane",
+                    "divided",
+                ]
+                .map(local);
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #alpha }, (blade == 0).then_some(None)),
+                        (quote! { #beta }, canonical_input(blade).map(Some)),
+                        (quote! { #gamma }, coefficient("half_wedge", blade).map(Some)),
+                        (quote! { #delta }, coefficient("v", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                (
+                    quote! {
+                        // λ₁ and λ₂, the squares of the two commuting planes: the roots of λ² − ⟨b²⟩₀ λ + ¼⟨(b∧b)²⟩₀.
+                        let #lambda = #square;
+                        let #r = (#lambda * #lambda - 4.0 * #product).max(0.0).sqrt();
+                        let #l1 = if #lambda >= 0.0 { 0.5 * (#lambda + #r) } else { 0.5 * (#lambda - #r) };
+                        let #l2 = if #l1 == 0.0 { 0.0 } else { #product / #l1 };
+                        // c(λ) and s(λ) of one plane: the series below |λ| = 0.1, else cos/sin or cosh/sinh.
+                        let #plane = |#lambda: #scalar| -> (#scalar, #scalar) {
+                            if #lambda.abs() < 0.1 {
+                                let (#c, #s, _) = #series;
+                                (#c, #s)
+                            } else if #lambda < 0.0 {
+                                let #t = (-#lambda).sqrt();
+                                (#t.cos(), #t.sin() / #t)
+                            } else {
+                                let #t = #lambda.sqrt();
+                                (#t.cosh(), #t.sinh() / #t)
+                            }
+                        };
+                        let (#c1, #s1) = #plane(#l1);
+                        let (#c2, #s2) = #plane(#l2);
+                        // The divided differences C[λ₁, λ₂], S[λ₁, λ₂] and H[λ₁, λ₂] of c, s and H(λ) = λ s(λ).
+                        let #divided = || -> (#scalar, #scalar, #scalar) {
+                            let (#t, #r) = (#l1.abs().sqrt(), #l2.abs().sqrt());
+                            let (u, v) = (0.5 * (#t + #r), 0.5 * (#t - #r));
+                            let largest = #l1.abs().max(#l2.abs());
+                            if largest < 0.1 {
+                                // Σ aₙ (λ₁ⁿ − λ₂ⁿ)/(λ₁ − λ₂) = Σ aₙ hₙ₋₁(λ₁, λ₂), the complete homogeneous polynomials.
+                                let (mut h, mut power2, mut factorial) = (1.0, 1.0, 1.0);
+                                let (mut dc, mut ds, mut dh) = (0.0, 0.0, 0.0);
+                                for n in 1..12 {
+                                    let k = (2 * n) as #scalar;
+                                    // factorial is (2n − 2)! here.
+                                    dh += h / (factorial * (k - 1.0));
+                                    factorial *= (k - 1.0) * k;
+                                    dc += h / factorial;
+                                    ds += h / (factorial * (k + 1.0));
+                                    power2 *= #l2;
+                                    h = #l1 * h + power2;
+                                }
+                                (dc, ds, dh)
+                            } else if (#l1 - #l2).abs() >= 0.5 * largest || #l1 > 0.0 {
+                                // Well apart (or, which the signature check rules out, two boosts): differences.
+                                let (h1, h2) = (#l1 * #s1, #l2 * #s2);
+                                let gap = #l1 - #l2;
+                                ((#c1 - #c2) / gap, (#s1 - #s2) / gap, (h1 - h2) / gap)
+                            } else {
+                                // Two rotations by x₁ = √−λ₁ and x₂ = √−λ₂ close to each other: u and v are their
+                                // half sum and half difference (derivations in ga_codegen::transcendental).
+                                let sinc = |x: #scalar| if x.abs() < 1e-4 { 1.0 - x * x / 6.0 } else { x.sin() / x };
+                                let (sin, cos) = u.sin_cos();
+                                let (sv, cv) = (sinc(v), v.cos());
+                                (
+                                    0.5 * sinc(u) * sv,
+                                    -(u * cos * sv - sin * cv) / (2.0 * u * (u * u - v * v)),
+                                    (u * cos * sv + sin * cv) / (2.0 * u),
+                                )
+                            }
+                        };
+                        let (#dc, #ds, #dh) = #divided();
+                        let #alpha = #c1 * #c2;
+                        let #beta = #c2 * #dh - #l2 * #s2 * #dc;
+                        let #gamma = #s1 * #s2;
+                        let #delta = #s2 * #dc - #c2 * #ds;
+                        #result
+                    },
+                    "the exponential of a bivector with two commuting planes of squares λ₁ and λ₂: \
+                     `c₁c₂ + β b + s₁s₂ ½(b∧b) + δ ½⟨(b∧b) b⟩₂` with β and δ from the divided differences of \
+                     c(λ), s(λ) and λ s(λ) (series, differences, or half-sum and half-difference forms where λ₁ ≈ λ₂)",
+                )
+            }
             Closed::Exp => {
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
                 let value = |blade: BladeMask| {

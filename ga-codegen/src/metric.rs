@@ -135,6 +135,62 @@ impl Metric {
         self.inner(i, i)
     }
 
+    /// The signature (p, q, r): how many basis vectors of an orthogonal basis square to +1, −1 and 0 (Sylvester's
+    /// inertia, by symmetric elimination in exact arithmetic).
+    ///
+    /// ```
+    /// use ga_codegen::metric::Metric;
+    /// use ga_codegen::Rational64;
+    ///
+    /// assert_eq!(Metric::diagonal(vec![0, 1, 1, 1])?.signature(), (3, 0, 1));
+    /// // CGA on the null basis: n0·n∞ = −1 makes one vector of each sign.
+    /// let entry = |x: i64| Rational64::from(x);
+    /// let mut rows = vec![vec![entry(0); 5]; 5];
+    /// (0..3).for_each(|i| rows[i][i] = entry(1));
+    /// (rows[3][4], rows[4][3]) = (entry(-1), entry(-1));
+    /// assert_eq!(Metric::from_matrix(&rows)?.signature(), (4, 1, 0));
+    /// # Ok::<(), ga_codegen::Error>(())
+    /// ```
+    pub fn signature(&self) -> (usize, usize, usize) {
+        let n = self.dimension;
+        let mut m: Vec<Vec<Rational64>> = (0..n).map(|i| (0..n).map(|j| self.inner(i, j)).collect()).collect();
+        let (mut positive, mut negative) = (0, 0);
+        while !m.is_empty() {
+            let size = m.len();
+            let pivot = match (0..size).find(|&i| !m[i][i].is_zero()) {
+                Some(i) => i,
+                None => {
+                    // A zero diagonal with a non-zero entry (i, j): eᵢ + eⱼ squares to 2B(eᵢ, eⱼ) ≠ 0.
+                    let Some((i, j)) = (0..size)
+                        .flat_map(|i| (0..size).map(move |j| (i, j)))
+                        .find(|&(i, j)| !m[i][j].is_zero())
+                    else {
+                        break;
+                    };
+                    let row_j = m[j].clone();
+                    m[i].iter_mut().zip(&row_j).for_each(|(x, y)| *x += *y);
+                    for row in m.iter_mut() {
+                        let add = row[j];
+                        row[i] += add;
+                    }
+                    i
+                }
+            };
+            let d = m[pivot][pivot];
+            if d > Rational64::zero() {
+                positive += 1;
+            } else {
+                negative += 1;
+            }
+            let rest: Vec<usize> = (0..size).filter(|&k| k != pivot).collect();
+            m = rest
+                .iter()
+                .map(|&a| rest.iter().map(|&b| m[a][b] - m[a][pivot] * m[pivot][b] / d).collect())
+                .collect();
+        }
+        (positive, negative, n - positive - negative)
+    }
+
     /// Whether the basis is orthogonal (every off-diagonal entry is zero).
     pub fn is_diagonal(&self) -> bool {
         self.diagonal

@@ -3,22 +3,35 @@
 //! exact polynomial pieces of its argument (expanded and lowered as in [`crate::fuse`]) with a few scalar
 //! functions (`sqrt`, `sin`, `cos`, …, so the emitted function needs `std`, and is not `const`).
 //!
-//! **The class generated.** The invariant decomposition (Roelfs and De Keninck, "Graded symmetry groups: plane
-//! and simple", 2021) writes a bivector of an algebra with n ≤ 5 as the sum of at most two commuting simple
-//! bivectors `B = B₁ + B₂` with scalar squares `λᵢ = Bᵢ²`: `B² = λ₁ + λ₂ + W` with `W = B ∧ B = 2B₁B₂`, and
-//! `λ₁λ₂ = ¼W²`. The compiler generates the bivector types for which `W² = 0` identically (checked on the exact
-//! expansion): then `λ₂ = 0` and `λ = λ₁ = ⟨B²⟩₀` (any sign: rotations, boosts, translations), which covers every
-//! bivector of an algebra with n ≤ 3 (W = 0: 2D PGA, 3D VGA, Cl(2,1), Cl(1,1)), 3D PGA's lines and the rigid
-//! screws of CGA on the null basis. A type with two non-null planes (Cl(4), a general bivector of STA or of CGA)
-//! is refused with [`Error::NoClosedForm`]: its closed form needs the divided differences of two λ's, which
-//! lose accuracy as the λ's approach each other and are not generated yet.
+//! **The invariant decomposition** (Roelfs and De Keninck, "Graded symmetry groups: plane and simple", 2021)
+//! writes a bivector of an algebra with n ≤ 5 as the sum of at most two commuting simple bivectors `B = B₁ + B₂`
+//! with scalar squares `λᵢ = Bᵢ²`: `B² = λ₁ + λ₂ + W` with `W = B ∧ B = 2B₁B₂`, so λ₁ and λ₂ are the roots of
+//! `λ² − ⟨B²⟩₀ λ + ¼W² = 0`, and `½W B = λ₁B₂ + λ₂B₁` (both checked on the exact expansion: W² a scalar, ½WB a
+//! bivector). With `c(λ) = Σ λᵏ/(2k)!` (cos √−λ, cosh √λ) and `s(λ) = Σ λᵏ/(2k+1)!` (sin √−λ / √−λ, …) each
+//! plane's exponential is `c(λᵢ) + s(λᵢ) Bᵢ`, and solving the two equations for B₁ and B₂ gives
 //!
-//! **exp.** With `c = c(λ) = Σ λᵏ/(2k)!` (cos √−λ, cosh √λ), `s = s(λ) = Σ λᵏ/(2k+1)!` (sin √−λ / √−λ, …)
-//! and `d = (c − s)/λ`, both planes' exponentials multiply out (the null plane's is `1 + B₂`) to
+//! ```text
+//! exp(B) = c₁c₂ + β B + s₁s₂ ½W + δ ½⟨W B⟩₂,
+//! β = c₂ H[λ₁, λ₂] − λ₂ s₂ C[λ₁, λ₂],   δ = s₂ C[λ₁, λ₂] − c₂ S[λ₁, λ₂],
+//! ```
+//!
+//! with `X[λ₁, λ₂] = (X(λ₁) − X(λ₂))/(λ₁ − λ₂)` the divided differences of c, s and `H(λ) = λ s(λ)`. They are
+//! computed by series below |λ| = 0.1 (`Σ aₙ hₙ₋₁(λ₁, λ₂)`, the complete homogeneous polynomials), as differences
+//! when the λ's are well apart, and for two close rotations `xᵢ = √−λᵢ` from their half sum u and half
+//! difference v, which have no cancellation: `C[] = ½ sinc u sinc v`, `S[] = −(u cos u sinc v − sin u cos v) /
+//! (2u(u² − v²))`, `H[] = (u cos u sinc v + sin u cos v)/(2u)`. The λ's are real for signatures with at most one
+//! vector of one sign (Euclidean, STA, CGA Cl(4,1), with null vectors too); with two of each (Cl(2,2), Cl(3,2))
+//! they can be a complex pair, and `exp` is refused there with [`Error::NoClosedForm`].
+//!
+//! **One non-null plane** (W² = 0 identically: every algebra with n ≤ 3, 3D PGA's lines, CGA's rigid screws on
+//! the null basis): then λ₂ = 0, `λ = ⟨B²⟩₀`, and with `d = (c − s)/λ` the formula is
 //!
 //! ```text
 //! exp(B) = c + s B + s ½W + d ½⟨W B⟩₂.
 //! ```
+//!
+//! `log`, `sqrt` and `normalized` are generated for this class only; an even type whose elements can turn in two
+//! non-null planes is refused for them.
 //!
 //! **log** (of a unit element `M ~M = 1` of that form). `⟨M⟩₀ = c`, `Bₘ = ⟨M⟩₂ = (s + d ½W) B`, `Q = ⟨M⟩₄ = s ½W`
 //! and `⟨Bₘ²⟩₀ = s²λ` (W² = 0 and W commutes with B), which with `c² − s²λ = 1` gives λ: a rotation by
@@ -237,14 +250,33 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
             }
             let square = part(&geometric(&x, &x)?, 0);
             let wedge = expander.product(Operation::Outer, &x, &x)?;
-            if !geometric(&wedge, &wedge)?.is_empty() {
-                return Err(no_closed_form(two_planes()));
-            }
             let half_wedge = scaled(&wedge, half);
-            let v = part(&geometric(&half_wedge, &x)?, 2);
+            // Two planes of non-zero square: λ₁λ₂ = ¼⟨W²⟩₀, which must be all of W² (n ≤ 5), and ½W B must be
+            // the bivector λ₁B₂ + λ₂B₁.
+            let wedge_square = geometric(&wedge, &wedge)?;
+            let half_wedge_b = geometric(&half_wedge, &x)?;
+            let off_grade = |value: &Symbolic, k: u32| value.keys().any(|&blade| grade(blade) != k);
+            if off_grade(&wedge_square, 0) || off_grade(&half_wedge_b, 2) {
+                return Err(no_closed_form(
+                    "`(b ∧ b)²` is not a scalar or `(b ∧ b) b` not a bivector: it has more than two planes".into(),
+                ));
+            }
+            let product = scaled(&wedge_square, Rational64::new(1, 4));
+            let (positive, negative, _) = algebra.metric.signature();
+            if !product.is_empty() && positive.min(negative) >= 2 {
+                return Err(no_closed_form(format!(
+                    "the metric has signature ({positive}, {negative}): with two vectors of each sign a bivector's two \
+                     invariants λ₁, λ₂ can be complex, and that case is not generated"
+                )));
+            }
+            let v = part(&half_wedge_b, 2);
             let mut blades: Vec<BladeMask> = vec![0];
             blades.extend(x.keys().chain(half_wedge.keys()).chain(v.keys()));
-            (vec![("square", square), ("half_wedge", half_wedge), ("v", v)], blades)
+            let mut pieces = vec![("square", square), ("half_wedge", half_wedge), ("v", v)];
+            if !product.is_empty() {
+                pieces.push(("product", product));
+            }
+            (pieces, blades)
         }
         Function::Log => {
             if grades.iter().any(|g| ![0, 2, 4].contains(g)) || !grades.contains(&0) {
@@ -390,8 +422,8 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
 }
 
 fn two_planes() -> String {
-    "its bivectors can span two planes of non-zero square (`(B ∧ B)²` is not identically zero); the closed form \
-     is generated where at most one plane is not null: every algebra with n ≤ 3, 3D PGA's lines, CGA's screws on \
-     the null basis"
+    "its elements can turn in two planes of non-zero square (`(B ∧ B)²` is not identically zero); `log`, `sqrt` \
+     and `normalized` are generated where at most one plane is not null (every algebra with n ≤ 3, 3D PGA, CGA's \
+     motors on the null basis), `exp` also for two planes"
         .to_string()
 }

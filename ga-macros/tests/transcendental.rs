@@ -228,3 +228,111 @@ fn single_precision_rotors() {
         .fold(0.0f32, f32::max);
     assert!(error < 1e-6, "{error:e}");
 }
+
+ga_macros::algebra! {
+    /// Euclidean 4-space: bivectors with two planes of rotation.
+    mod cl4 {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = 1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+    }
+}
+
+ga_macros::algebra! {
+    /// Spacetime algebra Cl(1,3): a boost and a rotation in orthogonal planes.
+    mod sta {
+        scalar = f64;
+        basis = [e0 = 1, e1 = -1, e2 = -1, e3 = -1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+    }
+}
+
+ga_macros::algebra! {
+    /// CGA Cl(4,1) on its diagonal basis, with every bivector (rotations, translations, dilations, transversions).
+    mod conformal {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = 1, e5 = -1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Odd = grades(1, 3, 5);
+            Multivector = all;
+        }
+        ops = [geometric];
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+    }
+}
+
+/// `exp(b)` against the series, relative to the size of the result.
+macro_rules! exp_is_the_series {
+    ($module:ident, $coefficients:expr) => {{
+        let coefficients = $coefficients;
+        let b = $module::Bivector::from_array(coefficients);
+        let reference = series!($module, $module::Multivector::from(b));
+        let scale = reference.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
+        let m = $module::Multivector::from($module::exp_bivector(b));
+        let error = distance(&m.to_array(), &reference.to_array());
+        assert!(
+            error < 2e-14 * scale,
+            "exp({coefficients:?}) is {error:e} from the series (scale {scale:e})"
+        );
+    }};
+}
+
+#[test]
+fn two_planes_of_rotation() {
+    // Blades e12, e13, e14, e23, e24, e34: zero, tiny, generic, isoclinic (λ₁ = λ₂ = −1 and −9), nearly isoclinic
+    // (the half-sum and half-difference forms), one plane, and planes of very different sizes.
+    for coefficients in [
+        [0.0; 6],
+        [1e-9, 0.0, 2e-9, 0.0, -1e-9, 3e-9],
+        [0.3, -0.5, 0.7, 1.1, -0.2, 0.4],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        [3.0, 0.0, 0.0, 0.0, 0.0, 3.0],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0001],
+        [2.0, 0.0, 0.0, 0.0, 0.0, 2.0 + 1e-9],
+        [0.0, 0.0, 0.0, 2.5, 0.0, 0.0],
+        [3.0, 0.0, 0.0, 0.0, 0.0, 1e-3],
+    ] {
+        exp_is_the_series!(cl4, coefficients);
+    }
+}
+
+#[test]
+fn spacetime_boosts_and_rotations() {
+    // Blades e01, e02, e03 (boosts, square +1), e12, e13, e23 (rotations, square −1): pure, mixed with E·B ≠ 0,
+    // null (E ⟂ B, |E| = |B|), and tiny.
+    for coefficients in [
+        [1.5, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 2.0],
+        [1.0, 0.5, -0.3, 0.2, 0.8, -1.1],
+        [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        [1e-8, 0.0, 2e-8, 0.0, 1e-8, 0.0],
+        [2.0, 1.0, 0.0, 0.0, 0.0, 3.0],
+    ] {
+        exp_is_the_series!(sta, coefficients);
+    }
+}
+
+#[test]
+fn conformal_bivectors() {
+    for coefficients in [
+        [0.3, -0.2, 0.5, 0.1, 0.7, -0.4, 0.2, 0.6, -0.3, 0.9],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        [0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0],
+        [1.2, 0.3, -0.4, 2.0, 0.1, 0.0, -1.5, 0.2, 0.8, 0.6],
+    ] {
+        exp_is_the_series!(conformal, coefficients);
+    }
+}

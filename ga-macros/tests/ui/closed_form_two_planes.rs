@@ -1,4 +1,5 @@
-// A bivector of Cl(4) spans two planes of non-zero square (e12 + e34): its closed form is not generated.
+// An even element of Cl(4) can turn in two planes of non-zero square (e12 + e34): its logarithm is not generated
+// (its exponential is).
 ga_macros::algebra! {
     mod cl4 {
         scalar = f64;
@@ -9,6 +10,7 @@ ga_macros::algebra! {
             Multivector = all;
         }
         fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
     }
 }
 
