@@ -819,32 +819,13 @@ impl Emitter<'_> {
                 Output::Scalar => value(0),
             }
         };
-        let (body, what) = match form.function {
-            Closed::Exp if !form.blades("product").is_empty() => {
-                let scalar = &self.scalar;
-                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
-                let product = coefficient("product", 0).unwrap_or_else(|| quote! { #zero });
-                let [l1, l2, c1, s1, c2, s2, dc, ds, dh, alpha, beta, gamma, delta, plane, divided] = [
-                    "l1", "l2", "c1", "s1", "c2", "s2", "dc", "ds", "dh", "alpha", "beta", "gamma", "delta", "plane",
-                    "divided",
-                ]
-                .map(local);
-                let value = |blade: BladeMask| {
-                    combination(vec![
-                        (quote! { #alpha }, (blade == 0).then_some(None)),
-                        (quote! { #beta }, canonical_input(blade).map(Some)),
-                        (quote! { #gamma }, coefficient("half_wedge", blade).map(Some)),
-                        (quote! { #delta }, coefficient("v", blade).map(Some)),
-                    ])
-                };
-                let result = result(&value);
-                (
-                    quote! {
-                        // λ₁ and λ₂, the squares of the two commuting planes: the roots of λ² − ⟨b²⟩₀ λ + ¼⟨(b∧b)²⟩₀.
-                        let #lambda = #square;
-                        let #r = (#lambda * #lambda - 4.0 * #product).max(0.0).sqrt();
-                        let #l1 = if #lambda >= 0.0 { 0.5 * (#lambda + #r) } else { 0.5 * (#lambda - #r) };
-                        let #l2 = if #l1 == 0.0 { 0.0 } else { #product / #l1 };
+        // Two planes (exp and log): each plane's c(λ) and s(λ), and the divided differences over the two squares.
+        let scalar = &self.scalar;
+        let [l1, l2, c1, s1, c2, s2, dc, ds, dh, alpha, beta, gamma, delta, plane, divided] = [
+            "l1", "l2", "c1", "s1", "c2", "s2", "dc", "ds", "dh", "alpha", "beta", "gamma", "delta", "plane", "divided",
+        ]
+        .map(local);
+        let closures = quote! {
                         // c(λ) and s(λ) of one plane: the series below |λ| = 0.1, else cos/sin or cosh/sinh.
                         let #plane = |#lambda: #scalar| -> (#scalar, #scalar) {
                             if #lambda.abs() < 0.1 {
@@ -898,6 +879,28 @@ impl Emitter<'_> {
                                 )
                             }
                         };
+        };
+        let (body, what) = match form.function {
+            Closed::Exp if !form.blades("product").is_empty() => {
+                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
+                let product = coefficient("product", 0).unwrap_or_else(|| quote! { #zero });
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #alpha }, (blade == 0).then_some(None)),
+                        (quote! { #beta }, canonical_input(blade).map(Some)),
+                        (quote! { #gamma }, coefficient("half_wedge", blade).map(Some)),
+                        (quote! { #delta }, coefficient("v", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                (
+                    quote! {
+                        // λ₁ and λ₂, the squares of the two commuting planes: the roots of λ² − ⟨b²⟩₀ λ + ¼⟨(b∧b)²⟩₀.
+                        let #lambda = #square;
+                        let #r = (#lambda * #lambda - 4.0 * #product).max(0.0).sqrt();
+                        let #l1 = if #lambda >= 0.0 { 0.5 * (#lambda + #r) } else { 0.5 * (#lambda - #r) };
+                        let #l2 = if #l1 == 0.0 { 0.0 } else { #product / #l1 };
+                        #closures
                         let (#dc, #ds, #dh) = #divided();
                         let #alpha = #c1 * #c2;
                         let #beta = #c2 * #dh - #l2 * #s2 * #dc;
@@ -937,6 +940,56 @@ impl Emitter<'_> {
                     },
                     "the exponential: with λ = ⟨b²⟩₀, `c + s b + s ½(b∧b) + d ½⟨(b∧b) b⟩₂`, c = cos √−λ or cosh √λ, \
                      s = sin √−λ / √−λ or sinh √λ / √λ, d = (c − s)/λ (series near λ = 0)",
+                )
+            }
+            Closed::Log if form.pieces.contains_key("q_square") => {
+                let a = coefficient("scalar", 0).unwrap_or_else(|| quote! { #zero });
+                let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
+                let q_square = coefficient("q_square", 0).unwrap_or_else(|| quote! { #zero });
+                let value = |blade: BladeMask| {
+                    combination(vec![
+                        (quote! { #inverse }, coefficient("bivector", blade).map(Some)),
+                        (quote! { #k }, coefficient("q_b", blade).map(Some)),
+                    ])
+                };
+                let result = result(&value);
+                (
+                    quote! {
+                        // wᵢ = sᵢ²λᵢ (−sin²θᵢ for a rotation, sinh²xᵢ for a boost) are the roots of
+                        // w² − (σ − 2q) w + q, σ = ⟨⟨m⟩₂²⟩₀ and q = ⟨⟨m⟩₄²⟩₀ (for m ~m = 1; no cancellation near m = 1).
+                        let (sigma, q) = (#square, #q_square);
+                        let sum = sigma - 2.0 * q;
+                        let #r = (sum * sum - 4.0 * q).max(0.0).sqrt();
+                        let w1 = if sum <= 0.0 { 0.5 * (sum - #r) } else { 0.5 * (sum + #r) };
+                        let w2 = if w1 == 0.0 { 0.0 } else { q / w1 };
+                        // The plane with the larger cosine takes it from 1 + w; the other cosine is ⟨m⟩₀ divided by it.
+                        let (wide, narrow) = if w1 >= w2 { (w1, w2) } else { (w2, w1) };
+                        let wide_cos = (1.0 + wide).max(0.0).sqrt();
+                        let narrow_cos = if wide_cos > 0.0 { #a / wide_cos } else { 0.0 };
+                        let square_of = |w: #scalar, cos: #scalar| -> #scalar {
+                            if w < 0.0 {
+                                let #t = (-w).sqrt().atan2(cos);
+                                -#t * #t
+                            } else {
+                                let #t = w.sqrt().asinh();
+                                #t * #t
+                            }
+                        };
+                        let (#l1, #l2) = (square_of(wide, wide_cos), square_of(narrow, narrow_cos));
+                        #closures
+                        let (#dc, #ds, #dh) = #divided();
+                        let #beta = #c2 * #dh - #l2 * #s2 * #dc;
+                        let #gamma = #s1 * #s2;
+                        let #delta = #s2 * #dc - #c2 * #ds;
+                        // ⟨m⟩₂ = (β + (δ/γ)⟨m⟩₄) b, and ⟨m⟩₄² = q is a scalar.
+                        let ratio = #delta / #gamma;
+                        let denominator = #beta * #beta - ratio * ratio * q;
+                        let #inverse = #beta / denominator;
+                        let #k = -ratio / denominator;
+                        #result
+                    },
+                    "the logarithm of a unit element turning in two planes: their squares λ₁, λ₂ from the invariants of \
+                     `⟨m⟩₂` and `⟨m⟩₄`, then `b = (β + (δ/γ)⟨m⟩₄)⁻¹ ⟨m⟩₂` with the coefficients of `exp`",
                 )
             }
             Closed::Log => {
@@ -988,16 +1041,34 @@ impl Emitter<'_> {
                 let result = result(&value);
                 let what = match form.function {
                     Closed::Sqrt => "the square root of a unit element: `normalized(1 + m)`, exact where `⟨m⟩₀ > −1`",
-                    _ => "`m (m ~m)^(−1/2)`, with `(n₀ + N₄)^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))` (N₄² = 0)",
+                    _ => "`m (m ~m)^(−1/2)`, with `m ~m = n₀ + N₄` and N₄² a scalar",
                 };
-                (
-                    quote! {
+                let body = match coefficient("n4_square", 0) {
+                    None => quote! {
                         let #inverse = 1.0 / #n0.sqrt();
                         let #k = -0.5 * #inverse / #n0;
                         #result
                     },
-                    what,
-                )
+                    // (n₀ + N₄)^(−1/2) = A + B N₄ with ν = N₄² a scalar: through n₀ ± √ν for ν > 0, through the
+                    // complex n₀ + i√−ν for ν < 0 (both without cancellation as ν → 0).
+                    Some(nu) => quote! {
+                        let nu = #nu;
+                        let #r = nu.abs().sqrt();
+                        let (#inverse, #k) = if #r == 0.0 {
+                            let #inverse = 1.0 / #n0.sqrt();
+                            (#inverse, -0.5 * #inverse / #n0)
+                        } else if nu > 0.0 {
+                            let (plus, minus) = ((#n0 + #r).sqrt(), (#n0 - #r).sqrt());
+                            (0.5 * (1.0 / plus + 1.0 / minus), -1.0 / (plus * minus * (plus + minus)))
+                        } else {
+                            let modulus = (#n0 * #n0 + nu.abs()).sqrt().sqrt();
+                            let half = 0.5 * #r.atan2(#n0);
+                            (half.cos() / modulus, -half.sin() / (modulus * #r))
+                        };
+                        #result
+                    },
+                };
+                (body, what)
             }
         };
         let doc = doc_lines(&format!(

@@ -21,7 +21,7 @@
 //! difference v, which have no cancellation: `C[] = ½ sinc u sinc v`, `S[] = −(u cos u sinc v − sin u cos v) /
 //! (2u(u² − v²))`, `H[] = (u cos u sinc v + sin u cos v)/(2u)`. The λ's are real for signatures with at most one
 //! vector of one sign (Euclidean, STA, CGA Cl(4,1), with null vectors too); with two of each (Cl(2,2), Cl(3,2))
-//! they can be a complex pair, and `exp` is refused there with [`Error::NoClosedForm`].
+//! they can be a complex pair, and all four functions are refused there with [`Error::NoClosedForm`].
 //!
 //! **One non-null plane** (W² = 0 identically: every algebra with n ≤ 3, 3D PGA's lines, CGA's rigid screws on
 //! the null basis): then λ₂ = 0, `λ = ⟨B²⟩₀`, and with `d = (c − s)/λ` the formula is
@@ -30,20 +30,26 @@
 //! exp(B) = c + s B + s ½W + d ½⟨W B⟩₂.
 //! ```
 //!
-//! `log`, `sqrt` and `normalized` are generated for this class only; an even type whose elements can turn in two
-//! non-null planes is refused for them.
+//! **log** of a unit element turning in two planes. With `σ = ⟨⟨M⟩₂²⟩₀` and `q = ⟨⟨M⟩₄²⟩₀`, the planes'
+//! `wᵢ = sᵢ²λᵢ` (−sin²θᵢ, sinh²xᵢ) are the roots of `w² − (σ − 2q) w + q` (from `cᵢ² − sᵢ²λᵢ = 1` and
+//! `M ~M = 1`, without cancellation near M = 1). The plane with the larger cosine takes it from `√(1 + w)`, the
+//! other is `⟨M⟩₀` divided by it, which gives θᵢ or xᵢ and so λᵢ. Then `⟨M⟩₂ = (β + (δ/γ)⟨M⟩₄) B` with β, γ = s₁s₂
+//! and δ of exp, and `⟨M⟩₄²= q` a scalar, so `B = (β ⟨M⟩₂ − (δ/γ)⟨⟨M⟩₄⟨M⟩₂⟩₂)/(β² − (δ/γ)² q)`. These are
+//! symmetric functions of the two planes, so the √ε error of each root where the planes' angles meet cancels.
 //!
-//! **log** (of a unit element `M ~M = 1` of that form). `⟨M⟩₀ = c`, `Bₘ = ⟨M⟩₂ = (s + d ½W) B`, `Q = ⟨M⟩₄ = s ½W`
+//! **log** of a unit element of the one-plane class. `⟨M⟩₀ = c`, `Bₘ = ⟨M⟩₂ = (s + d ½W) B`, `Q = ⟨M⟩₄ = s ½W`
 //! and `⟨Bₘ²⟩₀ = s²λ` (W² = 0 and W commutes with B), which with `c² − s²λ = 1` gives λ: a rotation by
 //! `θ = atan2(√(−s²λ), c)`, a boost by `x = asinh √(s²λ)`. Then `B = (s + (d/s) Q)⁻¹ Bₘ = Bₘ/s − (d/s³) ⟨Q Bₘ⟩₂`
 //! (Q² = 0). `s` vanishes at θ = π (M = −1 on the plane), where log is not defined.
 //!
-//! **normalized.** `N = M ~M = n₀ + N₄` with `N₄² = 0` and N₄ commuting with M (both checked), so
-//! `N^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))` and `M N^(−1/2)` has `(M N^(−1/2)) ~(…) = 1`.
+//! **normalized.** `N = M ~M = n₀ + N₄` with `N₄² = ν` a scalar and N₄ commuting with M (both checked), and
+//! `M N^(−1/2)` has `(M N^(−1/2)) ~(…) = 1`. For ν = 0, `N^(−1/2) = n₀^(−1/2) (1 − N₄/(2n₀))`; for ν > 0 through
+//! `n₀ ± √ν`, `A = ½((n₀+r)^(−1/2) + (n₀−r)^(−1/2))`, `B = −1/(√(n₀²−r²)(√(n₀+r) + √(n₀−r)))`; for ν < 0 through the
+//! complex `n₀ + i√−ν` (`N^(−1/2) = A + B N₄`).
 //!
 //! **sqrt** is `normalized(1 + M)`: with `R = exp(B/2)`, `1 + M = 1 + R² = R(~R + R) = 2R(r₀ + R₄)`, where
-//! `r₀ + R₄` (R's scalar and 4-vector parts) commutes with R and has a null 4-vector part; normalising divides
-//! it out exactly, so `sqrt(M) = R` and `sqrt(M)² = M` wherever `r₀ > 0` (M short of a turn by 2π).
+//! `r₀ + R₄` (R's scalar and 4-vector parts) commutes with R; normalising divides it out exactly (its principal
+//! inverse square root), so `sqrt(M) = R` and `sqrt(M)² = M` wherever no plane turns by 2π.
 
 use std::collections::BTreeMap;
 
@@ -265,8 +271,8 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
             let (positive, negative, _) = algebra.metric.signature();
             if !product.is_empty() && positive.min(negative) >= 2 {
                 return Err(no_closed_form(format!(
-                    "the metric has signature ({positive}, {negative}): with two vectors of each sign a bivector's two \
-                     invariants λ₁, λ₂ can be complex, and that case is not generated"
+                    "the metric has signature ({positive}, {negative}): {}",
+                    two_planes()
                 )));
             }
             let v = part(&half_wedge_b, 2);
@@ -286,18 +292,30 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
             }
             let (scalar, bivector, quadvector) = (part(&x, 0), part(&x, 2), part(&x, 4));
             let wedge = expander.product(Operation::Outer, &bivector, &bivector)?;
-            if !geometric(&wedge, &wedge)?.is_empty() || !geometric(&quadvector, &quadvector)?.is_empty() {
-                return Err(no_closed_form(two_planes()));
+            let (wedge_square, q_square) = (geometric(&wedge, &wedge)?, geometric(&quadvector, &quadvector)?);
+            let q_bivector = geometric(&quadvector, &bivector)?;
+            let two_planes_of_it = !wedge_square.is_empty() || !q_square.is_empty();
+            if two_planes_of_it {
+                // Two planes with real invariants. For a unit element M = exp(B) (n ≤ 5) ⟨M⟩₄² is a scalar and
+                // ⟨M⟩₄⟨M⟩₂ a bivector; in n = 5 a general even element's are not, so their grade-0 and grade-2 parts
+                // are taken, exact on the elements log is defined for.
+                let (positive, negative, _) = algebra.metric.signature();
+                if positive.min(negative) >= 2 {
+                    return Err(no_closed_form(two_planes()));
+                }
             }
             let square = part(&geometric(&bivector, &bivector)?, 0);
-            let q_b = part(&geometric(&quadvector, &bivector)?, 2);
+            let q_b = part(&q_bivector, 2);
             let blades: Vec<BladeMask> = bivector.keys().chain(q_b.keys()).copied().collect();
-            let pieces = vec![
+            let mut pieces = vec![
                 ("scalar", scalar),
                 ("bivector", bivector),
                 ("square", square),
                 ("q_b", q_b),
             ];
+            if two_planes_of_it {
+                pieces.push(("q_square", part(&q_square, 0)));
+            }
             (pieces, blades)
         }
         Function::Sqrt | Function::Normalized => {
@@ -324,15 +342,21 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
                 .filter(|&&b| grade(b) != 0 && grade(b) != 4)
                 .map(|&b| algebra.blade_name(b))
                 .collect();
-            if !rest.is_empty() || !geometric(&n4, &n4)?.is_empty() {
+            let n4_square = geometric(&n4, &n4)?;
+            let off_scalar = n4_square.keys().any(|&blade| blade != 0);
+            if !rest.is_empty() || off_scalar {
                 return Err(no_closed_form(format!(
-                    "its `m ~m` must be a scalar plus a 4-vector that squares to zero (it has {})",
+                    "its `m ~m` must be a scalar plus a 4-vector whose square is a scalar (it has {})",
                     if rest.is_empty() {
-                        "a 4-vector with a non-zero square".to_string()
+                        "a 4-vector whose square is not a scalar".to_string()
                     } else {
                         format!("the blades {}", rest.join(", "))
                     }
                 )));
+            }
+            let (positive, negative, _) = algebra.metric.signature();
+            if !n4_square.is_empty() && positive.min(negative) >= 2 {
+                return Err(no_closed_form(two_planes()));
             }
             let y_n4 = geometric(&y, &n4)?;
             let n4_y = geometric(&n4, &y)?;
@@ -342,7 +366,11 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
                 ));
             }
             let blades: Vec<BladeMask> = y.keys().chain(y_n4.keys()).copied().collect();
-            (vec![("value", y), ("n0", n0), ("y_n4", y_n4)], blades)
+            let mut pieces = vec![("value", y), ("n0", n0), ("y_n4", y_n4)];
+            if !n4_square.is_empty() {
+                pieces.push(("n4_square", n4_square));
+            }
+            (pieces, blades)
         }
     };
 
@@ -422,8 +450,7 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
 }
 
 fn two_planes() -> String {
-    "its elements can turn in two planes of non-zero square (`(B ∧ B)²` is not identically zero); `log`, `sqrt` \
-     and `normalized` are generated where at most one plane is not null (every algebra with n ≤ 3, 3D PGA, CGA's \
-     motors on the null basis), `exp` also for two planes"
+    "with two basis vectors of each sign the squares of an element's two planes can be a complex pair, which is \
+     not generated"
         .to_string()
 }

@@ -250,14 +250,11 @@
 //! invariants (`⟨b²⟩₀`, `b ∧ b`, …) expanded exactly as above, then series near zero or the
 //! trigonometric and hyperbolic functions (so these functions need `std` and are not `const`).
 //! `exp` takes a bivector type, the others an even type; `log` and `sqrt` are for unit elements
-//! (`m ~m = 1`, e.g. from `normalized`). `exp` is generated for the bivectors of every algebra with
-//! n ≤ 5 whose metric has at most one vector of one sign (Euclidean, PGA, STA, CGA: their bivectors
-//! split into two commuting planes with real squares); with two vectors of each sign (Cl(2,2)) the
-//! squares can be complex and it is refused. `log`, `sqrt` and `normalized` are generated where at
-//! most one plane has a non-zero square: every algebra with n ≤ 3 (2D PGA, Euclidean rotors, boosts of
-//! Cl(2,1)), 3D PGA's motors and CGA's rigid motors on the null basis; two such planes (Cl(4), a
-//! general even element of STA) are refused at the expression. These functions cannot be part of a
-//! larger formula.
+//! (`m ~m = 1`, e.g. from `normalized`). They are generated for every algebra with n ≤ 5 whose
+//! metric has at most one basis vector of one sign (Euclidean, 2D and 3D PGA, STA, CGA on either
+//! basis, Cl(2,1)), where a bivector splits into two commuting planes with real squares; with two
+//! vectors of each sign (Cl(2,2)) those squares can be complex and the expression is refused. These
+//! functions cannot be part of a larger formula.
 //!
 //! ```
 //! ga_macros::algebra! {

@@ -270,6 +270,7 @@ ga_macros::algebra! {
         }
         ops = [geometric];
         fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
     }
 }
 
@@ -334,5 +335,129 @@ fn conformal_bivectors() {
         [1.2, 0.3, -0.4, 2.0, 0.1, 0.0, -1.5, 0.2, 0.8, 0.6],
     ] {
         exp_is_the_series!(conformal, coefficients);
+        // Every bivector of Cl(4,1) turns in at most two planes with real squares: log inverts exp.
+        let b = conformal::Bivector::from_array(coefficients);
+        let back = conformal::log_even(conformal::exp_bivector(b));
+        assert!(
+            distance(&back.to_array(), &coefficients) < 1e-12,
+            "log(exp({coefficients:?})) = {back:?}"
+        );
+    }
+}
+
+ga_macros::algebra! {
+    /// Logarithms of elements turning in two planes.
+    mod cl4log {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = 1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+        fn sqrt_even(m: Even) -> Even = sqrt(m);
+        fn normalized_even(m: Even) -> Even = normalized(m);
+    }
+}
+
+ga_macros::algebra! {
+    mod stalog {
+        scalar = f64;
+        basis = [e0 = 1, e1 = -1, e2 = -1, e3 = -1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+        fn sqrt_even(m: Even) -> Even = sqrt(m);
+        fn normalized_even(m: Even) -> Even = normalized(m);
+    }
+}
+
+#[test]
+fn two_plane_square_roots_and_normalisation() {
+    // sqrt(m)² = m and sqrt(exp(b)) = exp(b/2); normalized(k m) = m, for Cl(4) and STA elements turning in two
+    // planes (the 4-vector part of m ~m then squares to a positive or a negative scalar).
+    macro_rules! check {
+        ($module:ident, $coefficients:expr) => {{
+            let b = $module::Bivector::from_array($coefficients);
+            let m = $module::exp_bivector(b);
+            let scale = m.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
+            let root = $module::sqrt_even(m);
+            assert!(
+                distance(&(root * root).to_array(), &m.to_array()) < 1e-13 * scale,
+                "{m:?}"
+            );
+            assert!(distance(&root.to_array(), &$module::exp_bivector(b * 0.5).to_array()) < 1e-13 * scale);
+            let unit = $module::normalized_even(m * 2.5);
+            assert!(
+                distance(&unit.to_array(), &m.to_array()) < 1e-13 * scale,
+                "{unit:?} against {m:?}"
+            );
+        }};
+    }
+    for coefficients in [
+        [0.3, -0.5, 0.7, 1.1, -0.2, 0.4],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        [0.0, 0.0, 0.0, 1.2, 0.0, 0.0],
+    ] {
+        check!(cl4log, coefficients);
+    }
+    for coefficients in [
+        [1.0, 0.5, -0.3, 0.2, 0.8, -1.1],
+        [1.5, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+    ] {
+        check!(stalog, coefficients);
+    }
+}
+
+#[test]
+fn two_plane_logarithms() {
+    // log(exp(b)) = b while each plane turns by less than π/2 (Cl(4): isoclinic, nearly isoclinic, generic, one
+    // plane, tiny), and exp(log(m)) = m beyond that.
+    for coefficients in [
+        [0.0; 6],
+        [1e-9, 0.0, 2e-9, 0.0, -1e-9, 3e-9],
+        [0.3, -0.5, 0.7, 1.1, -0.2, 0.4],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0, 0.0, 0.0, 1.0001],
+        [0.0, 0.0, 0.0, 1.2, 0.0, 0.0],
+        [1.4, 0.0, 0.0, 0.0, 0.0, 0.2],
+    ] {
+        let b = cl4log::Bivector::from_array(coefficients);
+        let m = cl4log::exp_bivector(b);
+        let back = cl4log::log_even(m);
+        assert!(
+            distance(&back.to_array(), &coefficients) < 1e-12,
+            "log(exp({coefficients:?})) = {back:?}"
+        );
+    }
+    for coefficients in [[2.0, 0.3, -0.4, 1.0, 0.5, 2.5], [3.0, 0.0, 0.0, 0.0, 0.0, 2.9]] {
+        let m = cl4log::exp_bivector(cl4log::Bivector::from_array(coefficients));
+        let again = cl4log::exp_bivector(cl4log::log_even(m));
+        assert!(
+            distance(&again.to_array(), &m.to_array()) < 1e-12,
+            "exp(log(m)) = {again:?}, m = {m:?}"
+        );
+    }
+    // STA: boosts, rotations, both with E·B ≠ 0, and a null bivector.
+    for coefficients in [
+        [1.5, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.0, 0.0, 1.2],
+        [1.0, 0.5, -0.3, 0.2, 0.8, -1.1],
+        [1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0, 0.0, 0.0, 1.3],
+    ] {
+        let b = stalog::Bivector::from_array(coefficients);
+        let back = stalog::log_even(stalog::exp_bivector(b));
+        assert!(
+            distance(&back.to_array(), &coefficients) < 1e-12,
+            "log(exp({coefficients:?})) = {back:?}"
+        );
     }
 }
