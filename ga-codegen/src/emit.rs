@@ -880,19 +880,31 @@ impl Emitter<'_> {
                             }
                         };
         };
+        // exp's result `f₀ + f₁ b + f₂ ½(b∧b) + f₃ ½⟨(b∧b) b⟩₂` for the factors of either form.
+        let exp_result = |[scalar_factor, b_factor, w_factor, v_factor]: [&proc_macro2::Ident; 4]| {
+            result(&|blade: BladeMask| {
+                combination(vec![
+                    (quote! { #scalar_factor }, (blade == 0).then_some(None)),
+                    (quote! { #b_factor }, canonical_input(blade).map(Some)),
+                    (quote! { #w_factor }, coefficient("half_wedge", blade).map(Some)),
+                    (quote! { #v_factor }, coefficient("v", blade).map(Some)),
+                ])
+            })
+        };
+        // log's result `inverse ⟨m⟩₂ + k ⟨⟨m⟩₄⟨m⟩₂⟩₂`, and its guard: an element with `⟨m ~m⟩₀ ≤ 0` (zero, or not
+        // finite) has no logarithm, and every coefficient of the result is NaN rather than a quiet zero.
+        let log_result = result(&|blade: BladeMask| {
+            combination(vec![
+                (quote! { #inverse }, coefficient("bivector", blade).map(Some)),
+                (quote! { #k }, coefficient("q_b", blade).map(Some)),
+            ])
+        });
+        let not_a_number = result(&|_| quote! { #scalar::NAN });
         let (body, what) = match form.function {
             Closed::Exp if !form.blades("product").is_empty() => {
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
                 let product = coefficient("product", 0).unwrap_or_else(|| quote! { #zero });
-                let value = |blade: BladeMask| {
-                    combination(vec![
-                        (quote! { #alpha }, (blade == 0).then_some(None)),
-                        (quote! { #beta }, canonical_input(blade).map(Some)),
-                        (quote! { #gamma }, coefficient("half_wedge", blade).map(Some)),
-                        (quote! { #delta }, coefficient("v", blade).map(Some)),
-                    ])
-                };
-                let result = result(&value);
+                let result = exp_result([&alpha, &beta, &gamma, &delta]);
                 (
                     quote! {
                         // λ₁ and λ₂, the squares of the two commuting planes: the roots of λ² − ⟨b²⟩₀ λ + ¼⟨(b∧b)²⟩₀.
@@ -915,15 +927,7 @@ impl Emitter<'_> {
             }
             Closed::Exp => {
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
-                let value = |blade: BladeMask| {
-                    combination(vec![
-                        (quote! { #c }, (blade == 0).then_some(None)),
-                        (quote! { #s }, canonical_input(blade).map(Some)),
-                        (quote! { #s }, coefficient("half_wedge", blade).map(Some)),
-                        (quote! { #d }, coefficient("v", blade).map(Some)),
-                    ])
-                };
-                let result = result(&value);
+                let result = exp_result([&c, &s, &s, &d]);
                 (
                     quote! {
                         let #lambda = #square;
@@ -946,18 +950,15 @@ impl Emitter<'_> {
                 let a = coefficient("scalar", 0).unwrap_or_else(|| quote! { #zero });
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
                 let q_square = coefficient("q_square", 0).unwrap_or_else(|| quote! { #zero });
-                let value = |blade: BladeMask| {
-                    combination(vec![
-                        (quote! { #inverse }, coefficient("bivector", blade).map(Some)),
-                        (quote! { #k }, coefficient("q_b", blade).map(Some)),
-                    ])
-                };
-                let result = result(&value);
+                let result = &log_result;
                 (
                     quote! {
                         // wᵢ = sᵢ²λᵢ (−sin²θᵢ for a rotation, sinh²xᵢ for a boost) are the roots of
                         // w² − (σ − 2q) w + q, σ = ⟨⟨m⟩₂²⟩₀ and q = ⟨⟨m⟩₄²⟩₀ (for m ~m = 1; no cancellation near m = 1).
                         let (sigma, q) = (#square, #q_square);
+                        if !(#a * #a - sigma + q > 0.0) {
+                            return #not_a_number;
+                        }
                         let sum = sigma - 2.0 * q;
                         let #r = (sum * sum - 4.0 * q).max(0.0).sqrt();
                         let w1 = if sum <= 0.0 { 0.5 * (sum - #r) } else { 0.5 * (sum + #r) };
@@ -995,15 +996,12 @@ impl Emitter<'_> {
             Closed::Log => {
                 let a = coefficient("scalar", 0).unwrap_or_else(|| quote! { #zero });
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
-                let value = |blade: BladeMask| {
-                    combination(vec![
-                        (quote! { #inverse }, coefficient("bivector", blade).map(Some)),
-                        (quote! { #k }, coefficient("q_b", blade).map(Some)),
-                    ])
-                };
-                let result = result(&value);
+                let result = &log_result;
                 (
                     quote! {
+                        if !(#a * #a - #square > 0.0) {
+                            return #not_a_number;
+                        }
                         let #r = #square.abs().sqrt();
                         // The plane's angle (rotation) or rapidity (boost), λ = ∓t², then s(λ) and d(λ).
                         let (#t, #lambda) = if #square < 0.0 {
@@ -1013,15 +1011,14 @@ impl Emitter<'_> {
                             let #t = #r.asinh();
                             (#t, #t * #t)
                         };
-                        let (#c, #s, #d) = if #lambda.abs() < 0.1 #series else if #lambda < 0.0 {
+                        // c is ⟨m⟩₀ itself for a unit element; only s and d enter B.
+                        let (_, #s, #d) = if #lambda.abs() < 0.1 #series else if #lambda < 0.0 {
                             let #s = #t.sin() / #t;
                             (#t.cos(), #s, (#t.cos() - #s) / #lambda)
                         } else {
                             let #s = #t.sinh() / #t;
                             (#t.cosh(), #s, (#t.cosh() - #s) / #lambda)
                         };
-                        // c is ⟨m⟩₀ itself for a unit element; only s and d enter B.
-                        let _ = #c;
                         let #inverse = 1.0 / #s;
                         let #k = -#d * #inverse * #inverse * #inverse;
                         #result

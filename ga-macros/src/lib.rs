@@ -254,7 +254,8 @@
 //! metric has at most one basis vector of one sign (Euclidean, 2D and 3D PGA, STA, CGA on either
 //! basis, Cl(2,1)), where a bivector splits into two commuting planes with real squares; with two
 //! vectors of each sign (Cl(2,2)) those squares can be complex and the expression is refused. These
-//! functions cannot be part of a larger formula.
+//! functions cannot be part of a larger formula. `log` of an element with `⟨m ~m⟩₀ ≤ 0` (zero, NaN)
+//! has no logarithm and returns NaN in every coefficient; NaN passes through the others.
 //!
 //! ```
 //! ga_macros::algebra! {
