@@ -825,6 +825,26 @@ impl Emitter<'_> {
             "l1", "l2", "c1", "s1", "c2", "s2", "dc", "ds", "dh", "alpha", "beta", "gamma", "delta", "plane", "divided",
         ]
         .map(local);
+        // Two close boosts (λᵢ = xᵢ² > 0) exist only with two basis vectors of each sign: the half-sum and
+        // half-difference forms with hyperbolic functions (derivation in ga_codegen::transcendental).
+        let (two_boosts_apart, close_boosts) = if form.indefinite {
+            let close = quote! {
+                else if #l1 > 0.0 {
+                    let shc = |x: #scalar| if x.abs() < 1e-4 { 1.0 + x * x / 6.0 } else { x.sinh() / x };
+                    let (sinh, cosh) = (u.sinh(), u.cosh());
+                    let (sv, cv) = (shc(v), v.cosh());
+                    (
+                        0.5 * shc(u) * sv,
+                        (u * cosh * sv - sinh * cv) / (2.0 * u * (u * u - v * v)),
+                        (u * cosh * sv + sinh * cv) / (2.0 * u),
+                    )
+                }
+            };
+            (quote! {}, close)
+        } else {
+            // Two boosts cannot occur; were they to, differences are still right.
+            (quote! { || #l1 > 0.0 }, quote! {})
+        };
         let closures = quote! {
                         // c(λ) and s(λ) of one plane: the series below |λ| = 0.1, else cos/sin or cosh/sinh.
                         let #plane = |#lambda: #scalar| -> (#scalar, #scalar) {
@@ -861,12 +881,12 @@ impl Emitter<'_> {
                                     h = #l1 * h + power2;
                                 }
                                 (dc, ds, dh)
-                            } else if (#l1 - #l2).abs() >= 0.5 * largest || #l1 > 0.0 {
-                                // Well apart (or, which the signature check rules out, two boosts): differences.
+                            } else if (#l1 - #l2).abs() >= 0.5 * largest #two_boosts_apart {
+                                // Well apart: differences.
                                 let (h1, h2) = (#l1 * #s1, #l2 * #s2);
                                 let gap = #l1 - #l2;
                                 ((#c1 - #c2) / gap, (#s1 - #s2) / gap, (h1 - h2) / gap)
-                            } else {
+                            } #close_boosts else {
                                 // Two rotations by x₁ = √−λ₁ and x₂ = √−λ₂ close to each other: u and v are their
                                 // half sum and half difference (derivations in ga_codegen::transcendental).
                                 let sinc = |x: #scalar| if x.abs() < 1e-4 { 1.0 - x * x / 6.0 } else { x.sin() / x };
@@ -879,6 +899,45 @@ impl Emitter<'_> {
                                 )
                             }
                         };
+        };
+        // A complex pair λ₁ = re + i·im, λ₂ = λ̄₁ (two basis vectors of each sign): c(λ₂) = c̄₁ and s(λ₂) = s̄₁, so
+        // exp's c₁c₂ and s₁s₂ are |c₁|² and |s₁|², the divided differences X[λ₁, λ₁̄] = Im X(λ₁)/Im λ₁ (no
+        // cancellation: Im X(λ₁) is computed directly), and β and δ the real parts of their formulas (the
+        // imaginary parts cancel). The value is (α, β, γ, δ).
+        let complex_coefficients = quote! {
+            let (#c, #s) = if re.hypot(im) < 0.1 {
+                // The series to λ⁷ by Horner's rule in complex arithmetic.
+                let horner = |coefficients: [#scalar; 8]| {
+                    coefficients.iter().fold((0.0, 0.0), |(x, y): (#scalar, #scalar), a| {
+                        (x * re - y * im + a, x * im + y * re)
+                    })
+                };
+                (
+                    horner([1.0 / 87178291200.0, 1.0 / 479001600.0, 1.0 / 3628800.0, 1.0 / 40320.0, 1.0 / 720.0,
+                        1.0 / 24.0, 1.0 / 2.0, 1.0]),
+                    horner([1.0 / 1307674368000.0, 1.0 / 6227020800.0, 1.0 / 39916800.0, 1.0 / 362880.0,
+                        1.0 / 5040.0, 1.0 / 120.0, 1.0 / 6.0, 1.0]),
+                )
+            } else {
+                // z = x + iy = √(−λ₁) (either root: c and s are even in z), c = cos z, s = sin z / z.
+                let (p, q) = (-re, -im);
+                let #t = (0.5 * (p.hypot(q) + p.abs())).sqrt();
+                let (x, y) = if p >= 0.0 { (#t, 0.5 * q / #t) } else { (0.5 * q.abs() / #t, q.signum() * #t) };
+                let (sin, cos) = x.sin_cos();
+                let (sinh, cosh) = (y.sinh(), y.cosh());
+                let (n_re, n_im) = (sin * cosh, cos * sinh);
+                let modulus = x * x + y * y;
+                ((cos * cosh, -sin * sinh), ((n_re * x + n_im * y) / modulus, (n_im * x - n_re * y) / modulus))
+            };
+            let (#dc, #ds) = (#c.1 / im, #s.1 / im);
+            // H = λ s: Im(λ₁ s₁)/Im λ₁ = re S[] + Re s₁.
+            let #dh = re * #ds + #s.0;
+            (
+                #c.0 * #c.0 + #c.1 * #c.1,
+                #c.0 * #dh - (re * #s.0 - im * #s.1) * #dc,
+                #s.0 * #s.0 + #s.1 * #s.1,
+                #s.0 * #dc - #c.0 * #ds,
+            )
         };
         // exp's result `f₀ + f₁ b + f₂ ½(b∧b) + f₃ ½⟨(b∧b) b⟩₂` for the factors of either form.
         let exp_result = |[scalar_factor, b_factor, w_factor, v_factor]: [&proc_macro2::Ident; 4]| {
@@ -905,19 +964,36 @@ impl Emitter<'_> {
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
                 let product = coefficient("product", 0).unwrap_or_else(|| quote! { #zero });
                 let result = exp_result([&alpha, &beta, &gamma, &delta]);
+                let real = quote! {
+                    let #r = (#lambda * #lambda - 4.0 * #product).max(0.0).sqrt();
+                    let #l1 = if #lambda >= 0.0 { 0.5 * (#lambda + #r) } else { 0.5 * (#lambda - #r) };
+                    let #l2 = if #l1 == 0.0 { 0.0 } else { #product / #l1 };
+                    #closures
+                    let (#dc, #ds, #dh) = #divided();
+                    let #alpha = #c1 * #c2;
+                    let #beta = #c2 * #dh - #l2 * #s2 * #dc;
+                    let #gamma = #s1 * #s2;
+                    let #delta = #s2 * #dc - #c2 * #ds;
+                };
+                let coefficients = if form.indefinite {
+                    quote! {
+                        let discriminant = #lambda * #lambda - 4.0 * #product;
+                        let (#alpha, #beta, #gamma, #delta) = if discriminant < 0.0 {
+                            let (re, im) = (0.5 * #lambda, 0.5 * (-discriminant).sqrt());
+                            #complex_coefficients
+                        } else {
+                            #real
+                            (#alpha, #beta, #gamma, #delta)
+                        };
+                    }
+                } else {
+                    real
+                };
                 (
                     quote! {
                         // λ₁ and λ₂, the squares of the two commuting planes: the roots of λ² − ⟨b²⟩₀ λ + ¼⟨(b∧b)²⟩₀.
                         let #lambda = #square;
-                        let #r = (#lambda * #lambda - 4.0 * #product).max(0.0).sqrt();
-                        let #l1 = if #lambda >= 0.0 { 0.5 * (#lambda + #r) } else { 0.5 * (#lambda - #r) };
-                        let #l2 = if #l1 == 0.0 { 0.0 } else { #product / #l1 };
-                        #closures
-                        let (#dc, #ds, #dh) = #divided();
-                        let #alpha = #c1 * #c2;
-                        let #beta = #c2 * #dh - #l2 * #s2 * #dc;
-                        let #gamma = #s1 * #s2;
-                        let #delta = #s2 * #dc - #c2 * #ds;
+                        #coefficients
                         #result
                     },
                     "the exponential of a bivector with two commuting planes of squares λ₁ and λ₂: \
@@ -948,6 +1024,70 @@ impl Emitter<'_> {
             }
             Closed::Log if form.pieces.contains_key("q_square") => {
                 let a = coefficient("scalar", 0).unwrap_or_else(|| quote! { #zero });
+                let real = quote! {
+                    let #r = (sum * sum - 4.0 * q).max(0.0).sqrt();
+                    let w1 = if sum <= 0.0 { 0.5 * (sum - #r) } else { 0.5 * (sum + #r) };
+                    let w2 = if w1 == 0.0 { 0.0 } else { q / w1 };
+                    // The plane with the larger cosine takes it from 1 + w; the other cosine is ⟨m⟩₀ divided by it.
+                    let (wide, narrow) = if w1 >= w2 { (w1, w2) } else { (w2, w1) };
+                    let wide_cos = (1.0 + wide).max(0.0).sqrt();
+                    let narrow_cos = if wide_cos > 0.0 { #a / wide_cos } else { 0.0 };
+                    let square_of = |w: #scalar, cos: #scalar| -> #scalar {
+                        if w < 0.0 {
+                            let #t = (-w).sqrt().atan2(cos);
+                            -#t * #t
+                        } else {
+                            let #t = w.sqrt().asinh();
+                            #t * #t
+                        }
+                    };
+                    let (#l1, #l2) = (square_of(wide, wide_cos), square_of(narrow, narrow_cos));
+                    #closures
+                    let (#dc, #ds, #dh) = #divided();
+                    let #beta = #c2 * #dh - #l2 * #s2 * #dc;
+                    let #gamma = #s1 * #s2;
+                    let #delta = #s2 * #dc - #c2 * #ds;
+                };
+                let log_coefficients = if form.indefinite {
+                    quote! {
+                        let discriminant = sum * sum - 4.0 * q;
+                        let (#beta, #gamma, #delta) = if discriminant < 0.0 {
+                            // w₁ = w_re + i w_im and its conjugate: c₁c₂ = |c₁|² = ⟨m⟩₀ must be positive.
+                            if !(#a > 0.0) {
+                                return #not_a_number;
+                            }
+                            let (w_re, w_im) = (0.5 * sum, 0.5 * (-discriminant).sqrt());
+                            // The principal square root of a complex number, without cancellation.
+                            let root = |p: #scalar, q: #scalar| -> (#scalar, #scalar) {
+                                let #t = (0.5 * (p.hypot(q) + p.abs())).sqrt();
+                                if #t == 0.0 {
+                                    (0.0, 0.0)
+                                } else if p >= 0.0 {
+                                    (#t, 0.5 * q / #t)
+                                } else {
+                                    (0.5 * q.abs() / #t, q.signum() * #t)
+                                }
+                            };
+                            // λ₁ = y², y = asinh ζ with ζ = √w₁ (s²λ = sinh²y = w): y = ln(1 + u) with
+                            // u = ζ + w₁/(1 + √(1 + w₁)), whose denominator has real part at least 1.
+                            let (z_re, z_im) = root(w_re, w_im);
+                            let (d_re, d_im) = root(1.0 + w_re, w_im);
+                            let (d_re, modulus) = (1.0 + d_re, (1.0 + d_re) * (1.0 + d_re) + d_im * d_im);
+                            let u_re = z_re + (w_re * d_re + w_im * d_im) / modulus;
+                            let u_im = z_im + (w_im * d_re - w_re * d_im) / modulus;
+                            let y_re = 0.5 * (u_re * (2.0 + u_re) + u_im * u_im).ln_1p();
+                            let y_im = u_im.atan2(1.0 + u_re);
+                            let (re, im) = ((y_re - y_im) * (y_re + y_im), 2.0 * y_re * y_im);
+                            let (_, #beta, #gamma, #delta) = { #complex_coefficients };
+                            (#beta, #gamma, #delta)
+                        } else {
+                            #real
+                            (#beta, #gamma, #delta)
+                        };
+                    }
+                } else {
+                    real
+                };
                 let square = coefficient("square", 0).unwrap_or_else(|| quote! { #zero });
                 let q_square = coefficient("q_square", 0).unwrap_or_else(|| quote! { #zero });
                 let result = &log_result;
@@ -960,28 +1100,7 @@ impl Emitter<'_> {
                             return #not_a_number;
                         }
                         let sum = sigma - 2.0 * q;
-                        let #r = (sum * sum - 4.0 * q).max(0.0).sqrt();
-                        let w1 = if sum <= 0.0 { 0.5 * (sum - #r) } else { 0.5 * (sum + #r) };
-                        let w2 = if w1 == 0.0 { 0.0 } else { q / w1 };
-                        // The plane with the larger cosine takes it from 1 + w; the other cosine is ⟨m⟩₀ divided by it.
-                        let (wide, narrow) = if w1 >= w2 { (w1, w2) } else { (w2, w1) };
-                        let wide_cos = (1.0 + wide).max(0.0).sqrt();
-                        let narrow_cos = if wide_cos > 0.0 { #a / wide_cos } else { 0.0 };
-                        let square_of = |w: #scalar, cos: #scalar| -> #scalar {
-                            if w < 0.0 {
-                                let #t = (-w).sqrt().atan2(cos);
-                                -#t * #t
-                            } else {
-                                let #t = w.sqrt().asinh();
-                                #t * #t
-                            }
-                        };
-                        let (#l1, #l2) = (square_of(wide, wide_cos), square_of(narrow, narrow_cos));
-                        #closures
-                        let (#dc, #ds, #dh) = #divided();
-                        let #beta = #c2 * #dh - #l2 * #s2 * #dc;
-                        let #gamma = #s1 * #s2;
-                        let #delta = #s2 * #dc - #c2 * #ds;
+                        #log_coefficients
                         // ⟨m⟩₂ = (β + (δ/γ)⟨m⟩₄) b, and ⟨m⟩₄² = q is a scalar.
                         let ratio = #delta / #gamma;
                         let denominator = #beta * #beta - ratio * ratio * q;

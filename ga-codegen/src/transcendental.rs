@@ -19,9 +19,26 @@
 //! computed by series below |λ| = 0.1 (`Σ aₙ hₙ₋₁(λ₁, λ₂)`, the complete homogeneous polynomials), as differences
 //! when the λ's are well apart, and for two close rotations `xᵢ = √−λᵢ` from their half sum u and half
 //! difference v, which have no cancellation: `C[] = ½ sinc u sinc v`, `S[] = −(u cos u sinc v − sin u cos v) /
-//! (2u(u² − v²))`, `H[] = (u cos u sinc v + sin u cos v)/(2u)`. The λ's are real for signatures with at most one
-//! vector of one sign (Euclidean, STA, CGA Cl(4,1), with null vectors too); with two of each (Cl(2,2), Cl(3,2))
-//! they can be a complex pair, and all four functions are refused there with [`Error::NoClosedForm`].
+//! (2u(u² − v²))`, `H[] = (u cos u sinc v + sin u cos v)/(2u)`.
+//!
+//! **Two basis vectors of each sign** (Cl(2,2), Cl(3,2), Cl(2,3), also with a null vector). Two more cases occur
+//! there, and only there (with at most one vector of one sign the λ's are real and at most one is positive), so
+//! they are emitted only for such metrics ([`ClosedForm::indefinite`]):
+//! - *Two close boosts*, `λᵢ = xᵢ² > 0`. With `shc x = sinh x / x` the same half-sum and half-difference forms
+//!   hold with hyperbolic functions: `cosh x₁ − cosh x₂ = 2 sinh u sinh v` and `x₁² − x₂² = 4uv` give
+//!   `C[] = ½ shc u shc v`; `u(sinh x₁ − sinh x₂) ∓ v(sinh x₁ + sinh x₂)` over `x₁x₂ · 4uv` give
+//!   `S[] = (u cosh u shc v − sinh u cosh v)/(2u(u² − v²))` and `H[] = (u cosh u shc v + sinh u cosh v)/(2u)`.
+//! - *A complex pair*, `λ₁ = a + ib`, `λ₂ = λ̄₁` (the discriminant `⟨B²⟩₀² − ⟨W²⟩₀` negative). c and s are real
+//!   power series, so `c(λ₂) = c̄₁` and `s(λ₂) = s̄₁`: then `c₁c₂ = |c₁|²`, `s₁s₂ = |s₁|²`, and each divided
+//!   difference is `X[λ₁, λ̄₁] = 2i Im X(λ₁) / 2i Im λ₁ = Im X(λ₁)/b`, real, and without cancellation since
+//!   `Im X(λ₁)` is computed directly (`Im c(λ₁) = −sin x sinh y` for `x + iy = √−λ₁`, or by the series in
+//!   complex arithmetic below |λ| = 0.1). In `β = c̄₁ H[] − conj(λ₁s₁) C[]` the imaginary part is
+//!   `(−Im c₁ Im H₁ + Im H₁ Im c₁)/b = 0`, and likewise in δ, so `β = Re c₁ H[] − Re(λ₁s₁) C[]` and
+//!   `δ = Re s₁ C[] − Re c₁ S[]`, with `H[] = Im(λ₁s₁)/b = a S[] + Re s₁`.
+//!   For log the `w`'s are then a conjugate pair too; `λ₁ = y²` with `y = asinh √w₁` (since `s²λ = sinh²y`),
+//!   evaluated as `ln(1 + u)`, `u = ζ + w₁/(1 + √(1 + w₁))`, `ζ = √w₁`, whose denominator has real part at least 1.
+//!   The principal branches give `c₁ = √(1 + w₁)` with non-negative real part, so `⟨M⟩₀ = c₁c₂ = |c₁|²` must be
+//!   positive: an element with a complex pair and `⟨M⟩₀ ≤ 0` has no logarithm (NaN).
 //!
 //! **One non-null plane** (W² = 0 identically: every algebra with n ≤ 3, 3D PGA's lines, CGA's rigid screws on
 //! the null basis): then λ₂ = 0, `λ = ⟨B²⟩₀`, and with `d = (c − s)/λ` the formula is
@@ -123,6 +140,9 @@ pub struct ClosedForm {
     pub fused: Fused,
     /// Each piece by name, its non-zero blades and their sums over the program's values and inputs.
     pub pieces: BTreeMap<&'static str, Vec<(BladeMask, Vec<Term>)>>,
+    /// Whether the metric has two basis vectors of each sign, so that two planes' squares can be a complex pair
+    /// or two boosts (only then are those cases emitted).
+    pub indefinite: bool,
 }
 
 impl ClosedForm {
@@ -268,13 +288,6 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
                 ));
             }
             let product = scaled(&wedge_square, Rational64::new(1, 4));
-            let (positive, negative, _) = algebra.metric.signature();
-            if !product.is_empty() && positive.min(negative) >= 2 {
-                return Err(no_closed_form(format!(
-                    "the metric has signature ({positive}, {negative}): {}",
-                    two_planes()
-                )));
-            }
             let v = part(&half_wedge_b, 2);
             let mut blades: Vec<BladeMask> = vec![0];
             blades.extend(x.keys().chain(half_wedge.keys()).chain(v.keys()));
@@ -294,16 +307,10 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
             let wedge = expander.product(Operation::Outer, &bivector, &bivector)?;
             let (wedge_square, q_square) = (geometric(&wedge, &wedge)?, geometric(&quadvector, &quadvector)?);
             let q_bivector = geometric(&quadvector, &bivector)?;
+            // Two planes: for a unit element M = exp(B) (n ≤ 5) ⟨M⟩₄² is a scalar and ⟨M⟩₄⟨M⟩₂ a bivector; in n = 5
+            // a general even element's are not, so their grade-0 and grade-2 parts are taken, exact on the elements
+            // log is defined for.
             let two_planes_of_it = !wedge_square.is_empty() || !q_square.is_empty();
-            if two_planes_of_it {
-                // Two planes with real invariants. For a unit element M = exp(B) (n ≤ 5) ⟨M⟩₄² is a scalar and
-                // ⟨M⟩₄⟨M⟩₂ a bivector; in n = 5 a general even element's are not, so their grade-0 and grade-2 parts
-                // are taken, exact on the elements log is defined for.
-                let (positive, negative, _) = algebra.metric.signature();
-                if positive.min(negative) >= 2 {
-                    return Err(no_closed_form(two_planes()));
-                }
-            }
             let square = part(&geometric(&bivector, &bivector)?, 0);
             let q_b = part(&q_bivector, 2);
             let blades: Vec<BladeMask> = bivector.keys().chain(q_b.keys()).copied().collect();
@@ -353,10 +360,6 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
                         format!("the blades {}", rest.join(", "))
                     }
                 )));
-            }
-            let (positive, negative, _) = algebra.metric.signature();
-            if !n4_square.is_empty() && positive.min(negative) >= 2 {
-                return Err(no_closed_form(two_planes()));
             }
             let y_n4 = geometric(&y, &n4)?;
             let n4_y = geometric(&n4, &y)?;
@@ -446,11 +449,9 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
             program,
         },
         pieces: lowered,
+        indefinite: {
+            let (positive, negative, _) = algebra.metric.signature();
+            positive.min(negative) >= 2
+        },
     })
-}
-
-fn two_planes() -> String {
-    "with two basis vectors of each sign the squares of an element's two planes can be a complex pair, which is \
-     not generated"
-        .to_string()
 }

@@ -250,11 +250,12 @@
 //! invariants (`⟨b²⟩₀`, `b ∧ b`, …) expanded exactly as above, then series near zero or the
 //! trigonometric and hyperbolic functions (so these functions need `std` and are not `const`).
 //! `exp` takes a bivector type, the others an even type; `log` and `sqrt` are for unit elements
-//! (`m ~m = 1`, e.g. from `normalized`). They are generated for every algebra with n ≤ 5 whose
-//! metric has at most one basis vector of one sign (Euclidean, 2D and 3D PGA, STA, CGA on either
-//! basis, Cl(2,1)), where a bivector splits into two commuting planes with real squares; with two
-//! vectors of each sign (Cl(2,2)) those squares can be complex and the expression is refused. These
-//! functions cannot be part of a larger formula. `log` of an element with `⟨m ~m⟩₀ ≤ 0` (zero, NaN)
+//! (`m ~m = 1`, e.g. from `normalized`). They are generated for every algebra with n ≤ 5
+//! (Euclidean, 2D and 3D PGA, STA, CGA on either basis, Cl(2,1), Cl(2,2), Cl(3,2)), where a
+//! bivector splits into two commuting planes whose squares are real or, with two basis vectors of
+//! each sign, a complex-conjugate pair. `sqrt` and `normalized` need `m ~m` to be a scalar plus a
+//! 4-vector squaring to a scalar and commuting with `m` (not so for a general even element of
+//! Cl(4,1)), and are refused otherwise. These functions cannot be part of a larger formula. `log` of an element with `⟨m ~m⟩₀ ≤ 0` (zero, NaN)
 //! has no logarithm and returns NaN in every coefficient; NaN passes through the others.
 //!
 //! ```

@@ -280,6 +280,40 @@ ga_macros::algebra! {
     }
 }
 
+ga_macros::algebra! {
+    /// Cl(2,2): with two basis vectors of each sign a bivector's planes can have a complex pair of squares, or be
+    /// two boosts.
+    mod split {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1, e3 = -1, e4 = -1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+        fn sqrt_even(m: Even) -> Even = sqrt(m);
+        fn normalized_even(m: Even) -> Even = normalized(m);
+    }
+}
+
+ga_macros::algebra! {
+    /// Cl(3,2), the other five-dimensional signature with two vectors of each sign.
+    mod split5 {
+        scalar = f64;
+        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = -1, e5 = -1];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2, 4);
+            Multivector = all;
+        }
+        ops = [geometric];
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+    }
+}
+
 /// `exp(b)` against the series, relative to the size of the result.
 macro_rules! exp_is_the_series {
     ($module:ident, $coefficients:expr) => {{
@@ -466,4 +500,104 @@ fn careless_arguments_give_not_a_number_never_a_quiet_value() {
     assert_eq!((huge.scalar, huge.e10, huge.e20), (1.0, 1e300, -1e300));
     let boost = lorentz::exp_bivector(lorentz::Bivector::from_array([0.0, 1e3, 0.0]));
     assert!(boost.to_array().iter().any(|x| x.is_infinite()), "{boost:?}");
+}
+
+/// The discriminant `⟨b²⟩₀² − ⟨W²⟩₀` of the planes' squares (negative for a complex pair), from the generated
+/// product: `b² = λ₁ + λ₂ + W` with W its 4-vector part.
+macro_rules! discriminant {
+    ($module:ident, $coefficients:expr) => {{
+        let b = $module::Multivector::from($module::Bivector::from_array($coefficients));
+        let square = b * b;
+        let mut wedge = square;
+        wedge.scalar = 0.0;
+        square.scalar * square.scalar - (wedge * wedge).scalar
+    }};
+}
+
+#[test]
+fn split_signature_complex_squares_and_boosts() {
+    // Blades e12, e13, e14, e23, e24, e34 of Cl(2,2) (e12 and e34 rotate, the others boost). λ = ±2i; the same
+    // scaled into the series (|λ| = 0.08, 2e-6, 2e-18); a pair barely complex and barely real; two isoclinic rotations and
+    // boosts (a double root); two close boosts (the hyperbolic half-sum forms); a boost and a rotation; generic.
+    let complex = [1.0, 1.0, 0.0, 0.0, -1.0, 1.0];
+    let cases = [
+        (complex, Some(true)),
+        (complex.map(|x| 0.2 * x), Some(true)),
+        (complex.map(|x| 1e-3 * x), Some(true)),
+        (complex.map(|x| 1e-9 * x), Some(true)),
+        ([1.0, 1.0, 0.0, 0.0, -1.0, 1.0 + 1e-7], Some(true)),
+        ([1.0, 1.0 + 1e-7, 0.0, 0.0, -1.0, 1.0], None),
+        ([1.0, 0.0, 0.0, 0.0, 0.0, 1.0], None),
+        ([0.0, 1.0, 0.0, 0.0, 1.0, 0.0], None),
+        ([0.0, 1.0, 0.0, 0.0, 1.0001, 0.0], Some(false)),
+        ([0.0, 1.3, 0.0, 0.0, 0.0, 0.7], Some(false)),
+        ([0.3, -0.5, 0.7, 1.1, -0.2, 0.4], None),
+    ];
+    for (coefficients, complex_pair) in cases {
+        // The cases are what they claim to be.
+        if let Some(complex_pair) = complex_pair {
+            assert_eq!(
+                discriminant!(split, coefficients) < 0.0,
+                complex_pair,
+                "{coefficients:?}"
+            );
+        }
+        exp_is_the_series!(split, coefficients);
+        let (b, m, root) = round_trips!(split, Bivector, exp_bivector, log_even, sqrt_even, coefficients, 1e-12);
+        let scale = m.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
+        assert!(distance(&root.to_array(), &split::exp_bivector(b * 0.5).to_array()) < 1e-13 * scale);
+        let unit = split::normalized_even(m * 2.5);
+        assert!(
+            distance(&unit.to_array(), &m.to_array()) < 1e-13 * scale,
+            "{unit:?} against {m:?}"
+        );
+    }
+    // Beyond the principal range (λ = ±18i turns by 3 > π/2 in the complex plane) log finds another logarithm:
+    // exp(log(m)) = m.
+    for coefficients in [complex.map(|x| 3.0 * x), [2.0, 0.3, -0.4, 1.0, 0.5, 2.5]] {
+        let m = split::exp_bivector(split::Bivector::from_array(coefficients));
+        let again = split::exp_bivector(split::log_even(m));
+        let scale = m.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
+        assert!(
+            distance(&again.to_array(), &m.to_array()) < 1e-12 * scale,
+            "exp(log(m)) = {again:?}, m = {m:?}"
+        );
+    }
+    // A unit element with a complex pair and ⟨m⟩₀ < 0 has no logarithm (c₁c₂ = |c₁|² > 0 for every b): NaN.
+    let m = split::exp_bivector(split::Bivector::from_array(complex.map(|x| 3.0 * x)));
+    assert!(
+        split::log_even(m * -1.0).to_array().iter().all(|x| x.is_nan()),
+        "{:?}",
+        split::log_even(m * -1.0)
+    );
+}
+
+#[test]
+fn split_five_dimensional_signature() {
+    // Cl(3,2) (blades e12, e13, e14, e15, e23, e24, e25, e34, e35, e45): exp against the series and log(exp(b)) = b
+    // for bivectors with a complex pair (generic, and λ = ±2i), two isoclinic rotations (e12 + e45) and boosts
+    // (e14 + e35), two boosts apart, and zero.
+    for (coefficients, complex_pair) in [
+        ([0.4, -0.3, 0.2, 0.5, 0.1, -0.6, 0.3, 0.2, -0.4, 0.7], Some(true)),
+        ([0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, -1.0, 0.0, 1.0], Some(true)),
+        ([1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], None),
+        ([0.0, 0.0, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0], None),
+        ([0.0, 0.0, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.7, 0.0], Some(false)),
+        ([0.0; 10], None),
+    ] {
+        if let Some(complex_pair) = complex_pair {
+            assert_eq!(
+                discriminant!(split5, coefficients) < 0.0,
+                complex_pair,
+                "{coefficients:?}"
+            );
+        }
+        exp_is_the_series!(split5, coefficients);
+        let b = split5::Bivector::from_array(coefficients);
+        let back = split5::log_even(split5::exp_bivector(b));
+        assert!(
+            distance(&back.to_array(), &coefficients) < 1e-12,
+            "log(exp({coefficients:?})) = {back:?}"
+        );
+    }
 }
