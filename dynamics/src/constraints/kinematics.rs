@@ -50,6 +50,7 @@ impl<A: Algebra> Kinematics<A> {
     /// assert!((at.world_point(&Vector3::x()) - Vector3::y()).norm() < 1e-15); // m
     /// assert!((at.world_point_velocity(&Vector3::x()) + Vector3::x() * 2.0).norm() < 1e-15); // m/s
     /// ```
+    #[inline]
     pub fn new(t: f64, motor: A::Motor, body_velocity: A::Screw) -> Self {
         Self::with_frame(t, motor, ScrewFrame::of::<A>(motor), body_velocity)
     }
@@ -75,6 +76,7 @@ impl<A: Algebra> Kinematics<A> {
     /// assert!(rows.rows().iter().all(|row| row.position_residual == Some(0.0) && row.velocity_residual == 0.0));
     /// # Ok::<(), dynamics::ConstraintError>(())
     /// ```
+    #[inline]
     pub fn with_frame(t: f64, motor: A::Motor, frame: ScrewFrame, body_velocity: A::Screw) -> Self {
         let ScrewCoordinates { l: omega, t: v } = A::screw_coordinates(body_velocity);
         let angular_velocity = frame.rotation * omega;

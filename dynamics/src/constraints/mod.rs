@@ -138,6 +138,13 @@ pub trait Constraint<A: Algebra>: Send + Sync {
     fn has_position_residual(&self) -> bool;
     /// Pushes the rows at this state.
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError>;
+    /// Whether [`Constraint::rows`] reads the motor ([`Kinematics::motor`] or [`Kinematics::reverse`]) rather than
+    /// only the frame and velocities. A joint between two bodies composes their relative motor only for
+    /// constraints that do; for the others those fields hold NaN, so that a constraint answering `false` wrongly
+    /// gets non-finite rows (an error), never a quiet wrong answer.
+    fn uses_motor(&self) -> bool {
+        true
+    }
 }
 
 /// Several constraints acting as one, with a declared rank: a hinge pinned as a line plus a point has rank 5,
@@ -209,6 +216,10 @@ impl<A: Algebra> Constraint<A> for Composite<A> {
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
         self.parts.iter().try_for_each(|part| part.rows(kinematics, rows))
     }
+
+    fn uses_motor(&self) -> bool {
+        self.parts.iter().any(|part| part.uses_motor())
+    }
 }
 
 impl<A: Algebra> std::fmt::Debug for Composite<A> {
@@ -242,5 +253,9 @@ impl<A: Algebra, C: Constraint<A> + ?Sized> Constraint<A> for Arc<C> {
 
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
         (**self).rows(kinematics, rows)
+    }
+
+    fn uses_motor(&self) -> bool {
+        (**self).uses_motor()
     }
 }

@@ -134,6 +134,9 @@ enum Wrenches<A: Algebra> {
         body_point: Vector3<f64>,
         point: Arc<dyn Path<Vector3<f64>>>,
         forces: ArrayVec<Vector3<f64>, 3>,
+        /// Whether the forces are the world axes x, y, z (ball joints, hinges), whose rows are read off the
+        /// rotation rather than computed (`point_rows`).
+        along_axes: bool,
         alignments: ArrayVec<Alignment, 3>,
     },
     /// One force from the body point towards the centre; residual ½(ρ² − |a − c|²).
@@ -194,12 +197,14 @@ impl<A: Algebra> VirtualPower<A> {
         forces: impl IntoIterator<Item = Vector3<f64>>,
         alignments: impl IntoIterator<Item = (Vector3<f64>, Vector3<f64>)>,
     ) -> Self {
+        let forces: ArrayVec<Vector3<f64>, 3> = forces.into_iter().collect();
         VirtualPower {
             name,
             wrenches: Wrenches::Point {
                 body_point,
                 point,
-                forces: forces.into_iter().collect(),
+                along_axes: forces == coordinate_axes(),
+                forces,
                 alignments: alignments
                     .into_iter()
                     .map(|(body_direction, normal)| Alignment { body_direction, normal })
@@ -742,6 +747,7 @@ impl<A: Algebra> VirtualPower<A> {
                 point,
                 forces,
                 alignments,
+                ..
             } => {
                 let a = kinematics.world_point(body_point);
                 let velocity = kinematics.world_point_velocity(body_point);
@@ -861,15 +867,28 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
         !matches!(self.wrenches, Wrenches::Custom(_))
     }
 
+    /// Only a motor joint compares motors; the others read the frame and velocities.
+    fn uses_motor(&self) -> bool {
+        matches!(self.wrenches, Wrenches::Motor(_))
+    }
+
     fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
         if let Wrenches::Point {
             body_point,
             point,
             forces,
+            along_axes,
             alignments,
         } = &self.wrenches
         {
-            point_rows(kinematics, body_point, point.as_ref(), forces, alignments, rows);
+            point_rows(
+                kinematics,
+                body_point,
+                point.as_ref(),
+                (forces, *along_axes),
+                alignments,
+                rows,
+            );
             return Ok(());
         }
         self.wrenches(kinematics, |w| rows.push(wrench_row(kinematics, &w)));
@@ -905,11 +924,14 @@ fn wrench_row<A: Algebra>(kinematics: &Kinematics<A>, w: &ConstraintWrench<A>) -
 ///   the bias. Residual `f·(a − p)`, prescribed power `f·ṗ`, its rate `f·p̈`.
 /// * a couple `d⨯n` (body direction d, reference normal n) is `(d_b⨯n_b; 0)` in the body frame; its rate is the
 ///   couple `ḋ⨯n` with `ḋ = ω⨯d`, bias `ω·(ḋ⨯n)`. Residual `n·d`.
+///
+/// Forces along the world axes (`along_axes`: ball joints and hinges) are read off the rotation, `f_b = Qᵀe_k`
+/// being row k of Q, and `f·y` being y's k-th coordinate: the same numbers as the general products, without them.
 fn point_rows<A: Algebra>(
     kinematics: &Kinematics<A>,
     body_point: &Vector3<f64>,
     point: &dyn Path<Vector3<f64>>,
-    forces: &[Vector3<f64>],
+    (forces, along_axes): (&[Vector3<f64>], bool),
     alignments: &[Alignment],
     rows: &mut RowBuffer,
 ) {
@@ -922,16 +944,28 @@ fn point_rows<A: Algebra>(
     let offset = a - p.value;
     let turning = omega.cross(&a_rate);
     let power = |jacobian: &[f64; 6]| -> f64 { jacobian.iter().zip(x.iter()).map(|(j, x)| j * x).sum() };
-    for force in forces {
-        let f = rotation.inverse_transform_vector(force);
+    let force_row = |f: Vector3<f64>, rate: f64, bias: f64, residual: f64| -> ConstraintRow {
         let moment = body_point.cross(&f);
         let jacobian = [moment.x, moment.y, moment.z, f.x, f.y, f.z];
-        rows.push(ConstraintRow {
-            velocity_residual: power(&jacobian) - force.dot(&p.rate),
-            bias: force.dot(&turning) - force.dot(&p.acceleration),
-            position_residual: Some(force.dot(&offset)),
+        ConstraintRow {
+            velocity_residual: power(&jacobian) - rate,
+            bias,
+            position_residual: Some(residual),
             jacobian,
-        });
+        }
+    };
+    if along_axes {
+        let q = rotation.matrix();
+        for k in 0..3 {
+            let f = Vector3::new(q[(k, 0)], q[(k, 1)], q[(k, 2)]);
+            rows.push(force_row(f, p.rate[k], turning[k] - p.acceleration[k], offset[k]));
+        }
+    } else {
+        for force in forces {
+            let f = rotation.inverse_transform_vector(force);
+            let bias = force.dot(&turning) - force.dot(&p.acceleration);
+            rows.push(force_row(f, force.dot(&p.rate), bias, force.dot(&offset)));
+        }
     }
     for alignment in alignments {
         let d = kinematics.world_direction(&alignment.body_direction);

@@ -22,7 +22,7 @@ use arrayvec::ArrayVec;
 
 use nalgebra::Vector3;
 
-use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
 use crate::mechanism::solve::{dot6, SolverSettings};
@@ -155,7 +155,17 @@ impl<A: Algebra> Joint<A> {
             None => (&body.kinematics, None, [0.0; 6], [0.0; 6]),
             Some(r) => {
                 let reference = &bodies[r];
-                let motor = A::compose(reference.kinematics.reverse, body.kinematics.motor);
+                // The relative motor only for constraints that read it (the rest get NaN, see `uses_motor`).
+                let motor = if self.constraint.uses_motor() {
+                    A::compose(reference.kinematics.reverse, body.kinematics.motor)
+                } else {
+                    A::motor(MotorCoordinates {
+                        scalar: f64::NAN,
+                        l: Vector3::repeat(f64::NAN),
+                        t: Vector3::repeat(f64::NAN),
+                        pseudoscalar: f64::NAN,
+                    })
+                };
                 let frame = ScrewFrame::relative(&reference.kinematics.frame, &body.kinematics.frame);
                 let reference_velocity = frame.to_body(&A::screw_coordinates(reference.kinematics.body_velocity));
                 let relative_velocity = body.kinematics.body_velocity - A::screw(reference_velocity);

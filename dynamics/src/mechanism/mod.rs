@@ -35,7 +35,7 @@ use crate::motor;
 use crate::state::State;
 
 use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
-use solve::{Consistency, SolveFailure, SystemMatrix};
+use solve::{dot6, Consistency, SolveFailure, SystemMatrix};
 pub use solve::{SolverSettings, ROUND_OFF};
 use topology::{Side, Slot, Topology};
 
@@ -233,6 +233,9 @@ pub struct MechanismWorkspace<A: Algebra> {
     inverse_metric: Vec<[f64; 6]>,
     motors: Vec<A::Motor>,
     momenta: Vec<A::Screw>,
+    /// Whether `matrix` holds the factors of the last dynamics evaluation with every joint's rows its own (not a
+    /// basis the reduction chose): the projection after a step may use them as a chord (docs/mechanisms.md M5).
+    stage_factors: bool,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -656,6 +659,7 @@ impl<A: Algebra> Mechanism<A> {
                 .collect(),
             motors: vec![zero_motor; self.bodies.len()],
             momenta: vec![zero_screw; self.bodies.len()],
+            stage_factors: false,
         }
     }
 
@@ -671,18 +675,17 @@ impl<A: Algebra> Mechanism<A> {
     ) {
         for (i, entry) in self.bodies.iter().enumerate() {
             let velocity = entry.body.velocity::<A>(body_momenta[i]);
-            let kinematics = Kinematics::new(t, motors[i], velocity);
-            let mut free_acceleration = [0.0; 6];
-            if dynamics {
-                let external = self.external_body_wrench(i, &kinematics, body_momenta[i]);
+            // Written in place (the kinematics are a few hundred bytes, built for every body at every evaluation).
+            let body = &mut workspace.bodies[i];
+            body.kinematics = Kinematics::new(t, motors[i], velocity);
+            body.free_acceleration = if dynamics {
+                let external = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
                 workspace.external[i] = external;
                 let drive = A::screw_coordinates(A::commutator(velocity, body_momenta[i])) + external;
                 let g = wrench_coordinates(&drive);
-                free_acceleration = std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k]);
-            }
-            workspace.bodies[i] = BodyKinematics {
-                kinematics,
-                free_acceleration,
+                std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k])
+            } else {
+                [0.0; 6]
             };
         }
     }
@@ -721,6 +724,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Assembles and factors `K` at the joints' current rows.
     fn factor_system(&self, workspace: &mut MechanismWorkspace<A>) -> Result<(), ConstraintError> {
+        workspace.stage_factors = false;
         let MechanismWorkspace {
             joints,
             matrix,
@@ -801,6 +805,7 @@ impl<A: Algebra> Mechanism<A> {
             .sum::<f64>()
             .sqrt();
         self.solve_reactions(workspace, Condition::Acceleration, Consistency::Check { scale })?;
+        workspace.stage_factors = workspace.joints.iter().all(|rows| rows.reduced.direct);
         for (i, reaction) in workspace.reactions.iter().enumerate() {
             if !reaction.iter().all(|y| y.is_finite()) {
                 let names = self.names(self.topology.incidences[i].iter().map(|incidence| incidence.joint));
@@ -943,30 +948,49 @@ impl<A: Algebra> Mechanism<A> {
         self.position_rows(t, states, workspace, Rows::Projection)?;
         let mut tolerances = Tolerances::of(workspace);
         let drift = largest_position_residual(workspace);
+        // The factors of the integrator's last stage, if any, serve only this projection.
+        let stage_factors = std::mem::take(&mut workspace.stage_factors);
+        let mut steps = 0;
         if position_level && iterations > 0 && drift > tolerances.position && drift <= ONE_STEP_DRIFT {
-            // The common case after a step: one Gauss–Newton step squares a drift this small to round-off, so no
-            // evaluation checks it. The velocity projection can use the rows from before the positions moved by
-            // δ when that leaves ė = O(|δ| |x|) — about drift × the largest body velocity — within the velocity
-            // tolerance: one evaluation and one factorisation for the whole projection. Otherwise (a rod end on
-            // a sphere, RK4 at dt = 1e-3, ended 3.5e-9 from the exact projection's run after 2 s) the rows are
-            // evaluated at the moved positions; K moves only by the drift, so its factors still serve (a chord
-            // step, leaving ė·O(drift)) when every joint's rows are its own rather than a basis the reduction
-            // chose afresh, which could turn between the two evaluations.
-            self.factor_system(workspace)?;
+            // The common case after a step, a drift so small that one Gauss–Newton step squares it to round-off
+            // (docs/mechanisms.md M5). Its factorisation of K can be a chord: the factors of the integrator's
+            // last stage, whose K is this one to O(dt²) for the usual methods. Whether a chord step (or one with
+            // factors from before a move) reached round-off is checked exactly to first order, e and ė being
+            // `e + J δ` and `ė + J Δx` after the bodies move by δ or change velocity by Δx (the second order is
+            // the square of the drift), and what is left is solved again with fresh factors.
+            let mut fresh = !stage_factors || !workspace.joints.iter().all(|rows| rows.reduced.direct);
+            if fresh {
+                self.factor_system(workspace)?;
+            }
             self.solve_factored(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
-            if drift * tolerances.velocity_scale > tolerances.velocity {
-                self.position_rows(t, states, workspace, Rows::Projection)?;
-                if !workspace.joints.iter().all(|rows| rows.reduced.direct) {
-                    self.factor_system(workspace)?;
-                }
+            if !fresh && self.remaining_residual(workspace, Condition::Position) > tolerances.position {
+                self.factor_system(workspace)?;
+                fresh = true;
+                self.solve_factored(workspace, Condition::Position, Consistency::Skip)?;
+                self.move_positions(states, workspace);
             }
-            self.solve_factored(workspace, Condition::Velocity, Consistency::Skip)?;
-            self.change_momenta(states, workspace);
-            return Ok(());
+            steps = 1;
+            // The velocity projection can use the rows from before the move when that leaves ė = O(|δ| |x|) —
+            // about drift × the largest body velocity — within the velocity tolerance: one evaluation for the
+            // whole projection. Otherwise (a rod end on a sphere, RK4 at dt = 1e-3, ended 3.5e-9 from the exact
+            // projection's run after 2 s) the rows are evaluated again at the moved positions, which also checks
+            // the position step, and K's factors from before the move serve as a chord.
+            let evaluate_again = drift * tolerances.velocity_scale > tolerances.velocity;
+            if !evaluate_again {
+                // Rows and (fresh) factors both from before the move need no check.
+                return self.project_velocities(states, workspace, !fresh, tolerances.velocity);
+            }
+            self.position_rows(t, states, workspace, Rows::Projection)?;
+            if largest_position_residual(workspace) <= tolerances.position
+                && workspace.joints.iter().all(|rows| rows.reduced.direct)
+            {
+                return self.project_velocities(states, workspace, true, tolerances.velocity);
+            }
+            // Not at round-off after all, or rows whose basis the reduction chose afresh: the checked loop.
+            tolerances = Tolerances::of(workspace);
         }
         // Initial conditions and large drifts: Gauss–Newton steps, each checked by an evaluation.
-        let mut steps = 0;
         while position_level && steps < iterations && largest_position_residual(workspace) > tolerances.position {
             self.solve_reactions(workspace, Condition::Position, Consistency::Skip)?;
             self.move_positions(states, workspace);
@@ -996,9 +1020,65 @@ impl<A: Algebra> Mechanism<A> {
         {
             return Ok(());
         }
+        if steps == 0 && stage_factors && workspace.joints.iter().all(|rows| rows.reduced.direct) {
+            // Positions left alone: the last stage's factors serve as a chord, checked.
+            return self.project_velocities(states, workspace, true, tolerances.velocity);
+        }
         self.solve_reactions(workspace, Condition::Velocity, Consistency::Skip)?;
         self.change_momenta(states, workspace);
         Ok(())
+    }
+
+    /// The velocity projection with the factors in `workspace`; with `check`, when they are not those of the
+    /// current rows, its result is checked ([`Mechanism::remaining_residual`]) and what is left solved again with
+    /// fresh factors.
+    fn project_velocities(
+        &self,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+        check: bool,
+        tolerance: f64,
+    ) -> Result<(), ConstraintError> {
+        self.solve_factored(workspace, Condition::Velocity, Consistency::Skip)?;
+        self.change_momenta(states, workspace);
+        if check && self.remaining_residual(workspace, Condition::Velocity) > tolerance {
+            self.factor_system(workspace)?;
+            self.solve_factored(workspace, Condition::Velocity, Consistency::Skip)?;
+            self.change_momenta(states, workspace);
+        }
+        Ok(())
+    }
+
+    /// The residuals of `condition` left after the bodies moved by the reactions in `workspace`
+    /// ([`Mechanism::move_positions`] or [`Mechanism::change_momenta`]): ė is linear in the velocities and e is to
+    /// first order (the rest is the square of the step), so each joint's row gains `a·Δ_b + a'·Δ_a` from the
+    /// bodies' changes `Δ = G Jᵀλ` (a' the row acting on the reference). Stores the new right-hand sides `−e` or
+    /// `−ė` and returns their largest size.
+    fn remaining_residual(&self, workspace: &mut MechanismWorkspace<A>, condition: Condition) -> f64 {
+        let MechanismWorkspace {
+            joints,
+            reactions,
+            inverse_metric,
+            ..
+        } = workspace;
+        let change =
+            |body: usize| -> [f64; 6] { std::array::from_fn(|k| reactions[body][k] * inverse_metric[body][k]) };
+        let mut largest = 0.0f64;
+        for (joint, rows) in self.joints.iter().zip(joints.iter_mut()) {
+            let body = change(joint.body);
+            let reference = joint.reference.map(change);
+            let reduced = &mut rows.reduced;
+            for k in 0..reduced.rank {
+                let mut gained = dot6(&reduced.rows[k], &body);
+                if let Some(reference) = &reference {
+                    gained += dot6(&rows.reference_rows[k], reference);
+                }
+                let value = &mut reduced.values[condition as usize][k];
+                *value -= gained;
+                largest = largest.max(value.abs());
+            }
+        }
+        largest
     }
 
     /// The Gauss–Newton position step from the reactions λ of `K λ = −e`: `δᵢ = Gᵢ Jᵢᵀλ`,

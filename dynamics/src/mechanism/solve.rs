@@ -332,32 +332,14 @@ impl SystemMatrix {
     /// `start` and its parent's from `parent_start`: adjacent in a chain (solved in place), otherwise gathered into
     /// a small buffer and scattered back.
     fn solve_tree(&self, topology: &Topology, x: &mut [f64]) {
-        let mut local = [0.0; MAX_FIXED_FRONT];
         let mut dynamic = Vec::new();
-        let mut each = |x: &mut [f64], front: &Front, pass: &FrontPass| {
-            let (size, m) = (front.size(), front.eliminated);
-            let f = &self.fronts[front.storage..front.storage + size * size];
-            if front.parent_size == 0 || front.parent_start == front.start + m {
-                pass(f, size, m, &mut x[front.start..front.start + size]);
-                return;
-            }
-            let buffer = if size <= MAX_FIXED_FRONT {
-                &mut local[..size]
-            } else {
-                dynamic.resize(size, 0.0);
-                &mut dynamic[..]
-            };
-            let parent = front.parent_start..front.parent_start + front.parent_size;
-            buffer[..m].copy_from_slice(&x[front.start..front.start + m]);
-            buffer[m..].copy_from_slice(&x[parent.clone()]);
-            pass(f, size, m, buffer);
-            x[front.start..front.start + m].copy_from_slice(&buffer[..m]);
-            x[parent].copy_from_slice(&buffer[m..]);
-        };
-        let forward_pass = |f: &[f64], size: usize, m: usize, x: &mut [f64]| with_front_size!(size, N => forward::<N>(f, m, x), { forward_dynamic(f, size, m, x) });
-        let backward_pass = |f: &[f64], size: usize, m: usize, x: &mut [f64]| with_front_size!(size, N => backward::<N>(f, m, x), { backward_dynamic(f, size, m, x) });
         for front in &topology.fronts {
-            each(x, front, &forward_pass);
+            self.visit(
+                front,
+                x,
+                &mut dynamic,
+                |f, size, m, x| with_front_size!(size, N => forward::<N>(f, m, x), { forward_dynamic(f, size, m, x) }),
+            );
         }
         for front in &topology.fronts {
             let size = front.size();
@@ -366,8 +348,41 @@ impl SystemMatrix {
             }
         }
         for front in topology.fronts.iter().rev() {
-            each(x, front, &backward_pass);
+            self.visit(front, x, &mut dynamic, |f, size, m, x| {
+                with_front_size!(size, N => backward::<N>(f, m, x), { backward_dynamic(f, size, m, x) })
+            });
         }
+    }
+
+    /// Runs `pass(factor, size, eliminated, variables)` on one front's variables of x (generic, so that each pass
+    /// is inlined into its loop over the fronts).
+    #[inline(always)]
+    fn visit(
+        &self,
+        front: &Front,
+        x: &mut [f64],
+        dynamic: &mut Vec<f64>,
+        pass: impl Fn(&[f64], usize, usize, &mut [f64]),
+    ) {
+        let (size, m) = (front.size(), front.eliminated);
+        let f = &self.fronts[front.storage..front.storage + size * size];
+        if front.parent_size == 0 || front.parent_start == front.start + m {
+            pass(f, size, m, &mut x[front.start..front.start + size]);
+            return;
+        }
+        let mut local = [0.0; MAX_FIXED_FRONT];
+        let buffer = if size <= MAX_FIXED_FRONT {
+            &mut local[..size]
+        } else {
+            dynamic.resize(size, 0.0);
+            &mut dynamic[..]
+        };
+        let parent = front.parent_start..front.parent_start + front.parent_size;
+        buffer[..m].copy_from_slice(&x[front.start..front.start + m]);
+        buffer[m..].copy_from_slice(&x[parent.clone()]);
+        pass(f, size, m, buffer);
+        x[front.start..front.start + m].copy_from_slice(&buffer[..m]);
+        x[parent].copy_from_slice(&buffer[m..]);
     }
 
     /// `X = K_TT⁻¹ K_TL`, `S = K_LL − K_LT X`, scaled by `K_LL`'s diagonal and factored by
@@ -522,9 +537,6 @@ impl SystemMatrix {
 /// Fronts up to this size are factored and solved by code specialised to their size (loops unrolled, no bounds
 /// checks): a chain of ball joints has fronts of 6, of hinges 10.
 const MAX_FIXED_FRONT: usize = 12;
-
-/// One pass (forward or backward) over a front's factor: `(factor, size, eliminated, variables)`.
-type FrontPass = dyn Fn(&[f64], usize, usize, &mut [f64]);
 
 /// Runs `$fixed` with the const `$n` equal to `$value` when it is one of the listed constants (loops over a
 /// constant count unroll), else `$dynamic`.
