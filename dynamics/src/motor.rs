@@ -147,11 +147,10 @@ impl ScrewFrame {
     /// assert!((seen_from_a.rotation.matrix() - direct.rotation.matrix()).norm() < 1e-15);
     /// ```
     pub fn relative(reference: &ScrewFrame, body: &ScrewFrame) -> Self {
+        let to_reference = reference.rotation.matrix();
         ScrewFrame {
-            rotation: reference.rotation.inverse() * body.rotation,
-            position: reference
-                .rotation
-                .inverse_transform_vector(&(body.position - reference.position)),
+            rotation: Rotation3::from_matrix_unchecked(to_reference.tr_mul(body.rotation.matrix())),
+            position: to_reference.tr_mul(&(body.position - reference.position)),
         }
     }
 

@@ -592,12 +592,19 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
-    /// The world wrench of the external forces on body `index` (for world-momentum rates: exactly the forces
-    /// of an unconstrained body).
-    fn external_wrench(&self, index: usize, t: f64, state: &State<A>) -> A::Screw {
+    /// The world wrench of the external forces on body `index` (for world-momentum rates), at its kinematics:
+    /// gravity acts along the line through the centre of mass the frame already holds (the image of the origin,
+    /// the same point [`Force::wrench`] finds by moving the origin with the motor).
+    fn external_wrench(&self, index: usize, t: f64, state: &State<A>, kinematics: &Kinematics<A>) -> A::Screw {
         let body = &self.bodies[index];
         body.forces.iter().fold(A::screw(Default::default()), |total, force| {
-            total + force.wrench(&body.body, t, state)
+            total
+                + match force {
+                    Force::Gravity { acceleration } => {
+                        crate::forces::force_line::<A>(body.body.mass() * acceleration, kinematics.frame.position)
+                    }
+                    _ => force.wrench(&body.body, t, state),
+                }
         })
     }
 
@@ -1188,7 +1195,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
             let reaction = A::screw(kinematics.to_world_coordinates(&wrench_screw(&workspace.reactions[i])));
             *rate = Rates {
                 body_velocity: kinematics.body_velocity,
-                momentum_rate: self.external_wrench(i, t, state) + reaction,
+                momentum_rate: self.external_wrench(i, t, state, kinematics) + reaction,
             };
         }
         Ok(())

@@ -62,6 +62,7 @@ pub(crate) struct RankDeficiency {
 /// Reduces `rows` with right-hand sides `rhs[i][s]` (per raw row i) to `rank` rows in the metric `inverse_metric`
 /// (the held body's `H⁻¹` diagonal), or to the span of `basis` (covectors, at most 6) if given; `tolerance` is
 /// the relative singular value below which rows count as dependent.
+#[inline]
 pub(crate) fn reduce(
     rows: &[ConstraintRow],
     rhs: &[[f64; RIGHT_HAND_SIDES]],
