@@ -128,6 +128,8 @@ pub(crate) struct JointContext<'a> {
     pub settings: &'a SolverSettings,
     /// The bodies' inverse inertias `H⁻¹` (diagonal, velocity coordinates).
     pub inverse_metric: &'a [[f64; 6]],
+    /// Whether the mechanism has loop joints (whose consistency check needs every joint's round-off scale).
+    pub loops: bool,
     /// What the rows are for: the acceleration condition is wanted only for the dynamics (the projection
     /// needs only e and ė), and a violation query wants the residuals alone, not reduced, so that a joint where
     /// its rows lose rank (a point at the centre of its sphere) still reports them.
@@ -204,18 +206,7 @@ impl<A: Algebra> Joint<A> {
         // Per raw row: β = −b − a·(Δf − c) − feedback for the acceleration condition (Δf = f_b − Ad f_a), −e, −ė.
         let relative_acceleration: [f64; 6] =
             std::array::from_fn(|k| body.free_acceleration[k] - reference_acceleration[k] - correction[k]);
-        // Round-off scales, bounds within a small factor (the consistency check only compares with 1e-10 of
-        // them): the drift sums a·(f_b, f_a', c) term by term, at most |a|₁ times their largest coordinate; the
-        // bias is a sum of velocity products like Ḃ×(Ḃ×V), about |ω_rel| times the velocity terms |aₖxₖ| ≤
-        // |a|₁|x|∞ — it can cancel to round-off of those (a slider turning with its base), so its own size is no
-        // measure of its error.
-        let acceleration_size = (0..6)
-            .map(|k| body.free_acceleration[k].abs() + reference_acceleration[k].abs() + correction[k].abs())
-            .fold(0.0, f64::max);
-        let velocity = &kinematics.velocity;
-        let term_size = acceleration_size + velocity.fixed_rows::<3>(0).norm() * velocity.amax();
         let mut rhs: ArrayVec<[f64; RIGHT_HAND_SIDES], MAX_ROWS> = ArrayVec::new();
-        let mut scale_squared = 0.0;
         out.position_residual = 0.0;
         out.velocity_residual = 0.0;
         out.has_position = true;
@@ -223,11 +214,7 @@ impl<A: Algebra> Joint<A> {
             let mut acceleration = 0.0;
             if context.purpose == Rows::Dynamics {
                 let drift = dot6(&row.jacobian, &relative_acceleration);
-                let feedback = context.stabilisation.feedback(row);
-                acceleration = -drift - row.bias - feedback;
-                let a = row.jacobian.map(f64::abs);
-                let row_size = (a[0] + a[1]) + (a[2] + a[3]) + (a[4] + a[5]);
-                scale_squared += (row_size * term_size + row.bias.abs() + feedback.abs()).powi(2);
+                acceleration = -drift - row.bias - context.stabilisation.feedback(row);
             }
             let e = row.position_residual.unwrap_or(0.0);
             out.has_position &= row.position_residual.is_some();
@@ -262,7 +249,32 @@ impl<A: Algebra> Joint<A> {
             singular_value: deficiency.singular_value,
             largest: deficiency.largest,
         })?;
-        out.acceleration_scale = scale_squared.sqrt();
+        // The round-off scale of the acceleration conditions, for the consistency checks: a joint's own (whose rows
+        // the reduction may not reproduce) and the loops'. Rows a tree joint uses as they are leave no residual.
+        out.acceleration_scale = 0.0;
+        if context.purpose == Rows::Dynamics && (context.loops || !out.reduced.direct) {
+            // Bounds within a small factor (the checks only compare with 1e-10 of them): the drift sums
+            // a·(f_b, f_a', c) term by term, at most |a|₁ times their largest coordinate; the bias is a sum of
+            // velocity products like Ḃ×(Ḃ×V), about |ω_rel| times the velocity terms |aₖxₖ| ≤ |a|₁|x|∞ — it can
+            // cancel to round-off of those (a slider turning with its base), so its own size is no measure of
+            // its error.
+            let acceleration_size = (0..6)
+                .map(|k| body.free_acceleration[k].abs() + reference_acceleration[k].abs() + correction[k].abs())
+                .fold(0.0, f64::max);
+            let velocity = &kinematics.velocity;
+            let term_size = acceleration_size + velocity.fixed_rows::<3>(0).norm() * velocity.amax();
+            let scale_squared: f64 = raw
+                .rows()
+                .iter()
+                .map(|row| {
+                    let a = row.jacobian.map(f64::abs);
+                    let row_size = (a[0] + a[1]) + (a[2] + a[3]) + (a[4] + a[5]);
+                    let feedback = context.stabilisation.feedback(row);
+                    (row_size * term_size + row.bias.abs() + feedback.abs()).powi(2)
+                })
+                .sum();
+            out.acceleration_scale = scale_squared.sqrt();
+        }
         if context.purpose == Rows::Dynamics {
             let consistency = crate::mechanism::solve::Consistency::Check {
                 scale: out.acceleration_scale,

@@ -709,6 +709,7 @@ impl<A: Algebra> Mechanism<A> {
             },
             settings: &self.settings,
             inverse_metric: &workspace.inverse_metric,
+            loops: self.topology.loop_size > 0,
             purpose,
         };
         for (joint, rows) in self.joints.iter().zip(workspace.joints.iter_mut()) {
