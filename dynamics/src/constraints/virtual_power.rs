@@ -137,6 +137,8 @@ enum Wrenches<A: Algebra> {
         /// Whether the forces are the world axes x, y, z (ball joints, hinges), whose rows are read off the
         /// rotation rather than computed (`point_rows`).
         along_axes: bool,
+        /// The point, when its path is fixed (read once rather than asked of the path at every evaluation).
+        fixed: Option<Vector3<f64>>,
         alignments: ArrayVec<Alignment, 3>,
     },
     /// One force from the body point towards the centre; residual ½(ρ² − |a − c|²).
@@ -202,6 +204,7 @@ impl<A: Algebra> VirtualPower<A> {
             name,
             wrenches: Wrenches::Point {
                 body_point,
+                fixed: point.is_fixed().then(|| point.at(0.0).value),
                 point,
                 along_axes: forces == coordinate_axes(),
                 forces,
@@ -878,17 +881,15 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
             point,
             forces,
             along_axes,
+            fixed,
             alignments,
         } = &self.wrenches
         {
-            point_rows(
-                kinematics,
-                body_point,
-                point.as_ref(),
-                (forces, *along_axes),
-                alignments,
-                rows,
-            );
+            let p = match fixed {
+                Some(value) => PathPoint::at_rest(*value),
+                None => point.at(kinematics.t),
+            };
+            point_rows(kinematics, body_point, &p, (forces, *along_axes), alignments, rows);
             return Ok(());
         }
         self.wrenches(kinematics, |w| rows.push(wrench_row(kinematics, &w)));
@@ -930,7 +931,7 @@ fn wrench_row<A: Algebra>(kinematics: &Kinematics<A>, w: &ConstraintWrench<A>) -
 fn point_rows<A: Algebra>(
     kinematics: &Kinematics<A>,
     body_point: &Vector3<f64>,
-    point: &dyn Path<Vector3<f64>>,
+    p: &PathPoint<Vector3<f64>>,
     (forces, along_axes): (&[Vector3<f64>], bool),
     alignments: &[Alignment],
     rows: &mut RowBuffer,
@@ -940,7 +941,6 @@ fn point_rows<A: Algebra>(
     let omega = kinematics.angular_velocity;
     let a = kinematics.world_point(body_point);
     let a_rate = kinematics.world_point_velocity(body_point);
-    let p = point.at(kinematics.t);
     let offset = a - p.value;
     let turning = omega.cross(&a_rate);
     let power = |jacobian: &[f64; 6]| -> f64 { jacobian.iter().zip(x.iter()).map(|(j, x)| j * x).sum() };

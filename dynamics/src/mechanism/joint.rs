@@ -38,13 +38,16 @@ pub(crate) struct Joint<A: Algebra> {
     pub reference: Option<usize>,
     /// A supplied reaction basis (wrenches in the reference frame, theory §7.1 method 2).
     pub reaction_basis: Option<Vec<A::Screw>>,
+    /// The constraint's [`Constraint::uses_motor`] and [`Constraint::rank`], asked once.
+    pub uses_motor: bool,
+    pub rank: usize,
 }
 
 impl<A: Algebra> fmt::Debug for Joint<A> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Joint")
             .field("name", &self.constraint.name())
-            .field("rank", &self.constraint.rank())
+            .field("rank", &self.rank)
             .field("body", &self.body)
             .field("reference", &self.reference)
             .finish()
@@ -158,7 +161,7 @@ impl<A: Algebra> Joint<A> {
             Some(r) => {
                 let reference = &bodies[r];
                 // The relative motor only for constraints that read it (the rest get NaN, see `uses_motor`).
-                let motor = if self.constraint.uses_motor() {
+                let motor = if self.uses_motor {
                     A::compose(reference.kinematics.reverse, body.kinematics.motor)
                 } else {
                     A::motor(MotorCoordinates {
@@ -226,7 +229,7 @@ impl<A: Algebra> Joint<A> {
         if context.purpose == Rows::Residuals {
             return Ok(());
         }
-        let rank = self.constraint.rank();
+        let rank = self.rank;
         let basis: Option<ArrayVec<[f64; 6], 6>> = self.reaction_basis.as_ref().map(|wrenches| {
             wrenches
                 .iter()

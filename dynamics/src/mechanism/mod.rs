@@ -407,6 +407,8 @@ impl<A: Algebra> Mechanism<A> {
             return Err(ConstraintError::NoPositionResidual { name }.into());
         }
         self.joints.push(Joint {
+            uses_motor: constraint.uses_motor(),
+            rank: constraint.rank(),
             constraint: Arc::new(constraint),
             body: index,
             reference,
