@@ -229,90 +229,59 @@ fn single_precision_rotors() {
     assert!(error < 1e-6, "{error:e}");
 }
 
-ga_macros::algebra! {
+/// A test algebra of dimension four or five with bivectors, even elements and the closed forms `exp_bivector`
+/// and `log_even` (and, with `roots`, `sqrt_even` and `normalized_even`).
+macro_rules! two_plane_algebra {
+    ($(#[$doc:meta])* $name:ident [$($basis:tt)*] { $($roots:tt)* }) => {
+        ga_macros::algebra! {
+            $(#[$doc])*
+            mod $name {
+                scalar = f64;
+                basis = [$($basis)*];
+                types {
+                    Bivector = grades(2);
+                    Even = grades(0, 2, 4);
+                    Multivector = all;
+                }
+                ops = [geometric];
+                fn exp_bivector(b: Bivector) -> Even = exp(b);
+                fn log_even(m: Even) -> Bivector = log(m);
+                $($roots)*
+            }
+        }
+    };
+    ($(#[$doc:meta])* $name:ident [$($basis:tt)*], roots) => {
+        two_plane_algebra!($(#[$doc])* $name [$($basis)*] {
+            fn sqrt_even(m: Even) -> Even = sqrt(m);
+            fn normalized_even(m: Even) -> Even = normalized(m);
+        });
+    };
+    ($(#[$doc:meta])* $name:ident [$($basis:tt)*]) => {
+        two_plane_algebra!($(#[$doc])* $name [$($basis)*] {});
+    };
+}
+
+two_plane_algebra!(
     /// Euclidean 4-space: bivectors with two planes of rotation.
-    mod cl4 {
-        scalar = f64;
-        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = 1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2, 4);
-            Multivector = all;
-        }
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-        fn sqrt_even(m: Even) -> Even = sqrt(m);
-        fn normalized_even(m: Even) -> Even = normalized(m);
-    }
-}
-
-ga_macros::algebra! {
+    cl4 [e1 = 1, e2 = 1, e3 = 1, e4 = 1], roots
+);
+two_plane_algebra!(
     /// Spacetime algebra Cl(1,3): a boost and a rotation in orthogonal planes.
-    mod sta {
-        scalar = f64;
-        basis = [e0 = 1, e1 = -1, e2 = -1, e3 = -1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2, 4);
-            Multivector = all;
-        }
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-        fn sqrt_even(m: Even) -> Even = sqrt(m);
-        fn normalized_even(m: Even) -> Even = normalized(m);
-    }
-}
-
-ga_macros::algebra! {
+    sta [e0 = 1, e1 = -1, e2 = -1, e3 = -1], roots
+);
+two_plane_algebra!(
     /// CGA Cl(4,1) on its diagonal basis, with every bivector (rotations, translations, dilations, transversions).
-    mod conformal {
-        scalar = f64;
-        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = 1, e5 = -1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2, 4);
-            Odd = grades(1, 3, 5);
-            Multivector = all;
-        }
-        ops = [geometric];
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-    }
-}
-
-ga_macros::algebra! {
+    conformal [e1 = 1, e2 = 1, e3 = 1, e4 = 1, e5 = -1]
+);
+two_plane_algebra!(
     /// Cl(2,2): with two basis vectors of each sign a bivector's planes can have a complex pair of squares, or be
     /// two boosts.
-    mod split {
-        scalar = f64;
-        basis = [e1 = 1, e2 = 1, e3 = -1, e4 = -1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2, 4);
-            Multivector = all;
-        }
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-        fn sqrt_even(m: Even) -> Even = sqrt(m);
-        fn normalized_even(m: Even) -> Even = normalized(m);
-    }
-}
-
-ga_macros::algebra! {
+    split [e1 = 1, e2 = 1, e3 = -1, e4 = -1], roots
+);
+two_plane_algebra!(
     /// Cl(3,2), the other five-dimensional signature with two vectors of each sign.
-    mod split5 {
-        scalar = f64;
-        basis = [e1 = 1, e2 = 1, e3 = 1, e4 = -1, e5 = -1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2, 4);
-            Multivector = all;
-        }
-        ops = [geometric];
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-    }
-}
+    split5 [e1 = 1, e2 = 1, e3 = 1, e4 = -1, e5 = -1]
+);
 
 /// `exp(b)` against the series, relative to the size of the result.
 macro_rules! exp_is_the_series {
@@ -502,15 +471,19 @@ fn careless_arguments_give_not_a_number_never_a_quiet_value() {
     assert!(boost.to_array().iter().any(|x| x.is_infinite()), "{boost:?}");
 }
 
-/// The discriminant `⟨b²⟩₀² − ⟨W²⟩₀` of the planes' squares (negative for a complex pair), from the generated
-/// product: `b² = λ₁ + λ₂ + W` with W its 4-vector part.
-macro_rules! discriminant {
-    ($module:ident, $coefficients:expr) => {{
+/// Checks that a test bivector's planes have a complex pair of squares, or real ones, as `complex_pair` claims
+/// (if it claims either): the sign of the discriminant `⟨b²⟩₀² − ⟨W²⟩₀`, from the generated product
+/// (`b² = λ₁ + λ₂ + W` with W its 4-vector part).
+macro_rules! assert_squares {
+    ($module:ident, $coefficients:expr, $complex_pair:expr) => {{
         let b = $module::Multivector::from($module::Bivector::from_array($coefficients));
         let square = b * b;
         let mut wedge = square;
         wedge.scalar = 0.0;
-        square.scalar * square.scalar - (wedge * wedge).scalar
+        let discriminant = square.scalar * square.scalar - (wedge * wedge).scalar;
+        if let Some(complex_pair) = $complex_pair {
+            assert_eq!(discriminant < 0.0, complex_pair, "{:?}", $coefficients);
+        }
     }};
 }
 
@@ -535,13 +508,7 @@ fn split_signature_complex_squares_and_boosts() {
     ];
     for (coefficients, complex_pair) in cases {
         // The cases are what they claim to be.
-        if let Some(complex_pair) = complex_pair {
-            assert_eq!(
-                discriminant!(split, coefficients) < 0.0,
-                complex_pair,
-                "{coefficients:?}"
-            );
-        }
+        assert_squares!(split, coefficients, complex_pair);
         exp_is_the_series!(split, coefficients);
         let (b, m, root) = round_trips!(split, Bivector, exp_bivector, log_even, sqrt_even, coefficients, 1e-12);
         let scale = m.to_array().iter().fold(1.0f64, |a, x| a.max(x.abs()));
@@ -585,13 +552,7 @@ fn split_five_dimensional_signature() {
         ([0.0, 0.0, 1.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.7, 0.0], Some(false)),
         ([0.0; 10], None),
     ] {
-        if let Some(complex_pair) = complex_pair {
-            assert_eq!(
-                discriminant!(split5, coefficients) < 0.0,
-                complex_pair,
-                "{coefficients:?}"
-            );
-        }
+        assert_squares!(split5, coefficients, complex_pair);
         exp_is_the_series!(split5, coefficients);
         let b = split5::Bivector::from_array(coefficients);
         let back = split5::log_even(split5::exp_bivector(b));
