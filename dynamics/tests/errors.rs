@@ -219,3 +219,78 @@ fn a_state_out_of_range_is_refused_before_the_step() {
         assert!(error.to_string().contains("beyond 1e50"), "{error}");
     }
 }
+
+/// A joint between two bodies composes their relative motor only for constraints that say they read it
+/// (`Constraint::uses_motor`); the others see a NaN motor. A constraint that reads it while saying it does not
+/// therefore gets rows that are not finite: an error naming it, never a quiet wrong answer. Saying so makes it
+/// work.
+#[test]
+fn a_constraint_reading_the_motor_it_said_it_would_not_is_an_error() {
+    use dynamics::constraints::{Kinematics, RowBuffer};
+
+    /// A ball joint whose biases are scaled by a factor computed from the relative motor (1 for any finite motor).
+    struct ReadsTheMotor {
+        ball: VirtualPower<Pga>,
+        says_so: bool,
+    }
+    impl Constraint<Pga> for ReadsTheMotor {
+        fn name(&self) -> &str {
+            "reads the motor"
+        }
+        fn rank(&self) -> usize {
+            3
+        }
+        fn row_count(&self) -> usize {
+            3
+        }
+        fn has_position_residual(&self) -> bool {
+            true
+        }
+        fn rows(&self, kinematics: &Kinematics<Pga>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
+            let mut own = RowBuffer::new();
+            self.ball.rows(kinematics, &mut own)?;
+            let one = Pga::motor_coordinates(kinematics.motor).scalar * 0.0 + 1.0;
+            for row in own.rows() {
+                rows.push(dynamics::constraints::ConstraintRow {
+                    bias: row.bias * one,
+                    ..*row
+                });
+            }
+            Ok(())
+        }
+        fn uses_motor(&self) -> bool {
+            self.says_so
+        }
+    }
+    let (top, bottom) = (Vector3::z() * 0.5, Vector3::z() * -0.5);
+    let rod = Body::rod(1.0, 1.0, 1e-3).unwrap();
+    let hanging = |says_so: bool| {
+        let mut chain = Mechanism::<Pga>::new();
+        let upper = chain.add_body("upper", rod).unwrap();
+        let lower = chain.add_body("lower", rod).unwrap();
+        chain
+            .add_joint(
+                upper,
+                Reference::World,
+                VirtualPower::ball_joint("shoulder", top, Vector3::zeros()),
+            )
+            .unwrap();
+        let elbow = ReadsTheMotor {
+            ball: VirtualPower::ball_joint("elbow", top, bottom),
+            says_so,
+        };
+        chain.add_joint(lower, upper, elbow).unwrap();
+        let still = UnitQuaternion::identity();
+        let swinging = [
+            State::new(&rod, -top, &still, Vector3::x(), -Vector3::y() * 0.5),
+            State::new(&rod, -top * 3.0, &still, Vector3::x(), -Vector3::y() * 1.5),
+        ];
+        chain.rates_at(0.0, &swinging)
+    };
+    let error = hanging(false).unwrap_err();
+    assert!(
+        matches!(error, ConstraintError::NonFinite { ref name, .. } if name == "reads the motor"),
+        "{error}"
+    );
+    assert!(hanging(true).is_ok());
+}
