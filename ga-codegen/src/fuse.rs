@@ -392,7 +392,7 @@ impl Expander<'_> {
         let mut bound = BTreeMap::new();
         for (parameter, argument) in declared.parameters.iter().zip(arguments) {
             let value = self.evaluate(at, argument, scope, calls)?;
-            let outside = self.outside(&value, &parameter.type_name);
+            let outside = outside(self.algebra, value.keys(), &parameter.type_name);
             if !outside.is_empty() {
                 return Err(Error::ArgumentDoesNotFit {
                     index: at,
@@ -412,25 +412,12 @@ impl Expander<'_> {
         Ok(value)
     }
 
-    /// The names of the blades of `value` that the type (or scalar) named `type_name` cannot hold.
-    fn outside(&self, value: &Symbolic, type_name: &str) -> Vec<String> {
-        let holds = |blade: BladeMask| match self.algebra.type_named(type_name) {
-            Some(ty) => ty.field_of(blade).is_some(),
-            None => blade == 0,
-        };
-        value
-            .keys()
-            .filter(|&&blade| !holds(blade))
-            .map(|&blade| self.algebra.blade_name(blade))
-            .collect()
-    }
-
     /// The declared result type of expression `index` holds `value`.
     fn check_result(&self, index: usize, value: &Symbolic) -> Result<(), Error> {
         let declared = &self.algebra.expressions[index];
         match &declared.result {
             Some(result) => {
-                let outside = self.outside(value, result);
+                let outside = outside(self.algebra, value.keys(), result);
                 match outside.is_empty() {
                     true => Ok(()),
                     false => Err(Error::ResultDoesNotFit {
@@ -443,6 +430,47 @@ impl Expander<'_> {
             }
             None => Ok(()),
         }
+    }
+}
+
+/// The names of the `blades` that the type (or scalar) named `type_name` cannot hold.
+fn outside<'b>(algebra: &Algebra, blades: impl IntoIterator<Item = &'b BladeMask>, type_name: &str) -> Vec<String> {
+    let holds = |blade: BladeMask| match algebra.type_named(type_name) {
+        Some(ty) => ty.field_of(blade).is_some(),
+        None => blade == 0,
+    };
+    blades
+        .into_iter()
+        .filter(|&&blade| !holds(blade))
+        .map(|&blade| algebra.blade_name(blade))
+        .collect()
+}
+
+/// The result type of expression `index` whose value has the non-zero `blades`: the declared type, which must
+/// hold them, or else the smallest declared type that does.
+pub(crate) fn result_type(algebra: &Algebra, index: usize, blades: &[BladeMask]) -> Result<Output, Error> {
+    let declared = &algebra.expressions[index];
+    match &declared.result {
+        Some(result) => {
+            let outside = outside(algebra, blades, result);
+            if !outside.is_empty() {
+                return Err(Error::ResultDoesNotFit {
+                    index,
+                    expression: declared.name.clone(),
+                    result: result.clone(),
+                    blades: outside,
+                });
+            }
+            Ok(value_type(algebra, result))
+        }
+        None => match algebra.smallest_type_holding(blades) {
+            Some(ty) => Ok(value_type(algebra, &ty.name)),
+            None => Err(Error::NoExpressionResultType {
+                index,
+                expression: declared.name.clone(),
+                blades: blades.iter().map(|&b| algebra.blade_name(b)).collect(),
+            }),
+        },
     }
 }
 
@@ -551,29 +579,14 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
         top: index,
     };
     let value = expander.evaluate(index, &declared.body, &scope, &mut vec![index])?;
-    expander.check_result(index, &value)?;
-    let output = match &declared.result {
-        Some(result) => value_type(algebra, result),
-        None if value.is_empty() => {
-            return Err(Error::ZeroExpression {
-                index,
-                expression: declared.name.clone(),
-            })
-        }
-        None => {
-            let blades: Vec<BladeMask> = value.keys().copied().collect();
-            match algebra.smallest_type_holding(&blades) {
-                Some(ty) => value_type(algebra, &ty.name),
-                None => {
-                    return Err(Error::NoExpressionResultType {
-                        index,
-                        expression: declared.name.clone(),
-                        blades: blades.iter().map(|&b| algebra.blade_name(b)).collect(),
-                    })
-                }
-            }
-        }
-    };
+    if declared.result.is_none() && value.is_empty() {
+        return Err(Error::ZeroExpression {
+            index,
+            expression: declared.name.clone(),
+        });
+    }
+    let blades: Vec<BladeMask> = value.keys().copied().collect();
+    let output = result_type(algebra, index, &blades)?;
     Ok(Expanded {
         parameters,
         offsets,

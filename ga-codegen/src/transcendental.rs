@@ -77,8 +77,9 @@ use crate::algebra::Algebra;
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
 use crate::expression::{ExpressionDeclaration, ExpressionKind};
-use crate::functions::Output;
-use crate::fuse::{accumulate, blades_and_signs, lower_parameters, value_type, Expander, Fused, Polynomial, Symbolic};
+use crate::fuse::{
+    accumulate, blades_and_signs, lower_parameters, result_type, value_type, Expander, Fused, Polynomial, Symbolic,
+};
 use crate::operation::Operation;
 use crate::product::Rules;
 use crate::program::{sum_cost, Cost, Term};
@@ -381,38 +382,7 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
     let mut blades = result;
     blades.sort_unstable();
     blades.dedup();
-    let output = match &declared.result {
-        Some(result) => {
-            let output = value_type(algebra, result);
-            let outside: Vec<String> = blades
-                .iter()
-                .filter(|&&b| match output {
-                    Output::Type(ty) => algebra.types[ty].field_of(b).is_none(),
-                    Output::Scalar => b != 0,
-                })
-                .map(|&b| algebra.blade_name(b))
-                .collect();
-            if !outside.is_empty() {
-                return Err(Error::ResultDoesNotFit {
-                    index,
-                    expression: declared.name.clone(),
-                    result: result.clone(),
-                    blades: outside,
-                });
-            }
-            output
-        }
-        None => match algebra.smallest_type_holding(&blades) {
-            Some(ty) => value_type(algebra, &ty.name),
-            None => {
-                return Err(Error::NoExpressionResultType {
-                    index,
-                    expression: declared.name.clone(),
-                    blades: blades.iter().map(|&b| algebra.blade_name(b)).collect(),
-                })
-            }
-        },
-    };
+    let output = result_type(algebra, index, &blades)?;
 
     // Lower every piece's polynomials together, sharing products; one group of inputs, the parameter's fields.
     let offsets = vec![0];
