@@ -19,21 +19,6 @@ ga_macros::algebra! {
 }
 
 ga_macros::algebra! {
-    mod pga2 {
-        scalar = f64;
-        basis = [e0 = 0, e1 = 1, e2 = 1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2);
-            Multivector = all;
-        }
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-        fn sqrt_even(m: Even) -> Even = sqrt(m);
-    }
-}
-
-ga_macros::algebra! {
     mod cga {
         scalar = f64;
         basis = [e1, e2, e3, n0, ninf];
@@ -50,22 +35,71 @@ ga_macros::algebra! {
     }
 }
 
-ga_macros::algebra! {
-    /// Cl(2,1): rotations in the e1e2 plane and boosts in e1e3, e2e3.
-    mod lorentz {
-        scalar = f64;
-        basis = [e1 = 1, e2 = 1, e3 = -1];
-        types {
-            Bivector = grades(2);
-            Even = grades(0, 2);
-            Multivector = all;
+/// A test algebra with bivectors, even elements (`Even`, of the grades given) and their closed forms `exp_bivector`
+/// and `log_even` (and, with `roots`, `sqrt_even` and `normalized_even`).
+macro_rules! bivector_algebra {
+    ($(#[$doc:meta])* $name:ident: $scalar:ident [$($basis:tt)*], even = ($($grade:literal),*) { $($roots:tt)* }) => {
+        ga_macros::algebra! {
+            $(#[$doc])*
+            mod $name {
+                scalar = $scalar;
+                basis = [$($basis)*];
+                types {
+                    Bivector = grades(2);
+                    Even = grades($($grade),*);
+                    Multivector = all;
+                }
+                ops = [geometric];
+                fn exp_bivector(b: Bivector) -> Even = exp(b);
+                fn log_even(m: Even) -> Bivector = log(m);
+                $($roots)*
+            }
         }
-        fn exp_bivector(b: Bivector) -> Even = exp(b);
-        fn log_even(m: Even) -> Bivector = log(m);
-        fn sqrt_even(m: Even) -> Even = sqrt(m);
-        fn normalized_even(m: Even) -> Even = normalized(m);
-    }
+    };
+    ($(#[$doc:meta])* $name:ident: $scalar:ident [$($basis:tt)*], even = ($($grade:literal),*), roots) => {
+        bivector_algebra!($(#[$doc])* $name: $scalar [$($basis)*], even = ($($grade),*) {
+            fn sqrt_even(m: Even) -> Even = sqrt(m);
+            fn normalized_even(m: Even) -> Even = normalized(m);
+        });
+    };
+    ($(#[$doc:meta])* $name:ident: $scalar:ident [$($basis:tt)*], even = ($($grade:literal),*)) => {
+        bivector_algebra!($(#[$doc])* $name: $scalar [$($basis)*], even = ($($grade),*) {});
+    };
 }
+
+bivector_algebra!(
+    /// 2D PGA.
+    pga2: f64 [e0 = 0, e1 = 1, e2 = 1], even = (0, 2), roots
+);
+bivector_algebra!(
+    /// Cl(2,1): rotations in the e1e2 plane and boosts in e1e3, e2e3.
+    lorentz: f64 [e1 = 1, e2 = 1, e3 = -1], even = (0, 2), roots
+);
+bivector_algebra!(
+    /// Rotors of Euclidean 3-space in single precision.
+    vga32: f32 [e1 = 1, e2 = 1, e3 = 1], even = (0, 2), roots
+);
+bivector_algebra!(
+    /// Euclidean 4-space: bivectors with two planes of rotation.
+    cl4: f64 [e1 = 1, e2 = 1, e3 = 1, e4 = 1], even = (0, 2, 4), roots
+);
+bivector_algebra!(
+    /// Spacetime algebra Cl(1,3): a boost and a rotation in orthogonal planes.
+    sta: f64 [e0 = 1, e1 = -1, e2 = -1, e3 = -1], even = (0, 2, 4), roots
+);
+bivector_algebra!(
+    /// CGA Cl(4,1) on its diagonal basis, with every bivector (rotations, translations, dilations, transversions).
+    conformal: f64 [e1 = 1, e2 = 1, e3 = 1, e4 = 1, e5 = -1], even = (0, 2, 4)
+);
+bivector_algebra!(
+    /// Cl(2,2): with two basis vectors of each sign a bivector's planes can have a complex pair of squares, or be
+    /// two boosts.
+    split: f64 [e1 = 1, e2 = 1, e3 = -1, e4 = -1], even = (0, 2, 4), roots
+);
+bivector_algebra!(
+    /// Cl(3,2), the other five-dimensional signature with two vectors of each sign.
+    split5: f64 [e1 = 1, e2 = 1, e3 = 1, e4 = -1, e5 = -1], even = (0, 2, 4)
+);
 
 /// The largest coefficient difference between two coefficient arrays.
 fn distance(a: &[f64], b: &[f64]) -> f64 {
@@ -196,22 +230,6 @@ fn lorentz_boosts_and_rotations() {
     }
 }
 
-ga_macros::algebra! {
-    /// Rotors of Euclidean 3-space in single precision.
-    mod vga32 {
-        scalar = f32;
-        basis = [e1 = 1, e2 = 1, e3 = 1];
-        types {
-            Bivector = grades(2);
-            Rotor = grades(0, 2);
-            Multivector = all;
-        }
-        fn exp_bivector(b: Bivector) -> Rotor = exp(b);
-        fn log_rotor(r: Rotor) -> Bivector = log(r);
-        fn normalized_rotor(r: Rotor) -> Rotor = normalized(r);
-    }
-}
-
 #[test]
 fn single_precision_rotors() {
     let b = vga32::Bivector::from_array([0.3, -1.2, 0.4]);
@@ -219,7 +237,7 @@ fn single_precision_rotors() {
     // Half-angle |b| = 1.3: cos and sin of it, along b.
     let angle = (0.09f32 + 1.44 + 0.16).sqrt();
     assert!((r.scalar - angle.cos()).abs() < 1e-6);
-    let back = vga32::log_rotor(vga32::normalized_rotor(r * 4.0));
+    let back = vga32::log_even(vga32::normalized_even(r * 4.0));
     let error = back
         .to_array()
         .iter()
@@ -228,60 +246,6 @@ fn single_precision_rotors() {
         .fold(0.0f32, f32::max);
     assert!(error < 1e-6, "{error:e}");
 }
-
-/// A test algebra of dimension four or five with bivectors, even elements and the closed forms `exp_bivector`
-/// and `log_even` (and, with `roots`, `sqrt_even` and `normalized_even`).
-macro_rules! two_plane_algebra {
-    ($(#[$doc:meta])* $name:ident [$($basis:tt)*] { $($roots:tt)* }) => {
-        ga_macros::algebra! {
-            $(#[$doc])*
-            mod $name {
-                scalar = f64;
-                basis = [$($basis)*];
-                types {
-                    Bivector = grades(2);
-                    Even = grades(0, 2, 4);
-                    Multivector = all;
-                }
-                ops = [geometric];
-                fn exp_bivector(b: Bivector) -> Even = exp(b);
-                fn log_even(m: Even) -> Bivector = log(m);
-                $($roots)*
-            }
-        }
-    };
-    ($(#[$doc:meta])* $name:ident [$($basis:tt)*], roots) => {
-        two_plane_algebra!($(#[$doc])* $name [$($basis)*] {
-            fn sqrt_even(m: Even) -> Even = sqrt(m);
-            fn normalized_even(m: Even) -> Even = normalized(m);
-        });
-    };
-    ($(#[$doc:meta])* $name:ident [$($basis:tt)*]) => {
-        two_plane_algebra!($(#[$doc])* $name [$($basis)*] {});
-    };
-}
-
-two_plane_algebra!(
-    /// Euclidean 4-space: bivectors with two planes of rotation.
-    cl4 [e1 = 1, e2 = 1, e3 = 1, e4 = 1], roots
-);
-two_plane_algebra!(
-    /// Spacetime algebra Cl(1,3): a boost and a rotation in orthogonal planes.
-    sta [e0 = 1, e1 = -1, e2 = -1, e3 = -1], roots
-);
-two_plane_algebra!(
-    /// CGA Cl(4,1) on its diagonal basis, with every bivector (rotations, translations, dilations, transversions).
-    conformal [e1 = 1, e2 = 1, e3 = 1, e4 = 1, e5 = -1]
-);
-two_plane_algebra!(
-    /// Cl(2,2): with two basis vectors of each sign a bivector's planes can have a complex pair of squares, or be
-    /// two boosts.
-    split [e1 = 1, e2 = 1, e3 = -1, e4 = -1], roots
-);
-two_plane_algebra!(
-    /// Cl(3,2), the other five-dimensional signature with two vectors of each sign.
-    split5 [e1 = 1, e2 = 1, e3 = 1, e4 = -1, e5 = -1]
-);
 
 /// `exp(b)` against the series, relative to the size of the result.
 macro_rules! exp_is_the_series {
@@ -451,6 +415,18 @@ fn careless_arguments_give_not_a_number_never_a_quiet_value() {
         &pga::log_motor(pga::Motor::from_array([f64::NAN; 8])).to_array()
     ));
     assert!(nan_everywhere(&cl4::log_even(cl4::Even::ZERO).to_array()));
+    // The same with two basis vectors of each sign (the complex-pair branches).
+    assert!(nan_everywhere(&split::log_even(split::Even::ZERO).to_array()));
+    assert!(nan_everywhere(
+        &split::log_even(split::Even::from_array([f64::NAN; 8])).to_array()
+    ));
+    assert!(split::exp_bivector(split::Bivector::from_array([f64::NAN; 6]))
+        .to_array()
+        .iter()
+        .any(|x| x.is_nan()));
+    // A complex pair too large for cosh overflows rather than returning a finite value.
+    let huge = split::exp_bivector(split::Bivector::from_array([1e3, 1e3, 0.0, 0.0, -1e3, 1e3]));
+    assert!(huge.to_array().iter().any(|x| !x.is_finite()), "{huge:?}");
     // exp and normalized pass NaN on; normalized of zero has no scale to divide by.
     assert!(pga::exp_line(pga::Line::from_array([f64::NAN; 6]))
         .to_array()
