@@ -41,6 +41,7 @@ pub mod exponential;
 pub mod forces;
 pub mod inertia;
 pub mod integrate;
+pub mod joints;
 pub mod mechanism;
 pub mod motion;
 pub mod motor;
@@ -56,7 +57,10 @@ pub use cga::Cga;
 pub use constraints::{Constraint, ConstraintError, Stabilisation};
 pub use forces::Force;
 pub use integrate::{Integrator, KineticSplitting, Method, SplittingMethod, StepError, Stepper};
-pub use mechanism::{BodyId, JointId, Mechanism, MechanismError, Reference, SolverSettings, Violation};
+pub use joints::{JointKind, JointModel};
+pub use mechanism::{
+    BodyId, CoordinateGroup, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings, Violation,
+};
 pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};

@@ -12,6 +12,9 @@
 //!   states and published analytic values;
 //! * [`multibody`]: the mechanisms of `docs/scenes.md` (double pendulum, four-bar linkage, N-link chain): parameters,
 //!   initial states from joint coordinates, embedded reference trajectories, joint violations from poses;
+//! * [`joint_space`]: kinematic trees in joint coordinates (revolute, prismatic, fixed and free joints) and their
+//!   dynamics by the textbook recursive algorithms (Featherstone's RNEA and CRBA): M(q), h(q, v), inverse and
+//!   forward dynamics, energies and body velocities;
 //! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;
 //! * [`analytic`]: the closed forms (Dzhanibekov flips, pendulum, heavy top) that the published values come from;
@@ -40,6 +43,7 @@
 
 pub mod analytic;
 pub mod elliptic;
+pub mod joint_space;
 pub mod metrics;
 pub mod multibody;
 pub mod scenes;

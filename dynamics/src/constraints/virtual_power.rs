@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::paths::{Fixed, MotorPath, Path, PathPoint};
+use crate::constraints::paths::{Fixed, MotorPath, MotorPoint, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 use crate::exponential::log;
@@ -179,7 +179,7 @@ fn unit(name: &str, what: &str, v: Vector3<f64>) -> Result<Vector3<f64>, Constra
 }
 
 /// Two unit vectors completing `axis` (unit) to a right-handed orthonormal frame.
-fn normals_to(axis: Vector3<f64>) -> [Vector3<f64>; 2] {
+pub(crate) fn normals_to(axis: Vector3<f64>) -> [Vector3<f64>; 2] {
     // Cross with the coordinate axis least aligned with `axis`, for a well-conditioned first normal.
     let least = axis.iamin();
     let first = axis.cross(&Vector3::ith(least, 1.0)).normalize();
@@ -328,6 +328,49 @@ impl<A: Algebra> VirtualPower<A> {
             Arc::new(Fixed(world_point)),
             coordinate_axes(),
             normals.map(|n| (body_axis, n)),
+        ))
+    }
+
+    /// Universal joint (Cardan): a ball joint at the point plus one couple keeping the body axis normal to the
+    /// world axis, so the body turns about the world axis and about its own axis (two degrees of freedom). The
+    /// axes must be normal to each other (within 1e-9 of their lengths) when the joint is assembled. Rank 4.
+    ///
+    /// A shaft coupled to a driving shaft along world x, its own axis along body y: turning about either axis
+    /// keeps the joint, a turn about the third direction breaks it.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let shaft = Body::cylinder(1.0, 0.02, 0.4)?;
+    /// let cross = Vector3::new(0.0, 0.0, 0.2); // body point at the cross, m
+    /// let joint = VirtualPower::<Pga>::universal("cardan", (cross, Vector3::y()), (Vector3::zeros(), Vector3::x()))?;
+    /// assert_eq!(joint.rank(), 4);
+    /// let system = Mechanism::single(shaft).with_constraint(joint)?;
+    /// let at = |turn: UnitQuaternion<f64>| State::new(&shaft, -(turn * cross), &turn, Vector3::zeros(), Vector3::zeros());
+    /// let both = UnitQuaternion::from_scaled_axis(Vector3::x() * 0.4) * UnitQuaternion::from_scaled_axis(Vector3::y() * 0.7);
+    /// assert!(system.violation(0.0, &[at(both)])?.position < 1e-15);
+    /// let twisted = UnitQuaternion::from_scaled_axis(Vector3::z() * 0.1);
+    /// assert!((system.violation(0.0, &[at(twisted)])?.position - 0.1f64.sin()).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn universal(
+        name: impl Into<String>,
+        (body_point, body_axis): (Vector3<f64>, Vector3<f64>),
+        (world_point, world_axis): (Vector3<f64>, Vector3<f64>),
+    ) -> Result<Self, ConstraintError> {
+        let name = name.into();
+        let (body_axis, world_axis) = (
+            unit(&name, "body axis", body_axis)?,
+            unit(&name, "world axis", world_axis)?,
+        );
+        Ok(Self::point_joint(
+            name,
+            body_point,
+            Arc::new(Fixed(world_point)),
+            coordinate_axes(),
+            [(body_axis, world_axis)],
         ))
     }
 
@@ -703,6 +746,39 @@ impl<A: Algebra> VirtualPower<A> {
             name: name.into(),
             wrenches: Wrenches::Motor(Arc::new(path)),
         }
+    }
+
+    /// A weld: the body's motor relative to the reference stays `relative` (body → reference), a motor joint on a
+    /// fixed path (all six degrees of freedom held, position residual `−2 log(~U M)`). Rank 6.
+    ///
+    /// A bracket welded 0.3 m below its reference, turned a quarter turn about z: a state at that pose is on the
+    /// weld, the same state 1 mm lower is 1 mm off.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::{motor, Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let bracket = Body::cuboid(0.5, Vector3::new(0.1, 0.1, 0.05))?;
+    /// let turn = UnitQuaternion::from_scaled_axis(Vector3::z() * std::f64::consts::FRAC_PI_2);
+    /// let at = Vector3::new(0.0, 0.0, -0.3); // m
+    /// let weld = VirtualPower::<Pga>::weld("bolted", motor::from_pose::<Pga>(at, &turn));
+    /// assert_eq!(weld.rank(), 6);
+    /// let system = Mechanism::single(bracket).with_constraint(weld)?;
+    /// let on = system.violation(0.0, &[State::new(&bracket, at, &turn, Vector3::zeros(), Vector3::zeros())])?;
+    /// assert!(on.position < 1e-15 && on.velocity == 0.0);
+    /// let lower = State::new(&bracket, at - Vector3::z() * 1e-3, &turn, Vector3::zeros(), Vector3::zeros());
+    /// assert!((system.violation(0.0, &[lower])?.position - 1e-3).abs() < 1e-15); // m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn weld(name: impl Into<String>, relative: A::Motor) -> Self {
+        let zero = A::screw(ScrewCoordinates::default());
+        let held = MotorPoint {
+            motor: relative,
+            velocity: zero,
+            acceleration: zero,
+        };
+        Self::motor_joint(name, move |_t: f64| held)
     }
 
     /// The general form of theory §6: user wrenches `T_k(t)` with their derivatives and prescribed powers, static in

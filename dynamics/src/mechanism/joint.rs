@@ -24,6 +24,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
+use crate::joints::JointModel;
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
 use crate::mechanism::solve::{dot6, SolverSettings};
 use crate::mechanism::Rows;
@@ -41,6 +42,8 @@ pub(crate) struct Joint<A: Algebra> {
     /// The constraint's [`Constraint::uses_motor`] and [`Constraint::rank`], asked once.
     pub uses_motor: bool,
     pub rank: usize,
+    /// The joint model, for a joint added by `Mechanism::connect`.
+    pub model: Option<JointModel>,
 }
 
 impl<A: Algebra> fmt::Debug for Joint<A> {

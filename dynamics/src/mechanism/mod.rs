@@ -14,7 +14,9 @@
 //! A single body held by the world is the case N = 1 ([`Mechanism::single`]): there is no other code path
 //! for constrained bodies.
 
+mod articulated;
 mod joint;
+mod joint_space;
 mod reduce;
 mod solve;
 mod topology;
@@ -23,18 +25,21 @@ use std::collections::HashSet;
 use std::fmt;
 use std::sync::Arc;
 
-use nalgebra::Vector3;
+use nalgebra::{Isometry3, Vector3};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::body::Body;
+use crate::body::{Body, PrincipalFrame};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation};
 use crate::exponential::exp;
 use crate::forces::Force;
+use crate::joints::{JointKind, JointModel, Unconstrained};
 use crate::motion::{BodyRates, Dynamics, Rates};
 use crate::motor;
 use crate::state::State;
 
+use articulated::{ArticulatedScratch, Articulation};
 use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
+pub use joint_space::{CoordinateGroup, JointSpace};
 use solve::{dot6, Consistency, SolveFailure, SystemMatrix};
 pub use solve::{SolverSettings, ROUND_OFF};
 use topology::{Side, Slot, Topology};
@@ -113,6 +118,20 @@ pub enum MechanismError {
     /// A joint or stabilisation was refused by the constraint checks (rank, rows, position residual, parameters).
     #[error(transparent)]
     Constraint(#[from] ConstraintError),
+    /// Joint coordinates were asked of a mechanism whose joint models do not form a forest (a body reached twice
+    /// through parents), or of one without bodies.
+    #[error("this mechanism has no joint coordinates: {0}")]
+    NoJointSpace(String),
+    /// A slice with the wrong number of entries: states (one per body) or joint coordinates.
+    #[error("{what}: expected {expected} entries, got {got}")]
+    Count {
+        /// What was counted: "states", "joint positions", "joint velocities", "joint accelerations".
+        what: &'static str,
+        /// The number the mechanism has.
+        expected: usize,
+        /// The number given.
+        got: usize,
+    },
 }
 
 /// The largest residuals over the joints at one state: `max |e|` (rows with a position residual) and `max |ė|`.
@@ -131,6 +150,9 @@ struct MechanismBody<A: Algebra> {
     name: String,
     body: Body,
     forces: Vec<Force<A>>,
+    /// The body's reference frame (the frame its inertia was described in) in its body frame: a free root's
+    /// joint coordinates are this frame's pose and twist.
+    frame: Isometry3<f64>,
 }
 
 /// N rigid bodies, their forces and the joints between them (see the module docs).
@@ -179,6 +201,10 @@ pub struct Mechanism<A: Algebra> {
     stabilisation: Stabilisation,
     settings: SolverSettings,
     topology: Topology,
+    /// The joint-model tree, when the articulated solve applies (docs/mechanisms.md §M7).
+    articulation: Option<Articulation>,
+    /// The coordinates of the joint models and free roots, if the joint models form a forest.
+    joint_space: Option<JointSpace>,
 }
 
 impl<A: Algebra> fmt::Debug for Mechanism<A> {
@@ -236,6 +262,7 @@ pub struct MechanismWorkspace<A: Algebra> {
     /// Whether `matrix` holds the factors of the last dynamics evaluation with every joint's rows its own (not a
     /// basis the reduction chose): the projection after a step may use them as a chord (docs/mechanisms.md M5).
     stage_factors: bool,
+    articulated: ArticulatedScratch,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -253,6 +280,17 @@ enum Condition {
     Acceleration = 0,
     Position = 1,
     Velocity = 2,
+}
+
+/// What an evaluation computes of each body besides its kinematics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum BodyTerms {
+    /// Nothing: positions and velocities only (projection, violation).
+    Kinematics,
+    /// The external wrenches (the articulated solve).
+    Forces,
+    /// The external wrenches and the free accelerations `H⁻¹(Ḃ × Ω_b + S_b)` (the constraint-space solve).
+    FreeAccelerations,
 }
 
 /// What the joints' rows are evaluated for.
@@ -302,6 +340,8 @@ impl<A: Algebra> Mechanism<A> {
             stabilisation: Stabilisation::None,
             settings: SolverSettings::default(),
             topology: Topology::default(),
+            articulation: None,
+            joint_space: None,
         }
     }
 
@@ -331,6 +371,7 @@ impl<A: Algebra> Mechanism<A> {
             name: "body".to_owned(),
             body,
             forces: Vec::new(),
+            frame: Isometry3::identity(),
         });
         mechanism.rebuild();
         mechanism
@@ -338,17 +379,60 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Adds a body; its name must be unique (it names the body in errors and output).
     pub fn add_body(&mut self, name: impl Into<String>, body: Body) -> Result<BodyId, MechanismError> {
-        let name = name.into();
+        self.push_body(name.into(), body, Isometry3::identity())
+    }
+
+    /// Adds a body whose inertia was given in another frame (a CAD part's, a URDF link's): `frame` is where its
+    /// principal frame sits there ([`Body::from_inertia_tensor`]). That frame is the body's reference frame: a free
+    /// root's joint coordinates are its pose and twist ([`JointSpace`]).
+    ///
+    /// ```
+    /// use dynamics::{Body, Mechanism, Pga};
+    /// use nalgebra::{Matrix3, Vector3};
+    ///
+    /// // A link whose centre of mass is 0.2 m along its frame's z axis.
+    /// let inertia = Matrix3::from_diagonal(&Vector3::new(0.02, 0.02, 0.01));
+    /// let (link, frame) = Body::from_inertia_tensor(2.0, inertia, Vector3::z() * 0.2, Vector3::z() * 0.2)?;
+    /// let mut robot = Mechanism::<Pga>::new();
+    /// let base = robot.add_body_with_frame("base", link, frame)?;
+    /// assert_eq!(robot.body_id("base"), Some(base));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_body_with_frame(
+        &mut self,
+        name: impl Into<String>,
+        body: Body,
+        frame: PrincipalFrame,
+    ) -> Result<BodyId, MechanismError> {
+        let principal = Isometry3::from_parts(frame.centre_of_mass.into(), frame.rotation);
+        self.push_body(name.into(), body, principal.inverse())
+    }
+
+    fn push_body(&mut self, name: String, body: Body, frame: Isometry3<f64>) -> Result<BodyId, MechanismError> {
         if name.is_empty() {
             return Err(MechanismError::EmptyName);
         }
         if self.bodies.iter().any(|b| b.name == name) {
             return Err(MechanismError::DuplicateBody(name));
         }
+        let finite = frame
+            .translation
+            .vector
+            .iter()
+            .chain(frame.rotation.coords.iter())
+            .all(|x| x.is_finite());
+        if !finite {
+            return Err(ConstraintError::InvalidParameter {
+                name,
+                reason: "the body's frame is not finite".to_owned(),
+            }
+            .into());
+        }
         self.bodies.push(MechanismBody {
             name,
             body,
             forces: Vec::new(),
+            frame,
         });
         self.rebuild();
         Ok(BodyId(self.bodies.len() - 1))
@@ -377,19 +461,7 @@ impl<A: Algebra> Mechanism<A> {
         constraint: impl Constraint<A> + 'static,
     ) -> Result<JointId, MechanismError> {
         let index = self.check_body(body)?;
-        let reference = match reference.into() {
-            Reference::World => None,
-            Reference::Body(other) => {
-                let other = self.check_body(other)?;
-                if other == index {
-                    return Err(MechanismError::SelfJoint {
-                        joint: constraint.name().to_owned(),
-                        body: self.bodies[index].name.clone(),
-                    });
-                }
-                Some(other)
-            }
-        };
+        let reference = self.reference_index(index, reference.into(), constraint.name())?;
         let name = constraint.name().to_owned();
         let (rank, rows) = (constraint.rank(), constraint.row_count());
         if rank == 0 || rank > rows.min(6) {
@@ -413,9 +485,113 @@ impl<A: Algebra> Mechanism<A> {
             body: index,
             reference,
             reaction_basis: None,
+            model: None,
         });
         self.rebuild();
         Ok(JointId(self.joints.len() - 1))
+    }
+
+    /// Connects `child` to `parent` by a joint model (docs/mechanisms.md §M7): a joint with coordinates, whose rows
+    /// are its virtual-power rows ([`JointModel::virtual_power`]). Mechanisms whose joints are all joint models in a
+    /// tree are solved by the articulated recursion, in O(N) with one column per degree of freedom; their joint
+    /// positions, velocities, mass matrix and inverse dynamics are in [`JointSpace`].
+    ///
+    /// A double pendulum from its joint angles: the elbow hinge sits at the upper link's bottom end and the lower
+    /// link's top end, both about y.
+    ///
+    /// ```
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::{Body, Force, Mechanism, Pga, Reference};
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let link = Body::cuboid(1.0, Vector3::new(0.05, 0.05, 1.0))?;
+    /// let hinge = |name: &str, above: f64| {
+    ///     let (parent, child) = (Isometry3::translation(0.0, 0.0, above), Isometry3::translation(0.0, 0.0, 0.5));
+    ///     JointModel::new(name, JointKind::Revolute { axis: Vector3::y() }, parent, child)
+    /// };
+    /// let mut pendulum = Mechanism::<Pga>::new();
+    /// let upper = pendulum.add_body("upper", link)?;
+    /// let lower = pendulum.add_body("lower", link)?;
+    /// pendulum.add_force(upper, Force::gravity())?;
+    /// pendulum.add_force(lower, Force::gravity())?;
+    /// pendulum.connect(upper, Reference::World, hinge("shoulder", 0.0)?)?;
+    /// pendulum.connect(lower, upper, hinge("elbow", -0.5)?)?;
+    /// let states = pendulum.states_from_joints(&[0.3, -0.2], &[1.0, 0.5])?;
+    /// let q = pendulum.joint_positions(&states, None)?;
+    /// assert!((q[0] - 0.3).abs() < 1e-15 && (q[1] + 0.2).abs() < 1e-15); // rad
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn connect(
+        &mut self,
+        child: BodyId,
+        parent: impl Into<Reference>,
+        model: JointModel,
+    ) -> Result<JointId, MechanismError> {
+        match model.virtual_power::<A>()? {
+            Some(rows) => self.connect_with_rows(child, parent, model, rows),
+            None => {
+                let name = model.name().to_owned();
+                self.connect_with_rows(child, parent, model, Arc::new(Unconstrained { name }))
+            }
+        }
+    }
+
+    /// [`Mechanism::connect`] with the joint's rows given (e.g. by pinning, `constraints::pinning`), for the general
+    /// solve and the violation; they must describe the same joint as `model`.
+    pub fn connect_with_rows(
+        &mut self,
+        child: BodyId,
+        parent: impl Into<Reference>,
+        model: JointModel,
+        rows: Arc<dyn Constraint<A>>,
+    ) -> Result<JointId, MechanismError> {
+        let index = self.check_body(child)?;
+        if let Some(other) = self.joints.iter().find(|j| j.model.is_some() && j.body == index) {
+            return Err(ConstraintError::InvalidParameter {
+                name: model.name().to_owned(),
+                reason: format!(
+                    "body {} already has a parent joint model ({}); a second joint to it is a constraint (add_joint)",
+                    self.bodies[index].name,
+                    other.name()
+                ),
+            }
+            .into());
+        }
+        let id = if matches!(model.kind(), JointKind::Free) {
+            // A free joint constrains nothing: it joins the mechanism for its coordinates only (rank 0).
+            let reference = self.reference_index(index, parent.into(), model.name())?;
+            self.joints.push(Joint {
+                uses_motor: false,
+                rank: 0,
+                constraint: rows,
+                body: index,
+                reference,
+                reaction_basis: None,
+                model: None,
+            });
+            JointId(self.joints.len() - 1)
+        } else {
+            self.add_joint(child, parent, rows)?
+        };
+        self.joints[id.0].model = Some(model);
+        self.rebuild();
+        Ok(id)
+    }
+
+    fn reference_index(&self, index: usize, reference: Reference, name: &str) -> Result<Option<usize>, MechanismError> {
+        match reference {
+            Reference::World => Ok(None),
+            Reference::Body(other) => {
+                let other = self.check_body(other)?;
+                if other == index {
+                    return Err(MechanismError::SelfJoint {
+                        joint: name.to_owned(),
+                        body: self.bodies[index].name.clone(),
+                    });
+                }
+                Ok(Some(other))
+            }
+        }
     }
 
     /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; theory §7.1 method 2)
@@ -459,6 +635,7 @@ impl<A: Algebra> Mechanism<A> {
             }
         }
         self.stabilisation = stabilisation;
+        self.rebuild();
         Ok(())
     }
 
@@ -511,6 +688,14 @@ impl<A: Algebra> Mechanism<A> {
             .map(|j| (j.body, j.reference, Self::joint_rank(j)))
             .collect();
         self.topology = Topology::new(self.bodies.len(), &joints);
+        let tree: Vec<(usize, Option<usize>, bool)> = self
+            .joints
+            .iter()
+            .map(|j| (j.body, j.reference, j.model.is_some() && j.reaction_basis.is_none()))
+            .collect();
+        let articulated = !matches!(self.stabilisation, Stabilisation::Baumgarte { .. });
+        self.articulation = Articulation::new(self.bodies.len(), &tree).filter(|_| articulated);
+        self.joint_space = JointSpace::new(self);
     }
 
     /// The stabilisation in use.
@@ -557,7 +742,7 @@ impl<A: Algebra> Mechanism<A> {
             .slots
             .iter()
             .enumerate()
-            .filter(|(_, slot)| matches!(slot, Slot::Loop { .. }))
+            .filter(|&(j, slot)| matches!(slot, Slot::Loop { .. }) && self.joints[j].rank > 0)
             .map(|(j, _)| JointId(j))
     }
 
@@ -669,6 +854,7 @@ impl<A: Algebra> Mechanism<A> {
             motors: vec![zero_motor; self.bodies.len()],
             momenta: vec![zero_screw; self.bodies.len()],
             stage_factors: false,
+            articulated: ArticulatedScratch::new(self.bodies.len(), self.joints.len()),
         }
     }
 
@@ -680,16 +866,20 @@ impl<A: Algebra> Mechanism<A> {
         motors: &[A::Motor],
         body_momenta: &[A::Screw],
         workspace: &mut MechanismWorkspace<A>,
-        dynamics: bool,
+        terms: BodyTerms,
     ) {
         for (i, entry) in self.bodies.iter().enumerate() {
             let velocity = entry.body.velocity::<A>(body_momenta[i]);
             // Written in place (the kinematics are a few hundred bytes, built for every body at every evaluation).
             let body = &mut workspace.bodies[i];
             body.kinematics = Kinematics::new(t, motors[i], velocity);
-            body.free_acceleration = if dynamics {
-                let external = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
-                workspace.external[i] = external;
+            if terms == BodyTerms::Kinematics {
+                body.free_acceleration = [0.0; 6];
+                continue;
+            }
+            let external = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
+            workspace.external[i] = external;
+            body.free_acceleration = if terms == BodyTerms::FreeAccelerations {
                 let drive = A::screw_coordinates(A::commutator(velocity, body_momenta[i])) + external;
                 let g = wrench_coordinates(&drive);
                 std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k])
@@ -801,10 +991,31 @@ impl<A: Algebra> Mechanism<A> {
         body_momenta: &[A::Screw],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
-        self.body_kinematics(t, motors, body_momenta, workspace, true);
+        let terms = if self.articulation.is_some() {
+            BodyTerms::Forces
+        } else {
+            BodyTerms::FreeAccelerations
+        };
+        self.body_kinematics(t, motors, body_momenta, workspace, terms);
         if self.joints.is_empty() {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
+        }
+        if let Some(articulation) = &self.articulation {
+            let MechanismWorkspace {
+                bodies,
+                external,
+                reactions,
+                articulated,
+                ..
+            } = workspace;
+            articulation
+                .solve(t, &self.joints, &self.bodies, bodies, external, articulated, reactions)
+                .map_err(|body| ConstraintError::NonFinite {
+                    name: self.names(self.topology.incidences[body].iter().map(|incidence| incidence.joint)),
+                    t,
+                })?;
+            return self.check_reactions(t, workspace);
         }
         self.joint_rows(t, workspace, Rows::Dynamics)?;
         // The round-off floor of the loop consistency check: the size of the terms in the joints' conditions.
@@ -816,6 +1027,11 @@ impl<A: Algebra> Mechanism<A> {
             .sqrt();
         self.solve_reactions(workspace, Condition::Acceleration, Consistency::Check { scale })?;
         workspace.stage_factors = workspace.joints.iter().all(|rows| rows.reduced.direct);
+        self.check_reactions(t, workspace)
+    }
+
+    /// An error naming the joints at the first body whose reaction is not finite.
+    fn check_reactions(&self, t: f64, workspace: &MechanismWorkspace<A>) -> Result<(), ConstraintError> {
         for (i, reaction) in workspace.reactions.iter().enumerate() {
             if !reaction.iter().all(|y| y.is_finite()) {
                 let names = self.names(self.topology.incidences[i].iter().map(|incidence| incidence.joint));
@@ -920,7 +1136,7 @@ impl<A: Algebra> Mechanism<A> {
         }
         let motors = std::mem::take(&mut workspace.motors);
         let momenta = std::mem::take(&mut workspace.momenta);
-        self.body_kinematics(t, &motors, &momenta, workspace, false);
+        self.body_kinematics(t, &motors, &momenta, workspace, BodyTerms::Kinematics);
         workspace.motors = motors;
         workspace.momenta = momenta;
         self.joint_rows(t, workspace, purpose)
@@ -948,6 +1164,9 @@ impl<A: Algebra> Mechanism<A> {
         iterations: usize,
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        if self.articulation.is_some() {
+            return self.project_coordinates(states);
+        }
         for state in states.iter_mut() {
             state.motor = motor::normalise::<A>(state.motor);
         }

@@ -154,7 +154,12 @@ impl Topology {
             Vertex::Body(i) => i + 1,
         };
         let mut adjacent: Vec<Vec<usize>> = vec![Vec::new(); bodies + 1];
-        for (j, &(body, reference, _)) in joints.iter().enumerate() {
+        // A joint of rank 0 (a free joint model, which constrains nothing) joins no bodies in the solve: it ends as
+        // an empty loop slot.
+        for (j, &(body, reference, rank)) in joints.iter().enumerate() {
+            if rank == 0 {
+                continue;
+            }
             adjacent[body + 1].push(j);
             adjacent[reference.map_or(0, |r| r + 1)].push(j);
         }

@@ -1,0 +1,458 @@
+//! The articulated solve (docs/mechanisms.md §M7): when every joint of a mechanism is a joint model
+//! ([`crate::joints`]) and the joints form a tree, the bodies' accelerations follow from the articulated-body
+//! recursion in the joints' motion subspaces — one column per degree of freedom, where the constraint-space solve
+//! of §M4 carries one row per constrained one (a revolute joint: 1 against 5).
+//!
+//! Everything is expressed in world axes about one reference point o (the first root's centre of mass at this
+//! evaluation), so no quantity is moved between body frames: a body's spatial inertia about o is its inertia map
+//! in world axes, the articulated inertias of children simply add to their parents', and a joint's motion subspace
+//! is a set of screws (lines through the joint origin, or directions) in world coordinates. Velocities are
+//! `V = (ω; v_o)` (v_o the velocity of the body point at o), forces `F = (n_o; f)` (moment about o), the two paired
+//! by the power `V·F`: the (ω; v), (τ; f) coordinates of §M1 with the moments taken about o.
+
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::body::Body;
+use crate::joints::{JointAxis, JointModel, Motion, Side};
+use crate::mechanism::joint::{BodyKinematics, Joint};
+use crate::mechanism::MechanismBody;
+
+/// The tree of a mechanism whose joints are all joint models: bodies parents first, each with its parent joint.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Articulation {
+    /// Bodies in topological order (parents before children).
+    pub order: Vec<usize>,
+    /// Per body: the joint holding it to its parent, if any (a root otherwise: free in the world).
+    pub parent_joint: Vec<Option<usize>>,
+    /// Per body: its parent body (None for a root or a joint to the world).
+    pub parent_body: Vec<Option<usize>>,
+}
+
+impl Articulation {
+    /// The tree of joints `(child, parent, is_model)`, if every joint is a joint model, no body is the child of two
+    /// joints and no chain of parents closes on itself.
+    pub fn new(bodies: usize, joints: &[(usize, Option<usize>, bool)]) -> Option<Self> {
+        let mut parent_joint = vec![None; bodies];
+        let mut parent_body = vec![None; bodies];
+        for (j, &(child, parent, is_model)) in joints.iter().enumerate() {
+            if !is_model || parent_joint[child].is_some() {
+                return None;
+            }
+            parent_joint[child] = Some(j);
+            parent_body[child] = parent;
+        }
+        // Children before parents is impossible to satisfy on a cycle: order by depth from the roots.
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); bodies];
+        let mut roots = Vec::new();
+        for (body, parent) in parent_body.iter().enumerate() {
+            match parent {
+                Some(p) => children[*p].push(body),
+                None => roots.push(body),
+            }
+        }
+        let mut order = Vec::with_capacity(bodies);
+        let mut next = 0;
+        order.extend(roots);
+        while next < order.len() {
+            let body = order[next];
+            order.extend(children[body].iter().copied());
+            next += 1;
+        }
+        (order.len() == bodies).then_some(Articulation {
+            order,
+            parent_joint,
+            parent_body,
+        })
+    }
+}
+
+/// One body at one evaluation.
+#[derive(Clone, Copy, Debug)]
+struct BodyTerms {
+    /// Its articulated inertia (first its spatial inertia about o).
+    inertia: Matrix6<f64>,
+    /// Its articulated bias force (first `V ×* I V − F_ext`).
+    bias: Vector6<f64>,
+    velocity: Vector6<f64>,
+    acceleration: Vector6<f64>,
+    /// `c − o`.
+    offset: Vector3<f64>,
+}
+
+/// One joint at one evaluation.
+#[derive(Clone, Copy, Debug)]
+struct JointTerms {
+    /// The free columns (the motion subspace S, world, about o); a driven joint's column is prescribed, not free.
+    free: usize,
+    columns: [Vector6<f64>; 6],
+    /// `c`: the child's acceleration with the joint's rates held, relative to the parent's (`Ṡ q̇`), plus a driven
+    /// joint's prescribed `S q̈`.
+    bias_acceleration: Vector6<f64>,
+    /// `U = I^A S`, `D⁻¹ = (Sᵀ U)⁻¹` (row-major, free × free) and `u = −Sᵀ p^A`.
+    weighted: [Vector6<f64>; 6],
+    inverse: [f64; 36],
+    force: [f64; 6],
+}
+
+impl Default for JointTerms {
+    fn default() -> Self {
+        JointTerms {
+            free: 0,
+            columns: [Vector6::zeros(); 6],
+            bias_acceleration: Vector6::zeros(),
+            weighted: [Vector6::zeros(); 6],
+            inverse: [0.0; 36],
+            force: [0.0; 6],
+        }
+    }
+}
+
+/// The articulated solve's scratch, sized once per run.
+#[derive(Clone, Debug)]
+pub(crate) struct ArticulatedScratch {
+    bodies: Vec<BodyTerms>,
+    joints: Vec<JointTerms>,
+}
+
+impl ArticulatedScratch {
+    pub fn new(bodies: usize, joints: usize) -> Self {
+        let body = BodyTerms {
+            inertia: Matrix6::zeros(),
+            bias: Vector6::zeros(),
+            velocity: Vector6::zeros(),
+            acceleration: Vector6::zeros(),
+            offset: Vector3::zeros(),
+        };
+        ArticulatedScratch {
+            bodies: vec![body; bodies],
+            joints: vec![JointTerms::default(); joints],
+        }
+    }
+}
+
+fn cross_matrix(v: &Vector3<f64>) -> Matrix3<f64> {
+    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
+}
+
+fn angular(v: &Vector6<f64>) -> Vector3<f64> {
+    v.fixed_rows::<3>(0).into_owned()
+}
+
+fn linear(v: &Vector6<f64>) -> Vector3<f64> {
+    v.fixed_rows::<3>(3).into_owned()
+}
+
+fn join(top: Vector3<f64>, bottom: Vector3<f64>) -> Vector6<f64> {
+    Vector6::new(top.x, top.y, top.z, bottom.x, bottom.y, bottom.z)
+}
+
+/// The motion cross product `V × W = (ω × ω'; ω × v' + v × ω')` (the rate of a screw W carried by motion V).
+pub(crate) fn motion_cross(a: &Vector6<f64>, b: &Vector6<f64>) -> Vector6<f64> {
+    let (w, v, w2, v2) = (angular(a), linear(a), angular(b), linear(b));
+    join(w.cross(&w2), w.cross(&v2) + v.cross(&w2))
+}
+
+/// The force cross product `V ×* F = (ω × n + v × f; ω × f)`.
+pub(crate) fn force_cross(a: &Vector6<f64>, f: &Vector6<f64>) -> Vector6<f64> {
+    let (w, v, n, force) = (angular(a), linear(a), angular(f), linear(f));
+    join(w.cross(&n) + v.cross(&force), w.cross(&force))
+}
+
+/// A body's world kinematics about o: its velocity `(ω; v_o)`, its spatial inertia about o and its momentum
+/// `(L_o; p)`. With r = c − o and Ī = R diag(I) Rᵀ: `p = m(v_o + ω × r)`, `L_o = Īω + r × p`, so the inertia is
+/// `[[Ī − m[r]ₓ², m[r]ₓ], [−m[r]ₓ, m𝟙]]`.
+pub(crate) struct SpatialBody {
+    pub velocity: Vector6<f64>,
+    pub inertia: Matrix6<f64>,
+    pub momentum: Vector6<f64>,
+    pub offset: Vector3<f64>,
+}
+
+pub(crate) fn spatial_body<A: Algebra>(
+    body: &Body,
+    kinematics: &crate::constraints::Kinematics<A>,
+    origin: &Vector3<f64>,
+) -> SpatialBody {
+    let rotation = kinematics.frame.rotation.matrix();
+    let offset = kinematics.frame.position - origin;
+    let mass = body.mass();
+    let moments = body.moments();
+    let scaled = Matrix3::from_fn(|i, j| rotation[(i, j)] * moments[j]);
+    let central = scaled * rotation.transpose();
+    let r = cross_matrix(&offset);
+    let mr = r * mass;
+    let mut inertia = Matrix6::zeros();
+    inertia.fixed_view_mut::<3, 3>(0, 0).copy_from(&(central - mr * r));
+    inertia.fixed_view_mut::<3, 3>(0, 3).copy_from(&mr);
+    inertia.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-mr));
+    inertia
+        .fixed_view_mut::<3, 3>(3, 3)
+        .copy_from(&Matrix3::from_diagonal_element(mass));
+    let (omega, v) = (kinematics.angular_velocity, kinematics.linear_velocity);
+    let p = v * mass;
+    SpatialBody {
+        velocity: join(omega, v + offset.cross(&omega)),
+        inertia,
+        momentum: join(central * omega + offset.cross(&p), p),
+        offset,
+    }
+}
+
+/// The world screw `(d; r × d)` of a turn about the line through `r` (from o) along d, or `(0; d)` of a slide.
+pub(crate) fn axis_column(axis: &JointAxis, rotation: &Matrix3<f64>, through: &Vector3<f64>) -> Vector6<f64> {
+    let d = rotation * axis.direction;
+    match axis.motion {
+        Motion::Rotation => join(d, through.cross(&d)),
+        Motion::Translation => join(Vector3::zeros(), d),
+    }
+}
+
+/// The rate of one velocity coordinate in the relative motion `relative = V_child − V_parent` (world, about o):
+/// a turn's rate is its direction's share of the relative angular velocity, a slide's its share of the relative
+/// velocity of the child joint origin (at `through` from o). The directions of one kind are orthonormal for every
+/// joint kind, so these are exact on the joint.
+pub(crate) fn axis_rate(column: &Vector6<f64>, motion: Motion, relative: &Vector6<f64>, through: &Vector3<f64>) -> f64 {
+    match motion {
+        Motion::Rotation => angular(column).dot(&angular(relative)),
+        Motion::Translation => {
+            let at_joint = linear(relative) + angular(relative).cross(through);
+            linear(column).dot(&at_joint)
+        }
+    }
+}
+
+/// The world position of a joint's child origin, relative to o.
+pub(crate) fn joint_origin<A: Algebra>(
+    model: &JointModel,
+    child: &crate::constraints::Kinematics<A>,
+    origin: &Vector3<f64>,
+) -> Vector3<f64> {
+    child.frame.position + child.frame.rotation * model.child_frame().translation.vector - origin
+}
+
+/// Inverts the symmetric positive definite `n × n` matrix in `m` (row-major, stride 6) in place by Cholesky;
+/// false if it is not positive definite.
+fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
+    if n == 1 {
+        let d = m[0];
+        m[0] = 1.0 / d;
+        return d > 0.0;
+    }
+    // L Lᵀ = M, then M⁻¹ = L⁻ᵀ L⁻¹.
+    let mut l = [0.0; 36];
+    for i in 0..n {
+        for j in 0..=i {
+            let mut sum = m[i * 6 + j];
+            for k in 0..j {
+                sum -= l[i * 6 + k] * l[j * 6 + k];
+            }
+            if i == j {
+                if sum <= 0.0 || !sum.is_finite() {
+                    return false;
+                }
+                l[i * 6 + i] = sum.sqrt();
+            } else {
+                l[i * 6 + j] = sum / l[j * 6 + j];
+            }
+        }
+    }
+    let mut inverse_l = [0.0; 36];
+    for i in 0..n {
+        inverse_l[i * 6 + i] = 1.0 / l[i * 6 + i];
+        for j in 0..i {
+            let mut sum = 0.0;
+            for k in j..i {
+                sum -= l[i * 6 + k] * inverse_l[k * 6 + j];
+            }
+            inverse_l[i * 6 + j] = sum / l[i * 6 + i];
+        }
+    }
+    for i in 0..n {
+        for j in 0..=i {
+            let value: f64 = (i..n).map(|k| inverse_l[k * 6 + i] * inverse_l[k * 6 + j]).sum();
+            m[i * 6 + j] = value;
+            m[j * 6 + i] = value;
+        }
+    }
+    true
+}
+
+impl Articulation {
+    /// The reference point o of an evaluation: the first root's centre of mass.
+    pub fn origin<A: Algebra>(&self, bodies: &[BodyKinematics<A>]) -> Vector3<f64> {
+        self.order
+            .first()
+            .map_or_else(Vector3::zeros, |&b| bodies[b].kinematics.frame.position)
+    }
+
+    /// Every body's reaction (the joints' wrench on it) in its own frame, as wrench coordinates `(τ; f)`, from the
+    /// bodies' kinematics and their external wrenches (body frames, moments about the centre of mass), by the
+    /// articulated-body recursion (docs/mechanisms.md §M7). `t` times the drives. Fails with the body whose
+    /// articulated inertia is not positive definite.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve<A: Algebra>(
+        &self,
+        t: f64,
+        joints: &[Joint<A>],
+        masses: &[MechanismBody<A>],
+        bodies: &[BodyKinematics<A>],
+        external: &[ScrewCoordinates],
+        scratch: &mut ArticulatedScratch,
+        reactions: &mut [[f64; 6]],
+    ) -> Result<(), usize> {
+        let origin = self.origin(bodies);
+        for (i, terms) in scratch.bodies.iter_mut().enumerate() {
+            let kinematics = &bodies[i].kinematics;
+            let spatial = spatial_body(&masses[i].body, kinematics, &origin);
+            let rotation = kinematics.frame.rotation.matrix();
+            let force = rotation * external[i].l;
+            let moment = rotation * external[i].t + spatial.offset.cross(&force);
+            terms.inertia = spatial.inertia;
+            terms.bias = force_cross(&spatial.velocity, &spatial.momentum) - join(moment, force);
+            terms.velocity = spatial.velocity;
+            terms.offset = spatial.offset;
+        }
+        for (j, joint) in joints.iter().enumerate() {
+            let model = joint
+                .model
+                .as_ref()
+                .expect("an articulated mechanism's joints are joint models");
+            let child = &bodies[joint.body].kinematics;
+            let through = joint_origin(model, child, &origin);
+            let parent_velocity = joint
+                .reference
+                .map_or_else(Vector6::zeros, |p| scratch.bodies[p].velocity);
+            let child_velocity = scratch.bodies[joint.body].velocity;
+            let relative = child_velocity - parent_velocity;
+            let terms = &mut scratch.joints[j];
+            // Ṡq̇ summed over the columns: those fixed in the child turn with it (V_c × S), those fixed in the parent
+            // with the parent (V_p × S); on the joint Σ S q̇ = V_c − V_p, so the child's share is V_c × (V_c − V_p)
+            // = V_p × V_c less the parent-side columns' V_c × S q̇.
+            let mut bias = motion_cross(&parent_velocity, &child_velocity);
+            let axes = model.axes();
+            for (k, axis) in axes.iter().enumerate() {
+                let rotation = match axis.side {
+                    Side::Child => child.frame.rotation.matrix(),
+                    Side::Parent => match joint.reference {
+                        Some(p) => bodies[p].kinematics.frame.rotation.matrix(),
+                        None => &Matrix3::identity(),
+                    },
+                };
+                let column = axis_column(axis, rotation, &through);
+                if axis.side == Side::Parent {
+                    let rate = axis_rate(&column, axis.motion, &relative, &through);
+                    bias += motion_cross(&(parent_velocity - child_velocity), &column) * rate;
+                }
+                terms.columns[k] = column;
+            }
+            terms.free = axes.len();
+            if let Some(drive) = model.drive_at(t) {
+                bias += terms.columns[0] * drive.acceleration;
+                terms.free = 0;
+            }
+            terms.bias_acceleration = bias;
+        }
+        // Children before parents: each child's articulated inertia and bias, projected through its joint, join
+        // its parent's (Featherstone's articulated-body recursion, in world axes so nothing is transformed).
+        for &body in self.order.iter().rev() {
+            let Some(j) = self.parent_joint[body] else {
+                continue;
+            };
+            let terms = &mut scratch.joints[j];
+            let (inertia, bias) = (scratch.bodies[body].inertia, scratch.bodies[body].bias);
+            let n = terms.free;
+            let mut projected = inertia;
+            let mut correction = Vector6::zeros();
+            if n > 0 {
+                for k in 0..n {
+                    terms.weighted[k] = inertia * terms.columns[k];
+                    terms.force[k] = -terms.columns[k].dot(&bias);
+                    for l in 0..=k {
+                        let value = terms.columns[l].dot(&terms.weighted[k]);
+                        terms.inverse[k * 6 + l] = value;
+                        terms.inverse[l * 6 + k] = value;
+                    }
+                }
+                if !invert_positive_definite(&mut terms.inverse, n) {
+                    return Err(body);
+                }
+                // I^a = I^A − U D⁻¹ Uᵀ and U D⁻¹ u, column by column of U D⁻¹ (D⁻¹ is symmetric).
+                for k in 0..n {
+                    let mut scaled = Vector6::zeros();
+                    let mut share = 0.0;
+                    for l in 0..n {
+                        scaled += terms.weighted[l] * terms.inverse[k * 6 + l];
+                        share += terms.inverse[k * 6 + l] * terms.force[l];
+                    }
+                    projected -= scaled * terms.weighted[k].transpose();
+                    correction += terms.weighted[k] * share;
+                }
+            }
+            // p^a = p^A + I^a c + U D⁻¹ u.
+            let passed = bias + projected * terms.bias_acceleration + correction;
+            if let Some(parent) = self.parent_body[body] {
+                scratch.bodies[parent].inertia += projected;
+                scratch.bodies[parent].bias += passed;
+            }
+        }
+        // Parents before children: the accelerations.
+        for &body in &self.order {
+            let acceleration = match self.parent_joint[body] {
+                None => {
+                    // A free root: I^A a = −p^A.
+                    let terms = &scratch.bodies[body];
+                    match terms.inertia.cholesky() {
+                        Some(factor) => -factor.solve(&terms.bias),
+                        None => return Err(body),
+                    }
+                }
+                Some(j) => {
+                    let terms = &scratch.joints[j];
+                    let parent = self.parent_body[body].map_or_else(Vector6::zeros, |p| scratch.bodies[p].acceleration);
+                    let mut a = parent + terms.bias_acceleration;
+                    let n = terms.free;
+                    let mut rhs = [0.0; 6];
+                    for (k, value) in rhs.iter_mut().enumerate().take(n) {
+                        *value = terms.force[k] - terms.weighted[k].dot(&a);
+                    }
+                    // q̈ = D⁻¹(u − Uᵀ a'), a = a' + S q̈.
+                    for k in 0..n {
+                        let rate: f64 = (0..n).map(|l| terms.inverse[k * 6 + l] * rhs[l]).sum();
+                        a += terms.columns[k] * rate;
+                    }
+                    a
+                }
+            };
+            scratch.bodies[body].acceleration = acceleration;
+        }
+        for (i, out) in reactions.iter_mut().enumerate() {
+            let terms = &scratch.bodies[i];
+            let kinematics = &bodies[i].kinematics;
+            let rotation = kinematics.frame.rotation.matrix();
+            let (omega_rate, origin_acceleration) = (angular(&terms.acceleration), linear(&terms.acceleration));
+            // The centre of mass: v_c = v_o + ω × r, so a_c = a_o + ω̇ × r + ω × v_c (o fixed, c moving).
+            let omega = kinematics.angular_velocity;
+            let centre =
+                origin_acceleration + omega_rate.cross(&terms.offset) + omega.cross(&kinematics.linear_velocity);
+            let body = &masses[i].body;
+            let moments = body.moments();
+            let omega_body = rotation.tr_mul(&omega);
+            let omega_rate_body = rotation.tr_mul(&omega_rate);
+            // Euler's and Newton's equations in the body frame: W = (I ω̇ + ω × I ω; m Rᵀ a_c).
+            let moment =
+                moments.component_mul(&omega_rate_body) + omega_body.cross(&moments.component_mul(&omega_body));
+            let force = rotation.tr_mul(&centre) * body.mass();
+            let applied = &external[i];
+            *out = [
+                moment.x - applied.t.x,
+                moment.y - applied.t.y,
+                moment.z - applied.t.z,
+                force.x - applied.l.x,
+                force.y - applied.l.y,
+                force.z - applied.l.z,
+            ];
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,703 @@
+//! Joint coordinates of a mechanism (docs/mechanisms.md §M7): the joint models and the free roots, their positions
+//! and velocities in and out of the bodies' states, and the joint-space quantities a controller needs — the mass
+//! matrix M(q), the bias forces h(q, v) and the inverse dynamics `τ = M q̈ + h` — computed from the bodies' own
+//! states (the maximal coordinates), in world axes about one reference point so that nothing moves between frames.
+//!
+//! The coordinates come in groups: first every free root (a body no joint model holds), named after the body, with
+//! the pose and twist of its reference frame (7 positions: x, y, z, qw, qx, qy, qz; 6 velocities: the frame origin's
+//! velocity and the angular velocity, both in the frame's axes — Pinocchio's free flyer); then every joint model in
+//! the order the joints were added. A group's generalised force pairs with its velocities by the power: a revolute
+//! joint's torque, a prismatic joint's force, a free root's force then moment about its frame origin, in its axes.
+
+use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Vector3, Vector6};
+
+use crate::algebra::Algebra;
+use crate::constraints::{ConstraintError, Kinematics};
+use crate::joints::{JointKind, JointModel, Side};
+use crate::mechanism::articulated::{axis_column, axis_rate, force_cross, motion_cross, spatial_body};
+use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError};
+use crate::motor;
+use crate::state::State;
+
+/// One group of coordinates: a joint model, or a free root.
+#[derive(Clone, Debug)]
+pub struct CoordinateGroup {
+    name: String,
+    model: JointModel,
+    body: usize,
+    parent: Option<usize>,
+    joint: Option<JointId>,
+    position_offset: usize,
+    velocity_offset: usize,
+}
+
+impl CoordinateGroup {
+    /// The joint's name, or the root body's.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The joint model (a free joint to the world for a root).
+    pub fn model(&self) -> &JointModel {
+        &self.model
+    }
+
+    /// The body the coordinates place (the joint's child, or the root).
+    pub fn body(&self) -> BodyId {
+        BodyId(self.body)
+    }
+
+    /// The joint, or `None` for a free root.
+    pub fn joint(&self) -> Option<JointId> {
+        self.joint
+    }
+
+    /// Where the group's positions start in the position vector.
+    pub fn position_offset(&self) -> usize {
+        self.position_offset
+    }
+
+    /// Where the group's velocities start in the velocity vector.
+    pub fn velocity_offset(&self) -> usize {
+        self.velocity_offset
+    }
+
+    fn positions(&self) -> std::ops::Range<usize> {
+        self.position_offset..self.position_offset + self.model.kind().position_count()
+    }
+
+    fn velocities(&self) -> std::ops::Range<usize> {
+        self.velocity_offset..self.velocity_offset + self.model.kind().velocity_count()
+    }
+}
+
+/// The layout of a mechanism's joint coordinates (see the module docs).
+#[derive(Clone, Debug)]
+pub struct JointSpace {
+    groups: Vec<CoordinateGroup>,
+    /// Group indices, parents before children.
+    order: Vec<usize>,
+    /// Per body: its group.
+    group_of_body: Vec<usize>,
+    positions: usize,
+    velocities: usize,
+}
+
+impl JointSpace {
+    /// The coordinates of `mechanism`, if its joint models form a forest.
+    pub(crate) fn new<A: Algebra>(mechanism: &Mechanism<A>) -> Option<Self> {
+        let bodies = mechanism.bodies.len();
+        let mut parent_joint = vec![None; bodies];
+        for (j, joint) in mechanism.joints.iter().enumerate() {
+            if joint.model.is_some() {
+                parent_joint[joint.body] = Some(j);
+            }
+        }
+        let mut groups = Vec::new();
+        let mut group_of_body = vec![usize::MAX; bodies];
+        for (b, entry) in mechanism.bodies.iter().enumerate() {
+            if parent_joint[b].is_none() {
+                let model =
+                    JointModel::new(entry.name.clone(), JointKind::Free, Isometry3::identity(), entry.frame).ok()?;
+                group_of_body[b] = groups.len();
+                groups.push(CoordinateGroup {
+                    name: entry.name.clone(),
+                    model,
+                    body: b,
+                    parent: None,
+                    joint: None,
+                    position_offset: 0,
+                    velocity_offset: 0,
+                });
+            }
+        }
+        for (j, joint) in mechanism.joints.iter().enumerate() {
+            if let Some(model) = &joint.model {
+                group_of_body[joint.body] = groups.len();
+                groups.push(CoordinateGroup {
+                    name: model.name().to_owned(),
+                    model: model.clone(),
+                    body: joint.body,
+                    parent: joint.reference,
+                    joint: Some(JointId(j)),
+                    position_offset: 0,
+                    velocity_offset: 0,
+                });
+            }
+        }
+        let (mut positions, mut velocities) = (0, 0);
+        for group in &mut groups {
+            group.position_offset = positions;
+            group.velocity_offset = velocities;
+            positions += group.model.kind().position_count();
+            velocities += group.model.kind().velocity_count();
+        }
+        // Parents first: breadth-first from the groups whose parent is the world.
+        let mut children: Vec<Vec<usize>> = vec![Vec::new(); bodies];
+        let mut order = Vec::with_capacity(groups.len());
+        for (g, group) in groups.iter().enumerate() {
+            match group.parent {
+                Some(p) => children[p].push(g),
+                None => order.push(g),
+            }
+        }
+        let mut next = 0;
+        while next < order.len() {
+            let body = groups[order[next]].body;
+            order.extend(children[body].iter().copied());
+            next += 1;
+        }
+        (order.len() == groups.len()).then_some(JointSpace {
+            groups,
+            order,
+            group_of_body,
+            positions,
+            velocities,
+        })
+    }
+
+    /// The coordinate groups: free roots first, then the joint models in the order they were added.
+    pub fn groups(&self) -> &[CoordinateGroup] {
+        &self.groups
+    }
+
+    /// The group of this name (a joint's, or a free root body's).
+    pub fn group(&self, name: &str) -> Option<&CoordinateGroup> {
+        self.groups.iter().find(|g| g.name == name)
+    }
+
+    /// The number of position coordinates (nq).
+    pub fn position_count(&self) -> usize {
+        self.positions
+    }
+
+    /// The number of velocity coordinates (nv, the degrees of freedom without constraints between them).
+    pub fn velocity_count(&self) -> usize {
+        self.velocities
+    }
+
+    /// The positions' names: a one-coordinate joint's name, else `name.suffix` (`base.qw`, `wrist.1`).
+    pub fn position_names(&self) -> Vec<String> {
+        self.groups
+            .iter()
+            .flat_map(|g| {
+                g.model.kind().position_names().iter().map(move |suffix| {
+                    if suffix.is_empty() {
+                        g.name.clone()
+                    } else {
+                        format!("{}.{suffix}", g.name)
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// The neutral positions: zero, with identity quaternions.
+    pub fn neutral_positions(&self) -> Vec<f64> {
+        let mut q = vec![0.0; self.positions];
+        for group in &self.groups {
+            let at = group.position_offset;
+            match group.model.kind() {
+                JointKind::Spherical => q[at] = 1.0,
+                JointKind::Free => q[at + 3] = 1.0,
+                _ => {}
+            }
+        }
+        q
+    }
+}
+
+/// A body's pose and velocity in world terms.
+#[derive(Clone, Copy, Debug)]
+struct WorldBody {
+    pose: Isometry3<f64>,
+    /// Angular velocity and centre-of-mass velocity, world axes.
+    angular: Vector3<f64>,
+    linear: Vector3<f64>,
+}
+
+impl WorldBody {
+    fn world() -> WorldBody {
+        WorldBody {
+            pose: Isometry3::identity(),
+            angular: Vector3::zeros(),
+            linear: Vector3::zeros(),
+        }
+    }
+
+    /// The velocity of the body point at `x` (world).
+    fn velocity_at(&self, x: &Vector3<f64>) -> Vector3<f64> {
+        self.linear + self.angular.cross(&(x - self.pose.translation.vector))
+    }
+}
+
+impl<A: Algebra> Mechanism<A> {
+    /// The joint coordinates' layout, if the joint models form a forest (always, for models added by
+    /// [`Mechanism::connect`] alone).
+    pub fn joint_space(&self) -> Result<&JointSpace, MechanismError> {
+        self.joint_space
+            .as_ref()
+            .ok_or_else(|| MechanismError::NoJointSpace("its joint models do not form a forest".to_owned()))
+    }
+
+    fn check_states(&self, states: &[State<A>]) -> Result<(), MechanismError> {
+        if states.len() != self.bodies.len() {
+            return Err(MechanismError::Count {
+                what: "states",
+                expected: self.bodies.len(),
+                got: states.len(),
+            });
+        }
+        Ok(())
+    }
+
+    fn world_body(&self, index: usize, state: &State<A>) -> WorldBody {
+        let (position, rotation) = state.pose();
+        let velocity = state.world_velocity(&self.bodies[index].body);
+        WorldBody {
+            pose: Isometry3::from_parts(position.into(), rotation),
+            angular: velocity.angular,
+            linear: velocity.linear,
+        }
+    }
+
+    fn parent_of(&self, group: &CoordinateGroup, bodies: &[WorldBody]) -> WorldBody {
+        group.parent.map_or(WorldBody::world(), |p| bodies[p])
+    }
+
+    /// The joint positions at `states` (see [`JointSpace`] for their order). Angles are taken nearest `previous`
+    /// (a position vector, e.g. the last sample's), so continuous joints unwrap across turns and quaternions stay
+    /// continuous; without it angles are in (−π, π]. Off the joints (drift), each joint's own reading of the
+    /// relative pose: a revolute joint's turn about its axis.
+    ///
+    /// A hinge turned 4 rad reads −2.28 rad alone, 4 rad next to a previous reading of 3.9:
+    ///
+    /// ```
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::{Body, Mechanism, Pga, Reference};
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let wheel = Body::cylinder(1.0, 0.3, 0.05)?;
+    /// let mut axle = Mechanism::<Pga>::new();
+    /// let body = axle.add_body("wheel", wheel)?;
+    /// let joint = JointModel::new("axle", JointKind::Revolute { axis: Vector3::z() }, Isometry3::identity(),
+    ///     Isometry3::identity())?;
+    /// axle.connect(body, Reference::World, joint)?;
+    /// let states = axle.states_from_joints(&[4.0], &[0.0])?;
+    /// assert!((axle.joint_positions(&states, None)?[0] - (4.0 - std::f64::consts::TAU)).abs() < 1e-14);
+    /// assert!((axle.joint_positions(&states, Some(&[3.9]))?[0] - 4.0).abs() < 1e-14);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn joint_positions(&self, states: &[State<A>], previous: Option<&[f64]>) -> Result<Vec<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        if let Some(previous) = previous {
+            if previous.len() != space.positions {
+                return Err(MechanismError::Count {
+                    what: "previous joint positions",
+                    expected: space.positions,
+                    got: previous.len(),
+                });
+            }
+        }
+        let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
+        let mut q = vec![0.0; space.positions];
+        for group in &space.groups {
+            let range = group.positions();
+            self.read_positions(group, &bodies, previous.map(|p| &p[range.clone()]), &mut q[range]);
+        }
+        Ok(q)
+    }
+
+    fn read_positions(&self, group: &CoordinateGroup, bodies: &[WorldBody], previous: Option<&[f64]>, out: &mut [f64]) {
+        let parent = self.parent_of(group, bodies);
+        let child = &bodies[group.body];
+        let relative = parent.pose.inverse() * child.pose;
+        let joint_pose = group.model.parent_frame().inverse() * relative * group.model.child_frame();
+        group.model.coordinates_of(&joint_pose, previous, out);
+    }
+
+    /// The joint velocities at `states` (see [`JointSpace`]): each joint's rates in the relative motion of its child
+    /// and parent, read at the joint origin.
+    pub fn joint_velocities(&self, states: &[State<A>]) -> Result<Vec<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
+        let mut v = vec![0.0; space.velocities];
+        for group in &space.groups {
+            let range = group.velocities();
+            self.read_velocities(group, &bodies, &mut v[range]);
+        }
+        Ok(v)
+    }
+
+    fn read_velocities(&self, group: &CoordinateGroup, bodies: &[WorldBody], out: &mut [f64]) {
+        let parent = self.parent_of(group, bodies);
+        let child = &bodies[group.body];
+        let x = child
+            .pose
+            .transform_point(&group.model.child_frame().translation.vector.into())
+            .coords;
+        let relative = join(
+            child.angular - parent.angular,
+            child.velocity_at(&x) - parent.velocity_at(&x),
+        );
+        for (k, axis) in group.model.axes().iter().enumerate() {
+            let column = axis_column(axis, &side_rotation(axis.side, &parent, child), &Vector3::zeros());
+            out[k] = axis_rate(&column, axis.motion, &relative, &Vector3::zeros());
+        }
+    }
+
+    /// The bodies' states at joint positions `q` and velocities `v` (see [`JointSpace`]), by exact forward
+    /// kinematics: each child at `parent · parent_frame · J(q) · child_frame⁻¹`, moving with its parent's velocity
+    /// plus the joint's motions. Errors: wrong counts, non-finite or out-of-range coordinates (the joint named), a
+    /// quaternion of zero length.
+    pub fn states_from_joints(&self, q: &[f64], v: &[f64]) -> Result<Vec<State<A>>, MechanismError> {
+        let space = self.joint_space()?;
+        for (what, slice, expected) in [
+            ("joint positions", q, space.positions),
+            ("joint velocities", v, space.velocities),
+        ] {
+            if slice.len() != expected {
+                return Err(MechanismError::Count {
+                    what,
+                    expected,
+                    got: slice.len(),
+                });
+            }
+        }
+        if let Some(group) = space.groups.iter().find(|g| {
+            !v[g.velocities()]
+                .iter()
+                .all(|x| x.is_finite() && x.abs() <= crate::state::MAX_COORDINATE)
+        }) {
+            return Err(ConstraintError::InvalidParameter {
+                name: group.name.clone(),
+                reason: format!(
+                    "joint velocities must be finite and at most 1e50, got {:?}",
+                    &v[group.velocities()]
+                ),
+            }
+            .into());
+        }
+        let mut bodies = vec![WorldBody::world(); self.bodies.len()];
+        for &g in &space.order {
+            let group = &space.groups[g];
+            let parent = self.parent_of(group, &bodies);
+            bodies[group.body] = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
+        }
+        Ok(bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                State::from_world_twist(
+                    &self.bodies[i].body,
+                    b.pose.translation.vector,
+                    &b.pose.rotation,
+                    b.angular,
+                    b.linear,
+                )
+            })
+            .collect())
+    }
+
+    /// The child of `group` placed by its joint positions and velocities relative to `parent`.
+    fn place(
+        &self,
+        group: &CoordinateGroup,
+        parent: &WorldBody,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<WorldBody, ConstraintError> {
+        let pose = parent.pose * group.model.relative_pose(q)?;
+        let mut child = WorldBody {
+            pose,
+            angular: parent.angular,
+            linear: Vector3::zeros(),
+        };
+        let x = pose
+            .transform_point(&group.model.child_frame().translation.vector.into())
+            .coords;
+        let mut at_joint = parent.velocity_at(&x);
+        for (axis, rate) in group.model.axes().iter().zip(v) {
+            let d = side_rotation(axis.side, parent, &child) * axis.direction;
+            match axis.motion {
+                crate::joints::Motion::Rotation => child.angular += d * *rate,
+                crate::joints::Motion::Translation => at_joint += d * *rate,
+            }
+        }
+        // Every turn is about an axis through the child's joint origin x, so x moves with the slides alone.
+        child.linear = at_joint + child.angular.cross(&(pose.translation.vector - x));
+        Ok(child)
+    }
+
+    /// Projects states onto the joint models by their coordinates (docs/mechanisms.md §M7): the roots keep their
+    /// states; every other body is placed by its joint's positions and velocities read from the states, from its
+    /// parent as placed. Exact on the joints to round-off, in O(N).
+    pub(crate) fn project_coordinates(&self, states: &mut [State<A>]) -> Result<(), ConstraintError> {
+        let Some(space) = &self.joint_space else {
+            return Ok(());
+        };
+        let read: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
+        let mut placed = read.clone();
+        let (mut q, mut v) = ([0.0; 7], [0.0; 6]);
+        for &g in &space.order {
+            let group = &space.groups[g];
+            if group.joint.is_none() {
+                states[group.body].motor = motor::normalise::<A>(states[group.body].motor);
+                continue;
+            }
+            let (nq, nv) = (group.model.kind().position_count(), group.model.kind().velocity_count());
+            self.read_positions(group, &read, None, &mut q[..nq]);
+            self.read_velocities(group, &read, &mut v[..nv]);
+            let parent = self.parent_of(group, &placed);
+            let child = self.place(group, &parent, &q[..nq], &v[..nv])?;
+            placed[group.body] = child;
+            states[group.body] = State::from_world_twist(
+                &self.bodies[group.body].body,
+                child.pose.translation.vector,
+                &child.pose.rotation,
+                child.angular,
+                child.linear,
+            );
+        }
+        Ok(())
+    }
+
+    /// Every body's world kinematics (from its state) for the joint-space algorithms.
+    fn kinematics_of(&self, t: f64, states: &[State<A>]) -> Vec<Kinematics<A>> {
+        states
+            .iter()
+            .enumerate()
+            .map(|(i, s)| Kinematics::new(t, s.motor, s.body_velocity(&self.bodies[i].body)))
+            .collect()
+    }
+
+    /// The joint-space mass matrix M(q) at `states` (nv × nv, symmetric positive definite), so that the kinetic
+    /// energy is `½ vᵀ M v`: by the composite-rigid-body recursion on the bodies' inertias in world axes about one
+    /// point (docs/mechanisms.md §M7), `M_jk = S_jᵀ I^c S_k` with `I^c` the composite inertia of the subtree below
+    /// the later of the two joints.
+    pub fn mass_matrix(&self, states: &[State<A>]) -> Result<DMatrix<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        let kinematics = self.kinematics_of(0.0, states);
+        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
+        let columns = self.columns(space, &kinematics, &origin);
+        let mut composite: Vec<nalgebra::Matrix6<f64>> = kinematics
+            .iter()
+            .enumerate()
+            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin).inertia)
+            .collect();
+        for &g in space.order.iter().rev() {
+            let group = &space.groups[g];
+            if let Some(p) = group.parent {
+                let below = composite[group.body];
+                composite[p] += below;
+            }
+        }
+        let n = space.velocities;
+        let mut mass = DMatrix::zeros(n, n);
+        for group in &space.groups {
+            let inertia = &composite[group.body];
+            for (k, column) in columns[group.velocities()].iter().enumerate() {
+                let force = inertia * column;
+                let row = group.velocity_offset + k;
+                // This joint and every joint above it on the way to the root.
+                let mut above = Some(group);
+                while let Some(h) = above {
+                    for (l, other) in columns[h.velocities()].iter().enumerate() {
+                        let value = other.dot(&force);
+                        mass[(row, h.velocity_offset + l)] = value;
+                        mass[(h.velocity_offset + l, row)] = value;
+                    }
+                    above = h.parent.map(|p| &space.groups[space.group_of_body[p]]);
+                }
+            }
+        }
+        Ok(mass)
+    }
+
+    /// Every velocity coordinate's unit motion (world, about `origin`), in velocity order.
+    fn columns(&self, space: &JointSpace, kinematics: &[Kinematics<A>], origin: &Vector3<f64>) -> Vec<Vector6<f64>> {
+        let mut columns = vec![Vector6::zeros(); space.velocities];
+        for group in &space.groups {
+            let child = &kinematics[group.body];
+            let through =
+                child.frame.position + child.frame.rotation * group.model.child_frame().translation.vector - origin;
+            for (k, axis) in group.model.axes().iter().enumerate() {
+                let rotation = match (axis.side, group.parent) {
+                    (Side::Child, _) => *child.frame.rotation.matrix(),
+                    (Side::Parent, Some(p)) => *kinematics[p].frame.rotation.matrix(),
+                    (Side::Parent, None) => Matrix3::identity(),
+                };
+                columns[group.velocity_offset + k] = axis_column(axis, &rotation, &through);
+            }
+        }
+        columns
+    }
+
+    /// The bias forces h(q, v) at `states` and time `t`: the generalised forces that hold the joints at zero
+    /// acceleration against gravity, the velocity products and the external forces on the bodies, so that
+    /// `M(q) q̈ + h(q, v) = τ`. By the recursive Newton–Euler algorithm in world axes (docs/mechanisms.md §M7).
+    pub fn bias_forces(&self, t: f64, states: &[State<A>]) -> Result<DVector<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.inverse_dynamics(t, states, &vec![0.0; space.velocities])
+    }
+
+    /// The generalised forces `τ = M(q) q̈ + h(q, v)` that give the joint accelerations `accelerations` at `states`
+    /// and time `t` (inverse dynamics, by the recursive Newton–Euler algorithm: each body's acceleration from its
+    /// parent's and its joint's, the forces that produce them summed up the tree, each joint's share of its
+    /// subtree's force). Constraints other than the joint models (loops) are not part of it.
+    pub fn inverse_dynamics(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        accelerations: &[f64],
+    ) -> Result<DVector<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        if accelerations.len() != space.velocities {
+            return Err(MechanismError::Count {
+                what: "joint accelerations",
+                expected: space.velocities,
+                got: accelerations.len(),
+            });
+        }
+        let kinematics = self.kinematics_of(t, states);
+        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
+        let columns = self.columns(space, &kinematics, &origin);
+        let spatial: Vec<_> = kinematics
+            .iter()
+            .enumerate()
+            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin))
+            .collect();
+        let mut acceleration = vec![Vector6::zeros(); self.bodies.len()];
+        for &g in &space.order {
+            let group = &space.groups[g];
+            let parent = group.parent.map_or_else(Vector6::zeros, |p| acceleration[p]);
+            let bias = self.joint_bias(group, &spatial, &columns, &kinematics, &origin);
+            let mut a = parent + bias;
+            for (column, rate) in columns[group.velocities()]
+                .iter()
+                .zip(&accelerations[group.velocities()])
+            {
+                a += column * *rate;
+            }
+            acceleration[group.body] = a;
+        }
+        let mut force: Vec<Vector6<f64>> = (0..self.bodies.len())
+            .map(|i| {
+                let s = &spatial[i];
+                let external = self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum));
+                let rotation = kinematics[i].frame.rotation.matrix();
+                let f = rotation * external.l;
+                let n = rotation * external.t + s.offset.cross(&f);
+                s.inertia * acceleration[i] + force_cross(&s.velocity, &s.momentum) - join(n, f)
+            })
+            .collect();
+        let mut tau = DVector::zeros(space.velocities);
+        for &g in space.order.iter().rev() {
+            let group = &space.groups[g];
+            let total = force[group.body];
+            for (k, column) in columns[group.velocities()].iter().enumerate() {
+                tau[group.velocity_offset + k] = column.dot(&total);
+            }
+            if let Some(p) = group.parent {
+                force[p] += total;
+            }
+        }
+        Ok(tau)
+    }
+
+    /// `Ṡ q̇` of a group's joint: the child's acceleration relative to its parent's with the joint rates held.
+    fn joint_bias(
+        &self,
+        group: &CoordinateGroup,
+        spatial: &[crate::mechanism::articulated::SpatialBody],
+        columns: &[Vector6<f64>],
+        kinematics: &[Kinematics<A>],
+        origin: &Vector3<f64>,
+    ) -> Vector6<f64> {
+        let parent = group.parent.map_or_else(Vector6::zeros, |p| spatial[p].velocity);
+        let child = spatial[group.body].velocity;
+        let mut bias = motion_cross(&parent, &child);
+        let child_kinematics = &kinematics[group.body];
+        let through = child_kinematics.frame.position
+            + child_kinematics.frame.rotation * group.model.child_frame().translation.vector
+            - origin;
+        for (axis, column) in group.model.axes().iter().zip(&columns[group.velocities()]) {
+            if axis.side == Side::Parent {
+                let rate = axis_rate(column, axis.motion, &(child - parent), &through);
+                bias += motion_cross(&(parent - child), column) * rate;
+            }
+        }
+        bias
+    }
+
+    /// The joint accelerations q̈ at `states` and time `t`: the mechanism's equations of motion (the same solve the
+    /// integrators step), read in joint coordinates.
+    pub fn joint_accelerations(&self, t: f64, states: &[State<A>]) -> Result<Vec<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        let rates = self.rates_at(t, states)?;
+        let kinematics = self.kinematics_of(t, states);
+        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
+        let columns = self.columns(space, &kinematics, &origin);
+        let spatial: Vec<_> = kinematics
+            .iter()
+            .enumerate()
+            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin))
+            .collect();
+        // Each body's spatial acceleration about o from its momentum rate: a_c = F/m, and about the centre of mass
+        // n_c = Ī ω̇ + ω × Ī ω; then a_o = a_c − ω̇ × r − ω × v_c.
+        let acceleration: Vec<Vector6<f64>> = rates
+            .iter()
+            .enumerate()
+            .map(|(i, rate)| {
+                let body = &self.bodies[i].body;
+                let k = &kinematics[i];
+                let wrench = A::screw_coordinates(rate.momentum_rate);
+                let centre = k.frame.position;
+                let force = wrench.l;
+                let moment = wrench.t - centre.cross(&force);
+                let rotation = k.frame.rotation.matrix();
+                let omega_body = rotation.tr_mul(&k.angular_velocity);
+                let moments = body.moments();
+                let spin = rotation * omega_body.cross(&moments.component_mul(&omega_body));
+                let omega_rate = rotation * (rotation.tr_mul(&(moment - spin))).component_div(&moments);
+                let a_centre = force / body.mass();
+                let offset = spatial[i].offset;
+                join(
+                    omega_rate,
+                    a_centre - omega_rate.cross(&offset) - k.angular_velocity.cross(&k.linear_velocity),
+                )
+            })
+            .collect();
+        let mut q_ddot = vec![0.0; space.velocities];
+        for group in &space.groups {
+            let parent = group.parent.map_or_else(Vector6::zeros, |p| acceleration[p]);
+            let relative =
+                acceleration[group.body] - parent - self.joint_bias(group, &spatial, &columns, &kinematics, &origin);
+            let child = &kinematics[group.body];
+            let through =
+                child.frame.position + child.frame.rotation * group.model.child_frame().translation.vector - origin;
+            for (k, axis) in group.model.axes().iter().enumerate() {
+                let column = &columns[group.velocity_offset + k];
+                q_ddot[group.velocity_offset + k] = axis_rate(column, axis.motion, &relative, &through);
+            }
+        }
+        Ok(q_ddot)
+    }
+}
+
+/// The rotation of the body a joint axis is fixed in.
+fn side_rotation(side: Side, parent: &WorldBody, child: &WorldBody) -> Matrix3<f64> {
+    match side {
+        Side::Parent => *parent.pose.rotation.to_rotation_matrix().matrix(),
+        Side::Child => *child.pose.rotation.to_rotation_matrix().matrix(),
+    }
+}
+
+fn join(top: Vector3<f64>, bottom: Vector3<f64>) -> Vector6<f64> {
+    Vector6::new(top.x, top.y, top.z, bottom.x, bottom.y, bottom.z)
+}

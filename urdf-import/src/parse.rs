@@ -1,0 +1,489 @@
+//! Stage 1: URDF text → [`RawModel`], the links and joints as written, each with its line.
+//!
+//! Only syntax is checked here: XML well-formedness, the `<robot>` root, required attributes and elements,
+//! numbers (Rust's `f64` parser after trimming; NaN and infinities refused, since they would only surface later
+//! as NaN accelerations far from their cause) and joint types. Meaning (names that resolve, a tree, physical
+//! inertias, mimics) is [`crate::validate`]'s job. Elements the dynamics does not use (visual, collision,
+//! material, gazebo, transmission, sensor, ...) are skipped; the top-level ones are counted in
+//! [`RawModel::ignored`] so a caller can see what was dropped.
+
+use std::fmt;
+
+use nalgebra::{Isometry3, Matrix3, Vector3};
+use roxmltree::{Document, Node, ParsingOptions};
+
+use crate::error::ImportError;
+use crate::pose::pose;
+
+/// The joint types of the URDF specification.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointKind {
+    /// Rotation about the axis, between limits.
+    Revolute,
+    /// Rotation about the axis, unlimited.
+    Continuous,
+    /// Translation along the axis.
+    Prismatic,
+    /// No motion: the child is rigidly attached (merged into the parent's body by [`crate::merge`]).
+    Fixed,
+    /// Six degrees of freedom.
+    Floating,
+    /// Translation in the plane normal to the axis, and rotation about the axis (three degrees of freedom).
+    Planar,
+}
+
+impl JointKind {
+    /// The kind named by a URDF `type` attribute (exact, lower case as the specification writes them).
+    pub fn from_urdf(text: &str) -> Option<JointKind> {
+        Some(match text {
+            "revolute" => JointKind::Revolute,
+            "continuous" => JointKind::Continuous,
+            "prismatic" => JointKind::Prismatic,
+            "fixed" => JointKind::Fixed,
+            "floating" => JointKind::Floating,
+            "planar" => JointKind::Planar,
+            _ => return None,
+        })
+    }
+
+    /// The URDF name of the type.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Continuous => "continuous",
+            JointKind::Prismatic => "prismatic",
+            JointKind::Fixed => "fixed",
+            JointKind::Floating => "floating",
+            JointKind::Planar => "planar",
+        }
+    }
+
+    /// How many coordinates the joint adds: 1 (revolute, continuous, prismatic), 3 (planar), 6 (floating), 0 (fixed).
+    pub fn degrees_of_freedom(self) -> usize {
+        match self {
+            JointKind::Revolute | JointKind::Continuous | JointKind::Prismatic => 1,
+            JointKind::Planar => 3,
+            JointKind::Floating => 6,
+            JointKind::Fixed => 0,
+        }
+    }
+
+    /// Whether the joint's `<axis>` means something (all but fixed and floating).
+    pub fn uses_axis(self) -> bool {
+        !matches!(self, JointKind::Fixed | JointKind::Floating)
+    }
+}
+
+impl fmt::Display for JointKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A joint's `<limit>`, each attribute `None` when absent (the URDF specification requires `effort` and
+/// `velocity` on revolute and prismatic joints, but real files omit them, and a missing bound is not a zero bound).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Limit {
+    /// Lower position limit (rad or m).
+    pub lower: Option<f64>,
+    /// Upper position limit (rad or m).
+    pub upper: Option<f64>,
+    /// Largest effort (N m or N).
+    pub effort: Option<f64>,
+    /// Largest speed (rad/s or m/s).
+    pub velocity: Option<f64>,
+}
+
+/// A link's `<inertial>` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Inertial {
+    /// The inertia frame in the link frame: its origin is the centre of mass, its axes those of `inertia`.
+    pub origin: Isometry3<f64>,
+    /// Mass (kg), finite (sign checked by validation).
+    pub mass: f64,
+    /// The full symmetric tensor about the centre of mass in the inertia frame's axes (kg m²).
+    pub inertia: Matrix3<f64>,
+    /// The `<inertial>` element's line.
+    pub line: u32,
+    /// The `<mass>` element's line.
+    pub mass_line: u32,
+    /// The `<inertia>` element's line.
+    pub inertia_line: u32,
+}
+
+/// A `<link>` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawLink {
+    /// Its name.
+    pub name: String,
+    /// The `<link>` element's line.
+    pub line: u32,
+    /// Its mass properties; `None` when the link has no `<inertial>` (a massless frame).
+    pub inertial: Option<Inertial>,
+}
+
+/// A joint's `<mimic>` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawMimic {
+    /// The mimicked joint's name.
+    pub joint: String,
+    /// `q = multiplier q_mimicked + offset`; default 1.
+    pub multiplier: f64,
+    /// Default 0 (rad or m).
+    pub offset: f64,
+    /// The `<mimic>` element's line.
+    pub line: u32,
+}
+
+/// A `<joint>` as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawJoint {
+    /// Its name.
+    pub name: String,
+    /// Its type.
+    pub kind: JointKind,
+    /// The `<joint>` element's line.
+    pub line: u32,
+    /// The child link frame in the parent link frame at q = 0 (`<origin>`, default identity).
+    pub origin: Isometry3<f64>,
+    /// The parent link's name.
+    pub parent: String,
+    /// The child link's name.
+    pub child: String,
+    /// `<axis xyz>` as written, not normalised (default (1, 0, 0)).
+    pub axis: Vector3<f64>,
+    /// The `<axis>` element's line, or the joint's when absent.
+    pub axis_line: u32,
+    /// The `<limit>`, if any, and its line.
+    pub limit: Option<(Limit, u32)>,
+    /// `<dynamics damping>` (N m s/rad or N s/m), default 0.
+    pub damping: f64,
+    /// `<dynamics friction>` (N m or N), default 0.
+    pub friction: f64,
+    /// The `<mimic>`, if any.
+    pub mimic: Option<RawMimic>,
+}
+
+/// A parsed URDF: links and joints in file order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RawModel {
+    /// The robot's name (empty when the file gives none, which [`RawModel::warnings`] notes).
+    pub name: String,
+    /// The `<robot>` element's line.
+    pub line: u32,
+    /// Links in file order.
+    pub links: Vec<RawLink>,
+    /// Joints in file order.
+    pub joints: Vec<RawJoint>,
+    /// Top-level elements other than `<link>` and `<joint>`, by tag, with how many there were (file order of first
+    /// appearance).
+    pub ignored: Vec<(String, usize)>,
+    /// Things a reader should know that are not errors.
+    pub warnings: Vec<String>,
+}
+
+/// Byte offset → line, by binary search over the line starts: `Document::text_pos_at` rescans the text from the
+/// start on every call, which is quadratic over a file of a thousand elements.
+struct Lines {
+    starts: Vec<usize>,
+}
+
+impl Lines {
+    fn new(text: &str) -> Lines {
+        let mut starts = vec![0];
+        starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
+        Lines { starts }
+    }
+
+    fn line(&self, offset: usize) -> u32 {
+        u32::try_from(self.starts.partition_point(|&s| s <= offset)).unwrap_or(u32::MAX)
+    }
+}
+
+/// Parses URDF text into a [`RawModel`].
+///
+/// ```
+/// let raw = urdf_import::parse::parse(r#"<robot name="r"><link name="base"/></robot>"#)?;
+/// assert_eq!((raw.name.as_str(), raw.links.len()), ("r", 1));
+/// # Ok::<(), urdf_import::ImportError>(())
+/// ```
+pub fn parse(text: &str) -> Result<RawModel, ImportError> {
+    if text.trim().is_empty() {
+        return Err(ImportError::Empty);
+    }
+    // A DTD is allowed: some exporters write one, and roxmltree still guards against entity expansion bombs.
+    let options = ParsingOptions {
+        allow_dtd: true,
+        ..ParsingOptions::default()
+    };
+    let doc = Document::parse_with_options(text, options).map_err(|e| ImportError::Xml {
+        line: e.pos().row,
+        column: e.pos().col,
+        message: e.to_string(),
+    })?;
+    let lines = Lines::new(text);
+    let at = |node: Node| lines.line(node.range().start);
+    let robot = doc.root_element();
+    if robot.tag_name().name() != "robot" {
+        return Err(ImportError::NotRobot {
+            element: qualified_name(robot),
+            line: at(robot),
+        });
+    }
+    let mut model = RawModel {
+        name: robot.attribute("name").unwrap_or("").to_owned(),
+        line: at(robot),
+        links: Vec::new(),
+        joints: Vec::new(),
+        ignored: Vec::new(),
+        warnings: Vec::new(),
+    };
+    if model.name.is_empty() {
+        model
+            .warnings
+            .push(format!("<robot> (line {}) has no name", model.line));
+    }
+    let mut xacro = 0;
+    for node in robot.children().filter(Node::is_element) {
+        match urdf_tag(node) {
+            Some("link") => model.links.push(parse_link(node, &model.name, &at)?),
+            Some("joint") => model.joints.push(parse_joint(node, &model.name, &at)?),
+            _ => {
+                let tag = qualified_name(node);
+                if node.tag_name().namespace().is_some_and(|ns| ns.contains("xacro")) {
+                    xacro += 1;
+                }
+                match model.ignored.iter_mut().find(|(t, _)| *t == tag) {
+                    Some((_, count)) => *count += 1,
+                    None => model.ignored.push((tag, 1)),
+                }
+            }
+        }
+    }
+    if xacro > 0 {
+        model.warnings.push(format!(
+            "{xacro} top-level xacro element(s) ignored: is this an unexpanded .xacro file? Run xacro first"
+        ));
+    }
+    if model.links.is_empty() {
+        return Err(ImportError::NoLinks {
+            robot: model.name,
+            line: model.line,
+        });
+    }
+    Ok(model)
+}
+
+/// The tag's local name when the element is in no namespace or the default one (so `<xacro:property>` is never
+/// taken for a URDF element).
+fn urdf_tag<'a>(node: Node<'a, '_>) -> Option<&'a str> {
+    match node.tag_name().namespace() {
+        Some(ns) if node.lookup_prefix(ns).is_some() => None,
+        _ => Some(node.tag_name().name()),
+    }
+}
+
+/// The tag as written, with its prefix when it has one.
+fn qualified_name(node: Node) -> String {
+    let name = node.tag_name().name();
+    match node.tag_name().namespace().and_then(|ns| node.lookup_prefix(ns)) {
+        Some(prefix) => format!("{prefix}:{name}"),
+        None => name.to_owned(),
+    }
+}
+
+/// The first child element with this URDF tag.
+fn child<'a, 'i>(node: Node<'a, 'i>, tag: &str) -> Option<Node<'a, 'i>> {
+    node.children().find(|c| c.is_element() && urdf_tag(*c) == Some(tag))
+}
+
+/// What a number's error message needs to point at its element.
+struct Site<'s, F: Fn(Node) -> u32> {
+    owner: &'s str,
+    at: &'s F,
+}
+
+impl<F: Fn(Node) -> u32> Site<'_, F> {
+    fn missing_attribute(&self, node: Node, attribute: &str) -> ImportError {
+        ImportError::MissingAttribute {
+            owner: self.owner.to_owned(),
+            element: qualified_name(node),
+            attribute: attribute.to_owned(),
+            line: (self.at)(node),
+        }
+    }
+
+    fn required<'a>(&self, node: Node<'a, '_>, attribute: &str) -> Result<&'a str, ImportError> {
+        node.attribute(attribute)
+            .ok_or_else(|| self.missing_attribute(node, attribute))
+    }
+
+    /// `N` finite numbers separated by white space, or `None` when the attribute is absent.
+    fn numbers<const N: usize>(&self, node: Node, attribute: &str) -> Result<Option<[f64; N]>, ImportError> {
+        let Some(text) = node.attribute(attribute) else {
+            return Ok(None);
+        };
+        let bad = || ImportError::Number {
+            owner: self.owner.to_owned(),
+            element: qualified_name(node),
+            attribute: attribute.to_owned(),
+            text: text.to_owned(),
+            expected: N,
+            line: (self.at)(node),
+        };
+        let mut values = [0.0; N];
+        let mut words = text.split_whitespace();
+        for value in values.iter_mut() {
+            *value = words
+                .next()
+                .and_then(|w| w.parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+                .ok_or_else(bad)?;
+        }
+        if words.next().is_some() {
+            return Err(bad());
+        }
+        Ok(Some(values))
+    }
+
+    fn number(&self, node: Node, attribute: &str) -> Result<Option<f64>, ImportError> {
+        Ok(self.numbers::<1>(node, attribute)?.map(|[v]| v))
+    }
+
+    fn required_number(&self, node: Node, attribute: &str) -> Result<f64, ImportError> {
+        self.number(node, attribute)?
+            .ok_or_else(|| self.missing_attribute(node, attribute))
+    }
+
+    /// An `<origin xyz rpy>` child (identity when absent, each attribute defaulting to zeros).
+    fn origin(&self, parent: Node) -> Result<Isometry3<f64>, ImportError> {
+        let Some(origin) = child(parent, "origin") else {
+            return Ok(Isometry3::identity());
+        };
+        let xyz = self.numbers::<3>(origin, "xyz")?.unwrap_or([0.0; 3]);
+        let rpy = self.numbers::<3>(origin, "rpy")?.unwrap_or([0.0; 3]);
+        Ok(pose(xyz, rpy))
+    }
+}
+
+fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawLink, ImportError> {
+    let robot_owner = format!("robot `{robot}`");
+    let name = Site {
+        owner: &robot_owner,
+        at,
+    }
+    .required(node, "name")?
+    .to_owned();
+    let owner = format!("link `{name}`");
+    let site = Site { owner: &owner, at };
+    let inertial = match child(node, "inertial") {
+        None => None,
+        Some(inertial) => {
+            let missing = |element: &str| ImportError::MissingElement {
+                owner: format!("link `{name}` <inertial>"),
+                element: element.to_owned(),
+                line: at(inertial),
+            };
+            let mass_node = child(inertial, "mass").ok_or_else(|| missing("mass"))?;
+            let inertia_node = child(inertial, "inertia").ok_or_else(|| missing("inertia"))?;
+            let mut moments = [0.0; 6];
+            for (value, key) in moments.iter_mut().zip(["ixx", "ixy", "ixz", "iyy", "iyz", "izz"]) {
+                *value = site.required_number(inertia_node, key)?;
+            }
+            let [ixx, ixy, ixz, iyy, iyz, izz] = moments;
+            Some(Inertial {
+                origin: site.origin(inertial)?,
+                mass: site.required_number(mass_node, "value")?,
+                inertia: Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz),
+                line: at(inertial),
+                mass_line: at(mass_node),
+                inertia_line: at(inertia_node),
+            })
+        }
+    };
+    Ok(RawLink {
+        name,
+        line: at(node),
+        inertial,
+    })
+}
+
+fn parse_joint(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawJoint, ImportError> {
+    let robot_owner = format!("robot `{robot}`");
+    let name = Site {
+        owner: &robot_owner,
+        at,
+    }
+    .required(node, "name")?
+    .to_owned();
+    let owner = format!("joint `{name}`");
+    let site = Site { owner: &owner, at };
+    let line = at(node);
+    let type_text = site.required(node, "type")?;
+    let kind = JointKind::from_urdf(type_text.trim()).ok_or_else(|| ImportError::JointType {
+        joint: name.clone(),
+        kind: type_text.to_owned(),
+        line,
+    })?;
+    let link_of = |tag: &str| -> Result<String, ImportError> {
+        let element = child(node, tag).ok_or_else(|| ImportError::MissingElement {
+            owner: owner.clone(),
+            element: tag.to_owned(),
+            line,
+        })?;
+        Ok(site.required(element, "link")?.to_owned())
+    };
+    let parent = link_of("parent")?;
+    let child_link = link_of("child")?;
+    let (axis, axis_line) = match child(node, "axis") {
+        Some(axis) => (site.numbers::<3>(axis, "xyz")?.unwrap_or([1.0, 0.0, 0.0]), at(axis)),
+        None => ([1.0, 0.0, 0.0], line),
+    };
+    let limit = match child(node, "limit") {
+        None => None,
+        Some(limit) => Some((
+            Limit {
+                lower: site.number(limit, "lower")?,
+                upper: site.number(limit, "upper")?,
+                effort: site.number(limit, "effort")?,
+                velocity: site.number(limit, "velocity")?,
+            },
+            at(limit),
+        )),
+    };
+    let (damping, friction) = match child(node, "dynamics") {
+        None => (0.0, 0.0),
+        Some(d) => (
+            site.number(d, "damping")?.unwrap_or(0.0),
+            site.number(d, "friction")?.unwrap_or(0.0),
+        ),
+    };
+    let mimic = match child(node, "mimic") {
+        None => None,
+        Some(m) => Some(RawMimic {
+            joint: site.required(m, "joint")?.to_owned(),
+            multiplier: site.number(m, "multiplier")?.unwrap_or(1.0),
+            offset: site.number(m, "offset")?.unwrap_or(0.0),
+            line: at(m),
+        }),
+    };
+    Ok(RawJoint {
+        name,
+        kind,
+        line,
+        origin: site.origin(node)?,
+        parent,
+        child: child_link,
+        axis: Vector3::from(axis),
+        axis_line,
+        limit,
+        damping,
+        friction,
+        mimic,
+    })
+}
