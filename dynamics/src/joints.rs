@@ -362,16 +362,19 @@ impl JointModel {
     }
 
     /// The joint's kind, with unit axes.
+    #[inline]
     pub fn kind(&self) -> &JointKind {
         &self.kind
     }
 
     /// The joint frame in the parent's body frame (or the world).
+    #[inline]
     pub fn parent_frame(&self) -> &Isometry3<f64> {
         &self.parent_frame
     }
 
     /// The joint frame in the child's body frame.
+    #[inline]
     pub fn child_frame(&self) -> &Isometry3<f64> {
         &self.child_frame
     }
@@ -382,6 +385,7 @@ impl JointModel {
     }
 
     /// The prescribed coordinate at time `t` (value, rate, acceleration), for a driven joint.
+    #[inline]
     pub fn drive_at(&self, t: f64) -> Option<crate::constraints::PathPoint<f64>> {
         self.drive.as_ref().map(|path| path.at(t))
     }
@@ -438,6 +442,7 @@ impl JointModel {
         axes
     }
 
+    #[inline]
     pub(crate) fn axes(&self) -> &[JointAxis] {
         &self.axes
     }

@@ -15,6 +15,7 @@
 //! * [`joint_space`]: kinematic trees in joint coordinates (revolute, prismatic, fixed and free joints) and their
 //!   dynamics by the textbook recursive algorithms (Featherstone's RNEA and CRBA): M(q), h(q, v), inverse and
 //!   forward dynamics, energies and body velocities;
+//! * [`robots`]: two real robots (UR5, Solo-12): their URDFs and Pinocchio's reference motion under gravity;
 //! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;
 //! * [`analytic`]: the closed forms (Dzhanibekov flips, pendulum, heavy top) that the published values come from;
@@ -46,6 +47,7 @@ pub mod elliptic;
 pub mod joint_space;
 pub mod metrics;
 pub mod multibody;
+pub mod robots;
 pub mod scenes;
 pub mod trajectory;
 

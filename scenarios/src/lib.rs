@@ -23,9 +23,11 @@
 
 pub mod mechanism_measures;
 pub mod mechanisms;
+pub mod robots;
 pub mod single_body;
 
 pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
+pub use robots::{build_robot, RobotScene, RobotSceneError};
 pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
 
 use dynamics::simulate::Sample;

@@ -46,10 +46,12 @@
 //! The pipeline, one module per stage: [`parse`] (XML text → [`parse::RawModel`], with line numbers) →
 //! [`validate`] (names, the tree, axes, mimics, link inertias; the link-level repairs) → [`merge`] (links joined
 //! by fixed joints become one rigid body, mass properties merged exactly) → [`validate::check_bodies`] (every
-//! moving body invertible; the body-level repairs). [`pose`] holds URDF's `xyz`/`rpy` convention.
+//! moving body invertible; the body-level repairs) → [`build`] (the model as a `dynamics` mechanism, in either
+//! algebra, [`Robot`]). [`pose`] holds URDF's `xyz`/`rpy` convention.
 
 #![deny(missing_docs)]
 
+pub mod build;
 pub mod error;
 pub mod merge;
 pub mod parse;
@@ -58,6 +60,7 @@ pub mod validate;
 
 use std::path::Path;
 
+pub use build::{BaseStart, BuildError, BuildOptions, Robot, RobotStart, Root};
 pub use error::ImportError;
 pub use merge::{FrozenJoint, LinkPlacement, Mimic, MovingJoint, RigidBody, RobotModel};
 pub use parse::{JointKind, Limit};

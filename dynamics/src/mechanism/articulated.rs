@@ -10,12 +10,12 @@
 //! `V = (ω; v_o)` (v_o the velocity of the body point at o), forces `F = (n_o; f)` (moment about o), the two paired
 //! by the power `V·F`: the (ω; v), (τ; f) coordinates of §M1 with the moments taken about o.
 
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::body::Body;
 use crate::joints::{JointAxis, JointModel, Motion, Side};
 use crate::mechanism::joint::{BodyKinematics, Joint};
+use crate::mechanism::spatial::{angular, force_cross, join, linear, motion_cross, spatial_body, Inertia6};
 use crate::mechanism::MechanismBody;
 
 /// The tree of a mechanism whose joints are all joint models: bodies parents first, each with its parent joint.
@@ -71,7 +71,7 @@ impl Articulation {
 #[derive(Clone, Copy, Debug)]
 struct BodyTerms {
     /// Its articulated inertia (first its spatial inertia about o).
-    inertia: Matrix6<f64>,
+    inertia: Inertia6,
     /// Its articulated bias force (first `V ×* I V − F_ext`).
     bias: Vector6<f64>,
     velocity: Vector6<f64>,
@@ -93,6 +93,8 @@ struct JointTerms {
     weighted: [Vector6<f64>; 6],
     inverse: [f64; 36],
     force: [f64; 6],
+    /// The joint accelerations q̈ of the free columns.
+    rates: [f64; 6],
 }
 
 impl Default for JointTerms {
@@ -104,8 +106,18 @@ impl Default for JointTerms {
             weighted: [Vector6::zeros(); 6],
             inverse: [0.0; 36],
             force: [0.0; 6],
+            rates: [0.0; 6],
         }
     }
+}
+
+/// A linear relation `q̈_follower = multiplier · q̈_leader` between two one-coordinate joints (the acceleration
+/// level of a coupling `q_f = m q_l + offset`, a URDF mimic), with the indices of the two joints.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CouplingRow {
+    pub follower: usize,
+    pub leader: usize,
+    pub multiplier: f64,
 }
 
 /// The articulated solve's scratch, sized once per run.
@@ -113,12 +125,18 @@ impl Default for JointTerms {
 pub(crate) struct ArticulatedScratch {
     bodies: Vec<BodyTerms>,
     joints: Vec<JointTerms>,
+    /// Per coupling: every body's acceleration under a unit coupling force, and every joint's first rate.
+    responses: Vec<Vec<Vector6<f64>>>,
+    response_rates: Vec<Vec<f64>>,
+    /// A response pass's bias forces and joint force terms.
+    response_bias: Vec<Vector6<f64>>,
+    response_force: Vec<f64>,
 }
 
 impl ArticulatedScratch {
-    pub fn new(bodies: usize, joints: usize) -> Self {
+    pub fn new(bodies: usize, joints: usize, couplings: usize) -> Self {
         let body = BodyTerms {
-            inertia: Matrix6::zeros(),
+            inertia: Inertia6::ZERO,
             bias: Vector6::zeros(),
             velocity: Vector6::zeros(),
             acceleration: Vector6::zeros(),
@@ -127,79 +145,16 @@ impl ArticulatedScratch {
         ArticulatedScratch {
             bodies: vec![body; bodies],
             joints: vec![JointTerms::default(); joints],
+            responses: vec![vec![Vector6::zeros(); bodies]; couplings],
+            response_rates: vec![vec![0.0; joints]; couplings],
+            response_bias: vec![Vector6::zeros(); bodies],
+            response_force: vec![0.0; joints],
         }
     }
 }
 
-fn cross_matrix(v: &Vector3<f64>) -> Matrix3<f64> {
-    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
-}
-
-fn angular(v: &Vector6<f64>) -> Vector3<f64> {
-    v.fixed_rows::<3>(0).into_owned()
-}
-
-fn linear(v: &Vector6<f64>) -> Vector3<f64> {
-    v.fixed_rows::<3>(3).into_owned()
-}
-
-fn join(top: Vector3<f64>, bottom: Vector3<f64>) -> Vector6<f64> {
-    Vector6::new(top.x, top.y, top.z, bottom.x, bottom.y, bottom.z)
-}
-
-/// The motion cross product `V × W = (ω × ω'; ω × v' + v × ω')` (the rate of a screw W carried by motion V).
-pub(crate) fn motion_cross(a: &Vector6<f64>, b: &Vector6<f64>) -> Vector6<f64> {
-    let (w, v, w2, v2) = (angular(a), linear(a), angular(b), linear(b));
-    join(w.cross(&w2), w.cross(&v2) + v.cross(&w2))
-}
-
-/// The force cross product `V ×* F = (ω × n + v × f; ω × f)`.
-pub(crate) fn force_cross(a: &Vector6<f64>, f: &Vector6<f64>) -> Vector6<f64> {
-    let (w, v, n, force) = (angular(a), linear(a), angular(f), linear(f));
-    join(w.cross(&n) + v.cross(&force), w.cross(&force))
-}
-
-/// A body's world kinematics about o: its velocity `(ω; v_o)`, its spatial inertia about o and its momentum
-/// `(L_o; p)`. With r = c − o and Ī = R diag(I) Rᵀ: `p = m(v_o + ω × r)`, `L_o = Īω + r × p`, so the inertia is
-/// `[[Ī − m[r]ₓ², m[r]ₓ], [−m[r]ₓ, m𝟙]]`.
-pub(crate) struct SpatialBody {
-    pub velocity: Vector6<f64>,
-    pub inertia: Matrix6<f64>,
-    pub momentum: Vector6<f64>,
-    pub offset: Vector3<f64>,
-}
-
-pub(crate) fn spatial_body<A: Algebra>(
-    body: &Body,
-    kinematics: &crate::constraints::Kinematics<A>,
-    origin: &Vector3<f64>,
-) -> SpatialBody {
-    let rotation = kinematics.frame.rotation.matrix();
-    let offset = kinematics.frame.position - origin;
-    let mass = body.mass();
-    let moments = body.moments();
-    let scaled = Matrix3::from_fn(|i, j| rotation[(i, j)] * moments[j]);
-    let central = scaled * rotation.transpose();
-    let r = cross_matrix(&offset);
-    let mr = r * mass;
-    let mut inertia = Matrix6::zeros();
-    inertia.fixed_view_mut::<3, 3>(0, 0).copy_from(&(central - mr * r));
-    inertia.fixed_view_mut::<3, 3>(0, 3).copy_from(&mr);
-    inertia.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-mr));
-    inertia
-        .fixed_view_mut::<3, 3>(3, 3)
-        .copy_from(&Matrix3::from_diagonal_element(mass));
-    let (omega, v) = (kinematics.angular_velocity, kinematics.linear_velocity);
-    let p = v * mass;
-    SpatialBody {
-        velocity: join(omega, v + offset.cross(&omega)),
-        inertia,
-        momentum: join(central * omega + offset.cross(&p), p),
-        offset,
-    }
-}
-
 /// The world screw `(d; r × d)` of a turn about the line through `r` (from o) along d, or `(0; d)` of a slide.
+#[inline]
 pub(crate) fn axis_column(axis: &JointAxis, rotation: &Matrix3<f64>, through: &Vector3<f64>) -> Vector6<f64> {
     let d = rotation * axis.direction;
     match axis.motion {
@@ -212,6 +167,7 @@ pub(crate) fn axis_column(axis: &JointAxis, rotation: &Matrix3<f64>, through: &V
 /// a turn's rate is its direction's share of the relative angular velocity, a slide's its share of the relative
 /// velocity of the child joint origin (at `through` from o). The directions of one kind are orthonormal for every
 /// joint kind, so these are exact on the joint.
+#[inline]
 pub(crate) fn axis_rate(column: &Vector6<f64>, motion: Motion, relative: &Vector6<f64>, through: &Vector3<f64>) -> f64 {
     match motion {
         Motion::Rotation => angular(column).dot(&angular(relative)),
@@ -223,6 +179,7 @@ pub(crate) fn axis_rate(column: &Vector6<f64>, motion: Motion, relative: &Vector
 }
 
 /// The world position of a joint's child origin, relative to o.
+#[inline]
 pub(crate) fn joint_origin<A: Algebra>(
     model: &JointModel,
     child: &crate::constraints::Kinematics<A>,
@@ -233,6 +190,7 @@ pub(crate) fn joint_origin<A: Algebra>(
 
 /// Inverts the symmetric positive definite `n × n` matrix in `m` (row-major, stride 6) in place by Cholesky;
 /// false if it is not positive definite.
+#[inline]
 fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
     if n == 1 {
         let d = m[0];
@@ -278,7 +236,149 @@ fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
     true
 }
 
+/// A child's articulated inertia and bias projected through its joint (Featherstone's articulated-body step):
+/// `U = I^A S`, `D = Sᵀ U`, `u = −Sᵀ p^A` into the joint's terms, and the bias the parent receives,
+/// `p^a = p^A + I^a c + U D⁻¹ u = p^A + I^A c + U D⁻¹ (u − Uᵀ c)` (the inertia it receives, `I^A − U D⁻¹ Uᵀ`, is
+/// added by the caller). `None` if D is not positive definite.
+#[inline]
+fn project(terms: &mut JointTerms, child: &BodyTerms) -> Option<Vector6<f64>> {
+    let c = terms.bias_acceleration;
+    let mut passed = child.bias + child.inertia.apply(&c);
+    let n = terms.free;
+    if n == 1 {
+        // One degree of freedom, the common case: scalars throughout.
+        let column = terms.columns[0];
+        let weighted = child.inertia.apply(&column);
+        let d = column.dot(&weighted);
+        // D > 0 for every body with mass and inertia; NaN fails too.
+        if d.is_nan() || d <= 0.0 {
+            return None;
+        }
+        let inverse = 1.0 / d;
+        let force = -column.dot(&child.bias);
+        passed += weighted * (inverse * (force - weighted.dot(&c)));
+        terms.weighted[0] = weighted;
+        terms.inverse[0] = inverse;
+        terms.force[0] = force;
+        return Some(passed);
+    }
+    for k in 0..n {
+        terms.weighted[k] = child.inertia.apply(&terms.columns[k]);
+        terms.force[k] = -terms.columns[k].dot(&child.bias);
+        for l in 0..=k {
+            let value = terms.columns[l].dot(&terms.weighted[k]);
+            terms.inverse[k * 6 + l] = value;
+            terms.inverse[l * 6 + k] = value;
+        }
+    }
+    if !invert_positive_definite(&mut terms.inverse, n) {
+        return None;
+    }
+    for k in 0..n {
+        let share: f64 = (0..n)
+            .map(|l| terms.inverse[k * 6 + l] * (terms.force[l] - terms.weighted[l].dot(&c)))
+            .sum();
+        passed += terms.weighted[k] * share;
+    }
+    Some(passed)
+}
+
+/// A free root's acceleration from `I^A a = −p^A`; `None` if its articulated inertia is not positive definite.
+#[inline]
+fn root_acceleration(inertia: &Inertia6, bias: &Vector6<f64>) -> Option<Vector6<f64>> {
+    inertia.solve(bias).map(|a| -a)
+}
+
+/// A child's acceleration from `a' = a_parent + c` (given): `q̈ = D⁻¹(u − Uᵀa')`, stored in the joint's rates, and
+/// `a = a' + S q̈`; `force` is u.
+#[inline]
+fn joint_acceleration(terms: &mut JointTerms, mut a: Vector6<f64>, force: &[f64; 6]) -> Vector6<f64> {
+    let n = terms.free;
+    if n == 1 {
+        let rate = terms.inverse[0] * (force[0] - terms.weighted[0].dot(&a));
+        terms.rates[0] = rate;
+        return a + terms.columns[0] * rate;
+    }
+    let mut rhs = [0.0; 6];
+    for (k, value) in rhs.iter_mut().enumerate().take(n) {
+        *value = force[k] - terms.weighted[k].dot(&a);
+    }
+    for k in 0..n {
+        let rate: f64 = (0..n).map(|l| terms.inverse[k * 6 + l] * rhs[l]).sum();
+        terms.rates[k] = rate;
+        a += terms.columns[k] * rate;
+    }
+    a
+}
+
 impl Articulation {
+    /// Adds the couplings' forces: each coupling's unit generalised force (+1 on the follower, −m on the leader)
+    /// moves every body by a response, found by the articulated passes with that force alone (no velocity terms,
+    /// the same articulated inertias); the multipliers λ solve `G λ = −(q̈_f − m q̈_l)` with G the responses'
+    /// coupling rates (`C M⁻¹ Cᵀ`, symmetric positive definite), and each body's acceleration gains `Σ λ a⁽ᵏ⁾`.
+    fn couple(&self, couplings: &[CouplingRow], scratch: &mut ArticulatedScratch) -> Result<(), ()> {
+        let r = couplings.len();
+        for (k, coupling) in couplings.iter().enumerate() {
+            scratch.response_force.iter_mut().for_each(|f| *f = 0.0);
+            scratch.response_force[coupling.follower] = 1.0;
+            scratch.response_force[coupling.leader] -= coupling.multiplier;
+            scratch.response_bias.iter_mut().for_each(|b| *b = Vector6::zeros());
+            for &body in self.order.iter().rev() {
+                let Some(j) = self.parent_joint[body] else {
+                    continue;
+                };
+                let terms = &mut scratch.joints[j];
+                let bias = scratch.response_bias[body];
+                let n = terms.free;
+                for k in 0..n {
+                    let applied = if k == 0 { scratch.response_force[j] } else { 0.0 };
+                    terms.force[k] = applied - terms.columns[k].dot(&bias);
+                }
+                // p^a = p + U D⁻¹ u: no bias acceleration in a response.
+                let mut passed = bias;
+                for k in 0..n {
+                    let share: f64 = (0..n).map(|l| terms.inverse[k * 6 + l] * terms.force[l]).sum();
+                    passed += terms.weighted[k] * share;
+                }
+                if let Some(parent) = self.parent_body[body] {
+                    scratch.response_bias[parent] += passed;
+                }
+            }
+            for &body in &self.order {
+                let acceleration = match self.parent_joint[body] {
+                    None => root_acceleration(&scratch.bodies[body].inertia, &scratch.response_bias[body]).ok_or(())?,
+                    Some(j) => {
+                        let parent = self.parent_body[body].map_or_else(Vector6::zeros, |p| scratch.responses[k][p]);
+                        let terms = &mut scratch.joints[j];
+                        let saved = terms.rates;
+                        let force = terms.force;
+                        let a = joint_acceleration(terms, parent, &force);
+                        scratch.response_rates[k][j] = terms.rates[0];
+                        terms.rates = saved;
+                        a
+                    }
+                };
+                scratch.responses[k][body] = acceleration;
+            }
+        }
+        let mut gram = nalgebra::DMatrix::zeros(r, r);
+        let mut rhs = nalgebra::DVector::zeros(r);
+        for (i, row) in couplings.iter().enumerate() {
+            let rate = |rates: &dyn Fn(usize) -> f64| rates(row.follower) - row.multiplier * rates(row.leader);
+            rhs[i] = -rate(&|j| scratch.joints[j].rates[0]);
+            for k in 0..r {
+                gram[(i, k)] = rate(&|j| scratch.response_rates[k][j]);
+            }
+        }
+        let lambda = gram.cholesky().ok_or(())?.solve(&rhs);
+        for (k, response) in scratch.responses.iter().enumerate() {
+            for (body, terms) in scratch.bodies.iter_mut().enumerate() {
+                terms.acceleration += response[body] * lambda[k];
+            }
+        }
+        Ok(())
+    }
+
     /// The reference point o of an evaluation: the first root's centre of mass.
     pub fn origin<A: Algebra>(&self, bodies: &[BodyKinematics<A>]) -> Vector3<f64> {
         self.order
@@ -298,6 +398,7 @@ impl Articulation {
         masses: &[MechanismBody<A>],
         bodies: &[BodyKinematics<A>],
         external: &[ScrewCoordinates],
+        couplings: &[CouplingRow],
         scratch: &mut ArticulatedScratch,
         reactions: &mut [[f64; 6]],
     ) -> Result<(), usize> {
@@ -324,7 +425,6 @@ impl Articulation {
                 .reference
                 .map_or_else(Vector6::zeros, |p| scratch.bodies[p].velocity);
             let child_velocity = scratch.bodies[joint.body].velocity;
-            let relative = child_velocity - parent_velocity;
             let terms = &mut scratch.joints[j];
             // Ṡq̇ summed over the columns: those fixed in the child turn with it (V_c × S), those fixed in the parent
             // with the parent (V_p × S); on the joint Σ S q̇ = V_c − V_p, so the child's share is V_c × (V_c − V_p)
@@ -341,6 +441,7 @@ impl Articulation {
                 };
                 let column = axis_column(axis, rotation, &through);
                 if axis.side == Side::Parent {
+                    let relative = child_velocity - parent_velocity;
                     let rate = axis_rate(&column, axis.motion, &relative, &through);
                     bias += motion_cross(&(parent_velocity - child_velocity), &column) * rate;
                 }
@@ -354,77 +455,58 @@ impl Articulation {
             terms.bias_acceleration = bias;
         }
         // Children before parents: each child's articulated inertia and bias, projected through its joint, join
-        // its parent's (Featherstone's articulated-body recursion, in world axes so nothing is transformed).
+        // its parent's (Featherstone's articulated-body recursion, in world axes so nothing is transformed):
+        // I^a = I^A − U D⁻¹ Uᵀ and p^a = p^A + I^a c + U D⁻¹ u = p^A + I^A c + U D⁻¹ (u − Uᵀ c).
         for &body in self.order.iter().rev() {
             let Some(j) = self.parent_joint[body] else {
                 continue;
             };
             let terms = &mut scratch.joints[j];
-            let (inertia, bias) = (scratch.bodies[body].inertia, scratch.bodies[body].bias);
-            let n = terms.free;
-            let mut projected = inertia;
-            let mut correction = Vector6::zeros();
-            if n > 0 {
-                for k in 0..n {
-                    terms.weighted[k] = inertia * terms.columns[k];
-                    terms.force[k] = -terms.columns[k].dot(&bias);
-                    for l in 0..=k {
-                        let value = terms.columns[l].dot(&terms.weighted[k]);
-                        terms.inverse[k * 6 + l] = value;
-                        terms.inverse[l * 6 + k] = value;
+            let (child, parent) = match self.parent_body[body] {
+                Some(p) => {
+                    let [child, parent] = scratch
+                        .bodies
+                        .get_disjoint_mut([body, p])
+                        .expect("a body is not its parent");
+                    (&*child, Some(parent))
+                }
+                None => (&scratch.bodies[body], None),
+            };
+            let passed = project(terms, child).ok_or(body)?;
+            if let Some(parent) = parent {
+                parent.inertia.add(&child.inertia);
+                parent.bias += passed;
+                let n = terms.free;
+                if n == 1 {
+                    parent.inertia.subtract_outer(&terms.weighted[0], terms.inverse[0]);
+                } else {
+                    for k in 0..n {
+                        for l in 0..n {
+                            parent.inertia.subtract_symmetric(
+                                &terms.weighted[k],
+                                &terms.weighted[l],
+                                terms.inverse[k * 6 + l],
+                            );
+                        }
                     }
                 }
-                if !invert_positive_definite(&mut terms.inverse, n) {
-                    return Err(body);
-                }
-                // I^a = I^A − U D⁻¹ Uᵀ and U D⁻¹ u, column by column of U D⁻¹ (D⁻¹ is symmetric).
-                for k in 0..n {
-                    let mut scaled = Vector6::zeros();
-                    let mut share = 0.0;
-                    for l in 0..n {
-                        scaled += terms.weighted[l] * terms.inverse[k * 6 + l];
-                        share += terms.inverse[k * 6 + l] * terms.force[l];
-                    }
-                    projected -= scaled * terms.weighted[k].transpose();
-                    correction += terms.weighted[k] * share;
-                }
-            }
-            // p^a = p^A + I^a c + U D⁻¹ u.
-            let passed = bias + projected * terms.bias_acceleration + correction;
-            if let Some(parent) = self.parent_body[body] {
-                scratch.bodies[parent].inertia += projected;
-                scratch.bodies[parent].bias += passed;
             }
         }
         // Parents before children: the accelerations.
         for &body in &self.order {
             let acceleration = match self.parent_joint[body] {
-                None => {
-                    // A free root: I^A a = −p^A.
-                    let terms = &scratch.bodies[body];
-                    match terms.inertia.cholesky() {
-                        Some(factor) => -factor.solve(&terms.bias),
-                        None => return Err(body),
-                    }
-                }
+                None => root_acceleration(&scratch.bodies[body].inertia, &scratch.bodies[body].bias).ok_or(body)?,
                 Some(j) => {
-                    let terms = &scratch.joints[j];
                     let parent = self.parent_body[body].map_or_else(Vector6::zeros, |p| scratch.bodies[p].acceleration);
-                    let mut a = parent + terms.bias_acceleration;
-                    let n = terms.free;
-                    let mut rhs = [0.0; 6];
-                    for (k, value) in rhs.iter_mut().enumerate().take(n) {
-                        *value = terms.force[k] - terms.weighted[k].dot(&a);
-                    }
-                    // q̈ = D⁻¹(u − Uᵀ a'), a = a' + S q̈.
-                    for k in 0..n {
-                        let rate: f64 = (0..n).map(|l| terms.inverse[k * 6 + l] * rhs[l]).sum();
-                        a += terms.columns[k] * rate;
-                    }
-                    a
+                    let terms = &mut scratch.joints[j];
+                    let force = terms.force;
+                    joint_acceleration(terms, parent + terms.bias_acceleration, &force)
                 }
             };
             scratch.bodies[body].acceleration = acceleration;
+        }
+        if !couplings.is_empty() {
+            self.couple(couplings, scratch).map_err(|_| self.order[0])?;
         }
         for (i, out) in reactions.iter_mut().enumerate() {
             let terms = &scratch.bodies[i];

@@ -14,7 +14,8 @@ use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Vector3, Vector6};
 use crate::algebra::Algebra;
 use crate::constraints::{ConstraintError, Kinematics};
 use crate::joints::{JointKind, JointModel, Side};
-use crate::mechanism::articulated::{axis_column, axis_rate, force_cross, motion_cross, spatial_body};
+use crate::mechanism::articulated::{axis_column, axis_rate};
+use crate::mechanism::spatial::{force_cross, motion_cross, spatial_body, Inertia6, SpatialBody};
 use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError};
 use crate::motor;
 use crate::state::State;
@@ -79,6 +80,8 @@ pub struct JointSpace {
     order: Vec<usize>,
     /// Per body: its group.
     group_of_body: Vec<usize>,
+    /// Per joint of the mechanism: its group, for joint models.
+    group_of_joint: Vec<Option<usize>>,
     positions: usize,
     velocities: usize,
 }
@@ -147,10 +150,17 @@ impl JointSpace {
             order.extend(children[body].iter().copied());
             next += 1;
         }
+        let mut group_of_joint = vec![None; mechanism.joints.len()];
+        for (g, group) in groups.iter().enumerate() {
+            if let Some(joint) = group.joint {
+                group_of_joint[joint.0] = Some(g);
+            }
+        }
         (order.len() == groups.len()).then_some(JointSpace {
             groups,
             order,
             group_of_body,
+            group_of_joint,
             positions,
             velocities,
         })
@@ -432,26 +442,42 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Projects states onto the joint models by their coordinates (docs/mechanisms.md §M7): the roots keep their
-    /// states; every other body is placed by its joint's positions and velocities read from the states, from its
-    /// parent as placed. Exact on the joints to round-off, in O(N).
-    pub(crate) fn project_coordinates(&self, states: &mut [State<A>]) -> Result<(), ConstraintError> {
+    /// states; every other body is placed by its joint's positions and velocities read from the states (taken
+    /// nearest `previous` positions, if any, which it updates), the couplings imposed on them, from its parent as
+    /// placed. Exact on the joints to round-off, in O(N).
+    pub(crate) fn project_coordinates(
+        &self,
+        states: &mut [State<A>],
+        previous: &mut Vec<f64>,
+    ) -> Result<(), ConstraintError> {
         let Some(space) = &self.joint_space else {
             return Ok(());
         };
         let read: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
-        let mut placed = read.clone();
-        let (mut q, mut v) = ([0.0; 7], [0.0; 6]);
+        let mut q = vec![0.0; space.positions];
+        let mut v = vec![0.0; space.velocities];
+        let before = (previous.len() == space.positions).then_some(previous.as_slice());
+        for group in &space.groups {
+            let range = group.positions();
+            self.read_positions(group, &read, before.map(|p| &p[range.clone()]), &mut q[range]);
+            self.read_velocities(group, &read, &mut v[group.velocities()]);
+        }
+        for coupling in &self.couplings {
+            let at =
+                |joint: usize| &space.groups[space.group_of_joint[joint].expect("coupled joints are joint models")];
+            let (follower, leader) = (at(coupling.follower), at(coupling.leader));
+            q[follower.position_offset] = coupling.multiplier * q[leader.position_offset] + coupling.offset;
+            v[follower.velocity_offset] = coupling.multiplier * v[leader.velocity_offset];
+        }
+        let mut placed = read;
         for &g in &space.order {
             let group = &space.groups[g];
             if group.joint.is_none() {
                 states[group.body].motor = motor::normalise::<A>(states[group.body].motor);
                 continue;
             }
-            let (nq, nv) = (group.model.kind().position_count(), group.model.kind().velocity_count());
-            self.read_positions(group, &read, None, &mut q[..nq]);
-            self.read_velocities(group, &read, &mut v[..nv]);
             let parent = self.parent_of(group, &placed);
-            let child = self.place(group, &parent, &q[..nq], &v[..nv])?;
+            let child = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
             placed[group.body] = child;
             states[group.body] = State::from_world_twist(
                 &self.bodies[group.body].body,
@@ -461,7 +487,30 @@ impl<A: Algebra> Mechanism<A> {
                 child.linear,
             );
         }
+        *previous = q;
         Ok(())
+    }
+
+    /// The couplings' largest position and velocity residuals, `|q_f − m q_l − offset|` and `|q̇_f − m q̇_l|`.
+    pub(crate) fn coupling_violation(&self, states: &[State<A>]) -> (f64, f64) {
+        let (Some(space), false) = (&self.joint_space, self.couplings.is_empty()) else {
+            return (0.0, 0.0);
+        };
+        let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
+        let (mut position, mut velocity) = (0.0f64, 0.0f64);
+        for coupling in &self.couplings {
+            let read = |joint: usize| {
+                let group = &space.groups[space.group_of_joint[joint].expect("coupled joints are joint models")];
+                let (mut q, mut v) = ([0.0], [0.0]);
+                self.read_positions(group, &bodies, None, &mut q);
+                self.read_velocities(group, &bodies, &mut v);
+                (q[0], v[0])
+            };
+            let ((qf, vf), (ql, vl)) = (read(coupling.follower), read(coupling.leader));
+            position = position.max((qf - coupling.multiplier * ql - coupling.offset).abs());
+            velocity = velocity.max((vf - coupling.multiplier * vl).abs());
+        }
+        (position, velocity)
     }
 
     /// Every body's world kinematics (from its state) for the joint-space algorithms.
@@ -483,7 +532,7 @@ impl<A: Algebra> Mechanism<A> {
         let kinematics = self.kinematics_of(0.0, states);
         let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
         let columns = self.columns(space, &kinematics, &origin);
-        let mut composite: Vec<nalgebra::Matrix6<f64>> = kinematics
+        let mut composite: Vec<Inertia6> = kinematics
             .iter()
             .enumerate()
             .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin).inertia)
@@ -492,7 +541,7 @@ impl<A: Algebra> Mechanism<A> {
             let group = &space.groups[g];
             if let Some(p) = group.parent {
                 let below = composite[group.body];
-                composite[p] += below;
+                composite[p].add(&below);
             }
         }
         let n = space.velocities;
@@ -500,7 +549,7 @@ impl<A: Algebra> Mechanism<A> {
         for group in &space.groups {
             let inertia = &composite[group.body];
             for (k, column) in columns[group.velocities()].iter().enumerate() {
-                let force = inertia * column;
+                let force = inertia.apply(column);
                 let row = group.velocity_offset + k;
                 // This joint and every joint above it on the way to the root.
                 let mut above = Some(group);
@@ -592,7 +641,7 @@ impl<A: Algebra> Mechanism<A> {
                 let rotation = kinematics[i].frame.rotation.matrix();
                 let f = rotation * external.l;
                 let n = rotation * external.t + s.offset.cross(&f);
-                s.inertia * acceleration[i] + force_cross(&s.velocity, &s.momentum) - join(n, f)
+                s.inertia.apply(&acceleration[i]) + force_cross(&s.velocity, &s.momentum) - join(n, f)
             })
             .collect();
         let mut tau = DVector::zeros(space.velocities);
@@ -613,7 +662,7 @@ impl<A: Algebra> Mechanism<A> {
     fn joint_bias(
         &self,
         group: &CoordinateGroup,
-        spatial: &[crate::mechanism::articulated::SpatialBody],
+        spatial: &[SpatialBody],
         columns: &[Vector6<f64>],
         kinematics: &[Kinematics<A>],
         origin: &Vector3<f64>,

@@ -19,6 +19,7 @@ mod joint;
 mod joint_space;
 mod reduce;
 mod solve;
+mod spatial;
 mod topology;
 
 use std::collections::HashSet;
@@ -37,7 +38,7 @@ use crate::motion::{BodyRates, Dynamics, Rates};
 use crate::motor;
 use crate::state::State;
 
-use articulated::{ArticulatedScratch, Articulation};
+use articulated::{ArticulatedScratch, Articulation, CouplingRow};
 use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
 pub use joint_space::{CoordinateGroup, JointSpace};
 use solve::{dot6, Consistency, SolveFailure, SystemMatrix};
@@ -205,6 +206,19 @@ pub struct Mechanism<A: Algebra> {
     articulation: Option<Articulation>,
     /// The coordinates of the joint models and free roots, if the joint models form a forest.
     joint_space: Option<JointSpace>,
+    /// Linear relations between joint coordinates (URDF mimics).
+    couplings: Vec<Coupling>,
+    /// The couplings' acceleration rows for the articulated solve.
+    coupling_rows: Vec<CouplingRow>,
+}
+
+/// `q_follower = multiplier · q_leader + offset` between two one-coordinate joint models (joint indices).
+#[derive(Clone, Debug, PartialEq)]
+struct Coupling {
+    follower: usize,
+    leader: usize,
+    multiplier: f64,
+    offset: f64,
 }
 
 impl<A: Algebra> fmt::Debug for Mechanism<A> {
@@ -263,6 +277,8 @@ pub struct MechanismWorkspace<A: Algebra> {
     /// basis the reduction chose): the projection after a step may use them as a chord (docs/mechanisms.md M5).
     stage_factors: bool,
     articulated: ArticulatedScratch,
+    /// The joint positions of the last projection by coordinates, so that angles read the next time unwrap from them.
+    previous_positions: Vec<f64>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -342,6 +358,8 @@ impl<A: Algebra> Mechanism<A> {
             topology: Topology::default(),
             articulation: None,
             joint_space: None,
+            couplings: Vec::new(),
+            coupling_rows: Vec::new(),
         }
     }
 
@@ -463,6 +481,7 @@ impl<A: Algebra> Mechanism<A> {
         let index = self.check_body(body)?;
         let reference = self.reference_index(index, reference.into(), constraint.name())?;
         let name = constraint.name().to_owned();
+        self.keep_couplings(&name)?;
         let (rank, rows) = (constraint.rank(), constraint.row_count());
         if rank == 0 || rank > rows.min(6) {
             return Err(ConstraintError::InvalidRank { name, rank, rows }.into());
@@ -571,11 +590,137 @@ impl<A: Algebra> Mechanism<A> {
             });
             JointId(self.joints.len() - 1)
         } else {
-            self.add_joint(child, parent, rows)?
+            let couplings = std::mem::take(&mut self.couplings);
+            let added = self.add_joint(child, parent, rows);
+            self.couplings = couplings;
+            added?
         };
         self.joints[id.0].model = Some(model);
         self.rebuild();
         Ok(id)
+    }
+
+    /// Couples two one-coordinate joint models, `q_follower = multiplier · q_leader + offset` (a URDF `<mimic>`):
+    /// a constraint between joint coordinates, which the articulated solve enforces at the acceleration level by a
+    /// joint-space row (docs/mechanisms.md §M7) and the projection at the position and velocity levels. It needs the
+    /// articulated solve (joint models in a tree, no Baumgarte stabilisation); a follower has one leader, and a
+    /// leader follows no joint.
+    ///
+    /// A gripper's second finger mirroring the first:
+    ///
+    /// ```
+    /// use dynamics::constraints::Stabilisation;
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::{Body, Force, Mechanism, Pga, Reference};
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let finger = Body::cuboid(0.05, Vector3::new(0.01, 0.01, 0.06))?;
+    /// let mut gripper = Mechanism::<Pga>::new();
+    /// let slide = |name: &str, x: f64, direction: f64| {
+    ///     let frame = Isometry3::translation(x, 0.0, 0.0);
+    ///     JointModel::new(name, JointKind::Prismatic { axis: Vector3::x() * direction }, frame, Isometry3::identity())
+    /// };
+    /// let left = gripper.add_body("left", finger)?;
+    /// let right = gripper.add_body("right", finger)?;
+    /// let leader = gripper.connect(left, Reference::World, slide("left", -0.02, -1.0)?)?;
+    /// let follower = gripper.connect(right, Reference::World, slide("right", 0.02, 1.0)?)?;
+    /// gripper.couple(follower, leader, 1.0, 0.0)?;
+    /// gripper.set_stabilisation(Stabilisation::PROJECTION)?;
+    /// gripper.add_force(left, Force::Line { force: Vector3::x() * -1.0, point: Vector3::zeros() })?; // opening, N
+    /// let states = gripper.states_from_joints(&[0.0, 0.0], &[0.0, 0.0])?;
+    /// let q_ddot = gripper.joint_accelerations(0.0, &states)?;
+    /// assert!((q_ddot[0] - 10.0).abs() < 1e-12 && (q_ddot[1] - 10.0).abs() < 1e-12); // m/s²: 1 N on 0.1 kg
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn couple(
+        &mut self,
+        follower: JointId,
+        leader: JointId,
+        multiplier: f64,
+        offset: f64,
+    ) -> Result<(), MechanismError> {
+        let name = |j: JointId| self.joints.get(j.0).map(|joint| joint.name().to_owned());
+        let (Some(follower_name), Some(leader_name)) = (name(follower), name(leader)) else {
+            let unknown = if follower.0 >= self.joints.len() {
+                follower.0
+            } else {
+                leader.0
+            };
+            return Err(MechanismError::UnknownJoint(unknown));
+        };
+        let refuse = |reason: String| -> Result<(), MechanismError> {
+            Err(ConstraintError::InvalidParameter {
+                name: format!("{follower_name} (following {leader_name})"),
+                reason,
+            }
+            .into())
+        };
+        for j in [follower, leader] {
+            match &self.joints[j.0].model {
+                Some(model) if model.kind().velocity_count() == 1 => {}
+                _ => {
+                    return refuse(format!(
+                        "{} must be a joint model with one coordinate",
+                        self.joints[j.0].name()
+                    ))
+                }
+            }
+        }
+        if follower == leader {
+            return refuse("a joint cannot follow itself".to_owned());
+        }
+        if self.joints[follower.0].model.as_ref().is_some_and(|m| m.is_driven()) {
+            return refuse("a driven joint cannot follow another".to_owned());
+        }
+        if !(multiplier.is_finite() && offset.is_finite()) {
+            return refuse(format!("multiplier {multiplier} and offset {offset} must be finite"));
+        }
+        if let Some(c) = self
+            .couplings
+            .iter()
+            .find(|c| c.follower == follower.0 || c.follower == leader.0 || c.leader == follower.0)
+        {
+            return refuse(format!(
+                "{} already follows {}; couplings do not chain and a joint follows one leader",
+                self.joints[c.follower].name(),
+                self.joints[c.leader].name()
+            ));
+        }
+        if self.articulation.is_none() {
+            return refuse(
+                "couplings need the articulated solve: every joint a joint model, in a tree, no Baumgarte stabilisation"
+                    .to_owned(),
+            );
+        }
+        self.couplings.push(Coupling {
+            follower: follower.0,
+            leader: leader.0,
+            multiplier,
+            offset,
+        });
+        self.coupling_rows = self
+            .couplings
+            .iter()
+            .map(|c| CouplingRow {
+                follower: c.follower,
+                leader: c.leader,
+                multiplier: c.multiplier,
+            })
+            .collect();
+        Ok(())
+    }
+
+    /// An error if `change` would leave couplings without the articulated solve they need.
+    fn keep_couplings(&self, change: &str) -> Result<(), ConstraintError> {
+        match self.couplings.first() {
+            Some(c) => Err(ConstraintError::InvalidParameter {
+                name: self.joints[c.follower].name().to_owned(),
+                reason: format!(
+                    "{change}: this mechanism couples joint coordinates, which needs every joint a joint model in a tree and no Baumgarte stabilisation"
+                ),
+            }),
+            None => Ok(()),
+        }
     }
 
     fn reference_index(&self, index: usize, reference: Reference, name: &str) -> Result<Option<usize>, MechanismError> {
@@ -597,6 +742,7 @@ impl<A: Algebra> Mechanism<A> {
     /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; theory §7.1 method 2)
     /// instead of the span of its rows. Rows the basis cannot express are reported as inconsistent.
     pub fn set_reaction_basis(&mut self, joint: JointId, wrenches: Vec<A::Screw>) -> Result<(), MechanismError> {
+        self.keep_couplings("reaction basis")?;
         let entry = self
             .joints
             .get_mut(joint.0)
@@ -625,6 +771,9 @@ impl<A: Algebra> Mechanism<A> {
                 reason,
             }
             .into());
+        }
+        if matches!(stabilisation, Stabilisation::Baumgarte { .. }) {
+            self.keep_couplings("Baumgarte stabilisation")?;
         }
         if matches!(stabilisation, Stabilisation::Projection { .. }) {
             if let Some(joint) = self.joints.iter().find(|j| !j.constraint.has_position_residual()) {
@@ -854,7 +1003,8 @@ impl<A: Algebra> Mechanism<A> {
             motors: vec![zero_motor; self.bodies.len()],
             momenta: vec![zero_screw; self.bodies.len()],
             stage_factors: false,
-            articulated: ArticulatedScratch::new(self.bodies.len(), self.joints.len()),
+            articulated: ArticulatedScratch::new(self.bodies.len(), self.joints.len(), self.couplings.len()),
+            previous_positions: Vec::new(),
         }
     }
 
@@ -1001,6 +1151,9 @@ impl<A: Algebra> Mechanism<A> {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
         }
+        if self.articulation.is_none() && !self.couplings.is_empty() {
+            self.keep_couplings("the general solve")?;
+        }
         if let Some(articulation) = &self.articulation {
             let MechanismWorkspace {
                 bodies,
@@ -1010,7 +1163,16 @@ impl<A: Algebra> Mechanism<A> {
                 ..
             } = workspace;
             articulation
-                .solve(t, &self.joints, &self.bodies, bodies, external, articulated, reactions)
+                .solve(
+                    t,
+                    &self.joints,
+                    &self.bodies,
+                    bodies,
+                    external,
+                    &self.coupling_rows,
+                    articulated,
+                    reactions,
+                )
                 .map_err(|body| ConstraintError::NonFinite {
                     name: self.names(self.topology.incidences[body].iter().map(|incidence| incidence.joint)),
                     t,
@@ -1077,10 +1239,14 @@ impl<A: Algebra> Mechanism<A> {
     pub fn violation(&self, t: f64, states: &[State<A>]) -> Result<Violation, ConstraintError> {
         let mut workspace = self.new_workspace();
         self.position_rows(t, states, &mut workspace, Rows::Residuals)?;
-        Ok(workspace.joints.iter().fold(Violation::default(), |v, rows| Violation {
-            position: v.position.max(rows.position_residual),
-            velocity: v.velocity.max(rows.velocity_residual),
-        }))
+        let (position, velocity) = self.coupling_violation(states);
+        Ok(workspace
+            .joints
+            .iter()
+            .fold(Violation { position, velocity }, |v, rows| Violation {
+                position: v.position.max(rows.position_residual),
+                velocity: v.velocity.max(rows.velocity_residual),
+            }))
     }
 
     /// The rates of every body at this state (Ḃ and dΩ/dt), or why the reactions could not be found: the
@@ -1165,7 +1331,7 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         if self.articulation.is_some() {
-            return self.project_coordinates(states);
+            return self.project_coordinates(states, &mut workspace.previous_positions);
         }
         for state in states.iter_mut() {
             state.motor = motor::normalise::<A>(state.motor);
