@@ -277,6 +277,8 @@ pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
     splitting: Option<KineticSplitting<'a, A>>,
     workspace: D::Workspace,
     buffers: Buffers<A>,
+    /// The work done by the non-conservative forces over the last successful step (J).
+    last_work: f64,
 }
 
 /// The per-body buffers of a step, sized once for the system.
@@ -299,6 +301,9 @@ struct Buffers<A: Algebra> {
     derivatives: Vec<Derivative<A>>,
     slopes: Vec<A::Screw>,
     momentum_slopes: Vec<A::Screw>,
+    /// Per stage: the system's non-conservative power ([`Dynamics::power`]), which the method's weights integrate
+    /// into the step's work, exactly as an extra state `ẇ = P` integrated by the same method.
+    powers: Vec<f64>,
 }
 
 impl<A: Algebra> Buffers<A> {
@@ -340,6 +345,7 @@ impl<A: Algebra> Buffers<A> {
             ],
             slopes: vec![zero_screw; stages * bodies],
             momentum_slopes: vec![zero_screw; stages * bodies],
+            powers: vec![0.0; stages],
         }
     }
 }
@@ -386,6 +392,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             splitting,
             workspace: dynamics.workspace(),
             buffers: Buffers::new(dynamics.body_count()),
+            last_work: 0.0,
         })
     }
 
@@ -397,6 +404,13 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
     /// The system being integrated.
     pub fn dynamics(&self) -> &'a D {
         self.dynamics
+    }
+
+    /// The work (J) the system's non-conservative forces (force elements other than springs: dampers, actuators,
+    /// controllers, couples) did over the last successful step, integrated with the method's own weights from the
+    /// power at each stage ([`Dynamics::power`]); zero before any step.
+    pub fn last_work(&self) -> f64 {
+        self.last_work
     }
 
     /// The system's workspace, for evaluations between steps.
@@ -460,11 +474,21 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             });
         if result.is_ok() {
             states.copy_from_slice(&next);
+            let weights: &[f64] = match self.integrator {
+                Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
+                Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
+                Integrator::General(Method::Rkmk8Body) => &COOPER_VERNER_8.b,
+                Integrator::Splitting(_) => &[],
+            };
+            self.last_work = dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>();
         }
         buffers.next = next;
         result
     }
 }
+
+/// The weights of the classic fourth-order stages (RK4 and the RKMK4 methods).
+const RK4_WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
 
 /// Refuses a step in which a body turns by more than [`MAX_TURN_PER_STEP`]: `start_slopes` are the first
 /// stage's `−½ dt Ḃ` of every body (every method stores them), whose angular part has length `½ |ω| dt`.
@@ -541,16 +565,21 @@ fn rk4<A: Algebra, D: Dynamics<A> + ?Sized>(
     let (k1, rest) = k.split_at_mut(n);
     let (k2, rest) = rest.split_at_mut(n);
     let (k3, k4) = rest.split_at_mut(n);
+    let powers = &mut buffers.powers;
     derivatives(dynamics, t, y, rates, k1, workspace)?;
+    powers[0] = dynamics.power(workspace);
     for (slope, rate) in buffers.slopes.iter_mut().zip(rates.iter()) {
         *slope = rate.body_velocity * (-0.5 * dt);
     }
     advance(stage, y, k1, half);
     derivatives(dynamics, t + half, stage, rates, k2, workspace)?;
+    powers[1] = dynamics.power(workspace);
     advance(stage, y, k2, half);
     derivatives(dynamics, t + half, stage, rates, k3, workspace)?;
+    powers[2] = dynamics.power(workspace);
     advance(stage, y, k3, dt);
     derivatives(dynamics, t + dt, stage, rates, k4, workspace)?;
+    powers[3] = dynamics.power(workspace);
     let sixth = dt / 6.0;
     for (i, state) in y.iter_mut().enumerate() {
         *state = State {
@@ -598,9 +627,11 @@ fn rkmk4<A: Algebra, D: Dynamics<A> + ?Sized>(
             rates,
             slopes,
             momentum_slopes,
+            powers,
             ..
         } = buffers;
         dynamics.rates(at, if first { &*y } else { &*stage }, rates, workspace)?;
+        powers[s] = dynamics.power(workspace);
         for (i, rate) in rates.iter().enumerate() {
             slopes[s * n + i] = rate.body_velocity * (-0.5 * dt);
             momentum_slopes[s * n + i] = rate.momentum_rate;
@@ -676,6 +707,7 @@ fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
         &mut buffers.body_rates,
         workspace,
     )?;
+    buffers.powers[s] = dynamics.power(workspace);
     for (i, (rates, &momentum)) in buffers.body_rates.iter().zip(&buffers.momenta).enumerate() {
         let velocity = rates.body_velocity;
         buffers.slopes[s * n + i] = velocity * (-0.5 * dt);

@@ -95,6 +95,12 @@ pub trait Dynamics<A: Algebra> {
     /// Total energy (kinetic + potential), for diagnostics.
     fn energy(&self, states: &[State<A>]) -> f64;
 
+    /// The power (W) the system's non-conservative forces put in at the last evaluation in `workspace`, which the
+    /// integrators integrate into the work done ([`crate::integrate::Stepper::last_work`]); zero by default.
+    fn power(&self, _workspace: &Self::Workspace) -> f64 {
+        0.0
+    }
+
     /// Whether [`Dynamics::body_rates`] reads the motors. A force-free body's rates do not, so the body-momentum
     /// integrators skip computing the motors of their stages (an exponential and a motor product each).
     fn rates_depend_on_motors(&self) -> bool {

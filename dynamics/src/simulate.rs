@@ -521,6 +521,10 @@ pub struct Sample {
     pub angular_velocity: Vector3<f64>,
     /// [`Dynamics::energy`] of the whole system.
     pub energy: f64,
+    /// The work done on the system since the start by its non-conservative forces (dampers, actuators,
+    /// controllers; [`Dynamics::power`] integrated by the method): `energy − energy at the start` equals it up to the
+    /// integration error (and the projection's drift corrections).
+    pub work: f64,
 }
 
 /// A finished run.
@@ -559,7 +563,12 @@ impl<A: Algebra> Simulation<A> {
 
 /// Appends the sample of every body at `t`: pose from the motor (theory §2), velocities from the body velocity
 /// `Ḃ = M⁻¹[~RΩR]` turned into world axes.
-fn record<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, states: &[State<A>], bodies: &mut [Vec<Sample>]) {
+fn record<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    (t, work): (f64, f64),
+    states: &[State<A>],
+    bodies: &mut [Vec<Sample>],
+) {
     let energy = dynamics.energy(states);
     for (index, (state, samples)) in states.iter().zip(bodies).enumerate() {
         let (position, orientation) = state.pose();
@@ -571,6 +580,7 @@ fn record<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, t: f64, states: &[S
             velocity: orientation * velocity.t,
             angular_velocity: orientation * velocity.l,
             energy,
+            work,
         });
     }
 }
@@ -706,7 +716,9 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     // record before its first step (10⁷ samples of 64 bodies would be 77 GB).
     let reserved = sample_count.min(RESERVED_SAMPLES);
     let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
-    record(dynamics, 0.0, initial, &mut bodies);
+    record(dynamics, (0.0, 0.0), initial, &mut bodies);
+    // The work done up to `state`'s time.
+    let mut work = 0.0;
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     let mut values = events
         .iter_mut()
@@ -726,6 +738,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         let end = t + h;
         next.copy_from_slice(&state);
         stepper.step(t, &mut next, h)?;
+        let step_work = stepper.last_work();
         steps += 1;
         // Events in (t, end]: the earliest terminal one ends the run.
         let mut terminal: Option<(f64, usize, Vec<State<A>>)> = None;
@@ -769,12 +782,12 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             let at_end = (time - end).abs() <= SAME_TIME * h;
             if at_end && terminal.is_none() {
                 clock.stop();
-                record(dynamics, time, &next, &mut bodies);
+                record(dynamics, (time, work + step_work), &next, &mut bodies);
             } else if !at_end && time < limit {
                 probe.copy_from_slice(&state);
                 stepper.step(t, &mut probe, time - t)?;
                 clock.stop();
-                record(dynamics, time, &probe, &mut bodies);
+                record(dynamics, (time, work + stepper.last_work()), &probe, &mut bodies);
             } else {
                 break;
             }
@@ -785,18 +798,22 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         if let Some((time, index, states)) = terminal {
             clock.stop();
             if last_recorded != time {
-                record(dynamics, time, &states, &mut bodies);
+                // The work up to the crossing: the partial step to it once more.
+                probe.copy_from_slice(&state);
+                stepper.step(t, &mut probe, time - t)?;
+                record(dynamics, (time, work + stepper.last_work()), &states, &mut bodies);
             }
             state = states;
             stopped = Some(Stop::Event(index));
             break;
         }
         std::mem::swap(&mut state, &mut next);
+        work += step_work;
         if let Some(observer) = observer.as_mut() {
             clock.stop();
             if observer(end, &state).is_break() {
                 if last_recorded != end {
-                    record(dynamics, end, &state, &mut bodies);
+                    record(dynamics, (end, work), &state, &mut bodies);
                 }
                 stopped = Some(Stop::Observer);
                 break;

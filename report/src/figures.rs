@@ -360,6 +360,7 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
                     velocity: s.velocity,
                     angular_velocity: s.angular_velocity,
                     energy: 0.0,
+                    work: 0.0,
                 })
             })
             .collect();

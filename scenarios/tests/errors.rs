@@ -31,6 +31,7 @@ fn a_run_off_the_reference_grid_cannot_be_measured() {
         velocity: Vector3::zeros(),
         angular_velocity: Vector3::zeros(),
         energy: 0.0,
+        work: 0.0,
     };
     let bodies = vec![vec![sample(0.0), sample(0.005)]; MechanismId::DoublePendulum.bodies()];
     let error = measure(MechanismId::DoublePendulum, &bodies).unwrap_err();

@@ -11,7 +11,7 @@
 
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Vector3, Vector6};
 
-use crate::algebra::Algebra;
+use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
 use crate::joints::{JointKind, JointModel, Side};
 use crate::mechanism::articulated::{axis_column, axis_rate};
@@ -634,10 +634,15 @@ impl<A: Algebra> Mechanism<A> {
             }
             acceleration[group.body] = a;
         }
+        // The external wrenches: the bodies' forces and the force elements that are not actuators.
+        let mut external: Vec<ScrewCoordinates> = (0..self.bodies.len())
+            .map(|i| self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum)))
+            .collect();
+        self.apply_elements(t, &|i: usize| &kinematics[i], &mut external, false)?;
         let mut force: Vec<Vector6<f64>> = (0..self.bodies.len())
             .map(|i| {
                 let s = &spatial[i];
-                let external = self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum));
+                let external = &external[i];
                 let rotation = kinematics[i].frame.rotation.matrix();
                 let f = rotation * external.l;
                 let n = rotation * external.t + s.offset.cross(&f);

@@ -15,6 +15,7 @@
 //! for constrained bodies.
 
 mod articulated;
+mod elements;
 mod joint;
 mod joint_space;
 mod reduce;
@@ -32,6 +33,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::body::{Body, PrincipalFrame};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation};
 use crate::exponential::exp;
+use crate::force_elements::ForceElement;
 use crate::forces::Force;
 use crate::joints::{JointKind, JointModel, Unconstrained};
 use crate::motion::{BodyRates, Dynamics, Rates};
@@ -210,6 +212,8 @@ pub struct Mechanism<A: Algebra> {
     couplings: Vec<Coupling>,
     /// The couplings' acceleration rows for the articulated solve.
     coupling_rows: Vec<CouplingRow>,
+    /// Forces between bodies (docs/mechanisms.md §M8).
+    elements: Vec<ForceElement<A>>,
 }
 
 /// `q_follower = multiplier · q_leader + offset` between two one-coordinate joint models (joint indices).
@@ -279,6 +283,10 @@ pub struct MechanismWorkspace<A: Algebra> {
     articulated: ArticulatedScratch,
     /// The joint positions of the last projection by coordinates, so that angles read the next time unwrap from them.
     previous_positions: Vec<f64>,
+    /// The force elements' non-conservative power at the last evaluation (W).
+    power: f64,
+    /// The force elements' wrench on each body at the last evaluation (body frame; also in `external`).
+    element_wrenches: Vec<ScrewCoordinates>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -360,6 +368,7 @@ impl<A: Algebra> Mechanism<A> {
             joint_space: None,
             couplings: Vec::new(),
             coupling_rows: Vec::new(),
+            elements: Vec::new(),
         }
     }
 
@@ -1005,6 +1014,8 @@ impl<A: Algebra> Mechanism<A> {
             stage_factors: false,
             articulated: ArticulatedScratch::new(self.bodies.len(), self.joints.len(), self.couplings.len()),
             previous_positions: Vec::new(),
+            power: 0.0,
+            element_wrenches: vec![ScrewCoordinates::default(); self.bodies.len()],
         }
     }
 
@@ -1017,26 +1028,46 @@ impl<A: Algebra> Mechanism<A> {
         body_momenta: &[A::Screw],
         workspace: &mut MechanismWorkspace<A>,
         terms: BodyTerms,
-    ) {
+    ) -> Result<(), ConstraintError> {
         for (i, entry) in self.bodies.iter().enumerate() {
             let velocity = entry.body.velocity::<A>(body_momenta[i]);
             // Written in place (the kinematics are a few hundred bytes, built for every body at every evaluation).
             let body = &mut workspace.bodies[i];
             body.kinematics = Kinematics::new(t, motors[i], velocity);
-            if terms == BodyTerms::Kinematics {
-                body.free_acceleration = [0.0; 6];
-                continue;
+            body.free_acceleration = [0.0; 6];
+            if terms != BodyTerms::Kinematics {
+                workspace.external[i] = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
             }
-            let external = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
-            workspace.external[i] = external;
-            body.free_acceleration = if terms == BodyTerms::FreeAccelerations {
-                let drive = A::screw_coordinates(A::commutator(velocity, body_momenta[i])) + external;
-                let g = wrench_coordinates(&drive);
-                std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k])
-            } else {
-                [0.0; 6]
-            };
         }
+        workspace.power = 0.0;
+        if terms == BodyTerms::Kinematics {
+            return Ok(());
+        }
+        if !self.elements.is_empty() {
+            let MechanismWorkspace {
+                bodies,
+                external,
+                element_wrenches,
+                ..
+            } = workspace;
+            element_wrenches
+                .iter_mut()
+                .for_each(|w| *w = ScrewCoordinates::default());
+            let kinematics = |i: usize| &bodies[i].kinematics;
+            workspace.power = self.apply_elements(t, &kinematics, element_wrenches, true)?;
+            for (total, element) in external.iter_mut().zip(element_wrenches.iter()) {
+                *total = *total + *element;
+            }
+        }
+        if terms == BodyTerms::FreeAccelerations {
+            for (i, body) in workspace.bodies.iter_mut().enumerate() {
+                let drive = A::screw_coordinates(A::commutator(body.kinematics.body_velocity, body_momenta[i]))
+                    + workspace.external[i];
+                let g = wrench_coordinates(&drive);
+                body.free_acceleration = std::array::from_fn(|k| g[k] * workspace.inverse_metric[i][k]);
+            }
+        }
+        Ok(())
     }
 
     /// Every joint's reduced rows at the bodies' kinematics.
@@ -1146,7 +1177,7 @@ impl<A: Algebra> Mechanism<A> {
         } else {
             BodyTerms::FreeAccelerations
         };
-        self.body_kinematics(t, motors, body_momenta, workspace, terms);
+        self.body_kinematics(t, motors, body_momenta, workspace, terms)?;
         if self.joints.is_empty() {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
@@ -1211,9 +1242,11 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
-    /// The kinetic plus potential energy of the system.
+    /// The kinetic plus potential energy of the system: the bodies' kinetic energies, their forces' potentials
+    /// (gravity) and the conservative force elements' (springs).
     pub fn energy(&self, states: &[State<A>]) -> f64 {
-        self.bodies
+        let bodies: f64 = self
+            .bodies
             .iter()
             .zip(states)
             .map(|(entry, state)| {
@@ -1224,7 +1257,11 @@ impl<A: Algebra> Mechanism<A> {
                         .map(|f| f.potential_energy(&entry.body, state))
                         .sum::<f64>()
             })
-            .sum()
+            .sum();
+        if self.elements.is_empty() || states.len() != self.bodies.len() {
+            return bodies;
+        }
+        bodies + self.elements_potential(states)
     }
 
     /// The total momentum `Σ Ωᵢ` (world frame): linear momentum in the l-part, angular momentum about the world
@@ -1302,7 +1339,7 @@ impl<A: Algebra> Mechanism<A> {
         }
         let motors = std::mem::take(&mut workspace.motors);
         let momenta = std::mem::take(&mut workspace.momenta);
-        self.body_kinematics(t, &motors, &momenta, workspace, BodyTerms::Kinematics);
+        self.body_kinematics(t, &motors, &momenta, workspace, BodyTerms::Kinematics)?;
         workspace.motors = motors;
         workspace.momenta = momenta;
         self.joint_rows(t, workspace, purpose)
@@ -1580,7 +1617,12 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         result?;
         for (i, (rate, state)) in rates.iter_mut().zip(states).enumerate() {
             let kinematics = &workspace.bodies[i].kinematics;
-            let reaction = A::screw(kinematics.to_world_coordinates(&wrench_screw(&workspace.reactions[i])));
+            // The reactions and the force elements' wrenches, body frame, moved to the world together.
+            let mut internal = wrench_screw(&workspace.reactions[i]);
+            if !self.elements.is_empty() {
+                internal = internal + workspace.element_wrenches[i];
+            }
+            let reaction = A::screw(kinematics.to_world_coordinates(&internal));
             *rate = Rates {
                 body_velocity: kinematics.body_velocity,
                 momentum_rate: self.external_wrench(i, t, state, kinematics) + reaction,
@@ -1631,6 +1673,10 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     fn energy(&self, states: &[State<A>]) -> f64 {
         Mechanism::energy(self, states)
+    }
+
+    fn power(&self, workspace: &MechanismWorkspace<A>) -> f64 {
+        workspace.power
     }
 
     fn conserves_world_momenta(&self) -> bool {
