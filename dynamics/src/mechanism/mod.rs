@@ -1680,6 +1680,6 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     }
 
     fn conserves_world_momenta(&self) -> bool {
-        self.joints.is_empty() && self.bodies.iter().all(|body| body.forces.is_empty())
+        self.joints.is_empty() && self.elements.is_empty() && self.bodies.iter().all(|body| body.forces.is_empty())
     }
 }
