@@ -3,7 +3,7 @@
 //! as a full inertia tensor in some other frame (a CAD part's) is diagonalised into that form, keeping where
 //! the principal frame sits ([`Body::from_inertia_tensor`]).
 
-use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// The largest mass (kg) or principal moment (kg m²) a body may have: the weight `m g`, the momenta and energies
 /// multiply these by positions and velocities, and a mass of 1e308 kg overflowed its weight to infinity (then
@@ -154,10 +154,14 @@ impl Body {
         let d = centre_of_mass - about;
         let central =
             (inertia + inertia.transpose()) * 0.5 - (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * mass;
-        let SymmetricEigen {
-            eigenvalues,
-            mut eigenvectors,
-        } = SymmetricEigen::new(central);
+        // Jacobi rotations rather than nalgebra's `SymmetricEigen`, whose eigenvectors can miss the tensor by 5e-9
+        // relative when two moments are close (0.08981 and 0.08991 kg m²; nalgebra issue #1109): the body must
+        // keep the inertia it was given (`scenarios/tests/joint_space.rs`).
+        let mut eigenvectors = central;
+        let mut values = [0.0; 3];
+        let mut work = [0.0; 9];
+        crate::mechanism::symmetric_eigen(eigenvectors.as_mut_slice(), &mut values, &mut work, 3);
+        let eigenvalues = Vector3::from(values);
         if eigenvectors.determinant() < 0.0 {
             eigenvectors.column_mut(2).neg_mut();
         }

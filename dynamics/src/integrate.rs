@@ -24,6 +24,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::ConstraintError;
 use crate::exponential::exp;
 use crate::forces::Force;
+use crate::joint_integration::{self, JointBuffers, JointMethod};
 use crate::motion::{to_body, to_world, BodyRates, Dynamics, FreeBody, Rates};
 use crate::motor;
 use crate::state::{State, MAX_COORDINATE};
@@ -120,13 +121,17 @@ impl SplittingMethod {
     }
 }
 
-/// Any integrator: a general [`Method`] or a [`SplittingMethod`] (free bodies only).
+/// Any integrator: a general [`Method`], a [`SplittingMethod`] (free bodies only) or a [`JointMethod`]
+/// (mechanisms of joint models in a tree).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Integrator {
     /// A general method, for any system.
     General(Method),
     /// A splitting method, for a single free body whose forces depend on the configuration only.
     Splitting(SplittingMethod),
+    /// A method that steps in joint coordinates, for a mechanism whose joints are joint models in a tree
+    /// (`crate::joint_integration`).
+    Joint(JointMethod),
 }
 
 impl Integrator {
@@ -146,6 +151,7 @@ impl Integrator {
         match self {
             Integrator::General(method) => method.name(),
             Integrator::Splitting(method) => method.name(),
+            Integrator::Joint(method) => method.name(),
         }
     }
 
@@ -154,6 +160,7 @@ impl Integrator {
         match self {
             Integrator::General(method) => method.order(),
             Integrator::Splitting(method) => method.order(),
+            Integrator::Joint(method) => method.order(),
         }
     }
 }
@@ -167,6 +174,12 @@ impl From<Method> for Integrator {
 impl From<SplittingMethod> for Integrator {
     fn from(method: SplittingMethod) -> Self {
         Integrator::Splitting(method)
+    }
+}
+
+impl From<JointMethod> for Integrator {
+    fn from(method: JointMethod) -> Self {
+        Integrator::Joint(method)
     }
 }
 
@@ -206,6 +219,14 @@ pub enum StepError {
     /// A splitting method was asked of a system it cannot integrate (when the stepper is made).
     #[error(transparent)]
     Splitting(#[from] SplittingError),
+    /// A method stepping in joint coordinates was asked of a system without them (when the stepper is made).
+    #[error(
+        "{method} steps in joint coordinates: it needs a mechanism whose joints are all joint models (Mechanism::connect) in a tree, without Baumgarte stabilisation"
+    )]
+    NoJointCoordinates {
+        /// The method's name.
+        method: &'static str,
+    },
     /// An evaluation of the equations of motion (or the projection after the step) failed; the error names the
     /// joints or constraints involved.
     #[error("at t = {t}: {error}")]
@@ -277,6 +298,8 @@ pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
     splitting: Option<KineticSplitting<'a, A>>,
     workspace: D::Workspace,
     buffers: Buffers<A>,
+    /// The buffers of a method stepping in joint coordinates.
+    joints: Option<JointBuffers<A>>,
     /// The work done by the non-conservative forces over the last successful step (J).
     last_work: f64,
 }
@@ -379,8 +402,17 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
     /// ```
     pub fn new(dynamics: &'a D, integrator: impl Into<Integrator>) -> Result<Self, StepError> {
         let integrator = integrator.into();
+        let joints = match integrator {
+            Integrator::Joint(method) => {
+                let layout = dynamics
+                    .joint_layout()
+                    .ok_or(StepError::NoJointCoordinates { method: method.name() })?;
+                Some(JointBuffers::new(layout, COOPER_VERNER_8.b.len()))
+            }
+            _ => None,
+        };
         let splitting = match integrator {
-            Integrator::General(_) => None,
+            Integrator::General(_) | Integrator::Joint(_) => None,
             Integrator::Splitting(_) => {
                 let free = dynamics.as_free_body().ok_or(SplittingError::NotAFreeBody)?;
                 Some(KineticSplitting::new(free)?)
@@ -392,6 +424,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             splitting,
             workspace: dynamics.workspace(),
             buffers: Buffers::new(dynamics.body_count()),
+            joints,
             last_work: 0.0,
         })
     }
@@ -463,8 +496,39 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 buffers.next = next;
                 return Err(SplittingError::NotAFreeBody.into());
             }
+            (Integrator::Joint(method), _) => {
+                // The turn check reads the start's body velocities, as every method's first stage stores them.
+                for (index, (slope, state)) in buffers.slopes.iter_mut().zip(next.iter()).enumerate() {
+                    *slope = state.body_velocity(dynamics.body(index)) * (-0.5 * dt);
+                }
+                let joints = self.joints.as_mut().expect("made with the stepper");
+                let powers = &mut buffers.powers;
+                match method {
+                    JointMethod::Rkmk4 => {
+                        let tableau = (&RK4.a, &RK4.b, &RK4.c, RK4.order);
+                        joint_integration::step(tableau, dynamics, t, &mut next, dt, joints, powers, workspace)
+                    }
+                    JointMethod::Rkmk6 => {
+                        let tableau = (&BUTCHER_6.a, &BUTCHER_6.b, &BUTCHER_6.c, BUTCHER_6.order);
+                        joint_integration::step(tableau, dynamics, t, &mut next, dt, joints, powers, workspace)
+                    }
+                    JointMethod::Rkmk8 => {
+                        let tableau = (
+                            &COOPER_VERNER_8.a,
+                            &COOPER_VERNER_8.b,
+                            &COOPER_VERNER_8.c,
+                            COOPER_VERNER_8.order,
+                        );
+                        joint_integration::step(tableau, dynamics, t, &mut next, dt, joints, powers, workspace)
+                    }
+                }
+            }
         }
-        .and_then(|()| dynamics.after_step(t + dt, &mut next, workspace));
+        // Stepping in joint coordinates ends on the joints (forward kinematics): no projection.
+        .and_then(|()| match self.integrator {
+            Integrator::Joint(_) => Ok(()),
+            _ => dynamics.after_step(t + dt, &mut next, workspace),
+        });
         let result = result
             .map_err(|error| StepError::Constraint { t, error })
             .and_then(|()| check_turn::<A>(&buffers.slopes[..expected], t, dt))
@@ -477,7 +541,9 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             let weights: &[f64] = match self.integrator {
                 Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
                 Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
-                Integrator::General(Method::Rkmk8Body) => &COOPER_VERNER_8.b,
+                Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
+                Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
+                Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
                 Integrator::Splitting(_) => &[],
             };
             self.last_work = dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>();
@@ -779,6 +845,19 @@ struct Tableau<const S: usize> {
     order: u32,
 }
 
+/// The classic fourth-order tableau (for [`JointMethod::Rkmk4`]; the body methods write its stages out).
+const RK4: Tableau<4> = Tableau {
+    a: [
+        [0.0; 4],
+        [0.5, 0.0, 0.0, 0.0],
+        [0.0, 0.5, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+    ],
+    b: RK4_WEIGHTS,
+    c: [0.0, 0.5, 0.5, 1.0],
+    order: 4,
+};
+
 /// Butcher's 7-stage method of order 6 (J. C. Butcher, "On Runge–Kutta processes of high order", J. Austral.
 /// Math. Soc. 4, 1964; the tableau as printed in his "Numerical Methods for Ordinary Differential Equations").
 /// `integrate::tests::butcher_6_satisfies_the_order_conditions` checks all 37 order conditions up to order 6.
@@ -960,13 +1039,17 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     }
     for s in 0..S {
         for b in 0..n {
-            let (sigma, momentum) = (0..s).fold((zero, buffers.start_momenta[b]), |(sigma, m), j| {
-                let a = tableau.a[s][j];
-                (
-                    sigma + buffers.slopes[j * n + b] * a,
-                    m + buffers.momentum_slopes[j * n + b] * (a * dt),
-                )
-            });
+            // The high-order tableaux are sparse: a zero coefficient adds nothing.
+            let (sigma, momentum) =
+                (0..s)
+                    .filter(|&j| tableau.a[s][j] != 0.0)
+                    .fold((zero, buffers.start_momenta[b]), |(sigma, m), j| {
+                        let a = tableau.a[s][j];
+                        (
+                            sigma + buffers.slopes[j * n + b] * a,
+                            m + buffers.momentum_slopes[j * n + b] * (a * dt),
+                        )
+                    });
             buffers.sigmas[b] = sigma;
             buffers.momenta[b] = momentum;
         }
@@ -979,13 +1062,16 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
         }
     }
     for (b, state) in y.iter_mut().enumerate() {
-        let (sigma, momentum) = (0..S).fold((zero, buffers.start_momenta[b]), |(sigma, m), s| {
-            let weight = tableau.b[s];
-            (
-                sigma + buffers.slopes[s * n + b] * weight,
-                m + buffers.momentum_slopes[s * n + b] * (weight * dt),
-            )
-        });
+        let (sigma, momentum) =
+            (0..S)
+                .filter(|&s| tableau.b[s] != 0.0)
+                .fold((zero, buffers.start_momenta[b]), |(sigma, m), s| {
+                    let weight = tableau.b[s];
+                    (
+                        sigma + buffers.slopes[s * n + b] * weight,
+                        m + buffers.momentum_slopes[s * n + b] * (weight * dt),
+                    )
+                });
         let motor = A::compose(state.motor, exp::<A>(sigma));
         *state = end_of_body_step(conserving, state, motor, momentum);
     }

@@ -151,6 +151,8 @@ pub struct JointModel {
     child_frame: Isometry3<f64>,
     drive: Option<Arc<dyn Path<f64>>>,
     axes: ArrayVec<JointAxis, 6>,
+    /// `child_frame⁻¹`, kept for forward kinematics.
+    child_inverse: Isometry3<f64>,
 }
 
 impl fmt::Debug for JointModel {
@@ -320,6 +322,7 @@ impl JointModel {
             child_frame,
             drive: None,
             axes: ArrayVec::new(),
+            child_inverse: child_frame.inverse(),
         };
         model.axes = model.joint_axes();
         Ok(model)
@@ -492,7 +495,7 @@ impl JointModel {
     /// The child's body frame in the parent's body frame at joint positions `q`:
     /// `parent_frame · J(q) · child_frame⁻¹`.
     pub fn relative_pose(&self, q: &[f64]) -> Result<Isometry3<f64>, ConstraintError> {
-        Ok(self.parent_frame * self.joint_pose(q)? * self.child_frame.inverse())
+        Ok(self.parent_frame * self.joint_pose(q)? * self.child_inverse)
     }
 
     /// The joint positions of a relative pose `J` (the child's joint frame in the parent's joint frame), the

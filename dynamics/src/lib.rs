@@ -42,6 +42,7 @@ pub mod force_elements;
 pub mod forces;
 pub mod inertia;
 pub mod integrate;
+pub mod joint_integration;
 pub mod joints;
 pub mod mechanism;
 pub mod motion;
@@ -59,6 +60,7 @@ pub use constraints::{Constraint, ConstraintError, Stabilisation};
 pub use force_elements::{ForceElement, JointState, OfTime};
 pub use forces::Force;
 pub use integrate::{Integrator, KineticSplitting, Method, SplittingMethod, StepError, Stepper};
+pub use joint_integration::JointMethod;
 pub use joints::{JointKind, JointModel};
 pub use mechanism::{
     BodyId, CoordinateGroup, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings, Violation,

@@ -95,6 +95,47 @@ pub trait Dynamics<A: Algebra> {
     /// Total energy (kinetic + potential), for diagnostics.
     fn energy(&self, states: &[State<A>]) -> f64;
 
+    /// Where the system's joint coordinates are, for the methods that step in them
+    /// ([`crate::joint_integration::JointMethod`]); `None` (the default) for a system without them.
+    fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
+        None
+    }
+
+    /// The joint positions and velocities of `states` (for [`Dynamics::joint_layout`]'s systems).
+    fn read_joints(
+        &self,
+        _states: &[State<A>],
+        _positions: &mut [f64],
+        _velocities: &mut [f64],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError> {
+        Err(no_joint_coordinates())
+    }
+
+    /// The bodies' states at joint positions and velocities, at time `t`.
+    fn write_joints(
+        &self,
+        _t: f64,
+        _positions: &[f64],
+        _velocities: &[f64],
+        _states: &mut [State<A>],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError> {
+        Err(no_joint_coordinates())
+    }
+
+    /// The joint accelerations at joint positions and velocities, at time `t`.
+    fn joint_rates(
+        &self,
+        _t: f64,
+        _positions: &[f64],
+        _velocities: &[f64],
+        _accelerations: &mut [f64],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError> {
+        Err(no_joint_coordinates())
+    }
+
     /// The power (W) the system's non-conservative forces put in at the last evaluation in `workspace`, which the
     /// integrators integrate into the work done ([`crate::integrate::Stepper::last_work`]); zero by default.
     fn power(&self, _workspace: &Self::Workspace) -> f64 {
@@ -116,6 +157,13 @@ pub trait Dynamics<A: Algebra> {
     /// The system as a single free body, if it is one (the splitting integrators need its structure).
     fn as_free_body(&self) -> Option<&FreeBody<A>> {
         None
+    }
+}
+
+fn no_joint_coordinates() -> ConstraintError {
+    ConstraintError::InvalidParameter {
+        name: "joint coordinates".to_owned(),
+        reason: "this system has no joint coordinates to step in".to_owned(),
     }
 }
 

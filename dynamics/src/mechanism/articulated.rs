@@ -95,6 +95,8 @@ struct JointTerms {
     force: [f64; 6],
     /// The joint accelerations q̈ of the free columns.
     rates: [f64; 6],
+    /// A driven joint's prescribed q̈ (its one column is not free).
+    prescribed: f64,
 }
 
 impl Default for JointTerms {
@@ -107,6 +109,7 @@ impl Default for JointTerms {
             inverse: [0.0; 36],
             force: [0.0; 6],
             rates: [0.0; 6],
+            prescribed: 0.0,
         }
     }
 }
@@ -123,6 +126,10 @@ pub(crate) struct CouplingRow {
 /// The articulated solve's scratch, sized once per run.
 #[derive(Clone, Debug)]
 pub(crate) struct ArticulatedScratch {
+    /// The reference point o of the last solve.
+    origin: Vector3<f64>,
+    /// Whether the last solve added couplings' forces (then the joints' rates of the forward pass are not final).
+    coupled: bool,
     bodies: Vec<BodyTerms>,
     joints: Vec<JointTerms>,
     /// Per coupling: every body's acceleration under a unit coupling force, and every joint's first rate.
@@ -143,6 +150,8 @@ impl ArticulatedScratch {
             offset: Vector3::zeros(),
         };
         ArticulatedScratch {
+            origin: Vector3::zeros(),
+            coupled: false,
             bodies: vec![body; bodies],
             joints: vec![JointTerms::default(); joints],
             responses: vec![vec![Vector6::zeros(); bodies]; couplings],
@@ -234,6 +243,45 @@ fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
         }
     }
     true
+}
+
+impl ArticulatedScratch {
+    /// The reference point o of the last solve.
+    pub fn origin(&self) -> Vector3<f64> {
+        self.origin
+    }
+
+    /// A body's spatial acceleration at the last solve (world axes, about o).
+    pub fn acceleration(&self, body: usize) -> &Vector6<f64> {
+        &self.bodies[body].acceleration
+    }
+
+    /// Joint j's accelerations q̈ at the last solve (between child and parent bodies), the shares `Sᵀ` of
+    /// `a_c − a_p − c` (exact: the directions of one kind are orthonormal), plus a driven joint's prescribed q̈.
+    pub fn joint_accelerations(
+        &self,
+        j: usize,
+        child: usize,
+        parent: Option<usize>,
+        axes: &[JointAxis],
+        through: &Vector3<f64>,
+        out: &mut [f64],
+    ) {
+        let terms = &self.joints[j];
+        if !self.coupled && terms.free == axes.len() {
+            // The forward pass's q̈ = D⁻¹(u − Uᵀa'), exact as they are.
+            out.copy_from_slice(&terms.rates[..axes.len()]);
+            return;
+        }
+        let parent = parent.map_or_else(Vector6::zeros, |p| self.bodies[p].acceleration);
+        let relative = self.bodies[child].acceleration - parent - terms.bias_acceleration;
+        for (k, (axis, value)) in axes.iter().zip(out.iter_mut()).enumerate() {
+            *value = axis_rate(&terms.columns[k], axis.motion, &relative, through);
+        }
+        if terms.free == 0 && !axes.is_empty() {
+            out[0] += terms.prescribed;
+        }
+    }
 }
 
 /// A child's articulated inertia and bias projected through its joint (Featherstone's articulated-body step):
@@ -353,7 +401,8 @@ impl Articulation {
                         let saved = terms.rates;
                         let force = terms.force;
                         let a = joint_acceleration(terms, parent, &force);
-                        scratch.response_rates[k][j] = terms.rates[0];
+                        // A driven joint's rate is prescribed: no response.
+                        scratch.response_rates[k][j] = if terms.free > 0 { terms.rates[0] } else { 0.0 };
                         terms.rates = saved;
                         a
                     }
@@ -365,7 +414,14 @@ impl Articulation {
         let mut rhs = nalgebra::DVector::zeros(r);
         for (i, row) in couplings.iter().enumerate() {
             let rate = |rates: &dyn Fn(usize) -> f64| rates(row.follower) - row.multiplier * rates(row.leader);
-            rhs[i] = -rate(&|j| scratch.joints[j].rates[0]);
+            rhs[i] = -rate(&|j| {
+                let terms = &scratch.joints[j];
+                if terms.free > 0 {
+                    terms.rates[0]
+                } else {
+                    terms.prescribed
+                }
+            });
             for k in 0..r {
                 gram[(i, k)] = rate(&|j| scratch.response_rates[k][j]);
             }
@@ -386,10 +442,10 @@ impl Articulation {
             .map_or_else(Vector3::zeros, |&b| bodies[b].kinematics.frame.position)
     }
 
-    /// Every body's reaction (the joints' wrench on it) in its own frame, as wrench coordinates `(τ; f)`, from the
-    /// bodies' kinematics and their external wrenches (body frames, moments about the centre of mass), by the
-    /// articulated-body recursion (docs/mechanisms.md §M7). `t` times the drives. Fails with the body whose
-    /// articulated inertia is not positive definite.
+    /// Every body's acceleration (in `scratch`) and, if asked, its reaction (the joints' wrench on it) in its own
+    /// frame, as wrench coordinates `(τ; f)`, from the bodies' kinematics and their external wrenches (body frames,
+    /// moments about the centre of mass), by the articulated-body recursion (docs/mechanisms.md §M7). `t` times the
+    /// drives. Fails with the body whose articulated inertia is not positive definite.
     #[allow(clippy::too_many_arguments)]
     pub fn solve<A: Algebra>(
         &self,
@@ -400,9 +456,10 @@ impl Articulation {
         external: &[ScrewCoordinates],
         couplings: &[CouplingRow],
         scratch: &mut ArticulatedScratch,
-        reactions: &mut [[f64; 6]],
+        reactions: Option<&mut [[f64; 6]]>,
     ) -> Result<(), usize> {
         let origin = self.origin(bodies);
+        scratch.origin = origin;
         for (i, terms) in scratch.bodies.iter_mut().enumerate() {
             let kinematics = &bodies[i].kinematics;
             let spatial = spatial_body(&masses[i].body, kinematics, &origin);
@@ -448,9 +505,11 @@ impl Articulation {
                 terms.columns[k] = column;
             }
             terms.free = axes.len();
+            terms.prescribed = 0.0;
             if let Some(drive) = model.drive_at(t) {
                 bias += terms.columns[0] * drive.acceleration;
                 terms.free = 0;
+                terms.prescribed = drive.acceleration;
             }
             terms.bias_acceleration = bias;
         }
@@ -505,9 +564,13 @@ impl Articulation {
             };
             scratch.bodies[body].acceleration = acceleration;
         }
-        if !couplings.is_empty() {
+        scratch.coupled = !couplings.is_empty();
+        if scratch.coupled {
             self.couple(couplings, scratch).map_err(|_| self.order[0])?;
         }
+        let Some(reactions) = reactions else {
+            return Ok(());
+        };
         for (i, out) in reactions.iter_mut().enumerate() {
             let terms = &scratch.bodies[i];
             let kinematics = &bodies[i].kinematics;

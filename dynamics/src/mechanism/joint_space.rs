@@ -16,7 +16,7 @@ use crate::constraints::{ConstraintError, Kinematics};
 use crate::joints::{JointKind, JointModel, Side};
 use crate::mechanism::articulated::{axis_column, axis_rate};
 use crate::mechanism::spatial::{force_cross, motion_cross, spatial_body, Inertia6, SpatialBody};
-use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError};
+use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError, MechanismWorkspace};
 use crate::motor;
 use crate::state::State;
 
@@ -202,6 +202,29 @@ impl JointSpace {
             .collect()
     }
 
+    /// The coordinates by kind, for the methods that step in them (`joint_integration`).
+    pub(crate) fn layout(&self) -> crate::joint_integration::JointLayout {
+        let mut layout = crate::joint_integration::JointLayout {
+            positions: self.positions,
+            velocities: self.velocities,
+            ..Default::default()
+        };
+        for group in &self.groups {
+            let (p, v) = (group.position_offset, group.velocity_offset);
+            match group.model.kind() {
+                JointKind::Spherical => layout.rotations.push((p, v)),
+                JointKind::Free => {
+                    layout.translations.push((p, v, p + 3));
+                    layout.rotations.push((p + 3, v + 3));
+                }
+                kind => layout
+                    .vectors
+                    .extend((0..kind.velocity_count()).map(|k| (p + k, v + k))),
+            }
+        }
+        layout
+    }
+
     /// The neutral positions: zero, with identity quaternions.
     pub fn neutral_positions(&self) -> Vec<f64> {
         let mut q = vec![0.0; self.positions];
@@ -219,17 +242,20 @@ impl JointSpace {
 
 /// A body's pose and velocity in world terms.
 #[derive(Clone, Copy, Debug)]
-struct WorldBody {
+pub(crate) struct WorldBody {
     pose: Isometry3<f64>,
+    /// The pose's rotation as a matrix (body → world), computed once.
+    rotation: Matrix3<f64>,
     /// Angular velocity and centre-of-mass velocity, world axes.
     angular: Vector3<f64>,
     linear: Vector3<f64>,
 }
 
 impl WorldBody {
-    fn world() -> WorldBody {
+    pub(crate) fn world() -> WorldBody {
         WorldBody {
             pose: Isometry3::identity(),
+            rotation: Matrix3::identity(),
             angular: Vector3::zeros(),
             linear: Vector3::zeros(),
         }
@@ -266,6 +292,7 @@ impl<A: Algebra> Mechanism<A> {
         let velocity = state.world_velocity(&self.bodies[index].body);
         WorldBody {
             pose: Isometry3::from_parts(position.into(), rotation),
+            rotation: *rotation.to_rotation_matrix().matrix(),
             angular: velocity.angular,
             linear: velocity.linear,
         }
@@ -420,25 +447,26 @@ impl<A: Algebra> Mechanism<A> {
         v: &[f64],
     ) -> Result<WorldBody, ConstraintError> {
         let pose = parent.pose * group.model.relative_pose(q)?;
-        let mut child = WorldBody {
-            pose,
-            angular: parent.angular,
-            linear: Vector3::zeros(),
-        };
-        let x = pose
-            .transform_point(&group.model.child_frame().translation.vector.into())
-            .coords;
-        let mut at_joint = parent.velocity_at(&x);
+        let rotation = *pose.rotation.to_rotation_matrix().matrix();
+        let x = pose.translation.vector + rotation * group.model.child_frame().translation.vector;
+        let (mut angular, mut at_joint) = (parent.angular, parent.velocity_at(&x));
         for (axis, rate) in group.model.axes().iter().zip(v) {
-            let d = side_rotation(axis.side, parent, &child) * axis.direction;
+            let d = match axis.side {
+                Side::Parent => parent.rotation * axis.direction,
+                Side::Child => rotation * axis.direction,
+            };
             match axis.motion {
-                crate::joints::Motion::Rotation => child.angular += d * *rate,
+                crate::joints::Motion::Rotation => angular += d * *rate,
                 crate::joints::Motion::Translation => at_joint += d * *rate,
             }
         }
         // Every turn is about an axis through the child's joint origin x, so x moves with the slides alone.
-        child.linear = at_joint + child.angular.cross(&(pose.translation.vector - x));
-        Ok(child)
+        Ok(WorldBody {
+            pose,
+            rotation,
+            angular,
+            linear: at_joint + angular.cross(&(pose.translation.vector - x)),
+        })
     }
 
     /// Projects states onto the joint models by their coordinates (docs/mechanisms.md §M7): the roots keep their
@@ -747,11 +775,181 @@ impl<A: Algebra> Mechanism<A> {
 /// The rotation of the body a joint axis is fixed in.
 fn side_rotation(side: Side, parent: &WorldBody, child: &WorldBody) -> Matrix3<f64> {
     match side {
-        Side::Parent => *parent.pose.rotation.to_rotation_matrix().matrix(),
-        Side::Child => *child.pose.rotation.to_rotation_matrix().matrix(),
+        Side::Parent => parent.rotation,
+        Side::Child => child.rotation,
     }
 }
 
 fn join(top: Vector3<f64>, bottom: Vector3<f64>) -> Vector6<f64> {
     Vector6::new(top.x, top.y, top.z, bottom.x, bottom.y, bottom.z)
+}
+
+impl<A: Algebra> Mechanism<A> {
+    /// The joint accelerations q̈ at joint positions `q` and velocities `v` (the layout of [`JointSpace`]) and time
+    /// `t`: the bodies placed by forward kinematics, their forces, the articulated solve, and each joint's shares of
+    /// the accelerations (docs/mechanisms.md §M7). The evaluation of the methods that step in joint coordinates;
+    /// it needs the articulated solve. `workspace.power` gets the force elements' power.
+    pub(crate) fn joint_rates_at(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        accelerations: &mut [f64],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        let (Some(space), Some(articulation)) = (&self.joint_space, &self.articulation) else {
+            return Err(ConstraintError::InvalidParameter {
+                name: "joint coordinates".to_owned(),
+                reason: "stepping in joint coordinates needs every joint a joint model, in a tree".to_owned(),
+            });
+        };
+        // Forward kinematics: every body's pose and velocity, then its kinematics and body momentum.
+        let mut placed = std::mem::take(&mut workspace.placed);
+        placed.resize(self.bodies.len(), WorldBody::world());
+        for &g in &space.order {
+            let group = &space.groups[g];
+            let parent = self.parent_of(group, &placed);
+            placed[group.body] = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
+        }
+        for (i, body) in placed.iter().enumerate() {
+            let rotation = nalgebra::Rotation3::from_matrix_unchecked(body.rotation);
+            let (omega, linear) = (
+                rotation.inverse_transform_vector(&body.angular),
+                rotation.inverse_transform_vector(&body.linear),
+            );
+            let velocity = A::screw(ScrewCoordinates { l: omega, t: linear });
+            let motor = motor::from_pose::<A>(body.pose.translation.vector, &body.pose.rotation);
+            let frame = motor::ScrewFrame {
+                rotation,
+                position: body.pose.translation.vector,
+            };
+            workspace.bodies[i].kinematics = Kinematics::with_frame(t, motor, frame, velocity);
+            workspace.momenta[i] = self.bodies[i].body.momentum::<A>(velocity);
+        }
+        workspace.placed = placed;
+        let momenta = std::mem::take(&mut workspace.momenta);
+        let forces = self.body_forces(t, &momenta, workspace, super::BodyTerms::Forces);
+        workspace.momenta = momenta;
+        forces?;
+        let super::MechanismWorkspace {
+            bodies,
+            external,
+            articulated,
+            ..
+        } = workspace;
+        articulation
+            .solve(
+                t,
+                &self.joints,
+                &self.bodies,
+                bodies,
+                external,
+                &self.coupling_rows,
+                articulated,
+                None,
+            )
+            .map_err(|body| ConstraintError::NonFinite {
+                name: self.bodies[body].name.clone(),
+                t,
+            })?;
+        let origin = articulated.origin();
+        for group in &space.groups {
+            let out = &mut accelerations[group.velocities()];
+            let child = &bodies[group.body].kinematics;
+            let through = child.world_point(&group.model.child_frame().translation.vector) - origin;
+            match group.joint {
+                Some(joint) => {
+                    let entry = &self.joints[joint.0];
+                    articulated.joint_accelerations(
+                        joint.0,
+                        entry.body,
+                        entry.reference,
+                        group.model.axes(),
+                        &through,
+                        out,
+                    );
+                }
+                None => {
+                    // A free root: its velocity coordinates are turns and slides along its frame's axes.
+                    let a = articulated.acceleration(group.body);
+                    for (axis, value) in group.model.axes().iter().zip(out.iter_mut()) {
+                        let column = axis_column(axis, child.frame.rotation.matrix(), &through);
+                        *value = axis_rate(&column, axis.motion, a, &through);
+                    }
+                }
+            }
+        }
+        if !accelerations.iter().all(|a| a.is_finite()) {
+            return Err(ConstraintError::NonFinite {
+                name: self.names(0..self.joints.len()),
+                t,
+            });
+        }
+        Ok(())
+    }
+
+    /// The joint positions and velocities of `states` into the slices, angles unwrapped from `previous` (when it
+    /// has the right length), which then holds these positions.
+    pub(crate) fn read_joints_into(
+        &self,
+        states: &[State<A>],
+        positions: &mut [f64],
+        velocities: &mut [f64],
+        previous: &mut Vec<f64>,
+    ) -> Result<(), ConstraintError> {
+        let Some(space) = &self.joint_space else {
+            return Err(ConstraintError::InvalidParameter {
+                name: "joint coordinates".to_owned(),
+                reason: "the joint models do not form a forest".to_owned(),
+            });
+        };
+        let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
+        let before = (previous.len() == space.positions).then_some(previous.as_slice());
+        for group in &space.groups {
+            let range = group.positions();
+            self.read_positions(group, &bodies, before.map(|p| &p[range.clone()]), &mut positions[range]);
+            self.read_velocities(group, &bodies, &mut velocities[group.velocities()]);
+        }
+        previous.clear();
+        previous.extend_from_slice(positions);
+        Ok(())
+    }
+
+    /// The bodies' states at joint positions and velocities, into `states` (`placed` is scratch).
+    pub(crate) fn write_joints_into(
+        &self,
+        positions: &[f64],
+        velocities: &[f64],
+        states: &mut [State<A>],
+        placed: &mut Vec<WorldBody>,
+    ) -> Result<(), ConstraintError> {
+        let Some(space) = &self.joint_space else {
+            return Err(ConstraintError::InvalidParameter {
+                name: "joint coordinates".to_owned(),
+                reason: "the joint models do not form a forest".to_owned(),
+            });
+        };
+        placed.clear();
+        placed.resize(self.bodies.len(), WorldBody::world());
+        for &g in &space.order {
+            let group = &space.groups[g];
+            let parent = self.parent_of(group, placed);
+            placed[group.body] = self.place(
+                group,
+                &parent,
+                &positions[group.positions()],
+                &velocities[group.velocities()],
+            )?;
+        }
+        for (i, (state, body)) in states.iter_mut().zip(placed.iter()).enumerate() {
+            *state = State::from_world_twist(
+                &self.bodies[i].body,
+                body.pose.translation.vector,
+                &body.pose.rotation,
+                body.angular,
+                body.linear,
+            );
+        }
+        Ok(())
+    }
 }

@@ -43,6 +43,7 @@ use crate::state::State;
 use articulated::{ArticulatedScratch, Articulation, CouplingRow};
 use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
 pub use joint_space::{CoordinateGroup, JointSpace};
+pub(crate) use solve::symmetric_eigen;
 use solve::{dot6, Consistency, SolveFailure, SystemMatrix};
 pub use solve::{SolverSettings, ROUND_OFF};
 use topology::{Side, Slot, Topology};
@@ -287,6 +288,8 @@ pub struct MechanismWorkspace<A: Algebra> {
     power: f64,
     /// The force elements' wrench on each body at the last evaluation (body frame; also in `external`).
     element_wrenches: Vec<ScrewCoordinates>,
+    /// The bodies placed by forward kinematics (stepping in joint coordinates).
+    placed: Vec<joint_space::WorldBody>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -1016,6 +1019,7 @@ impl<A: Algebra> Mechanism<A> {
             previous_positions: Vec::new(),
             power: 0.0,
             element_wrenches: vec![ScrewCoordinates::default(); self.bodies.len()],
+            placed: Vec::new(),
         }
     }
 
@@ -1032,16 +1036,29 @@ impl<A: Algebra> Mechanism<A> {
         for (i, entry) in self.bodies.iter().enumerate() {
             let velocity = entry.body.velocity::<A>(body_momenta[i]);
             // Written in place (the kinematics are a few hundred bytes, built for every body at every evaluation).
-            let body = &mut workspace.bodies[i];
-            body.kinematics = Kinematics::new(t, motors[i], velocity);
-            body.free_acceleration = [0.0; 6];
-            if terms != BodyTerms::Kinematics {
-                workspace.external[i] = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
-            }
+            workspace.bodies[i].kinematics = Kinematics::new(t, motors[i], velocity);
         }
+        self.body_forces(t, body_momenta, workspace, terms)
+    }
+
+    /// Every body's external wrench (its forces and the force elements'; `workspace.power` the elements' power) and,
+    /// for the constraint-space solve, its free acceleration, at the kinematics in `workspace`.
+    fn body_forces(
+        &self,
+        t: f64,
+        body_momenta: &[A::Screw],
+        workspace: &mut MechanismWorkspace<A>,
+        terms: BodyTerms,
+    ) -> Result<(), ConstraintError> {
         workspace.power = 0.0;
+        for body in workspace.bodies.iter_mut() {
+            body.free_acceleration = [0.0; 6];
+        }
         if terms == BodyTerms::Kinematics {
             return Ok(());
+        }
+        for (i, body) in workspace.bodies.iter().enumerate() {
+            workspace.external[i] = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
         }
         if !self.elements.is_empty() {
             let MechanismWorkspace {
@@ -1202,7 +1219,7 @@ impl<A: Algebra> Mechanism<A> {
                     external,
                     &self.coupling_rows,
                     articulated,
-                    reactions,
+                    Some(reactions),
                 )
                 .map_err(|body| ConstraintError::NonFinite {
                     name: self.names(self.topology.incidences[body].iter().map(|incidence| incidence.joint)),
@@ -1681,5 +1698,42 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     fn conserves_world_momenta(&self) -> bool {
         self.joints.is_empty() && self.elements.is_empty() && self.bodies.iter().all(|body| body.forces.is_empty())
+    }
+
+    fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
+        self.articulation.as_ref()?;
+        self.joint_space.as_ref().map(JointSpace::layout)
+    }
+
+    fn read_joints(
+        &self,
+        states: &[State<A>],
+        positions: &mut [f64],
+        velocities: &mut [f64],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.read_joints_into(states, positions, velocities, &mut workspace.previous_positions)
+    }
+
+    fn write_joints(
+        &self,
+        _t: f64,
+        positions: &[f64],
+        velocities: &[f64],
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.write_joints_into(positions, velocities, states, &mut workspace.placed)
+    }
+
+    fn joint_rates(
+        &self,
+        t: f64,
+        positions: &[f64],
+        velocities: &[f64],
+        accelerations: &mut [f64],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.joint_rates_at(t, positions, velocities, accelerations, workspace)
     }
 }

@@ -61,14 +61,30 @@ impl Inertia6 {
     /// `self −= s u uᵀ`.
     #[inline]
     pub fn subtract_outer(&mut self, u: &Vector6<f64>, s: f64) {
-        let mut k = 0;
-        for i in 0..6 {
-            let ui = u[i] * s;
-            for j in i..6 {
-                self.0[k] -= ui * u[j];
-                k += 1;
-            }
-        }
+        let a = &mut self.0;
+        let (u0, u1, u2, u3, u4, u5) = (u[0], u[1], u[2], u[3], u[4], u[5]);
+        let (w0, w1, w2, w3, w4, w5) = (u0 * s, u1 * s, u2 * s, u3 * s, u4 * s, u5 * s);
+        a[0] -= w0 * u0;
+        a[1] -= w0 * u1;
+        a[2] -= w0 * u2;
+        a[3] -= w0 * u3;
+        a[4] -= w0 * u4;
+        a[5] -= w0 * u5;
+        a[6] -= w1 * u1;
+        a[7] -= w1 * u2;
+        a[8] -= w1 * u3;
+        a[9] -= w1 * u4;
+        a[10] -= w1 * u5;
+        a[11] -= w2 * u2;
+        a[12] -= w2 * u3;
+        a[13] -= w2 * u4;
+        a[14] -= w2 * u5;
+        a[15] -= w3 * u3;
+        a[16] -= w3 * u4;
+        a[17] -= w3 * u5;
+        a[18] -= w4 * u4;
+        a[19] -= w4 * u5;
+        a[20] -= w5 * u5;
     }
 
     /// `self −= (u wᵀ + w uᵀ)/2 · s`: the symmetric part of a product of two columns (a joint with several degrees
