@@ -1,6 +1,8 @@
 //! Imports every `.urdf` under a folder, with default options and with every repair on, and prints per file what
-//! came out (bodies, moving joints by kind, merged links, repairs) or the error; then a summary, and the import
-//! time of the file with the most links and of the one closest to 60 links.
+//! came out (bodies, moving joints by kind, merged links, repairs) or the error; builds each imported model as a
+//! mechanism (root fixed to the world, PGA) and evaluates its joint accelerations at rest in the zero pose (finite,
+//! or the error); then a summary, and the import time of the file with the most links and of the one closest to 60
+//! links.
 //!
 //! ```sh
 //! cargo run --release -p urdf-import --example import_all -- DIR [--verbose]
@@ -12,7 +14,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use urdf_import::{read, ImportOptions, RobotModel};
+use dynamics::Pga;
+use urdf_import::{read, BuildOptions, ImportOptions, Robot, RobotModel, RobotStart};
 
 const BOUND_MASS: f64 = 1e-3; // kg
 const BOUND_INERTIA: f64 = 1e-6; // kg m²
@@ -52,6 +55,23 @@ fn describe(model: &RobotModel) -> String {
     text
 }
 
+/// Builds the model with a fixed root and evaluates q̈ at rest in the zero pose: "finite q̈ (n)" or the error.
+fn evaluate(model: RobotModel) -> Result<String, String> {
+    let robot = Robot::<Pga>::build(model, &BuildOptions::default()).map_err(|e| e.to_string())?;
+    let states = robot
+        .initial_states(&RobotStart::default())
+        .map_err(|e| e.to_string())?;
+    let q_ddot = robot
+        .mechanism()
+        .joint_accelerations(0.0, &states)
+        .map_err(|e| e.to_string())?;
+    if q_ddot.iter().all(|a| a.is_finite()) {
+        Ok(format!("finite q̈ ({} coordinates)", q_ddot.len()))
+    } else {
+        Err(format!("non-finite q̈ {q_ddot:?}"))
+    }
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let verbose = args.iter().any(|a| a == "--verbose");
@@ -66,6 +86,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("repairs", ImportOptions::repair_all(BOUND_MASS, BOUND_INERTIA)),
     ];
     let mut ok = [0; 2];
+    let mut evaluated = [0; 2];
     // The file with the most links, and the one closest to 60 links (the timing target's size).
     let mut largest: Option<(usize, PathBuf, String)> = None;
     let mut near_60: Option<(usize, PathBuf, String)> = None;
@@ -81,6 +102,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if verbose {
                         model.repairs.iter().for_each(|r| println!("    repair: {r}"));
                         model.warnings.iter().for_each(|w| println!("    warning: {w}"));
+                    }
+                    match evaluate(model) {
+                        Ok(text) => {
+                            evaluated[i] += 1;
+                            println!("    built: {text}");
+                        }
+                        Err(e) => println!("    built: ERROR {e}"),
                     }
                 }
                 Err(e) => println!("  {label}: ERROR {e}"),
@@ -104,23 +132,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ok[1],
         files.len() - ok[1]
     );
+    println!(
+        "BUILT: finite joint accelerations at rest: default options {} of {} imported, all repairs {} of {}",
+        evaluated[0], ok[0], evaluated[1], ok[1]
+    );
     for (links, path, text) in [largest, near_60].into_iter().flatten() {
         let option = ImportOptions::repair_all(BOUND_MASS, BOUND_INERTIA);
         let runs = 200;
-        let mut times = Vec::with_capacity(runs);
+        let (mut times, mut built) = (Vec::with_capacity(runs), Vec::with_capacity(runs));
         for _ in 0..runs {
             let start = Instant::now();
             let model = read(&text, &option);
             times.push(start.elapsed().as_secs_f64());
-            std::hint::black_box(model).ok();
+            if let Ok(model) = model {
+                let robot = Robot::<Pga>::build(model, &BuildOptions::default());
+                built.push(start.elapsed().as_secs_f64());
+                std::hint::black_box(robot).ok();
+            }
         }
         times.sort_by(f64::total_cmp);
+        built.sort_by(f64::total_cmp);
         println!(
-            "TIMING: {} ({links} links, {} bytes), all repairs: median {:.3} ms, min {:.3} ms over {runs} imports",
+            "TIMING: {} ({links} links, {} bytes), all repairs: import median {:.3} ms (min {:.3}); import and build \
+             as a mechanism median {:.3} ms over {runs} runs",
             path.display(),
             text.len(),
             times[runs / 2] * 1e3,
-            times[0] * 1e3
+            times[0] * 1e3,
+            built.get(built.len() / 2).map_or(f64::NAN, |t| t * 1e3),
         );
     }
     Ok(())

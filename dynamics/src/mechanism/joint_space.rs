@@ -268,11 +268,15 @@ impl WorldBody {
 }
 
 impl<A: Algebra> Mechanism<A> {
+    /// The coordinates, built on first use after a change.
+    pub(crate) fn coordinates(&self) -> Option<&JointSpace> {
+        self.joint_space.get_or_init(|| JointSpace::new(self)).as_ref()
+    }
+
     /// The joint coordinates' layout, if the joint models form a forest (always, for models added by
     /// [`Mechanism::connect`] alone).
     pub fn joint_space(&self) -> Result<&JointSpace, MechanismError> {
-        self.joint_space
-            .as_ref()
+        self.coordinates()
             .ok_or_else(|| MechanismError::NoJointSpace("its joint models do not form a forest".to_owned()))
     }
 
@@ -283,6 +287,9 @@ impl<A: Algebra> Mechanism<A> {
                 expected: self.bodies.len(),
                 got: states.len(),
             });
+        }
+        if let Some(index) = states.iter().position(|s| !s.is_representable()) {
+            return Err(MechanismError::NotFinite { what: "state", index });
         }
         Ok(())
     }
@@ -423,7 +430,7 @@ impl<A: Algebra> Mechanism<A> {
             let parent = self.parent_of(group, &bodies);
             bodies[group.body] = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
         }
-        Ok(bodies
+        let states: Vec<State<A>> = bodies
             .iter()
             .enumerate()
             .map(|(i, b)| {
@@ -435,7 +442,12 @@ impl<A: Algebra> Mechanism<A> {
                     b.linear,
                 )
             })
-            .collect())
+            .collect();
+        // Coordinates each within range can still add up beyond it (a chain of long slides).
+        if let Some(index) = states.iter().position(|s| !s.is_representable()) {
+            return Err(MechanismError::NotFinite { what: "state", index });
+        }
+        Ok(states)
     }
 
     /// The child of `group` placed by its joint positions and velocities relative to `parent`.
@@ -478,7 +490,7 @@ impl<A: Algebra> Mechanism<A> {
         states: &mut [State<A>],
         previous: &mut Vec<f64>,
     ) -> Result<(), ConstraintError> {
-        let Some(space) = &self.joint_space else {
+        let Some(space) = self.coordinates() else {
             return Ok(());
         };
         let read: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
@@ -521,7 +533,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The couplings' largest position and velocity residuals, `|q_f − m q_l − offset|` and `|q̇_f − m q̇_l|`.
     pub(crate) fn coupling_violation(&self, states: &[State<A>]) -> (f64, f64) {
-        let (Some(space), false) = (&self.joint_space, self.couplings.is_empty()) else {
+        let (Some(space), false) = (self.coordinates(), self.couplings.is_empty()) else {
             return (0.0, 0.0);
         };
         let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
@@ -638,6 +650,15 @@ impl<A: Algebra> Mechanism<A> {
                 what: "joint accelerations",
                 expected: space.velocities,
                 got: accelerations.len(),
+            });
+        }
+        if let Some(index) = accelerations
+            .iter()
+            .position(|a| !(a.is_finite() && a.abs() <= crate::state::MAX_COORDINATE))
+        {
+            return Err(MechanismError::NotFinite {
+                what: "joint acceleration",
+                index,
             });
         }
         let kinematics = self.kinematics_of(t, states);
@@ -797,7 +818,7 @@ impl<A: Algebra> Mechanism<A> {
         accelerations: &mut [f64],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
-        let (Some(space), Some(articulation)) = (&self.joint_space, &self.articulation) else {
+        let (Some(space), Some(articulation)) = (self.coordinates(), &self.articulation) else {
             return Err(ConstraintError::InvalidParameter {
                 name: "joint coordinates".to_owned(),
                 reason: "stepping in joint coordinates needs every joint a joint model, in a tree".to_owned(),
@@ -897,7 +918,7 @@ impl<A: Algebra> Mechanism<A> {
         velocities: &mut [f64],
         previous: &mut Vec<f64>,
     ) -> Result<(), ConstraintError> {
-        let Some(space) = &self.joint_space else {
+        let Some(space) = self.coordinates() else {
             return Err(ConstraintError::InvalidParameter {
                 name: "joint coordinates".to_owned(),
                 reason: "the joint models do not form a forest".to_owned(),
@@ -923,7 +944,7 @@ impl<A: Algebra> Mechanism<A> {
         states: &mut [State<A>],
         placed: &mut Vec<WorldBody>,
     ) -> Result<(), ConstraintError> {
-        let Some(space) = &self.joint_space else {
+        let Some(space) = self.coordinates() else {
             return Err(ConstraintError::InvalidParameter {
                 name: "joint coordinates".to_owned(),
                 reason: "the joint models do not form a forest".to_owned(),

@@ -126,6 +126,14 @@ pub enum MechanismError {
     /// through parents), or of one without bodies.
     #[error("this mechanism has no joint coordinates: {0}")]
     NoJointSpace(String),
+    /// A state or coordinate that is not finite (or beyond 1e50): which, and its index.
+    #[error("{what} {index} is not finite or has a coordinate beyond 1e50")]
+    NotFinite {
+        /// "state" (of the body with that index), "joint acceleration", ….
+        what: &'static str,
+        /// Its index.
+        index: usize,
+    },
     /// A slice with the wrong number of entries: states (one per body) or joint coordinates.
     #[error("{what}: expected {expected} entries, got {got}")]
     Count {
@@ -208,7 +216,8 @@ pub struct Mechanism<A: Algebra> {
     /// The joint-model tree, when the articulated solve applies (docs/mechanisms.md §M7).
     articulation: Option<Articulation>,
     /// The coordinates of the joint models and free roots, if the joint models form a forest.
-    joint_space: Option<JointSpace>,
+    /// Built on first use after a change (a robot adds its bodies and joints one by one).
+    joint_space: std::sync::OnceLock<Option<JointSpace>>,
     /// Linear relations between joint coordinates (URDF mimics).
     couplings: Vec<Coupling>,
     /// The couplings' acceleration rows for the articulated solve.
@@ -368,7 +377,7 @@ impl<A: Algebra> Mechanism<A> {
             settings: SolverSettings::default(),
             topology: Topology::default(),
             articulation: None,
-            joint_space: None,
+            joint_space: std::sync::OnceLock::new(),
             couplings: Vec::new(),
             coupling_rows: Vec::new(),
             elements: Vec::new(),
@@ -577,6 +586,8 @@ impl<A: Algebra> Mechanism<A> {
         rows: Arc<dyn Constraint<A>>,
     ) -> Result<JointId, MechanismError> {
         let index = self.check_body(child)?;
+        let parent = parent.into();
+        self.reference_index(index, parent, model.name())?;
         if let Some(other) = self.joints.iter().find(|j| j.model.is_some() && j.body == index) {
             return Err(ConstraintError::InvalidParameter {
                 name: model.name().to_owned(),
@@ -590,7 +601,7 @@ impl<A: Algebra> Mechanism<A> {
         }
         let id = if matches!(model.kind(), JointKind::Free) {
             // A free joint constrains nothing: it joins the mechanism for its coordinates only (rank 0).
-            let reference = self.reference_index(index, parent.into(), model.name())?;
+            let reference = self.reference_index(index, parent, model.name())?;
             self.joints.push(Joint {
                 uses_motor: false,
                 rank: 0,
@@ -856,7 +867,7 @@ impl<A: Algebra> Mechanism<A> {
             .collect();
         let articulated = !matches!(self.stabilisation, Stabilisation::Baumgarte { .. });
         self.articulation = Articulation::new(self.bodies.len(), &tree).filter(|_| articulated);
-        self.joint_space = JointSpace::new(self);
+        self.joint_space = std::sync::OnceLock::new();
     }
 
     /// The stabilisation in use.
@@ -1702,7 +1713,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
         self.articulation.as_ref()?;
-        self.joint_space.as_ref().map(JointSpace::layout)
+        self.coordinates().map(JointSpace::layout)
     }
 
     fn read_joints(
