@@ -495,6 +495,16 @@ impl JointModel {
     /// The child's body frame in the parent's body frame at joint positions `q`:
     /// `parent_frame · J(q) · child_frame⁻¹`.
     pub fn relative_pose(&self, q: &[f64]) -> Result<Isometry3<f64>, ConstraintError> {
+        if let (JointKind::Revolute { axis }, [angle]) = (&self.kind, q) {
+            // The common case without the checks' and the general turn's detours: (cos ½q, sin ½q a).
+            if angle.is_finite() && angle.abs() <= MAX_FRAME_COORDINATE {
+                let (sin, cos) = (0.5 * angle).sin_cos();
+                let turn = UnitQuaternion::new_unchecked(Quaternion::from_parts(cos, axis * sin));
+                return Ok(self.parent_frame
+                    * Isometry3::from_parts(Translation3::identity(), turn)
+                    * self.child_inverse);
+            }
+        }
         Ok(self.parent_frame * self.joint_pose(q)? * self.child_inverse)
     }
 

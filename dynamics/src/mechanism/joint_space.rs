@@ -832,6 +832,20 @@ impl<A: Algebra> Mechanism<A> {
             let parent = self.parent_of(group, &placed);
             placed[group.body] = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
         }
+        // The motors only where a force reads them (gravity and the articulated solve do not); elsewhere NaN, so
+        // that a reader left out here shows as an error, not a wrong answer.
+        let motors = !self.elements.is_empty()
+            || self.bodies.iter().any(|b| {
+                b.forces
+                    .iter()
+                    .any(|f| !matches!(f, crate::forces::Force::Gravity { .. }))
+            });
+        let unused = A::motor(crate::algebra::MotorCoordinates {
+            scalar: f64::NAN,
+            l: Vector3::repeat(f64::NAN),
+            t: Vector3::repeat(f64::NAN),
+            pseudoscalar: f64::NAN,
+        });
         for (i, body) in placed.iter().enumerate() {
             let rotation = nalgebra::Rotation3::from_matrix_unchecked(body.rotation);
             let (omega, linear) = (
@@ -839,12 +853,27 @@ impl<A: Algebra> Mechanism<A> {
                 rotation.inverse_transform_vector(&body.linear),
             );
             let velocity = A::screw(ScrewCoordinates { l: omega, t: linear });
-            let motor = motor::from_pose::<A>(body.pose.translation.vector, &body.pose.rotation);
-            let frame = motor::ScrewFrame {
-                rotation,
-                position: body.pose.translation.vector,
+            let position = body.pose.translation.vector;
+            let motor = if motors {
+                motor::from_pose::<A>(position, &body.pose.rotation)
+            } else {
+                unused
             };
-            workspace.bodies[i].kinematics = Kinematics::with_frame(t, motor, frame, velocity);
+            // The kinematics from what forward kinematics already holds (world velocities included).
+            workspace.bodies[i].kinematics = Kinematics {
+                t,
+                motor,
+                reverse: if motors { A::reverse(motor) } else { unused },
+                body_velocity: velocity,
+                velocity: nalgebra::Vector6::new(omega.x, omega.y, omega.z, linear.x, linear.y, linear.z),
+                world_velocity: A::screw(ScrewCoordinates {
+                    l: body.angular,
+                    t: body.linear + position.cross(&body.angular),
+                }),
+                frame: motor::ScrewFrame { rotation, position },
+                angular_velocity: body.angular,
+                linear_velocity: body.linear,
+            };
             workspace.momenta[i] = self.bodies[i].body.momentum::<A>(velocity);
         }
         workspace.placed = placed;
