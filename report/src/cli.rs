@@ -8,9 +8,10 @@ use clap::{CommandFactory, Parser, ValueEnum};
 use dynamics::Schedule;
 use reference::SceneId;
 
-use crate::job::run_job;
+use crate::job::run_job_with_robots;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
 use crate::names::{IntegratorName, StabilisationName};
+use crate::robot_sweep::{self, RobotPlan};
 use crate::scene_job::run_scene_file;
 use crate::sweep::{SweepPlan, DEFAULT_STEPS};
 
@@ -28,12 +29,15 @@ pub(crate) enum SceneName {
     FourBar,
     /// M3 of docs/scenes.md: cost against N, and 64 links over 10 s.
     Chain,
+    /// The UR5 arm and the Solo-12 quadruped from their URDFs, against Pinocchio's motion over 1 s.
+    Robots,
 }
 
 /// A scene name is a single-body scene of the reference set or a mechanism.
 enum Named {
     SingleBody(SceneId),
     Mechanism(MechanismKind),
+    Robots,
 }
 
 impl SceneName {
@@ -48,6 +52,7 @@ impl SceneName {
             SceneName::DoublePendulum => Named::Mechanism(MechanismKind::DoublePendulum),
             SceneName::FourBar => Named::Mechanism(MechanismKind::FourBar),
             SceneName::Chain => Named::Mechanism(MechanismKind::Chain),
+            SceneName::Robots => Named::Robots,
         }
     }
 }
@@ -64,10 +69,11 @@ pub(crate) struct Options {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub(crate) integrators: Vec<IntegratorName>,
     /// Step sizes in seconds; each must divide the 0.01 s sample interval (default: 1e-2, 5e-3, 2e-3, 1e-3,
-    /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4).
+    /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4; for the robots 4e-2 to 2.5e-4).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) steps: Vec<f64>,
-    /// Simulated time in seconds for every scene (default: each scene's T from docs/scenes.md).
+    /// Simulated time in seconds for every scene (default: each scene's T from docs/scenes.md; the robots always run
+    /// their reference's 1 s).
     #[arg(long, allow_hyphen_values = true)]
     pub(crate) duration: Option<f64>,
     /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).
@@ -124,18 +130,20 @@ impl Options {
         Ok(())
     }
 
-    /// The sweep these options describe: the single-body scenes, and the mechanisms.
-    pub(crate) fn plan(&self) -> (SweepPlan, MechanismPlan) {
-        let (mut scenes, mut mechanisms) = (Vec::new(), Vec::new());
+    /// The sweep these options describe: the single-body scenes, the mechanisms and the robots.
+    pub(crate) fn plan(&self) -> (SweepPlan, MechanismPlan, RobotPlan) {
+        let (mut scenes, mut mechanisms, mut robots) = (Vec::new(), Vec::new(), false);
         for name in &self.scenes {
             match name.named() {
                 Named::SingleBody(scene) => scenes.push(scene),
                 Named::Mechanism(kind) => mechanisms.push(kind),
+                Named::Robots => robots = true,
             }
         }
         if self.scenes.is_empty() {
             scenes = SceneId::ALL.to_vec();
             mechanisms = MechanismKind::ALL.to_vec();
+            robots = true;
         }
         let steps = |default: &[f64]| {
             if self.steps.is_empty() {
@@ -160,7 +168,21 @@ impl Options {
             mechanisms,
             steps: steps(&mechanism_sweep::DEFAULT_STEPS),
         };
-        (plan, mechanisms)
+        let robots = RobotPlan {
+            robots: if robots {
+                reference::robots::RobotId::ALL.to_vec()
+            } else {
+                Vec::new()
+            },
+            steps: steps(&robot_sweep::DEFAULT_STEPS),
+            // With the default integrators, the robots also run in joint coordinates.
+            joint_methods: if self.integrators.is_empty() {
+                dynamics::JointMethod::ALL.to_vec()
+            } else {
+                Vec::new()
+            },
+        };
+        (plan, mechanisms, robots)
     }
 }
 
@@ -181,12 +203,12 @@ pub fn main() -> ExitCode {
     }
     let started = std::time::Instant::now();
     let output = options.output.clone().unwrap_or_else(|| PathBuf::from("out"));
-    let (plan, mechanisms) = options.plan();
-    match run_job(&plan, &mechanisms, &output, !options.quiet) {
+    let (plan, mechanisms, robots) = options.plan();
+    match run_job_with_robots(&plan, &mechanisms, &robots, &output, !options.quiet) {
         Ok(summary) => {
             println!(
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",
-                summary.results.len() + summary.mechanisms.len(),
+                summary.results.len() + summary.mechanisms.len() + summary.robots.len(),
                 started.elapsed().as_secs_f64(),
                 summary.failures.len(),
                 summary.output.join("report.md").display()

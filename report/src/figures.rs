@@ -44,6 +44,8 @@ pub(crate) enum Family {
     EighthOrder,
     /// Strang and Yoshida-4 (free bodies only).
     Splitting,
+    /// The methods stepping in joint coordinates (mechanisms of joint models only).
+    JointCoordinates,
 }
 
 impl Family {
@@ -57,6 +59,7 @@ impl Family {
             Integrator::General(Method::Rkmk8Body) => (Family::EighthOrder, 0),
             Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
             Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
+            Integrator::Joint(method) => (Family::JointCoordinates, usize::from(method != dynamics::JointMethod::Rkmk4)),
         }
     }
 
@@ -66,6 +69,7 @@ impl Family {
             Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
             Family::EighthOrder => "RKMK8-body (order 8, momentum in the body frame)",
             Family::Splitting => "Strang and Yoshida-4 splittings",
+            Family::JointCoordinates => "RKMK-joint (joint coordinates)",
         }
     }
 }

@@ -14,6 +14,8 @@ use crate::markdown::{self, RunResult};
 use crate::mechanism_report::mechanism_section;
 use crate::mechanism_sweep::{run_mechanism, MechanismPlan, MechanismResult};
 use crate::plot::PlotError;
+use crate::robot_report::robot_section;
+use crate::robot_sweep::{robot_label, run_robot, RobotPlan, RobotResult};
 use crate::sweep::{run, Outcome, SweepPlan};
 
 /// Why the job could not write its output.
@@ -44,6 +46,8 @@ pub struct JobSummary {
     pub results: Vec<RunResult>,
     /// Each mechanism configuration, in the plan's order, with its outcome or why it failed.
     pub mechanisms: Vec<MechanismResult>,
+    /// Each robot configuration, in the plan's order, with its outcome or why it failed.
+    pub robots: Vec<RobotResult>,
     /// Failed runs, single bodies and mechanisms: each run's label and why it failed.
     pub failures: Vec<String>,
 }
@@ -87,9 +91,22 @@ pub fn run_job(
     output: &Path,
     show_progress: bool,
 ) -> Result<JobSummary, JobError> {
+    run_job_with_robots(plan, mechanisms, &RobotPlan::default(), output, show_progress)
+}
+
+/// [`run_job`], and the reference robots of `robots` with the plan's general integrators (each over the
+/// reference's 1 s).
+pub fn run_job_with_robots(
+    plan: &SweepPlan,
+    mechanisms: &MechanismPlan,
+    robots: &RobotPlan,
+    output: &Path,
+    show_progress: bool,
+) -> Result<JobSummary, JobError> {
     let configs = plan.configurations();
     let mechanism_configs = mechanisms.configurations(&plan.integrators, plan.duration, plan.stabilisation);
-    if configs.is_empty() && mechanism_configs.is_empty() {
+    let robot_configs = robots.configurations(&plan.integrators);
+    if configs.is_empty() && mechanism_configs.is_empty() && robot_configs.is_empty() {
         return Err(JobError::Empty);
     }
     std::fs::create_dir_all(output).map_err(io(output))?;
@@ -97,7 +114,7 @@ pub fn run_job(
     std::fs::create_dir_all(&trajectories).map_err(io(&trajectories))?;
 
     let progress = if show_progress {
-        ProgressBar::new((configs.len() + mechanism_configs.len()) as u64)
+        ProgressBar::new((configs.len() + mechanism_configs.len() + robot_configs.len()) as u64)
     } else {
         ProgressBar::hidden()
     };
@@ -119,6 +136,13 @@ pub fn run_job(
         |c| c.duration / c.dt * c.id.bodies() as f64,
         run_mechanism,
         |c| format!("{} {}", c.id.label(), c.series_label()),
+        &progress,
+    );
+    let robot_results: Vec<RobotResult> = run_all(
+        &robot_configs,
+        |c| c.work(),
+        run_robot,
+        |c| format!("{} {}", robot_label(c.robot), c.series_label()),
         &progress,
     );
     progress.finish_and_clear();
@@ -154,6 +178,7 @@ pub fn run_job(
     let report_path = output.join("report.md");
     let mut text = markdown::report(&results, threads, &figure_files);
     text.push_str(&mechanism_section(output, &mechanism_results)?);
+    text.push_str(&robot_section(output, &robot_results)?);
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
     let single_failures = results.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;
@@ -163,11 +188,24 @@ pub fn run_job(
         let error = result.as_ref().err()?;
         Some(format!("{} {}: {error}", config.id.label(), config.series_label()))
     });
-    let failures = single_failures.chain(mechanism_failures).collect();
+    let robot_failures = robot_results.iter().filter_map(|(config, result)| {
+        let error = result.as_ref().err()?;
+        Some(format!(
+            "{} {}, dt = {:e}: {error}",
+            robot_label(config.robot),
+            config.series_label(),
+            config.dt
+        ))
+    });
+    let failures = single_failures
+        .chain(mechanism_failures)
+        .chain(robot_failures)
+        .collect();
     Ok(JobSummary {
         output: output.to_path_buf(),
         results,
         mechanisms: mechanism_results,
+        robots: robot_results,
         failures,
     })
 }

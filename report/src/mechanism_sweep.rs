@@ -97,7 +97,8 @@ impl MechanismPlan {
             .iter()
             .filter_map(|i| match i {
                 Integrator::General(method) => Some(*method),
-                Integrator::Splitting(_) => None,
+                // The reference mechanisms' joints are constraints, not joint models; splittings are for free bodies.
+                Integrator::Splitting(_) | Integrator::Joint(_) => None,
             })
             .collect();
         let mut configs = Vec::new();
