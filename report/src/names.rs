@@ -4,6 +4,7 @@
 use clap::ValueEnum;
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method, SplittingMethod};
+use dynamics::JointMethod;
 use serde::Deserialize;
 
 /// The integrators by name, on the command line and in scene files.
@@ -24,6 +25,12 @@ pub enum IntegratorName {
     Strang,
     /// Yoshida's triple jump of Strang steps, order 4; a free body only.
     Yoshida4,
+    /// RK4 stepping in joint coordinates; mechanisms of joint models in a tree (robots) only.
+    Rkmk4Joint,
+    /// Butcher's order-6 method stepping in joint coordinates; mechanisms of joint models in a tree only.
+    Rkmk6Joint,
+    /// Cooper–Verner's order-8 method stepping in joint coordinates; mechanisms of joint models in a tree only.
+    Rkmk8Joint,
 }
 
 impl From<IntegratorName> for Integrator {
@@ -36,6 +43,9 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rkmk8Body => Integrator::General(Method::Rkmk8Body),
             IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
             IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
+            IntegratorName::Rkmk4Joint => Integrator::Joint(JointMethod::Rkmk4),
+            IntegratorName::Rkmk6Joint => Integrator::Joint(JointMethod::Rkmk6),
+            IntegratorName::Rkmk8Joint => Integrator::Joint(JointMethod::Rkmk8),
         }
     }
 }

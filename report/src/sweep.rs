@@ -113,7 +113,11 @@ impl SweepPlan {
                         continue;
                     }
                     for &integrator in &self.integrators {
-                        if !free && matches!(integrator, Integrator::Splitting(_)) {
+                        // Splittings take free bodies only; the joint-coordinate methods, robots only (the reference
+                        // scenes hold their bodies by constraints, which have no joint coordinates).
+                        if (!free && matches!(integrator, Integrator::Splitting(_)))
+                            || matches!(integrator, Integrator::Joint(_))
+                        {
                             continue;
                         }
                         for &dt in &self.steps {
