@@ -59,7 +59,10 @@ impl Family {
             Integrator::General(Method::Rkmk8Body) => (Family::EighthOrder, 0),
             Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
             Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
-            Integrator::Joint(method) => (Family::JointCoordinates, usize::from(method != dynamics::JointMethod::Rkmk4)),
+            Integrator::Joint(method) => (
+                Family::JointCoordinates,
+                usize::from(method != dynamics::JointMethod::Rkmk4),
+            ),
         }
     }
 

@@ -1,37 +1,56 @@
 //! Scenes described in a TOML file (README, "Scene files"): bodies with their shape or inertia, initial pose
-//! and velocities and forces, joints to the world or between bodies, algebra, integrator, step and duration,
-//! run without writing Rust (`--scene-file`; the run and its output are in [`crate::scene_job`]).
+//! and velocities and forces, joints to the world or between bodies, a URDF robot, force elements between bodies,
+//! algebra, integrator, step and duration, run without writing Rust (`--scene-file`; the run and its output are in
+//! [`crate::scene_job`]).
 //!
 //! Two layouts, one system: a single `[body]` with its `[initial]` state, `[[forces]]` and `[[constraints]]`
 //! to the world; or named `[[body]]` entries, each with its `initial` state and `forces`, and `[[joint]]`
-//! entries `between = ["body", "other body" or "world"]`. Both become the same list of bodies and joints
-//! ([`SceneFile::layout`]) and one [`Mechanism`]. A joint is any constraint kind (`Geometry`: ball, hinge,
-//! cylindrical, prismatic, planar, point on plane, line, sphere or circle) in either formulation, its body's
-//! side in body coordinates and the rest in its reference's frame. The run's output, its CSV columns included,
-//! is described in [`crate::scene_job`].
+//! entries `between = ["body", "other body", "world" or a robot link]`, with or without a `[robot]`. Both become the
+//! same list of bodies and joints ([`SceneFile::layout`]) and one [`Mechanism`]: the robot's bodies and joints
+//! first (`urdf_import`), then the file's. A joint is any constraint kind (`Geometry`: ball, hinge, cylindrical,
+//! prismatic, planar, universal, fixed, point on plane, line, sphere or circle) in either formulation, its body's
+//! side in body coordinates and the rest in its reference's frame; a `[[joint]]` of the first seven kinds is a joint
+//! model (`joint_models`), with coordinates, a `drive` if it is a hinge or prismatic joint, and the articulated solve.
+//! Force elements (`[[spring]]`, `[[couple]]`, `[[joint_torque]]`, `[[joint_damping]]`, `[[pd]]`) are in `elements`,
+//! the robot in `robot`. The run's output, its CSV columns included, is described in [`crate::scene_job`].
 //!
 //! [`SceneFile::parse`] checks everything a run needs, down to building the system in each requested
 //! algebra, so a bad file fails before anything runs, with a message that names the offending entry. The
 //! format is derived from the structs below (serde), so toml reports unknown keys, missing fields and wrong
 //! types with their line and column.
 
+mod elements;
+mod joint_models;
+mod robot;
+
 use std::path::Path;
 use std::sync::Arc;
 
 use dynamics::constraints::{
-    linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower,
+    linear, pinning, Constraint, ConstraintError, MotorPoint, PinningAlgebra, Stabilisation, VirtualPower,
 };
+use dynamics::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::integrate::Integrator;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::{
-    Algebra, Body, BodyError, Cga, Force, FreeBody, Mechanism, MechanismError, Pga, Reference, Simulation, State,
+    motor, Algebra, Body, BodyError, Cga, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism, MechanismError,
+    Pga, Reference, ScrewCoordinates, Simulation, State,
 };
-use nalgebra::{Quaternion, SVector, Unit, UnitQuaternion, Vector3};
+use nalgebra::{DVector, Isometry3, Quaternion, SVector, Translation3, Unit, UnitQuaternion, Vector3};
 use scenarios::Formulation;
 use serde::Deserialize;
 
 use crate::names::{IntegratorName, StabilisationName};
 use crate::sweep::AlgebraKind;
+use elements::{
+    bounded, element_name, non_negative, CoupleSpec, DriveSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec,
+    TimeValue,
+};
+use robot::{JointDynamicsName, LoadedRobot, RobotColumns, RobotJoint, RobotSpec};
+
+/// Where an end of a joint or force element is: the mechanism's reference (a body or the world) and the end's frame in
+/// that reference's frame (a robot link's frame, else the identity).
+type Place<'a> = dyn Fn(&End) -> Result<(Reference, Isometry3<f64>), SceneFileError> + 'a;
 
 /// Why a scene file cannot run, or its run failed.
 #[derive(Debug, thiserror::Error)]
@@ -129,8 +148,12 @@ pub struct SceneFile {
     /// Which algebras run the scene.
     #[serde(default)]
     pub algebra: AlgebraChoice,
-    /// Default `"rk4"`; the splittings run a single body without constraints only.
-    #[serde(default = "default_integrator")]
+    /// The integrator as written, if it is.
+    #[serde(default, rename = "integrator")]
+    integrator_written: Option<IntegratorName>,
+    /// The integrator: as written, else `"rkmk8-body"` with a `[robot]` and `"rk4"` without (set by
+    /// [`SceneFile::parse`]); the splittings run a single body without constraints only.
+    #[serde(skip, default = "default_integrator")]
     pub integrator: IntegratorName,
     /// The step (s); it must divide the sample interval.
     pub dt: f64,
@@ -144,8 +167,9 @@ pub struct SceneFile {
     /// Gains for `stabilisation = "baumgarte"` (default α = β = 10, as on the command line).
     #[serde(default)]
     pub(crate) baumgarte: Option<BaumgarteGains>,
-    /// `[body]`, one body, or `[[body]]`, named bodies.
-    pub(crate) body: Bodies,
+    /// `[body]`, one body, or `[[body]]`, named bodies; none with a `[robot]` alone.
+    #[serde(default)]
+    pub(crate) body: Option<Bodies>,
     /// The single body's initial state.
     #[serde(default)]
     pub(crate) initial: Option<InitialSpec>,
@@ -155,9 +179,30 @@ pub struct SceneFile {
     /// The single body's constraints to the world.
     #[serde(default)]
     pub constraints: Vec<ConstraintSpec>,
-    /// Joints between named bodies, or a named body and the world.
+    /// Joints between named bodies, or a named body and the world or a robot link.
     #[serde(default)]
     pub(crate) joint: Vec<JointSpec>,
+    /// A URDF robot.
+    #[serde(default)]
+    pub(crate) robot: Option<RobotSpec>,
+    /// Spring-dampers between two bodies.
+    #[serde(default)]
+    pub(crate) spring: Vec<SpringSpec>,
+    /// Constant couples between two bodies.
+    #[serde(default)]
+    pub(crate) couple: Vec<CoupleSpec>,
+    /// Torques on joints by name.
+    #[serde(default)]
+    pub(crate) joint_torque: Vec<JointTorqueSpec>,
+    /// Viscous damping on joints by name.
+    #[serde(default)]
+    pub(crate) joint_damping: Vec<JointDampingSpec>,
+    /// PD controllers on joints by name.
+    #[serde(default)]
+    pub(crate) pd: Vec<PdSpec>,
+    /// The robot's URDF, read by [`SceneFile::parse`].
+    #[serde(skip)]
+    pub(crate) loaded_robot: Option<Arc<LoadedRobot>>,
 }
 
 /// The `body` key: a table (`[body]`, one body) or an array of tables (`[[body]]`, named bodies). Deserialized
@@ -200,6 +245,7 @@ pub(crate) struct NamedBody {
     #[serde(default)]
     pub(crate) shape: Option<Shape>,
     #[serde(default)]
+    #[serde(deserialize_with = "maybe_exactly")]
     pub(crate) principal_moments: Option<[f64; 3]>,
     #[serde(default)]
     pub(crate) initial: InitialSpec,
@@ -214,9 +260,13 @@ pub(crate) struct NamedBody {
 #[derive(Clone, Debug, Deserialize)]
 pub(crate) struct JointSpec {
     pub(crate) name: String,
+    #[serde(deserialize_with = "exactly")]
     pub(crate) between: [String; 2],
     #[serde(default)]
     pub(crate) formulation: FormulationName,
+    /// The prescribed coordinate of a hinge or prismatic joint.
+    #[serde(default)]
+    pub(crate) drive: Option<DriveSpec>,
     #[serde(flatten)]
     pub(crate) geometry: Geometry,
 }
@@ -231,14 +281,27 @@ pub struct LayoutBody {
     pub(crate) forces: Vec<ForceSpec>,
 }
 
-/// A joint of the scene: its name in messages, its body and reference (`None`: the world) by index.
+/// What a joint holds its body to, or where a force element's end is.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum End {
+    World,
+    /// A body of the file, by its index in [`Layout::bodies`].
+    Body(usize),
+    /// A link of the robot, by name.
+    Link(String),
+}
+
+/// A joint of the scene: its name in messages, its body (by index) and reference.
 #[derive(Clone, Debug)]
 pub(crate) struct LayoutJoint {
     pub(crate) name: String,
     pub(crate) body: usize,
-    pub(crate) reference: Option<usize>,
+    pub(crate) reference: End,
     pub(crate) formulation: FormulationName,
     pub(crate) geometry: Geometry,
+    /// A `[[joint]]` entry (a joint model where it can be), not a `[[constraints]]` one.
+    pub(crate) entry: bool,
+    pub(crate) drive: Option<DriveSpec>,
 }
 
 /// The scene's bodies and joints.
@@ -254,11 +317,61 @@ pub struct Layout {
 impl Layout {
     /// Per joint: its checked geometry (reference-side values in the reference's frame), its body and its
     /// reference, to measure violations with.
+    ///
+    /// A fixed joint without a given pose holds its body where the file starts it (before the projection onto the
+    /// joints). Joints to a robot link are placed by the system ([`SceneSystem::joint_violation`]), not here: they are
+    /// an error.
     pub fn joint_geometries(&self) -> Result<Vec<JointGeometry>, SceneFileError> {
         self.joints
             .iter()
-            .map(|j| Ok((j.geometry.checked(&j.name)?, j.body, j.reference)))
+            .map(|j| {
+                let reference = match &j.reference {
+                    End::World => None,
+                    End::Body(index) => Some(*index),
+                    End::Link(link) => {
+                        return Err(invalid(
+                            format!("joint {}: between", j.name),
+                            format!(
+                                "its reference is the robot link {link}, which only the built system places (see \
+                                 SceneSystem::joint_violation)"
+                            ),
+                        ))
+                    }
+                };
+                let start = if j.geometry.needs_start() {
+                    let body = self.initial_pose(j.body)?;
+                    let reference = reference.map(|r| self.initial_pose(r)).transpose()?;
+                    Some(relative_pose(&body, reference.as_ref()))
+                } else {
+                    None
+                };
+                Ok((j.geometry.checked(&j.name, start)?, j.body, reference))
+            })
             .collect()
+    }
+
+    /// Body `index`'s pose as the file starts it.
+    fn initial_pose(&self, index: usize) -> Result<Pose, SceneFileError> {
+        let body = &self.bodies[index];
+        let prefix = prefix(self, &body.name);
+        let position = finite(&format!("{prefix}initial.position"), body.initial.position)?;
+        let orientation = body
+            .initial
+            .orientation
+            .rotation()
+            .map_err(|e| named(self, &body.name, e))?;
+        Ok((position, orientation))
+    }
+}
+
+/// The pose of a body at `body` (world) in the frame of a reference at `reference` (the world if `None`).
+fn relative_pose(body: &Pose, reference: Option<&Pose>) -> Pose {
+    match reference {
+        None => *body,
+        Some((position, orientation)) => (
+            orientation.inverse() * (body.0 - position),
+            orientation.inverse() * body.1,
+        ),
     }
 }
 
@@ -290,6 +403,7 @@ pub(crate) struct BodySpec {
     #[serde(default)]
     pub(crate) shape: Option<Shape>,
     #[serde(default)]
+    #[serde(deserialize_with = "maybe_exactly")]
     pub(crate) principal_moments: Option<[f64; 3]>,
 }
 
@@ -299,6 +413,7 @@ pub(crate) struct BodySpec {
 pub(crate) enum Shape {
     /// Side lengths along body x, y, z.
     Cuboid {
+        #[serde(deserialize_with = "exactly")]
         size: [f64; 3],
     },
     /// A thin rod along body z; its small axial moment (kg m²) keeps the inertia invertible.
@@ -323,15 +438,18 @@ pub(crate) enum Shape {
 pub struct InitialSpec {
     /// Centre of mass, world (m).
     #[serde(default)]
+    #[serde(deserialize_with = "exactly")]
     pub(crate) position: [f64; 3],
     /// Body → world; the identity if absent.
     #[serde(default)]
     pub orientation: OrientationSpec,
     /// Angular velocity in body axes (rad/s).
     #[serde(default)]
+    #[serde(deserialize_with = "exactly")]
     pub(crate) body_angular_velocity: [f64; 3],
     /// Centre-of-mass velocity, world (m/s).
     #[serde(default)]
+    #[serde(deserialize_with = "exactly")]
     pub(crate) velocity: [f64; 3],
 }
 
@@ -340,9 +458,11 @@ pub struct InitialSpec {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OrientationSpec {
+    #[serde(default, deserialize_with = "maybe_exactly")]
     pub(crate) axis: Option<[f64; 3]>,
     pub(crate) angle: Option<f64>,
     pub(crate) degrees: Option<f64>,
+    #[serde(default, deserialize_with = "maybe_exactly")]
     pub(crate) quaternion: Option<[f64; 4]>,
 }
 
@@ -353,12 +473,21 @@ pub(crate) enum ForceSpec {
     /// Uniform gravity at the centre of mass (m/s²; default 9.81 along −z).
     Gravity {
         #[serde(default = "standard_gravity")]
+        #[serde(deserialize_with = "exactly")]
         acceleration: [f64; 3],
     },
     /// A constant force (N) along the fixed world line through `point` (m).
-    Force { force: [f64; 3], point: [f64; 3] },
+    Force {
+        #[serde(deserialize_with = "exactly")]
+        force: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
+        point: [f64; 3],
+    },
     /// A constant couple (N m).
-    Couple { moment: [f64; 3] },
+    Couple {
+        #[serde(deserialize_with = "exactly")]
+        moment: [f64; 3],
+    },
 }
 
 fn standard_gravity() -> [f64; 3] {
@@ -399,8 +528,10 @@ pub struct ConstraintSpec {
 pub(crate) enum Geometry {
     /// The body point stays at the world point (rank 3).
     BallJoint {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
         #[serde(alias = "reference_point")]
+        #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
     },
     /// The body turns only about the world axis through the world point, where the body point stays
@@ -411,52 +542,85 @@ pub(crate) enum Geometry {
     /// The body slides along the world axis without turning: a cylindrical joint that also keeps the body
     /// normal (normal to the body axis) along the world normal (normal to the world axis) (rank 5).
     Prismatic {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         body_axis: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         body_normal: [f64; 3],
         #[serde(alias = "reference_point")]
+        #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
         #[serde(alias = "reference_axis")]
+        #[serde(deserialize_with = "exactly")]
         world_axis: [f64; 3],
         #[serde(alias = "reference_normal")]
+        #[serde(deserialize_with = "exactly")]
         world_normal: [f64; 3],
     },
     /// The body plane through the body point normal to the body normal stays on the world plane through the
     /// world point normal to the world normal (rank 3).
     Planar {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         body_normal: [f64; 3],
         #[serde(alias = "reference_point")]
+        #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
         #[serde(alias = "reference_normal")]
+        #[serde(deserialize_with = "exactly")]
         world_normal: [f64; 3],
+    },
+    /// A Cardan joint: the body point stays at the world point, the body axis normal to the world axis; the body
+    /// turns about the world axis and about its own (rank 4).
+    Universal(AxisJoint),
+    /// A weld: the body keeps its pose in the reference's frame, `position` (its centre of mass, m) and
+    /// `orientation` (body → reference, as `[initial] orientation`), each the pose at the start if not given
+    /// (rank 6).
+    Fixed {
+        #[serde(default)]
+        #[serde(deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
     },
     /// The body point stays on the world plane `normal · x = offset` (rank 1).
     PointOnPlane {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         normal: [f64; 3],
         offset: f64,
     },
     /// The body point stays on the world line through the world point along the world axis (rank 2).
     PointOnLine {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
         #[serde(alias = "reference_point")]
+        #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
         #[serde(alias = "reference_axis")]
+        #[serde(deserialize_with = "exactly")]
         world_axis: [f64; 3],
     },
     /// The body point stays on the sphere (rank 1).
     PointOnSphere {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         centre: [f64; 3],
         radius: f64,
     },
     /// The body point stays on the circle of the sphere in the plane through its centre normal to
     /// `normal` (rank 2).
     PointOnCircle {
+        #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        #[serde(deserialize_with = "exactly")]
         centre: [f64; 3],
         radius: f64,
+        #[serde(deserialize_with = "exactly")]
         normal: [f64; 3],
     },
 }
@@ -465,12 +629,58 @@ pub(crate) enum Geometry {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct AxisJoint {
+    #[serde(deserialize_with = "exactly")]
     pub(crate) body_point: [f64; 3],
+    #[serde(deserialize_with = "exactly")]
     pub(crate) body_axis: [f64; 3],
     #[serde(alias = "reference_point")]
+    #[serde(deserialize_with = "exactly")]
     pub(crate) world_point: [f64; 3],
     #[serde(alias = "reference_axis")]
+    #[serde(deserialize_with = "exactly")]
     pub(crate) world_axis: [f64; 3],
+}
+
+/// `[T; N]` from an array of exactly `N` values: serde's own arrays read the first `N` and let toml drop the rest
+/// without a word (`body_point = [0.0, 0.0, 0.5, 9.0]` once meant `[0.0, 0.0, 0.5]`).
+fn exactly<'de, D, T, const N: usize>(deserializer: D) -> Result<[T; N], D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    let values = Vec::<T>::deserialize(deserializer)?;
+    let count = values.len();
+    values
+        .try_into()
+        .map_err(|_| serde::de::Error::invalid_length(count, &format!("an array of {N}").as_str()))
+}
+
+/// [`exactly`] for an optional key.
+fn maybe_exactly<'de, D, T, const N: usize>(deserializer: D) -> Result<Option<[T; N]>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Deserialize<'de>,
+{
+    exactly(deserializer).map(Some)
+}
+
+/// `[[f64; 3]; N]`: `N` points of exactly three numbers each.
+fn points<'de, D, const N: usize>(deserializer: D) -> Result<[[f64; 3]; N], D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    let rows = Vec::<Vec<f64>>::deserialize(deserializer)?;
+    let count = rows.len();
+    let rows: Vec<[f64; 3]> = rows
+        .into_iter()
+        .map(|row| {
+            let length = row.len();
+            row.try_into()
+                .map_err(|_| serde::de::Error::invalid_length(length, &"a point of 3 numbers"))
+        })
+        .collect::<Result<_, D::Error>>()?;
+    rows.try_into()
+        .map_err(|_| serde::de::Error::invalid_length(count, &format!("an array of {N} points").as_str()))
 }
 
 /// The values as a vector, if all are finite.
@@ -539,13 +749,17 @@ impl OrientationSpec {
     /// The rotation, or an error naming what is wrong: keys given in another combination, a non-finite
     /// angle, a zero axis or quaternion.
     pub fn rotation(&self) -> Result<UnitQuaternion<f64>, SceneFileError> {
-        const WHAT: &str = "initial.orientation";
+        self.rotation_of("initial.orientation")
+    }
+
+    /// [`OrientationSpec::rotation`], with messages naming the key `what`.
+    pub(crate) fn rotation_of(&self, what: &str) -> Result<UnitQuaternion<f64>, SceneFileError> {
         let axis_angle = |axis: [f64; 3], angle: f64| {
             if !angle.is_finite() {
-                return Err(invalid(WHAT, format!("angle {angle} is not finite")));
+                return Err(invalid(what, format!("angle {angle} is not finite")));
             }
             Ok(UnitQuaternion::from_axis_angle(
-                &direction("initial.orientation.axis", axis)?,
+                &direction(&format!("{what}.axis"), axis)?,
                 angle,
             ))
         };
@@ -553,15 +767,15 @@ impl OrientationSpec {
             (None, None, None, None) => Ok(UnitQuaternion::identity()),
             (Some(axis), Some(angle), None, None) => axis_angle(axis, angle),
             (Some(axis), None, Some(degrees), None) => axis_angle(axis, degrees.to_radians()),
-            (None, None, None, Some(quaternion)) => match rescaled(WHAT, quaternion) {
+            (None, None, None, Some(quaternion)) => match rescaled(what, quaternion) {
                 Ok((_, q)) => Ok(UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]))),
                 Err(_) => Err(invalid(
-                    WHAT,
+                    what,
                     format!("quaternion {quaternion:?} is zero or not finite"),
                 )),
             },
             _ => Err(invalid(
-                WHAT,
+                what,
                 "give `axis` with either `angle` (rad) or `degrees`, or a `quaternion` [w, x, y, z]",
             )),
         }
@@ -696,6 +910,21 @@ pub enum CheckedGeometry {
         /// The plane it is held on.
         world: (Vector3<f64>, Vector3<f64>),
     },
+    /// A body point held at a world point, the body axis (point, unit direction) kept normal to the world axis: a
+    /// universal joint.
+    Universal {
+        /// The body point and axis.
+        body: (Vector3<f64>, Vector3<f64>),
+        /// The world point and axis.
+        world: (Vector3<f64>, Vector3<f64>),
+    },
+    /// The body held at a pose: its centre of mass at `position`, turned by `orientation` (body → world).
+    Weld {
+        /// m.
+        position: Vector3<f64>,
+        /// Body → world.
+        orientation: UnitQuaternion<f64>,
+    },
     /// A body point held on a world line (point, unit direction).
     Line {
         /// The held point.
@@ -733,6 +962,8 @@ impl Geometry {
             Geometry::Cylindrical(_) => "cylindrical joint",
             Geometry::Prismatic { .. } => "prismatic joint",
             Geometry::Planar { .. } => "planar joint",
+            Geometry::Universal(_) => "universal joint",
+            Geometry::Fixed { .. } => "fixed joint",
             Geometry::PointOnLine { .. } => "point on line",
             Geometry::PointOnPlane { .. } => "point on plane",
             Geometry::PointOnSphere { .. } => "point on sphere",
@@ -740,7 +971,14 @@ impl Geometry {
         }
     }
 
-    fn checked(&self, name: &str) -> Result<CheckedGeometry, SceneFileError> {
+    /// Whether the checked geometry needs the pose the body starts in (a fixed joint without a given pose).
+    pub(crate) fn needs_start(&self) -> bool {
+        matches!(self, Geometry::Fixed { position, orientation } if position.is_none() || orientation.is_none())
+    }
+
+    /// Every value checked; `start` is the body's pose in the reference's frame at the start, which a fixed joint
+    /// without a given pose keeps ([`Geometry::needs_start`]).
+    fn checked(&self, name: &str, start: Option<Pose>) -> Result<CheckedGeometry, SceneFileError> {
         let what = |field: &str| format!("constraint {name}: {field}");
         let point = |field: &str, values| finite(&what(field), values);
         let unit = |field: &str, values| direction(&what(field), values).map(Unit::into_inner);
@@ -771,6 +1009,36 @@ impl Geometry {
                 body_point: point("body_point", *body_point)?,
                 world_point: point("world_point", *world_point)?,
             },
+            Geometry::Universal(joint) => CheckedGeometry::Universal {
+                body: (
+                    point("body_point", joint.body_point)?,
+                    unit("body_axis", joint.body_axis)?,
+                ),
+                world: (
+                    point("world_point", joint.world_point)?,
+                    unit("world_axis", joint.world_axis)?,
+                ),
+            },
+            Geometry::Fixed { position, orientation } => {
+                let start = || {
+                    start.ok_or_else(|| {
+                        invalid(
+                            what("position, orientation"),
+                            "the pose the body starts in is not known here",
+                        )
+                    })
+                };
+                CheckedGeometry::Weld {
+                    position: match position {
+                        Some(p) => point("position", *p)?,
+                        None => start()?.0,
+                    },
+                    orientation: match orientation {
+                        Some(o) => o.rotation_of(&what("orientation"))?,
+                        None => start()?.1,
+                    },
+                }
+            }
             Geometry::Hinge(joint) | Geometry::Cylindrical(joint) => CheckedGeometry::Axis {
                 freedom: if matches!(self, Geometry::Hinge(_)) {
                     AxisFreedom::Turn
@@ -862,103 +1130,129 @@ impl Geometry {
     }
 }
 
-impl ConstraintSpec {
-    /// The constraint in algebra `A`, called `name` in messages.
-    fn constraint<A: FileAlgebra>(&self, name: String) -> Result<Arc<dyn Constraint<A>>, SceneFileError> {
-        let pinned = self.formulation == FormulationName::Pinning;
-        let not_expressible = |name, object| SceneFileError::NotExpressible {
-            name,
-            object,
-            algebra: A::NAME,
-        };
-        Ok(match self.geometry.checked(&name)? {
-            CheckedGeometry::Ball {
-                body_point,
-                world_point,
-            } => {
+/// The constraint of `geometry` (checked, its reference side in the reference body's frame, or the world's) in
+/// algebra `A`, by pinning or by virtual power, called `name` in messages.
+fn constraint_of<A: FileAlgebra>(
+    name: String,
+    geometry: CheckedGeometry,
+    pinned: bool,
+) -> Result<Arc<dyn Constraint<A>>, SceneFileError> {
+    let not_expressible = |name, object| SceneFileError::NotExpressible {
+        name,
+        object,
+        algebra: A::NAME,
+    };
+    Ok(match geometry {
+        CheckedGeometry::Universal { body, world } => {
+            if pinned {
+                return Err(invalid(
+                    format!("constraint {name}"),
+                    "a universal joint has no pinned form (its two axes staying normal is not an incidence of \
+                     pinned objects); write formulation = \"virtual_power\"",
+                ));
+            }
+            Arc::new(VirtualPower::universal(name, body, world)?)
+        }
+        CheckedGeometry::Weld { position, orientation } => {
+            let held = motor::from_pose::<A>(position, &orientation);
+            if pinned {
+                let zero = A::screw(ScrewCoordinates::default());
+                let point = MotorPoint {
+                    motor: held,
+                    velocity: zero,
+                    acceleration: zero,
+                };
+                Arc::new(pinning::motor_joint::<A>(name, move |_t: f64| point))
+            } else {
+                Arc::new(VirtualPower::weld(name, held))
+            }
+        }
+        CheckedGeometry::Ball {
+            body_point,
+            world_point,
+        } => {
+            if pinned {
+                Arc::new(pinning::point::<A>(name, body_point, world_point))
+            } else {
+                Arc::new(VirtualPower::ball_joint(name, body_point, world_point))
+            }
+        }
+        CheckedGeometry::Axis { freedom, body, world } => match (freedom, pinned) {
+            (AxisFreedom::Turn, true) => Arc::new(pinning::hinge::<A>(name, body, world)?),
+            (AxisFreedom::Turn, false) => Arc::new(VirtualPower::hinge(name, body, world)?),
+            (AxisFreedom::TurnAndSlide, true) => Arc::new(pinning::line::<A>(name, body, world)?),
+            (AxisFreedom::TurnAndSlide, false) => Arc::new(VirtualPower::cylindrical(name, body, world)?),
+            (
+                AxisFreedom::Slide {
+                    body_normal,
+                    world_normal,
+                },
+                _,
+            ) => {
+                let body = (body.0, body.1, body_normal);
+                let world = (world.0, world.1, world_normal);
                 if pinned {
-                    Arc::new(pinning::point::<A>(name, body_point, world_point))
+                    Arc::new(pinning::prismatic::<A>(name, body, world)?)
                 } else {
-                    Arc::new(VirtualPower::ball_joint(name, body_point, world_point))
+                    Arc::new(VirtualPower::prismatic(name, body, world)?)
                 }
             }
-            CheckedGeometry::Axis { freedom, body, world } => match (freedom, pinned) {
-                (AxisFreedom::Turn, true) => Arc::new(pinning::hinge::<A>(name, body, world)?),
-                (AxisFreedom::Turn, false) => Arc::new(VirtualPower::hinge(name, body, world)?),
-                (AxisFreedom::TurnAndSlide, true) => Arc::new(pinning::line::<A>(name, body, world)?),
-                (AxisFreedom::TurnAndSlide, false) => Arc::new(VirtualPower::cylindrical(name, body, world)?),
-                (
-                    AxisFreedom::Slide {
-                        body_normal,
-                        world_normal,
-                    },
-                    _,
-                ) => {
-                    let body = (body.0, body.1, body_normal);
-                    let world = (world.0, world.1, world_normal);
-                    if pinned {
-                        Arc::new(pinning::prismatic::<A>(name, body, world)?)
-                    } else {
-                        Arc::new(VirtualPower::prismatic(name, body, world)?)
-                    }
-                }
-            },
-            CheckedGeometry::Planar { body, world } => {
-                if pinned {
-                    // The planes {x : n·x = n·p} of the unit normals (pinned planes need normals of one length).
-                    let plane = |(point, normal): (Vector3<f64>, Vector3<f64>)| (normal, normal.dot(&point));
-                    Arc::new(pinning::plane::<A>(name, plane(body), plane(world)))
-                } else {
-                    Arc::new(VirtualPower::planar(name, body, world)?)
-                }
+        },
+        CheckedGeometry::Planar { body, world } => {
+            if pinned {
+                // The planes {x : n·x = n·p} of the unit normals (pinned planes need normals of one length).
+                let plane = |(point, normal): (Vector3<f64>, Vector3<f64>)| (normal, normal.dot(&point));
+                Arc::new(pinning::plane::<A>(name, plane(body), plane(world)))
+            } else {
+                Arc::new(VirtualPower::planar(name, body, world)?)
             }
-            CheckedGeometry::Line { body_point, world } => {
-                if pinned {
-                    Arc::new(linear::point_on_line::<A>(name, body_point, world))
-                } else {
-                    Arc::new(VirtualPower::point_on_line(name, body_point, world)?)
-                }
+        }
+        CheckedGeometry::Line { body_point, world } => {
+            if pinned {
+                Arc::new(linear::point_on_line::<A>(name, body_point, world))
+            } else {
+                Arc::new(VirtualPower::point_on_line(name, body_point, world)?)
             }
-            CheckedGeometry::Plane {
-                body_point,
-                normal,
-                offset,
-            } => {
-                if pinned {
-                    Arc::new(linear::point_on_plane::<A>(name, body_point, (normal, offset)))
-                } else {
-                    Arc::new(VirtualPower::point_on_plane(name, body_point, (normal, offset))?)
-                }
+        }
+        CheckedGeometry::Plane {
+            body_point,
+            normal,
+            offset,
+        } => {
+            if pinned {
+                Arc::new(linear::point_on_plane::<A>(name, body_point, (normal, offset)))
+            } else {
+                Arc::new(VirtualPower::point_on_plane(name, body_point, (normal, offset))?)
             }
-            CheckedGeometry::Round {
-                body_point,
-                centre,
-                radius,
-                normal: None,
-            } => {
-                if pinned {
-                    A::point_on_sphere_pin(name.clone(), body_point, centre, radius)
-                        .ok_or_else(|| not_expressible(name, "sphere"))?
-                } else {
-                    Arc::new(VirtualPower::point_on_sphere(name, body_point, centre, radius)?)
-                }
+        }
+        CheckedGeometry::Round {
+            body_point,
+            centre,
+            radius,
+            normal: None,
+        } => {
+            if pinned {
+                A::point_on_sphere_pin(name.clone(), body_point, centre, radius)
+                    .ok_or_else(|| not_expressible(name, "sphere"))?
+            } else {
+                Arc::new(VirtualPower::point_on_sphere(name, body_point, centre, radius)?)
             }
-            CheckedGeometry::Round {
-                body_point,
-                centre,
-                radius,
-                normal: Some(normal),
-            } => {
-                let circle = (centre, radius, normal);
-                if pinned {
-                    A::point_on_circle_pin(name.clone(), body_point, circle)
-                        .ok_or_else(|| not_expressible(name, "circle"))?
-                } else {
-                    Arc::new(VirtualPower::point_on_circle(name, body_point, circle)?)
-                }
+        }
+        CheckedGeometry::Round {
+            body_point,
+            centre,
+            radius,
+            normal: Some(normal),
+        } => {
+            let circle = (centre, radius, normal);
+            if pinned {
+                A::point_on_circle_pin(name.clone(), body_point, circle)
+                    .ok_or_else(|| not_expressible(name, "circle"))?
+            } else {
+                Arc::new(VirtualPower::point_on_circle(name, body_point, circle)?)
             }
-        })
-    }
+        }
+    })
 }
 
 impl CheckedGeometry {
@@ -993,6 +1287,17 @@ impl CheckedGeometry {
                 body,
                 world: (point(world.0), axis(world.1)),
             },
+            CheckedGeometry::Universal { body, world } => CheckedGeometry::Universal {
+                body,
+                world: (point(world.0), axis(world.1)),
+            },
+            CheckedGeometry::Weld {
+                position: at,
+                orientation: turn,
+            } => CheckedGeometry::Weld {
+                position: point(at),
+                orientation: orientation * turn,
+            },
             CheckedGeometry::Line { body_point, world } => CheckedGeometry::Line {
                 body_point,
                 world: (point(world.0), axis(world.1)),
@@ -1026,8 +1331,10 @@ impl CheckedGeometry {
 
     /// How far a body at `pose` is from satisfying the constraint (m): the body point's distance from where it
     /// must be; for axis joints also that of the point 1 m further along the body axis, for prismatic and
-    /// planar joints that of the point 1 m along the body normal. World geometry (see
-    /// [`CheckedGeometry::in_world`] for a body reference).
+    /// planar joints that of the point 1 m along the body normal, for universal joints how far the point 1 m along
+    /// the body axis is off the plane normal to the world axis, for welds the centre of mass's distance and the
+    /// angle (rad) of the turn between the pose and the one held. World geometry (see [`CheckedGeometry::in_world`]
+    /// for a body reference).
     pub fn violation(&self, (position, orientation): &Pose) -> f64 {
         let world = |body_point: Vector3<f64>| position + orientation * body_point;
         // Distance of a world point from a world line (point, unit direction).
@@ -1059,6 +1366,15 @@ impl CheckedGeometry {
                 };
                 at_point.max(along_axis)
             }
+            CheckedGeometry::Universal { body, world: line } => {
+                // The point 1 m along the body axis off the plane normal to the world axis.
+                let off_normal = (orientation * body.1).dot(&line.1).abs();
+                (world(body.0) - line.0).norm().max(off_normal)
+            }
+            CheckedGeometry::Weld {
+                position: at,
+                orientation: turn,
+            } => (position - at).norm().max(orientation.angle_to(&turn)),
             CheckedGeometry::Planar { body, world: plane } => {
                 let off_plane = plane.1.dot(&(world(body.0) - plane.0)).abs();
                 // The point 1 m along the body normal from the world normal through the body point.
@@ -1102,10 +1418,103 @@ pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> i
     })
 }
 
-/// A system ready to run in one algebra, and its initial state (one per body) on the joints.
+/// A system ready to run in one algebra: the mechanism (the robot's bodies and joints first, then the file's), its
+/// initial state (one per body) on the joints, and what the run measures.
 pub struct SceneSystem<A: Algebra> {
     pub(crate) system: Mechanism<A>,
     pub(crate) initial: Vec<State<A>>,
+    /// Every body's name, in the mechanism's order.
+    pub(crate) names: Vec<String>,
+    /// The file's joints: their geometry (reference side in the reference body's frame, or the world's), body and
+    /// reference, by mechanism index.
+    pub(crate) geometries: Vec<JointGeometry>,
+    /// The robot's moving joints: model, child, parent (mechanism indices) and where the coordinates start.
+    pub(crate) robot_joints: Vec<RobotJoint>,
+    /// The joints CSV's columns, with a robot.
+    pub(crate) robot_columns: Option<RobotColumns>,
+}
+
+impl<A: Algebra> SceneSystem<A> {
+    /// The mechanism.
+    pub fn mechanism(&self) -> &Mechanism<A> {
+        &self.system
+    }
+
+    /// The initial state, one per body, on the joints.
+    pub fn initial(&self) -> &[State<A>] {
+        &self.initial
+    }
+
+    /// Every body's name, in the mechanism's order (the robot's bodies, named after their links, first).
+    pub fn body_names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The headers of the joints CSV between `t` and `energy`, with a robot.
+    pub fn joint_columns(&self) -> Option<&[String]> {
+        self.robot_columns.as_ref().map(|c| c.headers.as_slice())
+    }
+
+    /// The joints CSV's values between `t` and `energy` at the mechanism's joint positions `q`.
+    pub(crate) fn joint_row(&self, q: &[f64]) -> Option<Vec<f64>> {
+        self.robot_columns.as_ref().map(|c| c.row(q))
+    }
+
+    /// The largest joint violation with the bodies at `poses` (mechanism order): the file's joints measured as
+    /// [`CheckedGeometry::violation`] (m), the robot's by how far each child is from where its joint's coordinates
+    /// put it relative to its parent (the joint origin's distance, m, and the turn's angle, rad). `q`: the joint
+    /// positions at these poses, if known.
+    pub fn joint_violation(&self, poses: &[Pose], q: Option<&[f64]>) -> f64 {
+        let files = joint_violations(&self.geometries, poses).fold(0.0, f64::max);
+        if self.robot_joints.is_empty() {
+            return files;
+        }
+        let read;
+        let q = match q {
+            Some(q) => q,
+            None => {
+                let states: Vec<State<A>> = poses
+                    .iter()
+                    .enumerate()
+                    .map(|(i, (position, orientation))| {
+                        State::new(
+                            self.system.body(i),
+                            *position,
+                            orientation,
+                            Vector3::zeros(),
+                            Vector3::zeros(),
+                        )
+                    })
+                    .collect();
+                match self.system.joint_positions(&states, None) {
+                    Ok(q) => {
+                        read = q;
+                        &read
+                    }
+                    Err(_) => return f64::NAN,
+                }
+            }
+        };
+        let isometry =
+            |(position, orientation): &Pose| Isometry3::from_parts(Translation3::from(*position), *orientation);
+        let robot = self
+            .robot_joints
+            .iter()
+            .map(|(model, child, parent, offset)| {
+                let parent = parent.map_or(Isometry3::identity(), |p| isometry(&poses[p]));
+                let relative = parent.inverse() * isometry(&poses[*child]);
+                let actual = model.parent_frame().inverse() * relative * model.child_frame();
+                let count = model.kind().position_count();
+                match model.joint_pose(&q[*offset..*offset + count]) {
+                    Ok(placed) => (actual.translation.vector - placed.translation.vector)
+                        .norm()
+                        .max(actual.rotation.angle_to(&placed.rotation)),
+                    Err(_) => f64::NAN,
+                }
+            })
+            .fold(0.0, f64::max);
+        files.max(robot)
+    }
 }
 
 /// Scene files larger than this are refused before they are read to the end (the largest shipped one is 5 KiB).
@@ -1123,7 +1532,8 @@ pub const MAX_SAMPLES: usize = 1_000_000;
 const WORLD: &str = "world";
 
 impl SceneFile {
-    /// Reads and checks a scene file (at most [`MAX_FILE_BYTES`]).
+    /// Reads and checks a scene file (at most [`MAX_FILE_BYTES`]); a robot's URDF path is relative to the file's
+    /// folder.
     ///
     /// ```
     /// use std::path::Path;
@@ -1146,12 +1556,13 @@ impl SceneFile {
             return Err(invalid("the file", format!("is larger than {MAX_FILE_BYTES} bytes")));
         }
         let text = String::from_utf8(bytes).map_err(|e| invalid("the file", format!("is not UTF-8: {e}")))?;
-        SceneFile::parse(&text)
+        SceneFile::parse_in(&text, path.parent().unwrap_or(Path::new("")))
     }
 
     /// Parses a scene file and checks that it can run: the bodies, the timing, the integrator and, in every
     /// requested algebra, the forces, joints, stabilisation, the projection of the initial state onto the
-    /// joints and the reaction solve there.
+    /// joints and the reaction solve there. A robot's URDF path is relative to the current folder
+    /// ([`SceneFile::parse_in`] takes another).
     ///
     /// ```
     /// use report::scene_file::SceneFile;
@@ -1183,26 +1594,74 @@ impl SceneFile {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
-        let scene: SceneFile = toml::from_str(text)?;
+        SceneFile::parse_in(text, Path::new(""))
+    }
+
+    /// [`SceneFile::parse`], with a robot's URDF path relative to `folder` (the scene file's).
+    pub fn parse_in(text: &str, folder: &Path) -> Result<SceneFile, SceneFileError> {
+        let mut scene: SceneFile = toml::from_str(text)?;
+        if let Some(robot) = &scene.robot {
+            scene.loaded_robot = Some(Arc::new(robot.load(folder)?));
+        }
+        scene.integrator = scene.integrator_written.unwrap_or(if scene.robot.is_some() {
+            IntegratorName::Rkmk8Body
+        } else {
+            IntegratorName::Rk4
+        });
         scene.schedule()?;
         let layout = scene.layout()?;
         let splitting = matches!(Integrator::from(scene.integrator), Integrator::Splitting(_));
-        if splitting && !(layout.joints.is_empty() && layout.bodies.len() == 1) {
+        if splitting && !scene.free_body(&layout) {
             return Err(invalid(
                 "integrator",
                 format!(
-                    "{} is a splitting method, which runs one body without constraints only",
+                    "{} is a splitting method, which runs one body without constraints, a robot or force elements only",
                     Integrator::from(scene.integrator).name()
                 ),
             ));
         }
         for algebra in scene.algebra.algebras() {
             match algebra {
-                AlgebraKind::Pga => scene.system::<Pga>().map(drop)?,
-                AlgebraKind::Cga => scene.system::<Cga>().map(drop)?,
+                AlgebraKind::Pga => scene.check_integrator(&scene.system::<Pga>()?)?,
+                AlgebraKind::Cga => scene.check_integrator(&scene.system::<Cga>()?)?,
             }
         }
         Ok(scene)
+    }
+
+    /// An integrator stepping in joint coordinates needs every joint a joint model, in a tree: refused here, naming
+    /// the integrator, rather than when the run starts.
+    fn check_integrator<A: FileAlgebra>(&self, system: &SceneSystem<A>) -> Result<(), SceneFileError> {
+        let integrator = Integrator::from(self.integrator);
+        if matches!(integrator, Integrator::Joint(_)) {
+            dynamics::Stepper::new(&system.system, integrator).map_err(|e| invalid("integrator", e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// Whether the scene is one body alone, without joints, a robot or force elements: a free body.
+    fn free_body(&self, layout: &Layout) -> bool {
+        layout.joints.is_empty()
+            && layout.bodies.len() == 1
+            && self.robot.is_none()
+            && self.spring.is_empty()
+            && self.couple.is_empty()
+            && self.joint_torque.is_empty()
+            && self.joint_damping.is_empty()
+            && self.pd.is_empty()
+    }
+
+    /// The robot's URDF as read, with its `[robot]` table; an error if the table was not read by
+    /// [`SceneFile::parse`].
+    fn robot(&self) -> Result<Option<(&RobotSpec, &LoadedRobot)>, SceneFileError> {
+        match (&self.robot, &self.loaded_robot) {
+            (Some(spec), Some(loaded)) => Ok(Some((spec, loaded))),
+            (Some(_), None) => Err(invalid(
+                "robot",
+                "the URDF was not read: make the scene with SceneFile::parse or SceneFile::load",
+            )),
+            (None, _) => Ok(None),
+        }
     }
 
     /// The run's steps and samples, within [`MAX_STEPS`] and [`MAX_SAMPLES`].
@@ -1220,7 +1679,8 @@ impl SceneFile {
                 ),
             ));
         }
-        let bodies = self.layout()?.bodies.len();
+        let robot_bodies = self.robot()?.map_or(0, |(spec, loaded)| loaded.body_count(spec));
+        let bodies = self.layout()?.bodies.len() + robot_bodies;
         if schedule.sample_count().saturating_mul(bodies) > MAX_SAMPLES {
             return Err(invalid(
                 "duration, sample_interval",
@@ -1253,8 +1713,15 @@ impl SceneFile {
 
     /// The bodies and joints, from either layout, with every name resolved.
     pub fn layout(&self) -> Result<Layout, SceneFileError> {
+        let robot = self.robot()?;
         match &self.body {
-            Bodies::One(spec) => {
+            Some(Bodies::One(spec)) => {
+                if robot.is_some() {
+                    return Err(invalid(
+                        "body",
+                        "with a [robot], write the scene's other bodies as [[body]] entries with a `name`",
+                    ));
+                }
                 if !self.joint.is_empty() {
                     return Err(invalid(
                         "joint",
@@ -1268,9 +1735,11 @@ impl SceneFile {
                     .map(|(index, c)| LayoutJoint {
                         name: format!("{} ({})", index + 1, c.geometry.kind()),
                         body: 0,
-                        reference: None,
+                        reference: End::World,
                         formulation: c.formulation,
                         geometry: c.geometry.clone(),
+                        entry: false,
+                        drive: None,
                     })
                     .collect();
                 Ok(Layout {
@@ -1284,109 +1753,130 @@ impl SceneFile {
                     named: false,
                 })
             }
-            Bodies::Named(entries) => {
-                if self.initial.is_some() || !self.forces.is_empty() || !self.constraints.is_empty() {
-                    return Err(invalid(
-                        "initial, forces, constraints",
-                        "with [[body]] entries, give each body its `initial` state and `forces` in its entry, and \
-                         the joints as [[joint]] entries",
-                    ));
-                }
-                if entries.is_empty() {
-                    return Err(invalid("body", "needs at least one entry"));
-                }
-                let mut bodies: Vec<LayoutBody> = Vec::with_capacity(entries.len());
-                for entry in entries {
-                    let name = &entry.name;
-                    let valid =
-                        !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-                    if !valid {
-                        return Err(invalid(
-                            format!("body {name:?}"),
-                            "a name is letters, digits, `_` and `-` (it heads the CSV columns)",
-                        ));
-                    }
-                    if name == WORLD || bodies.iter().any(|b| &b.name == name) {
-                        return Err(invalid(
-                            format!("body {name}"),
-                            if name == WORLD {
-                                "\"world\" is the name of the world".to_owned()
-                            } else {
-                                "two bodies have this name".to_owned()
-                            },
-                        ));
-                    }
-                    bodies.push(LayoutBody {
-                        name: name.clone(),
-                        spec: BodySpec {
-                            mass: entry.mass,
-                            shape: entry.shape.clone(),
-                            principal_moments: entry.principal_moments,
-                        },
-                        initial: entry.initial.clone(),
-                        forces: entry.forces.clone(),
-                    });
-                }
-                let index_of = |joint: &str, name: &str| {
-                    bodies.iter().position(|b| b.name == name).ok_or_else(|| {
-                        let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
-                        invalid(
-                            format!("joint {joint}: between"),
-                            format!(
-                                "no body named {name:?} (the bodies: {}; or \"world\")",
-                                known.join(", ")
-                            ),
-                        )
-                    })
-                };
-                let mut joints: Vec<LayoutJoint> = Vec::with_capacity(self.joint.len());
-                for spec in &self.joint {
-                    let name = &spec.name;
-                    if joints.iter().any(|j| &j.name == name) {
-                        return Err(invalid(format!("joint {name}"), "two joints have this name"));
-                    }
-                    let [held, reference] = &spec.between;
-                    if held == WORLD {
-                        return Err(invalid(
-                            format!("joint {name}: between"),
-                            "the first is the held body, not the world (write [\"body\", \"world\"])",
-                        ));
-                    }
-                    let body = index_of(name, held)?;
-                    let reference = if reference == WORLD {
-                        None
-                    } else {
-                        Some(index_of(name, reference)?)
-                    };
-                    if reference == Some(body) {
-                        return Err(invalid(
-                            format!("joint {name}: between"),
-                            format!("joins {held} to itself"),
-                        ));
-                    }
-                    joints.push(LayoutJoint {
-                        name: name.clone(),
-                        body,
-                        reference,
-                        formulation: spec.formulation,
-                        geometry: spec.geometry.clone(),
-                    });
-                }
-                Ok(Layout {
-                    bodies,
-                    joints,
-                    named: true,
-                })
-            }
+            Some(Bodies::Named(entries)) => self.named_layout(entries, robot.map(|(_, loaded)| loaded)),
+            None => match robot {
+                Some((_, loaded)) => self.named_layout(&[], Some(loaded)),
+                None => Err(invalid(
+                    "body",
+                    "a scene needs a [body] table, [[body]] entries or a [robot]",
+                )),
+            },
         }
+    }
+
+    /// The layout of named `[[body]]` entries (none with a robot alone), their joints and the robot's links.
+    fn named_layout(&self, entries: &[NamedBody], robot: Option<&LoadedRobot>) -> Result<Layout, SceneFileError> {
+        if self.initial.is_some() || !self.forces.is_empty() || !self.constraints.is_empty() {
+            return Err(invalid(
+                "initial, forces, constraints",
+                "with [[body]] entries or a [robot], give each body its `initial` state and `forces` in its entry, \
+                 and the joints as [[joint]] entries",
+            ));
+        }
+        if entries.is_empty() && robot.is_none() {
+            return Err(invalid("body", "needs at least one entry"));
+        }
+        let mut bodies: Vec<LayoutBody> = Vec::with_capacity(entries.len());
+        for entry in entries {
+            let name = &entry.name;
+            let valid = !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+            if !valid {
+                return Err(invalid(
+                    format!("body {name:?}"),
+                    "a name is letters, digits, `_` and `-` (it heads the CSV columns)",
+                ));
+            }
+            if name == WORLD || bodies.iter().any(|b| &b.name == name) {
+                return Err(invalid(
+                    format!("body {name}"),
+                    if name == WORLD {
+                        "\"world\" is the name of the world".to_owned()
+                    } else {
+                        "two bodies have this name".to_owned()
+                    },
+                ));
+            }
+            if robot.is_some_and(|r| r.links().any(|link| link == name)) {
+                return Err(invalid(
+                    format!("body {name}"),
+                    "the robot has a link of this name (its bodies are named after their links)",
+                ));
+            }
+            bodies.push(LayoutBody {
+                name: name.clone(),
+                spec: BodySpec {
+                    mass: entry.mass,
+                    shape: entry.shape.clone(),
+                    principal_moments: entry.principal_moments,
+                },
+                initial: entry.initial.clone(),
+                forces: entry.forces.clone(),
+            });
+        }
+        let mut joints: Vec<LayoutJoint> = Vec::with_capacity(self.joint.len());
+        for spec in &self.joint {
+            let name = &spec.name;
+            if name.is_empty() {
+                return Err(invalid("joint \"\"", "a joint needs a non-empty name"));
+            }
+            if joints.iter().any(|j| &j.name == name) {
+                return Err(invalid(format!("joint {name}"), "two joints have this name"));
+            }
+            if robot.is_some_and(|r| r.has_joint(name)) {
+                return Err(invalid(format!("joint {name}"), "the robot has a joint of this name"));
+            }
+            let [held, reference] = &spec.between;
+            let what = format!("joint {name}: between");
+            if held == WORLD {
+                return Err(invalid(
+                    what,
+                    "the first is the held body, not the world (write [\"body\", \"world\"])",
+                ));
+            }
+            let body = match end_of(&bodies, robot, &what, held)? {
+                End::Body(index) => index,
+                _ => {
+                    return Err(invalid(
+                        what,
+                        format!(
+                            "the first is the held body, a [[body]] entry; the robot link {held} can be the \
+                             reference (the second) only"
+                        ),
+                    ))
+                }
+            };
+            let reference = end_of(&bodies, robot, &what, reference)?;
+            if reference == End::Body(body) {
+                return Err(invalid(what, format!("joins {held} to itself")));
+            }
+            joints.push(LayoutJoint {
+                name: name.clone(),
+                body,
+                reference,
+                formulation: spec.formulation,
+                geometry: spec.geometry.clone(),
+                entry: true,
+                drive: spec.drive,
+            });
+        }
+        Ok(Layout {
+            bodies,
+            joints,
+            named: true,
+        })
     }
 
     /// The system in algebra `A` and its initial state, projected onto the joints; an error if the joints
     /// cannot all hold there or their reactions cannot be solved for.
     pub fn system<A: FileAlgebra>(&self) -> Result<SceneSystem<A>, SceneFileError> {
         let layout = self.layout()?;
-        let mut system = Mechanism::<A>::new();
-        let mut states = Vec::with_capacity(layout.bodies.len());
+        let robot = self.robot()?;
+        let built = robot.map(|(spec, loaded)| loaded.build::<A>(spec)).transpose()?;
+        let (mut system, mut states) = match &built {
+            Some((robot, states)) => (robot.mechanism().clone(), states.clone()),
+            None => (Mechanism::<A>::new(), Vec::new()),
+        };
+        let offset = states.len();
         let mut ids = Vec::with_capacity(layout.bodies.len());
         for entry in &layout.bodies {
             let body = entry.spec.body().map_err(|e| named(&layout, &entry.name, e))?;
@@ -1409,28 +1899,395 @@ impl SceneFile {
                 finite(&at("velocity"), initial.velocity)?,
             ));
         }
-        for joint in &layout.joints {
-            let constraint = ConstraintSpec {
-                formulation: joint.formulation,
-                geometry: joint.geometry.clone(),
+        if states.is_empty() {
+            return Err(invalid(
+                "robot",
+                "nothing moves: the robot's root is fixed and it has no moving body, and the file has no [[body]]",
+            ));
+        }
+        // Where an end is: the mechanism's reference and the end's frame in that reference's frame.
+        let place = |end: &End| -> Result<(Reference, Isometry3<f64>), SceneFileError> {
+            match end {
+                End::World => Ok((Reference::World, Isometry3::identity())),
+                End::Body(index) => Ok((Reference::Body(ids[*index]), Isometry3::identity())),
+                End::Link(link) => built
+                    .as_ref()
+                    .and_then(|(robot, _)| robot.link_frame(link))
+                    .ok_or_else(|| invalid(format!("link {link}"), "is not a link of the robot")),
             }
-            .constraint::<A>(joint.name.clone())?;
-            let reference = joint.reference.map_or(Reference::World, |r| Reference::Body(ids[r]));
-            system.add_joint(ids[joint.body], reference, constraint)?;
+        };
+        let index_of = |reference: Reference| match reference {
+            Reference::World => None,
+            Reference::Body(body) => Some(body.index()),
+        };
+        let pose_of = |reference: Reference, frame: &Isometry3<f64>, states: &[State<A>]| {
+            let body = match reference {
+                Reference::World => Isometry3::identity(),
+                Reference::Body(body) => {
+                    let (position, orientation) = states[body.index()].pose();
+                    Isometry3::from_parts(Translation3::from(position), orientation)
+                }
+            };
+            let world = body * frame;
+            (world.translation.vector, world.rotation)
+        };
+        // Per mechanism body: the parent of its joint model, if it has one (the robot's bodies have theirs).
+        let mut parent_of: Vec<Option<Option<usize>>> = vec![Some(None); offset];
+        parent_of.resize(offset + layout.bodies.len(), None);
+        let mut geometries = Vec::with_capacity(layout.joints.len());
+        let mut file_joints: Vec<(String, JointId, Option<JointKind>, bool)> = Vec::new();
+        let mut driven: Vec<(JointId, DriveSpec)> = Vec::new();
+        for joint in &layout.joints {
+            let name = &joint.name;
+            let child = offset + joint.body;
+            let (reference, frame) = place(&joint.reference)?;
+            let start = joint.geometry.needs_start().then(|| {
+                let reference = pose_of(reference, &frame, &states);
+                relative_pose(&states[child].pose(), Some(&reference))
+            });
+            let checked = joint.geometry.checked(name, start)?;
+            let drive = joint
+                .drive
+                .map(|d| d.checked(&format!("joint {name}: drive"), self.duration))
+                .transpose()?;
+            let pinned = joint.formulation == FormulationName::Pinning;
+            let parent = index_of(reference);
+            // A chain of joint models from the reference up that reaches the body would close a loop.
+            let mut above = parent;
+            let mut cycle = false;
+            while let Some(b) = above {
+                if b == child {
+                    cycle = true;
+                    break;
+                }
+                above = parent_of[b].flatten();
+            }
+            let model = (joint.entry && parent_of[child].is_none() && !cycle)
+                .then(|| joint_models::joint_model(name, &checked, &frame, drive))
+                .transpose()?
+                .flatten();
+            let frame_pose = (frame.translation.vector, frame.rotation);
+            let in_body = checked.in_world(&frame_pose);
+            match model {
+                Some(model) => {
+                    let kind = *model.kind();
+                    let rows = joint_models::rows::<A>(&model, pinned, drive)?;
+                    let id = system.connect_with_rows(ids[joint.body], reference, model, rows)?;
+                    parent_of[child] = Some(parent);
+                    file_joints.push((name.clone(), id, Some(kind), drive.is_some()));
+                    if let Some(drive) = drive {
+                        driven.push((id, drive));
+                    }
+                }
+                None => {
+                    if drive.is_some() {
+                        return Err(invalid(
+                            format!("joint {name}: drive"),
+                            if joint_models::has_model(&checked) {
+                                "only a body's first joint, its joint model, is driven; this one closes a loop"
+                            } else {
+                                "only hinge and prismatic joints are driven"
+                            },
+                        ));
+                    }
+                    let constraint = constraint_of::<A>(name.clone(), in_body, pinned)?;
+                    let id = system.add_joint(ids[joint.body], reference, constraint)?;
+                    file_joints.push((name.clone(), id, None, false));
+                }
+            }
+            geometries.push((in_body, child, parent));
         }
         system.set_stabilisation(self.stabilisation()?)?;
+        self.add_elements(
+            &layout,
+            &mut system,
+            &place,
+            built.as_ref().map(|(r, _)| r),
+            &file_joints,
+        )?;
         // Onto the joints (theory §10); joints that cannot hold together are an error naming them.
         let mut initial = states;
         system.project(0.0, &mut initial)?;
+        if !driven.is_empty() {
+            // The driven joints start on their paths (the projection by joint coordinates leaves them where they are).
+            let mut q = system.joint_positions(&initial, None)?;
+            let mut v = system.joint_velocities(&initial)?;
+            let space = system.joint_space()?;
+            for (id, drive) in &driven {
+                if let Some(group) = space.groups().iter().find(|g| g.joint() == Some(*id)) {
+                    let at = drive.at(0.0);
+                    q[group.position_offset()] = at.value;
+                    v[group.velocity_offset()] = at.rate;
+                }
+            }
+            initial = system.states_from_joints(&q, &v)?;
+            system.project(0.0, &mut initial)?;
+        }
         // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.
         system.rates_at(0.0, &initial)?;
-        Ok(SceneSystem { initial, system })
+        let (robot_columns, robot_joints) = match (&built, robot) {
+            (Some((robot, _)), Some((_, loaded))) => (
+                Some(loaded.columns(robot, &system)?),
+                loaded.joint_models(robot, &system)?,
+            ),
+            _ => (None, Vec::new()),
+        };
+        Ok(SceneSystem {
+            names: system.body_names().map(str::to_owned).collect(),
+            system,
+            initial,
+            geometries,
+            robot_joints,
+            robot_columns,
+        })
+    }
+
+    /// Adds the force elements: the robot's URDF damping and torques, then the file's springs, couples, joint torques,
+    /// joint damping and PD controllers.
+    fn add_elements<A: FileAlgebra>(
+        &self,
+        layout: &Layout,
+        system: &mut Mechanism<A>,
+        place: &Place<'_>,
+        robot: Option<&urdf_import::Robot<A>>,
+        file_joints: &[(String, JointId, Option<JointKind>, bool)],
+    ) -> Result<(), SceneFileError> {
+        let mut taken: Vec<String> = Vec::new();
+        let loaded = self.robot()?;
+        // A joint by name: its id; `single`: one coordinate (a torque, a PD target).
+        let joint = |what: &str, name: &str, single: bool| -> Result<JointId, SceneFileError> {
+            if let (Some((_, loaded)), Some(robot)) = (loaded, robot) {
+                if loaded.has_joint(name) {
+                    if single {
+                        loaded.single_coordinate_joint(what, name)?;
+                    } else {
+                        loaded.joint_index(what, name)?;
+                    }
+                    return robot
+                        .joint(name)
+                        .ok_or_else(|| invalid(what, format!("joint `{name}` has no coordinate")));
+                }
+            }
+            match file_joints.iter().find(|(n, ..)| n == name) {
+                Some((_, _, Some(JointKind::Weld), _)) => Err(invalid(
+                    what,
+                    format!("joint `{name}` is a fixed joint: it has no coordinates"),
+                )),
+                Some((_, id, Some(kind), false)) => {
+                    if single && kind.velocity_count() != 1 {
+                        return Err(invalid(
+                            what,
+                            format!(
+                                "joint `{name}` is a {} joint, with {} coordinates; a torque or a PD target needs a \
+                                 hinge or prismatic joint",
+                                kind.name(),
+                                kind.velocity_count()
+                            ),
+                        ));
+                    }
+                    Ok(*id)
+                }
+                Some((_, _, Some(_), true)) => Err(invalid(
+                    what,
+                    format!("joint `{name}` is driven: its motion is prescribed, so a force on it does nothing"),
+                )),
+                Some((_, _, None, _)) => Err(invalid(
+                    what,
+                    format!(
+                        "joint `{name}` is a constraint without coordinates (it is not a body's first joint of a \
+                         kind with coordinates)"
+                    ),
+                )),
+                None => {
+                    let mut known: Vec<&str> = loaded
+                        .map(|(_, l)| l.model.joints.iter().map(|j| j.name.as_str()).collect())
+                        .unwrap_or_default();
+                    known.extend(file_joints.iter().map(|(n, ..)| n.as_str()));
+                    Err(invalid(
+                        what,
+                        format!(
+                            "no joint named `{name}` (the joints: {})",
+                            if known.is_empty() {
+                                "none".to_owned()
+                            } else {
+                                known.join(", ")
+                            }
+                        ),
+                    ))
+                }
+            }
+        };
+        if let (Some((spec, loaded)), Some(robot)) = (loaded, robot) {
+            if spec.joint_dynamics == JointDynamicsName::Urdf {
+                for urdf_joint in loaded.model.joints.iter().filter(|j| j.damping > 0.0) {
+                    let id = robot.joint(&urdf_joint.name).expect("a moving joint");
+                    let name = element_name(&None, || format!("{} damping (URDF)", urdf_joint.name), &mut taken)?;
+                    system.add_force_element(ForceElement::joint_damping(name, id, urdf_joint.damping)?)?;
+                }
+            }
+            for (name, value) in &spec.torque {
+                let what = format!("robot.torque.{name}");
+                let id = joint("robot.torque", name, true)?;
+                let value = bounded(&what, *value)?;
+                let element = element_name(&None, || format!("torque on {name}"), &mut taken)?;
+                system.add_force_element(ForceElement::joint_force(element, id, OfTime::Constant(value)))?;
+            }
+        }
+        // Two ends of an element: the first a body (swapped if it is the world), and whether they were swapped.
+        let ends = |what: &str, between: &[String; 2]| -> Result<_, SceneFileError> {
+            let first = self.end(layout, what, &between[0])?;
+            let second = self.end(layout, what, &between[1])?;
+            let (first, second) = (place(&first)?, place(&second)?);
+            let same = match (first.0, second.0) {
+                (Reference::World, Reference::World) => true,
+                (Reference::Body(a), Reference::Body(b)) => a == b,
+                _ => false,
+            };
+            if same {
+                return Err(invalid(
+                    format!("{what}: between"),
+                    format!(
+                        "{} and {} are on the same body (or both on the world): the element would act on nothing",
+                        between[0], between[1]
+                    ),
+                ));
+            }
+            Ok(match first.0 {
+                Reference::World => (second, first, true),
+                Reference::Body(_) => (first, second, false),
+            })
+        };
+        let body_of = |reference: Reference| match reference {
+            Reference::Body(body) => body,
+            Reference::World => unreachable!("the first end is a body"),
+        };
+        for (k, spring) in self.spring.iter().enumerate() {
+            let name = element_name(&spring.name, || format!("spring {}", k + 1), &mut taken)?;
+            let what = format!("spring {name}");
+            let ((first, first_frame), (second, second_frame), swapped) = ends(&what, &spring.between)?;
+            let [mut a, mut b] = spring.points;
+            if swapped {
+                std::mem::swap(&mut a, &mut b);
+            }
+            let (a, b) = (
+                finite(&format!("{what}: points"), a)?,
+                finite(&format!("{what}: points"), b)?,
+            );
+            let stiffness = non_negative(&format!("{what}: stiffness"), spring.stiffness)?;
+            let damping = non_negative(&format!("{what}: damping"), spring.damping)?;
+            let rest = non_negative(&format!("{what}: rest_length"), spring.rest_length)?;
+            let element = ForceElement::spring_damper(
+                name,
+                (body_of(first), first_frame.transform_point(&a.into()).coords),
+                (second, second_frame.transform_point(&b.into()).coords),
+                stiffness,
+                damping,
+                rest,
+            )?;
+            system.add_force_element(element)?;
+        }
+        for (k, couple) in self.couple.iter().enumerate() {
+            let name = element_name(&couple.name, || format!("couple {}", k + 1), &mut taken)?;
+            let what = format!("couple {name}");
+            let ((first, _), (second, _), swapped) = ends(&what, &couple.between)?;
+            let moment = finite(&format!("{what}: moment"), couple.moment)?;
+            let moment = if swapped { -moment } else { moment };
+            system.add_force_element(ForceElement::couple(
+                name,
+                body_of(first),
+                second,
+                OfTime::Constant(moment),
+            ))?;
+        }
+        for torque in &self.joint_torque {
+            let name = element_name(&torque.name, || format!("torque on {}", torque.joint), &mut taken)?;
+            let what = format!("joint_torque {name}");
+            let id = joint(&format!("{what}: joint"), &torque.joint, true)?;
+            let value = torque.torque.checked(&format!("{what}: torque"))?;
+            let force = match value {
+                TimeValue::Constant(value) => OfTime::Constant(value),
+                sine => OfTime::Function(Arc::new(move |t| sine.at(t))),
+            };
+            system.add_force_element(ForceElement::joint_force(name, id, force))?;
+        }
+        for damping in &self.joint_damping {
+            let name = element_name(&damping.name, || format!("damping on {}", damping.joint), &mut taken)?;
+            let what = format!("joint_damping {name}");
+            let id = joint(&format!("{what}: joint"), &damping.joint, false)?;
+            let coefficient = non_negative(&format!("{what}: damping"), damping.damping)?;
+            system.add_force_element(ForceElement::joint_damping(name, id, coefficient)?)?;
+        }
+        for (k, pd) in self.pd.iter().enumerate() {
+            let name = element_name(&pd.name, || format!("pd {}", k + 1), &mut taken)?;
+            let what = format!("pd {name}");
+            let kp = non_negative(&format!("{what}: kp"), pd.kp)?;
+            let kd = non_negative(&format!("{what}: kd"), pd.kd)?;
+            if pd.target.is_empty() {
+                return Err(invalid(
+                    format!("{what}: target"),
+                    "names no joint: write target = { joint = value, … }",
+                ));
+            }
+            let space = system.joint_space()?;
+            let mut targets = Vec::with_capacity(pd.target.len());
+            for (joint_name, value) in &pd.target {
+                let id = joint(&format!("{what}: target"), joint_name, true)?;
+                let value = bounded(&format!("{what}: target.{joint_name}"), *value)?;
+                let group = space.groups().iter().find(|g| g.joint() == Some(id)).ok_or_else(|| {
+                    invalid(
+                        format!("{what}: target"),
+                        format!("joint `{joint_name}` has no coordinate"),
+                    )
+                })?;
+                let turns = matches!(group.model().kind(), JointKind::Revolute { .. });
+                targets.push((group.position_offset(), group.velocity_offset(), value, turns));
+            }
+            let compensate = pd.gravity_compensation;
+            let law = move |state: &JointState<'_, A>| {
+                let n = state.velocities.len();
+                let bias = if compensate {
+                    match state.bias_forces() {
+                        Ok(h) => Some(h),
+                        Err(_) => return DVector::from_element(n, f64::NAN),
+                    }
+                } else {
+                    None
+                };
+                let mut tau = DVector::zeros(n);
+                for &(p, v, target, turns) in &targets {
+                    let mut error = target - state.positions[p];
+                    if turns {
+                        // Angles are read in (−π, π]: the error is taken the short way round.
+                        error -= std::f64::consts::TAU * (error / std::f64::consts::TAU).round();
+                    }
+                    tau[v] = kp * error - kd * state.velocities[v] + bias.as_ref().map_or(0.0, |h| h[v]);
+                }
+                tau
+            };
+            system.add_force_element(ForceElement::controller(name, Arc::new(law)))?;
+        }
+        Ok(())
+    }
+
+    /// Where the end `name` of a force element is: a body of the file, a robot link, or the world.
+    fn end(&self, layout: &Layout, what: &str, name: &str) -> Result<End, SceneFileError> {
+        end_of(
+            &layout.bodies,
+            self.robot()?.map(|(_, loaded)| loaded),
+            &format!("{what}: between"),
+            name,
+        )
     }
 
     /// Runs the scene in algebra `A`: one body without joints as a free body (where every integrator,
     /// splittings included, applies), otherwise as the mechanism.
     pub fn simulate<A: FileAlgebra>(&self) -> Result<Simulation<A>, SceneFileError> {
-        let SceneSystem { system, initial } = self.system::<A>()?;
+        let system = self.system::<A>()?;
+        self.run(&system)
+    }
+
+    /// Runs `system` (this scene's, [`SceneFile::system`]).
+    pub(crate) fn run<A: FileAlgebra>(&self, system: &SceneSystem<A>) -> Result<Simulation<A>, SceneFileError> {
         let schedule = self.schedule()?;
         let failed = |message: String| SceneFileError::Run {
             algebra: A::NAME,
@@ -1438,26 +2295,153 @@ impl SceneFile {
         };
         let integrator = Integrator::from(self.integrator);
         let layout = self.layout()?;
-        match (&layout.bodies[..], layout.joints.is_empty()) {
-            ([only], true) => {
-                let mut free = FreeBody::<A>::new(only.spec.body()?);
-                for (index, force) in only.forces.iter().enumerate() {
-                    free = free.with_force(force.force(index + 1)?);
-                }
-                simulate(&free, &initial, integrator, &schedule).map_err(|e| failed(e.to_string()))
+        if self.free_body(&layout) {
+            let only = &layout.bodies[0];
+            let mut free = FreeBody::<A>::new(only.spec.body()?);
+            for (index, force) in only.forces.iter().enumerate() {
+                free = free.with_force(force.force(index + 1)?);
             }
-            _ => simulate(&system, &initial, integrator, &schedule).map_err(|e| failed(e.to_string())),
+            return simulate(&free, &system.initial, integrator, &schedule).map_err(|e| failed(e.to_string()));
         }
+        simulate(&system.system, &system.initial, integrator, &schedule).map_err(|e| failed(e.to_string()))
     }
 
-    /// Whether every force has a potential, so the energy is conserved and its change is drift.
+    /// Whether every force has a potential, so the energy is conserved and its change is drift: only gravity and
+    /// undamped springs, no drive.
     pub fn conservative(&self) -> Result<bool, SceneFileError> {
+        let layout = self.layout()?;
+        let robot_damped = self.robot()?.is_some_and(|(spec, loaded)| {
+            !spec.torque.is_empty()
+                || (spec.joint_dynamics == JointDynamicsName::Urdf
+                    && loaded.model.joints.iter().any(|j| j.damping > 0.0))
+        });
+        Ok(layout
+            .bodies
+            .iter()
+            .all(|b| b.forces.iter().all(ForceSpec::conservative))
+            && layout.joints.iter().all(|j| j.drive.is_none())
+            && self.spring.iter().all(|s| s.damping == 0.0)
+            && self.couple.is_empty()
+            && self.joint_torque.is_empty()
+            && self.joint_damping.is_empty()
+            && self.pd.is_empty()
+            && !robot_damped)
+    }
+
+    /// Whether a constant body force or couple (`[[forces]]` of kind "force" or "couple") acts: their work is not
+    /// counted in the samples' `work`.
+    pub(crate) fn has_body_loads(&self) -> Result<bool, SceneFileError> {
         Ok(self
             .layout()?
             .bodies
             .iter()
-            .all(|b| b.forces.iter().all(ForceSpec::conservative)))
+            .any(|b| b.forces.iter().any(|f| !f.conservative())))
     }
+
+    /// The robot's part of the summary, with a robot.
+    pub(crate) fn robot_summary(&self) -> Result<Option<String>, SceneFileError> {
+        Ok(self.robot()?.map(|(spec, loaded)| loaded.summary(spec)))
+    }
+
+    /// The force elements, for the summary: "spring 1 (spring-damper, k = 100 N/m, …)".
+    pub(crate) fn element_list(&self) -> Result<Vec<String>, SceneFileError> {
+        let mut out = Vec::new();
+        if let Some((spec, loaded)) = self.robot()? {
+            if spec.joint_dynamics == JointDynamicsName::Urdf {
+                for j in loaded.model.joints.iter().filter(|j| j.damping > 0.0) {
+                    out.push(format!("{} damping (URDF): {} on {}", j.name, j.damping, j.name));
+                }
+            }
+            for (name, value) in &spec.torque {
+                out.push(format!("torque on {name}: {value} (constant)"));
+            }
+        }
+        for (k, s) in self.spring.iter().enumerate() {
+            out.push(format!(
+                "{} (spring-damper {} – {}: k = {} N/m, c = {} N s/m, rest length {} m)",
+                s.name.clone().unwrap_or_else(|| format!("spring {}", k + 1)),
+                s.between[0],
+                s.between[1],
+                s.stiffness,
+                s.damping,
+                s.rest_length
+            ));
+        }
+        for (k, c) in self.couple.iter().enumerate() {
+            out.push(format!(
+                "{} (couple {:?} N m on {}, its opposite on {})",
+                c.name.clone().unwrap_or_else(|| format!("couple {}", k + 1)),
+                c.moment,
+                c.between[0],
+                c.between[1]
+            ));
+        }
+        for t in &self.joint_torque {
+            out.push(format!(
+                "{} (joint torque {} on {})",
+                t.name.clone().unwrap_or_else(|| format!("torque on {}", t.joint)),
+                t.torque.describe(),
+                t.joint
+            ));
+        }
+        for d in &self.joint_damping {
+            out.push(format!(
+                "{} (joint damping {} on {})",
+                d.name.clone().unwrap_or_else(|| format!("damping on {}", d.joint)),
+                d.damping,
+                d.joint
+            ));
+        }
+        for (k, pd) in self.pd.iter().enumerate() {
+            let targets: Vec<String> = pd.target.iter().map(|(j, v)| format!("{j} → {v}")).collect();
+            out.push(format!(
+                "{} (PD, kp = {}, kd = {}{}: {})",
+                pd.name.clone().unwrap_or_else(|| format!("pd {}", k + 1)),
+                pd.kp,
+                pd.kd,
+                if pd.gravity_compensation {
+                    ", with the bias forces h(q, v) added"
+                } else {
+                    ""
+                },
+                targets.join(", ")
+            ));
+        }
+        for j in self.joint.iter().filter(|j| j.drive.is_some()) {
+            if let Some(drive) = j.drive {
+                out.push(format!("drive of {}: q(t) = {}", j.name, drive.describe()));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The end `name`: a body of `bodies`, a link of `robot`, or the world; an error under `what` listing them.
+fn end_of(bodies: &[LayoutBody], robot: Option<&LoadedRobot>, what: &str, name: &str) -> Result<End, SceneFileError> {
+    if name == WORLD {
+        return Ok(End::World);
+    }
+    if let Some(index) = bodies.iter().position(|b| b.name == name) {
+        return Ok(End::Body(index));
+    }
+    if robot.is_some_and(|r| r.links().any(|link| link == name)) {
+        return Ok(End::Link(name.to_owned()));
+    }
+    let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
+    let links = robot.map_or(String::new(), |r| {
+        format!("; or a link of the robot: {}", r.links().collect::<Vec<_>>().join(", "))
+    });
+    Err(invalid(
+        what,
+        format!(
+            "no body named {name:?} (the bodies: {}; or \"world\"{links})",
+            if known.is_empty() {
+                "none".to_owned()
+            } else {
+                known.join(", ")
+            }
+        ),
+    ))
 }
 
 /// How a body is named in messages: nothing for the single-body layout (its fields are top-level), else

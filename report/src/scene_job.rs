@@ -1,11 +1,15 @@
 //! Running a scene file (`--scene-file`, [`crate::scene_file`]): the scene in each requested algebra, then
 //! its trajectories (CSV), energy and constraint-violation plots and `summary.md` in the output folder.
 //!
-//! The trajectory `<stem>_<algebra>.csv` of named `[[body]]` entries has the columns `t`, then per body in file
-//! order `NAME.x, NAME.y, NAME.z` (centre of mass, world, m) and `NAME.qw, NAME.qx, NAME.qy, NAME.qz`
-//! (orientation quaternion, body → world), then `energy` (the whole system's, J); a single `[body]` keeps the
-//! reference files' columns ([`csv::HEADER`]). The summary gives per algebra the energy change and the largest
-//! joint violation over all joints.
+//! The trajectory `<stem>_<algebra>.csv` of named `[[body]]` entries or a robot has the columns `t`, then per body in
+//! the mechanism's order (the robot's bodies, named after their links, first) `NAME.x, NAME.y, NAME.z` (centre of
+//! mass, world, m) and `NAME.qw, NAME.qx, NAME.qy, NAME.qz` (orientation quaternion, body → world), then `energy`
+//! (the whole system's, J); a single `[body]` keeps the reference files' columns ([`csv::HEADER`]). With a robot,
+//! `<stem>_joints_<algebra>.csv` has the columns of `reference/data/robots/*.csv`: `t`, every non-fixed joint's
+//! position in URDF file order (rad or m, continuous joints unwrapped), for a free root `base.x, base.y, base.z,
+//! base.qw, base.qx, base.qy, base.qz` (the root link frame, world ← root, the quaternion continuous in time), then
+//! `energy`. The summary gives per algebra the energy change, the largest joint violation over all joints, and the
+//! work done by the force elements against the energy change.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -13,13 +17,13 @@ use std::path::{Path, PathBuf};
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
 use dynamics::simulate::Sample;
-use dynamics::{Cga, Pga};
+use dynamics::{Cga, Dynamics, Pga, State};
 
 use crate::csv;
 use crate::figures::{running_max, styled, LOG_FLOOR};
 use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
-use crate::scene_file::{joint_violations, FileAlgebra, JointGeometry, Layout, Pose, SceneFile, SceneFileError};
+use crate::scene_file::{End, FileAlgebra, Layout, Pose, SceneFile, SceneFileError};
 use crate::sweep::AlgebraKind;
 
 /// Why a scene file's run or output failed.
@@ -57,6 +61,12 @@ pub struct AlgebraRun {
     pub energy_change: Vec<f64>,
     /// The largest joint violation per sample (m).
     pub(crate) violation: Vec<f64>,
+    /// The work done by the force elements from the start to each sample (J; `Sample::work`).
+    pub work: Vec<f64>,
+    /// Every body's name, in the order of [`AlgebraRun::bodies`].
+    pub names: Vec<String>,
+    /// With a robot: the joints CSV's headers between `t` and `energy`, and per sample its values between them.
+    pub joints: Option<(Vec<String>, Vec<Vec<f64>>)>,
 }
 
 /// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
@@ -91,12 +101,9 @@ pub struct SceneJobSummary {
     pub warnings: Vec<String>,
 }
 
-fn run_in<A: FileAlgebra>(
-    algebra: AlgebraKind,
-    scene: &SceneFile,
-    joints: &[JointGeometry],
-) -> Result<AlgebraRun, SceneFileError> {
-    let simulation = scene.simulate::<A>()?;
+fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<AlgebraRun, SceneFileError> {
+    let system = scene.system::<A>()?;
+    let simulation = scene.run(&system)?;
     let bodies = simulation.bodies;
     let samples = &bodies[0];
     let duration = scene.schedule()?.duration();
@@ -111,36 +118,91 @@ fn run_in<A: FileAlgebra>(
         .iter()
         .map(|s| (s.energy - initial_energy).abs() / scale)
         .collect();
-    let violation = (0..samples.len())
-        .map(|k| {
-            let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
-            joint_violations(joints, &poses).fold(0.0, f64::max)
-        })
-        .collect();
+    let mechanism = system.mechanism();
+    let robot = system.joint_columns().is_some();
+    let mut violation = Vec::with_capacity(samples.len());
+    let mut rows = Vec::new();
+    let mut previous: Option<Vec<f64>> = None;
+    for k in 0..samples.len() {
+        let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
+        let q = if robot {
+            // The joint positions from the sampled poses, angles nearest the previous sample's.
+            let states: Vec<State<A>> = bodies
+                .iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let s = &b[k];
+                    State::from_world_twist(
+                        mechanism.body(i),
+                        s.position,
+                        &s.orientation,
+                        s.angular_velocity,
+                        s.velocity,
+                    )
+                })
+                .collect();
+            let q = mechanism
+                .joint_positions(&states, previous.as_deref())
+                .map_err(|e| SceneFileError::Run {
+                    algebra: A::NAME,
+                    message: format!("the joint positions at t = {}: {e}", samples[k].t),
+                })?;
+            Some(q)
+        } else {
+            None
+        };
+        violation.push(system.joint_violation(&poses, q.as_deref()));
+        if let Some(q) = q {
+            rows.extend(system.joint_row(&q));
+            previous = Some(q);
+        }
+    }
+    let work = samples.iter().map(|s| s.work).collect();
+    let joints = system.joint_columns().map(|headers| (headers.to_vec(), rows));
     Ok(AlgebraRun {
         algebra,
         cpu_per_simulated_second: stepping / duration,
         time_per_step: stepping / simulation.steps.max(1) as f64,
         energy_change,
         violation,
+        work,
+        names: system.body_names().to_vec(),
+        joints,
         bodies,
     })
+}
+
+/// Writes a robot's joints CSV: `t`, the columns, `energy`.
+fn write_joints(path: &Path, headers: &[String], rows: &[Vec<f64>], samples: &[Sample]) -> std::io::Result<()> {
+    let mut text = String::from("t");
+    for header in headers {
+        let _ = write!(text, ",{header}");
+    }
+    text.push_str(",energy\n");
+    for (row, sample) in rows.iter().zip(samples) {
+        let _ = write!(text, "{:e}", sample.t);
+        for value in row {
+            let _ = write!(text, ",{value:e}");
+        }
+        let _ = writeln!(text, ",{:e}", sample.energy);
+    }
+    std::fs::write(path, text)
 }
 
 /// Loads the scene file at `path`, runs it and writes the output into `output`.
 pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, SceneJobError> {
     let scene = SceneFile::load(path)?;
     let layout = scene.layout()?;
-    let joints = layout.joint_geometries()?;
     let runs = scene
         .algebra
         .algebras()
         .into_iter()
         .map(|algebra| match algebra {
-            AlgebraKind::Pga => run_in::<Pga>(algebra, &scene, &joints),
-            AlgebraKind::Cga => run_in::<Cga>(algebra, &scene, &joints),
+            AlgebraKind::Pga => run_in::<Pga>(algebra, &scene),
+            AlgebraKind::Cga => run_in::<Cga>(algebra, &scene),
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let robot = scene.robot_summary()?;
 
     let write_error = |path: &Path| {
         let path = path.to_path_buf();
@@ -153,13 +215,18 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     for run in &runs {
         let csv_path = output.join(format!("{stem}_{}.csv", run.algebra.name().to_lowercase()));
         let written = if layout.named {
-            let names: Vec<&str> = layout.bodies.iter().map(|b| b.name.as_str()).collect();
+            let names: Vec<&str> = run.names.iter().map(String::as_str).collect();
             csv::write_bodies(&csv_path, &names, &run.bodies)
         } else {
             csv::write(&csv_path, &run.bodies[0])
         };
         written.map_err(write_error(&csv_path))?;
         files.push(csv_path);
+        if let Some((headers, rows)) = &run.joints {
+            let joints_path = output.join(format!("{stem}_joints_{}.csv", run.algebra.name().to_lowercase()));
+            write_joints(&joints_path, headers, rows, &run.bodies[0]).map_err(write_error(&joints_path))?;
+            files.push(joints_path);
+        }
     }
 
     let over_time = |values: fn(&AlgebraRun) -> Vec<f64>| -> Vec<Series> {
@@ -189,7 +256,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         &Panel::new(labels, over_time(|r| r.energy_change.clone())).log_y_with_floor(LOG_FLOOR),
     )?;
     files.push(energy_path);
-    if !layout.joints.is_empty() {
+    if !layout.joints.is_empty() || robot.is_some() {
         let violation_title = format!("{title}: constraint violation, dt = {:e} s", scene.dt);
         let violation_path = output.join(format!("{stem}_violation.png"));
         // The running maximum: per-sample violations at round-off are noise that hides the curves.
@@ -229,6 +296,9 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         title: &title,
         stabilisation: scene.stabilisation()?,
         relative_energy: relative,
+        robot: robot.as_deref(),
+        elements: scene.element_list()?,
+        body_loads: scene.has_body_loads()?,
     };
     let mut text = summary(&setup, &runs, &file_names);
     for warning in &warnings {
@@ -249,6 +319,12 @@ struct Setup<'a> {
     stabilisation: Stabilisation,
     /// Whether the energy change is relative to |E₀| (else in J).
     relative_energy: bool,
+    /// The robot's part, with a robot.
+    robot: Option<&'a str>,
+    /// The force elements and drives, described.
+    elements: Vec<String>,
+    /// Whether a constant body force or couple acts (its work is not in W).
+    body_loads: bool,
 }
 
 /// Items joined by commas, or "none".
@@ -270,7 +346,11 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         ..
     } = *setup;
     let mut out = String::new();
-    let body_name = |index: Option<usize>| index.map_or("the world", |i| layout.bodies[i].name.as_str());
+    let body_name = |end: &End| match end {
+        End::World => "the world".to_owned(),
+        End::Body(i) => layout.bodies[*i].name.clone(),
+        End::Link(link) => format!("the robot link {link}"),
+    };
     let constraints: Vec<String> = layout
         .joints
         .iter()
@@ -284,8 +364,8 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
                 format!(
                     "{} ({what}, {} to {})",
                     escape(&j.name),
-                    escape(body_name(Some(j.body))),
-                    escape(body_name(j.reference))
+                    escape(&layout.bodies[j.body].name),
+                    escape(&body_name(&j.reference))
                 )
             } else {
                 what
@@ -312,7 +392,12 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         escape(&path.display().to_string()),
         if layout.named {
             format!(
-                "bodies: {}; ",
+                "{}bodies: {}; ",
+                if setup.robot.is_some() {
+                    "a robot (below); further "
+                } else {
+                    ""
+                },
                 listed(layout.bodies.iter().map(|b| escape(&b.name)).collect())
             )
         } else {
@@ -325,12 +410,22 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         scene.duration,
         scene.sample_interval,
         match setup.stabilisation {
-            _ if layout.joints.is_empty() => String::new(),
+            _ if layout.joints.is_empty() && setup.robot.is_none() => String::new(),
             Stabilisation::Projection { .. } => ", stabilised by projection".to_owned(),
             Stabilisation::Baumgarte { alpha, beta } => format!(", stabilised by Baumgarte (α = {alpha}, β = {beta})"),
             Stabilisation::None => ", without stabilisation".to_owned(),
         },
     );
+    if let Some(robot) = setup.robot {
+        let _ = writeln!(out, "{robot}");
+    }
+    if !setup.elements.is_empty() {
+        let _ = writeln!(out, "Force elements and drives:\n");
+        for element in &setup.elements {
+            let _ = writeln!(out, "- {}", escape(element));
+        }
+        let _ = writeln!(out);
+    }
     let _ = writeln!(
         out,
         "| algebra | energy change at T | largest energy change | largest constraint violation (m) | CPU per \
@@ -344,7 +439,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             run.algebra.name(),
             scientific(run.energy_change.last().copied().unwrap_or(0.0)),
             scientific(run.max_energy_change()),
-            if layout.joints.is_empty() {
+            if layout.joints.is_empty() && setup.robot.is_none() {
                 "–".to_owned()
             } else {
                 scientific(run.max_violation())
@@ -371,15 +466,67 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     } else {
         let _ = writeln!(
             out,
-            "A constant force or couple does work, so the energy change is physical, not only drift."
+            "Forces without a potential (constant forces or couples, dampers, torques, controllers, drives) do work, \
+             so the energy change is physical, not only drift."
         );
     }
     let _ = writeln!(
         out,
         "The violation is the largest distance of a constrained body point from where it must be (for axis \
          joints also of the point 1 m along the body axis, for prismatic and planar joints of the point 1 m along \
-         the body normal). CPU time is the stepping alone.\n"
+         the body normal, for universal joints how far the point 1 m along the body axis is off the plane normal to \
+         the reference axis, for fixed joints the turn's angle in rad{}). CPU time is the stepping alone.\n",
+        if setup.robot.is_some() {
+            "; for the robot's joints the distance of each child's joint origin from where its joint coordinates \
+             put it, and the angle of the turn between them"
+        } else {
+            ""
+        }
     );
+    if !setup.conservative {
+        let _ = writeln!(
+            out,
+            "| algebra | E(T) − E₀ (J) | work W(T) of the force elements (J) | E(T) − E₀ − W(T) (J) |"
+        );
+        let _ = writeln!(out, "|---|---|---|---|");
+        for run in runs {
+            let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
+            let change = match (first, last) {
+                (Some(a), Some(b)) => b.energy - a.energy,
+                _ => 0.0,
+            };
+            let work = run.work.last().copied().unwrap_or(0.0);
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} |",
+                run.algebra.name(),
+                scientific(change),
+                scientific(work),
+                scientific(change - work)
+            );
+        }
+        let mut uncounted = Vec::new();
+        if !scene_drives(setup).is_empty() {
+            uncounted.push(format!(
+                "the drives of the joints {} (a prescribed motion does work through its reaction)",
+                scene_drives(setup).join(", ")
+            ));
+        }
+        if setup.body_loads {
+            uncounted.push("the constant forces and couples of [[forces]] entries".to_owned());
+        }
+        let _ = writeln!(
+            out,
+            "\nW is the work of the force elements (dampers, torques, controllers, couples) from the start, integrated \
+             with the method's own weights; without other sources of work E(T) − E₀ − W(T) is the integration \
+             error.{}\n",
+            if uncounted.is_empty() {
+                String::new()
+            } else {
+                format!(" W does not count the work of {}.", escape(&uncounted.join(" and ")))
+            }
+        );
+    }
     if let [first, second] = runs {
         let (angle, distance) = first
             .bodies
@@ -399,6 +546,17 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     for file in files {
         if file.ends_with(".png") {
             let _ = writeln!(out, "![{file}]({file})\n");
+        } else if file.contains("_joints_") {
+            let _ = writeln!(
+                out,
+                "Joint coordinates: [{file}]({file}) (columns: t, every non-fixed joint in URDF file order (rad or m, \
+                 continuous joints unwrapped){}, then the energy of the whole system (J)).\n",
+                if file_has_base(runs) {
+                    ", base.x, base.y, base.z, base.qw, base.qx, base.qy, base.qz (the root link frame, world ← root)"
+                } else {
+                    ""
+                }
+            );
         } else {
             let columns = if layout.named {
                 "t, then per body NAME.x, NAME.y, NAME.z (centre of mass, world, m), NAME.qw, NAME.qx, NAME.qy, \
@@ -411,4 +569,24 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         }
     }
     out
+}
+
+/// The driven joints' names.
+fn scene_drives(setup: &Setup) -> Vec<String> {
+    setup
+        .layout
+        .joints
+        .iter()
+        .filter(|j| j.drive.is_some())
+        .map(|j| j.name.clone())
+        .collect()
+}
+
+/// Whether the joints CSV has the floating base's columns.
+fn file_has_base(runs: &[AlgebraRun]) -> bool {
+    runs.iter().any(|r| {
+        r.joints
+            .as_ref()
+            .is_some_and(|(headers, _)| headers.iter().any(|h| h == "base.x"))
+    })
 }

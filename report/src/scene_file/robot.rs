@@ -1,0 +1,626 @@
+//! A scene file's `[robot]` (README, "Scene files"): a URDF robot read by `urdf_import`, built as the first bodies and
+//! joints of the scene's mechanism, started at joint positions and velocities by name (and for a floating base its
+//! pose and twist), with the URDF's joint damping as force elements and constant joint torques; its joint
+//! coordinates are written to `<stem>_joints_<algebra>.csv` in the columns of `reference/data/robots/*.csv`.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Read as _;
+use std::path::{Path, PathBuf};
+
+use dynamics::{Algebra, JointModel, Mechanism, Reference, State};
+use nalgebra::{UnitQuaternion, Vector3};
+use serde::Deserialize;
+use urdf_import::{
+    BaseStart, BuildOptions, ImportOptions, MasslessSubtrees, MimicMode, Robot, RobotModel, RobotStart, Root,
+};
+
+use super::{finite, invalid, standard_gravity, OrientationSpec, SceneFileError};
+
+/// URDF files larger than this are refused before they are read to the end (a typo naming /dev/zero must not hang).
+const MAX_URDF_BYTES: u64 = 64 << 20;
+
+/// `root = "fixed" | "free"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum RootName {
+    #[default]
+    Fixed,
+    Free,
+}
+
+/// `mimic = "constraint" | "independent"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MimicName {
+    #[default]
+    Constraint,
+    Independent,
+}
+
+/// `joint_dynamics = "urdf" | "ignore"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum JointDynamicsName {
+    #[default]
+    Urdf,
+    Ignore,
+}
+
+/// `limits = "ignore"`; `"enforce"` parses, to be refused with the reason.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum LimitsName {
+    #[default]
+    Ignore,
+    Enforce,
+}
+
+/// `massless_subtrees = "error" | "freeze"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum MasslessName {
+    #[default]
+    Error,
+    Freeze,
+}
+
+/// `repairs = { … }`: the importer's opt-in repairs ([`ImportOptions`]).
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RepairsSpec {
+    #[serde(default)]
+    massless_subtrees: MasslessName,
+    #[serde(default)]
+    bound_mass: Option<f64>,
+    #[serde(default)]
+    bound_inertia: Option<f64>,
+    #[serde(default)]
+    balance_inertia: bool,
+}
+
+/// The `[robot]` table.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RobotSpec {
+    /// The URDF file, relative to the scene file.
+    pub(crate) urdf: String,
+    #[serde(default)]
+    pub(crate) root: RootName,
+    #[serde(default)]
+    pub(crate) mimic: MimicName,
+    #[serde(default)]
+    pub(crate) joint_dynamics: JointDynamicsName,
+    #[serde(default)]
+    pub(crate) limits: LimitsName,
+    /// m/s², world.
+    #[serde(default = "standard_gravity")]
+    #[serde(deserialize_with = "super::exactly")]
+    pub(crate) gravity: [f64; 3],
+    /// Joint positions by name (rad or m).
+    #[serde(default)]
+    pub(crate) q: BTreeMap<String, f64>,
+    /// Joint velocities by name (rad/s or m/s).
+    #[serde(default)]
+    pub(crate) v: BTreeMap<String, f64>,
+    /// The root link frame's origin (m, world), for a free root.
+    #[serde(default)]
+    #[serde(deserialize_with = "super::maybe_exactly")]
+    pub(crate) base_position: Option<[f64; 3]>,
+    /// The root link frame's orientation (world ← root), for a free root.
+    #[serde(default)]
+    pub(crate) base_orientation: Option<OrientationSpec>,
+    /// The root link frame origin's velocity (m/s, world), for a free root.
+    #[serde(default)]
+    #[serde(deserialize_with = "super::maybe_exactly")]
+    pub(crate) base_velocity: Option<[f64; 3]>,
+    /// The angular velocity (rad/s, world), for a free root.
+    #[serde(default)]
+    #[serde(deserialize_with = "super::maybe_exactly")]
+    pub(crate) base_angular_velocity: Option<[f64; 3]>,
+    /// Constant joint torques (N m) or forces (N) by joint name.
+    #[serde(default)]
+    pub(crate) torque: BTreeMap<String, f64>,
+    #[serde(default)]
+    pub(crate) repairs: Option<RepairsSpec>,
+}
+
+/// The robot's URDF, read and imported.
+#[derive(Clone, Debug)]
+pub(crate) struct LoadedRobot {
+    /// The URDF file as found (the scene file's folder joined with `urdf`).
+    pub(crate) path: PathBuf,
+    pub(crate) model: RobotModel,
+}
+
+impl RobotSpec {
+    fn import_options(&self) -> ImportOptions {
+        let repairs = self.repairs.unwrap_or_default();
+        ImportOptions {
+            massless_subtrees: match repairs.massless_subtrees {
+                MasslessName::Error => MasslessSubtrees::Error,
+                MasslessName::Freeze => MasslessSubtrees::Freeze,
+            },
+            bound_mass: repairs.bound_mass,
+            bound_inertia: repairs.bound_inertia,
+            balance_inertia: repairs.balance_inertia,
+            mimic: match self.mimic {
+                MimicName::Constraint => MimicMode::Constraint,
+                MimicName::Independent => MimicMode::Independent,
+            },
+        }
+    }
+
+    pub(crate) fn root(&self) -> Root {
+        match self.root {
+            RootName::Fixed => Root::Fixed,
+            RootName::Free => Root::Free,
+        }
+    }
+
+    /// Reads the URDF at `urdf` relative to `dir` and imports it: an error naming the path when the file cannot be
+    /// read, the importer's error verbatim otherwise. `limits = "enforce"` is refused here.
+    pub(crate) fn load(&self, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
+        if self.limits == LimitsName::Enforce {
+            return Err(invalid(
+                "robot.limits",
+                "\"enforce\": joint limits are not enforced yet; write limits = \"ignore\" (the URDF's limits are then \
+                 listed in the summary and not applied)",
+            ));
+        }
+        let repairs = self.repairs.unwrap_or_default();
+        for (key, value) in [
+            ("bound_mass", repairs.bound_mass),
+            ("bound_inertia", repairs.bound_inertia),
+        ] {
+            if let Some(value) = value {
+                if !(value.is_finite() && value > 0.0 && value <= 1e50) {
+                    return Err(invalid(
+                        format!("robot.repairs.{key}"),
+                        format!("{value:?} must be positive, finite and at most 1e50"),
+                    ));
+                }
+            }
+        }
+        let path = dir.join(&self.urdf);
+        let cannot = |e: &dyn std::fmt::Display| invalid("robot.urdf", format!("cannot read {}: {e}", path.display()));
+        let file = std::fs::File::open(&path).map_err(|e| cannot(&e))?;
+        let mut bytes = Vec::new();
+        file.take(MAX_URDF_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| cannot(&e))?;
+        if bytes.len() as u64 > MAX_URDF_BYTES {
+            return Err(cannot(&format!("it is larger than {MAX_URDF_BYTES} bytes")));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| cannot(&format!("it is not UTF-8 ({e})")))?;
+        let model = urdf_import::read(&text, &self.import_options())
+            .map_err(|e| invalid("robot.urdf", format!("{}: {e}", path.display())))?;
+        Ok(LoadedRobot { path, model })
+    }
+}
+
+impl LoadedRobot {
+    /// The moving joints' names in file order, for messages.
+    fn joint_list(&self) -> String {
+        let names: Vec<&str> = self.model.joints.iter().map(|j| j.name.as_str()).collect();
+        if names.is_empty() {
+            "it has none".to_owned()
+        } else {
+            format!("the robot's joints: {}", names.join(", "))
+        }
+    }
+
+    /// The index of the moving joint `name` in the model, or an error under `what` naming it and listing the robot's
+    /// joints (or saying it is frozen).
+    pub(crate) fn joint_index(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+        if let Some(index) = self.model.joints.iter().position(|j| j.name == name) {
+            return Ok(index);
+        }
+        if self.model.frozen_joints.iter().any(|f| f.name == name) {
+            return Err(invalid(
+                what,
+                format!(
+                    "joint `{name}` is frozen at 0 (repairs.massless_subtrees = \"freeze\": its subtree has no mass), \
+                     so it has no coordinate"
+                ),
+            ));
+        }
+        Err(invalid(
+            what,
+            format!("no joint named `{name}` ({})", self.joint_list()),
+        ))
+    }
+
+    /// The index of a one-coordinate moving joint.
+    pub(crate) fn single_coordinate_joint(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+        let index = self.joint_index(what, name)?;
+        let kind = self.model.joints[index].kind;
+        if kind.degrees_of_freedom() != 1 {
+            return Err(invalid(
+                what,
+                format!(
+                    "joint `{name}` is {kind}, with {} coordinates; only one-coordinate joints take a value here",
+                    kind.degrees_of_freedom()
+                ),
+            ));
+        }
+        Ok(index)
+    }
+
+    /// Every link name, body by body.
+    pub(crate) fn links(&self) -> impl Iterator<Item = &str> {
+        self.model
+            .bodies
+            .iter()
+            .flat_map(|b| b.links.iter().map(|l| l.name.as_str()))
+    }
+
+    /// Whether `name` is one of the robot's joints (moving or frozen).
+    pub(crate) fn has_joint(&self, name: &str) -> bool {
+        self.model.joints.iter().any(|j| j.name == name) || self.model.frozen_joints.iter().any(|f| f.name == name)
+    }
+
+    /// The number of mechanism bodies the robot adds (its root is the world when fixed).
+    pub(crate) fn body_count(&self, spec: &RobotSpec) -> usize {
+        self.model.bodies.len() - usize::from(spec.root == RootName::Fixed)
+    }
+
+    /// The start: joint positions and velocities by name, the base's pose and twist (free root only).
+    fn start(&self, spec: &RobotSpec) -> Result<RobotStart, SceneFileError> {
+        let mut start = RobotStart::default();
+        for (key, values, target) in [
+            ("q", &spec.q, &mut start.positions),
+            ("v", &spec.v, &mut start.velocities),
+        ] {
+            for (name, value) in values {
+                let what = format!("robot.{key}");
+                self.single_coordinate_joint(&what, name)?;
+                if !(value.is_finite() && value.abs() <= 1e50) {
+                    return Err(invalid(
+                        format!("{what}.{name}"),
+                        format!("{value:?} is not finite or beyond 1e50"),
+                    ));
+                }
+                target.push((name.clone(), *value));
+            }
+        }
+        let given = [
+            ("robot.base_position", spec.base_position.is_some()),
+            ("robot.base_orientation", spec.base_orientation.is_some()),
+            ("robot.base_velocity", spec.base_velocity.is_some()),
+            ("robot.base_angular_velocity", spec.base_angular_velocity.is_some()),
+        ];
+        if spec.root == RootName::Fixed {
+            if let Some((what, _)) = given.iter().find(|(_, given)| *given) {
+                return Err(invalid(
+                    *what,
+                    "the root is fixed to the world (root = \"fixed\"): a base pose or twist needs root = \"free\"",
+                ));
+            }
+            return Ok(start);
+        }
+        let vector = |what: &str, value: Option<[f64; 3]>| match value {
+            Some(v) => finite(what, v),
+            None => Ok(Vector3::zeros()),
+        };
+        start.base = BaseStart {
+            position: vector("robot.base_position", spec.base_position)?,
+            orientation: match &spec.base_orientation {
+                Some(o) => o.rotation_of("robot.base_orientation")?,
+                None => UnitQuaternion::identity(),
+            },
+            velocity: vector("robot.base_velocity", spec.base_velocity)?,
+            angular_velocity: vector("robot.base_angular_velocity", spec.base_angular_velocity)?,
+        };
+        Ok(start)
+    }
+
+    /// The robot built in algebra `A` (its mechanism the scene's first bodies and joints) and its bodies' states at
+    /// the start.
+    pub(crate) fn build<A: Algebra>(&self, spec: &RobotSpec) -> Result<(Robot<A>, Vec<State<A>>), SceneFileError> {
+        let gravity = finite("robot.gravity", spec.gravity)?;
+        if gravity.amax() > 1e50 {
+            return Err(invalid(
+                "robot.gravity",
+                format!("{:?} is beyond 1e50 m/s²", spec.gravity),
+            ));
+        }
+        let start = self.start(spec)?;
+        let options = BuildOptions {
+            root: spec.root(),
+            gravity,
+        };
+        let robot = Robot::<A>::build(self.model.clone(), &options).map_err(|e| invalid("robot", e.to_string()))?;
+        let states = robot
+            .initial_states(&start)
+            .map_err(|e| invalid("robot", format!("the start: {e}")))?;
+        Ok((robot, states))
+    }
+
+    /// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.
+    pub(crate) fn summary(&self, spec: &RobotSpec) -> String {
+        let model = &self.model;
+        let mut out = String::new();
+        let links: usize = model.bodies.iter().map(|b| b.links.len()).sum();
+        let kinds: Vec<String> = model
+            .joint_counts()
+            .iter()
+            .map(|(kind, n)| format!("{n} {kind}"))
+            .collect();
+        let joint_dof: usize = model.joints.iter().map(|j| j.kind.degrees_of_freedom()).sum();
+        let free = spec.root == RootName::Free;
+        let _ = writeln!(
+            out,
+            "Robot `{}` from {}: {links} links, {} merged into other links' bodies (fixed joints), so {} bodies ({} \
+             moving); root {}; joints: {}; {} degrees of freedom{}.\n",
+            crate::markdown::escape(&model.name),
+            crate::markdown::escape(&self.path.display().to_string()),
+            model.merged_links,
+            model.bodies.len(),
+            self.body_count(spec),
+            if free {
+                "free (a floating base)"
+            } else {
+                "fixed to the world"
+            },
+            if kinds.is_empty() {
+                "none".to_owned()
+            } else {
+                kinds.join(", ")
+            },
+            joint_dof + if free { 6 } else { 0 },
+            if free { " (6 of them the base's)" } else { "" },
+        );
+        let list = |title: &str, items: Vec<String>, out: &mut String| {
+            if items.is_empty() {
+                let _ = writeln!(out, "- {title}: none");
+            } else {
+                let _ = writeln!(out, "- {title}:");
+                for item in items {
+                    let _ = writeln!(out, "  - {}", crate::markdown::escape(&item));
+                }
+            }
+        };
+        list(
+            "Repairs",
+            model.repairs.iter().map(ToString::to_string).collect(),
+            &mut out,
+        );
+        list(
+            "Frozen joints (massless subtrees, coordinate 0)",
+            model
+                .frozen_joints
+                .iter()
+                .map(|f| format!("{} ({}, line {})", f.name, f.kind, f.line))
+                .collect(),
+            &mut out,
+        );
+        list("Importer warnings", model.warnings.clone(), &mut out);
+        let damped: Vec<String> = model
+            .joints
+            .iter()
+            .filter(|j| j.damping > 0.0)
+            .map(|j| format!("{}: {}", j.name, j.damping))
+            .collect();
+        let friction: Vec<String> = model
+            .joints
+            .iter()
+            .filter(|j| j.friction != 0.0)
+            .map(|j| format!("{}: {} (not modelled)", j.name, j.friction))
+            .collect();
+        match spec.joint_dynamics {
+            JointDynamicsName::Urdf => {
+                list(
+                    "URDF joint damping, applied as joint damping (N m s/rad or N s/m)",
+                    damped,
+                    &mut out,
+                );
+                list("URDF Coulomb friction, not modelled", friction, &mut out);
+            }
+            JointDynamicsName::Ignore => {
+                list(
+                    "URDF joint damping, ignored (joint_dynamics = \"ignore\")",
+                    damped,
+                    &mut out,
+                );
+                list(
+                    "URDF Coulomb friction, ignored (joint_dynamics = \"ignore\"; never modelled)",
+                    friction,
+                    &mut out,
+                );
+            }
+        }
+        let limited = model
+            .joints
+            .iter()
+            .filter(|j| j.limit.is_some_and(|l| l.lower.is_some() || l.upper.is_some()))
+            .count();
+        let _ = writeln!(
+            out,
+            "- Joint limits: not enforced (limits = \"ignore\"); {limited} joints have position limits in the URDF"
+        );
+        let mimics: Vec<String> = model
+            .joints
+            .iter()
+            .filter_map(|j| {
+                j.mimic
+                    .as_ref()
+                    .map(|m| format!("{} = {} {} + {}", j.name, m.multiplier, m.joint, m.offset))
+            })
+            .collect();
+        list(
+            match spec.mimic {
+                MimicName::Constraint => "Mimics, coupled (mimic = \"constraint\")",
+                MimicName::Independent => "Mimics, independent joints (mimic = \"independent\")",
+            },
+            mimics,
+            &mut out,
+        );
+        if !model.ignored.is_empty() {
+            let ignored: Vec<String> = model.ignored.iter().map(|(tag, n)| format!("<{tag}> × {n}")).collect();
+            let _ = writeln!(
+                out,
+                "- Ignored elements: {}",
+                crate::markdown::escape(&ignored.join(", "))
+            );
+        }
+        let _ = writeln!(out, "- Gravity on the robot's bodies: {:?} m/s²\n", spec.gravity);
+        out
+    }
+}
+
+/// A robot joint's model, its child and parent bodies (mechanism indices; `None`: the world) and where its position
+/// coordinates start.
+pub(crate) type RobotJoint = (JointModel, usize, Option<usize>, usize);
+
+/// Where a joints-CSV column comes from.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// A position coordinate of the mechanism's joint space.
+    Position(usize),
+    /// A frozen joint's constant coordinate.
+    Constant(f64),
+}
+
+/// The columns of `<stem>_joints_<algebra>.csv` between `t` and `energy`: every non-fixed joint in URDF file order
+/// (frozen ones at their constant 0), then for a free root `base.x, base.y, base.z, base.qw, base.qx, base.qy,
+/// base.qz` (the root link frame, world ← root).
+#[derive(Clone, Debug)]
+pub(crate) struct RobotColumns {
+    pub(crate) headers: Vec<String>,
+    sources: Vec<Source>,
+}
+
+impl RobotColumns {
+    /// The columns' values at joint positions `q` (the mechanism's joint space).
+    pub(crate) fn row(&self, q: &[f64]) -> Vec<f64> {
+        self.sources
+            .iter()
+            .map(|s| match s {
+                Source::Position(i) => q[*i],
+                Source::Constant(value) => *value,
+            })
+            .collect()
+    }
+}
+
+/// The suffixes of a URDF joint kind's coordinates, with the constant value of a frozen one.
+fn frozen_coordinates(kind: urdf_import::JointKind) -> &'static [(&'static str, f64)] {
+    match kind {
+        urdf_import::JointKind::Planar => &[("x", 0.0), ("y", 0.0), ("theta", 0.0)],
+        urdf_import::JointKind::Floating => &[
+            ("x", 0.0),
+            ("y", 0.0),
+            ("z", 0.0),
+            ("qw", 1.0),
+            ("qx", 0.0),
+            ("qy", 0.0),
+            ("qz", 0.0),
+        ],
+        urdf_import::JointKind::Fixed => &[],
+        _ => &[("", 0.0)],
+    }
+}
+
+impl LoadedRobot {
+    /// The joints CSV's columns in `mechanism` (the robot's, with the scene's bodies added).
+    pub(crate) fn columns<A: Algebra>(
+        &self,
+        robot: &Robot<A>,
+        mechanism: &Mechanism<A>,
+    ) -> Result<RobotColumns, SceneFileError> {
+        let space = mechanism
+            .joint_space()
+            .map_err(|e| invalid("robot", format!("no joint coordinates: {e}")))?;
+        // Moving and frozen joints in file order (by line).
+        let mut entries: Vec<(u32, Vec<(String, Source)>)> = Vec::new();
+        for joint in &self.model.joints {
+            let id = robot
+                .joint(&joint.name)
+                .expect("every moving joint is in the mechanism");
+            let group = space
+                .groups()
+                .iter()
+                .find(|g| g.joint() == Some(id))
+                .ok_or_else(|| invalid("robot", format!("joint {} has no coordinates", joint.name)))?;
+            let suffixes = group.model().kind().position_names();
+            let columns = suffixes
+                .iter()
+                .enumerate()
+                .map(|(k, suffix)| {
+                    let header = if suffix.is_empty() {
+                        joint.name.clone()
+                    } else {
+                        format!("{}.{suffix}", joint.name)
+                    };
+                    (header, Source::Position(group.position_offset() + k))
+                })
+                .collect();
+            entries.push((joint.line, columns));
+        }
+        for frozen in &self.model.frozen_joints {
+            let columns = frozen_coordinates(frozen.kind)
+                .iter()
+                .map(|(suffix, value)| {
+                    let header = if suffix.is_empty() {
+                        frozen.name.clone()
+                    } else {
+                        format!("{}.{suffix}", frozen.name)
+                    };
+                    (header, Source::Constant(*value))
+                })
+                .collect();
+            entries.push((frozen.line, columns));
+        }
+        entries.sort_by_key(|(line, _)| *line);
+        let (mut headers, mut sources): (Vec<String>, Vec<Source>) = entries.into_iter().flat_map(|(_, c)| c).unzip();
+        if let Some(base) = robot.base() {
+            let group = space
+                .groups()
+                .iter()
+                .find(|g| g.body() == base && g.joint().is_none())
+                .ok_or_else(|| invalid("robot", "the free root has no coordinates"))?;
+            for (k, suffix) in ["x", "y", "z", "qw", "qx", "qy", "qz"].iter().enumerate() {
+                headers.push(format!("base.{suffix}"));
+                sources.push(Source::Position(group.position_offset() + k));
+            }
+        }
+        Ok(RobotColumns { headers, sources })
+    }
+
+    /// Every moving joint's model with its child and parent body (mechanism indices) and where its positions start,
+    /// to measure how far the bodies are from the pose their joint coordinates give.
+    pub(crate) fn joint_models<A: Algebra>(
+        &self,
+        robot: &Robot<A>,
+        mechanism: &Mechanism<A>,
+    ) -> Result<Vec<RobotJoint>, SceneFileError> {
+        let space = mechanism
+            .joint_space()
+            .map_err(|e| invalid("robot", format!("no joint coordinates: {e}")))?;
+        self.model
+            .joints
+            .iter()
+            .map(|joint| {
+                let id = robot
+                    .joint(&joint.name)
+                    .expect("every moving joint is in the mechanism");
+                let group = space
+                    .groups()
+                    .iter()
+                    .find(|g| g.joint() == Some(id))
+                    .ok_or_else(|| invalid("robot", format!("joint {} has no coordinates", joint.name)))?;
+                let parent = match mechanism.joint(id).map(|(_, _, reference)| reference) {
+                    Some(Reference::Body(body)) => Some(body.index()),
+                    _ => None,
+                };
+                Ok((
+                    group.model().clone(),
+                    group.body().index(),
+                    parent,
+                    group.position_offset(),
+                ))
+            })
+            .collect()
+    }
+}
