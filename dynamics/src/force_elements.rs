@@ -229,6 +229,26 @@ impl<A: Algebra> ForceElement<A> {
     }
 
     /// A couple `moment(t)` (N m, world axes) on `first`, and its opposite on `second` (the world takes nothing).
+    ///
+    /// Two balls, a couple between them: each one's angular momentum changes by the couple, in opposite senses.
+    ///
+    /// ```
+    /// use dynamics::force_elements::{ForceElement, OfTime};
+    /// use dynamics::{Algebra, Body, Mechanism, Pga, Reference, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.1)?;
+    /// let mut pair = Mechanism::<Pga>::new();
+    /// let (a, b) = (pair.add_body("a", ball)?, pair.add_body("b", ball)?);
+    /// let moment = Vector3::new(0.0, 0.0, 0.2); // N m
+    /// pair.add_force_element(ForceElement::couple("twist", a, Reference::Body(b), OfTime::Constant(moment)))?;
+    /// let at = |x: f64| State::new(&ball, Vector3::new(x, 0.0, 0.0), &UnitQuaternion::identity(), Vector3::zeros(),
+    ///     Vector3::zeros());
+    /// let rates = pair.rates_at(0.0, &[at(0.0), at(1.0)])?;
+    /// let (on_a, on_b) = (Pga::screw_coordinates(rates[0].momentum_rate), Pga::screw_coordinates(rates[1].momentum_rate));
+    /// assert!((on_a.t - moment).norm() < 1e-15 && (on_b.t + moment).norm() < 1e-15); // N m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn couple(name: impl Into<String>, first: BodyId, second: Reference, moment: OfTime<Vector3<f64>>) -> Self {
         ForceElement {
             name: name.into(),
@@ -243,6 +263,26 @@ impl<A: Algebra> ForceElement<A> {
     /// A generalised force on a one-coordinate joint model: a torque about a revolute joint's axis (N m), a force
     /// along a prismatic joint's (N), `force(t)`; the child receives it, the parent its opposite (an actuator
     /// between them). Its power `τ q̇` is the work it does.
+    ///
+    /// A ball on a vertical axle (moment of inertia 0.1 kg m²) under 0.5 N m turns up at 5 rad/s²:
+    ///
+    /// ```
+    /// use dynamics::force_elements::{ForceElement, OfTime};
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::{Body, Mechanism, Pga, Reference};
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.5)?; // I = 2/5 m r² = 0.1 kg m²
+    /// let mut wheel = Mechanism::<Pga>::new();
+    /// let id = wheel.add_body("ball", ball)?;
+    /// let axle = JointModel::new("axle", JointKind::Revolute { axis: Vector3::z() }, Isometry3::identity(),
+    ///     Isometry3::identity())?;
+    /// let joint = wheel.connect(id, Reference::World, axle)?;
+    /// wheel.add_force_element(ForceElement::joint_force("motor", joint, OfTime::Constant(0.5)))?;
+    /// let states = wheel.states_from_joints(&[0.0], &[0.0])?;
+    /// assert!((wheel.joint_accelerations(0.0, &states)?[0] - 5.0).abs() < 1e-12); // rad/s²
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn joint_force(name: impl Into<String>, joint: JointId, force: OfTime<f64>) -> Self {
         ForceElement {
             name: name.into(),
@@ -255,6 +295,27 @@ impl<A: Algebra> ForceElement<A> {
 
     /// Viscous damping on every coordinate of a joint model, `τ = −c q̇` (c in N m s/rad or N s/m, finite and
     /// non-negative): the URDF `<dynamics damping>`.
+    ///
+    /// The ball on its axle (0.1 kg m²) spinning at 2 rad/s, damped by 0.1 N m s/rad, slows at 2 rad/s²:
+    ///
+    /// ```
+    /// use dynamics::force_elements::ForceElement;
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::{Body, Mechanism, Pga, Reference};
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.5)?;
+    /// let mut wheel = Mechanism::<Pga>::new();
+    /// let id = wheel.add_body("ball", ball)?;
+    /// let axle = JointModel::new("axle", JointKind::Revolute { axis: Vector3::z() }, Isometry3::identity(),
+    ///     Isometry3::identity())?;
+    /// let joint = wheel.connect(id, Reference::World, axle)?;
+    /// wheel.add_force_element(ForceElement::joint_damping("bearing", joint, 0.1)?)?;
+    /// let states = wheel.states_from_joints(&[0.0], &[2.0])?;
+    /// assert!((wheel.joint_accelerations(0.0, &states)?[0] + 2.0).abs() < 1e-12); // rad/s²
+    /// assert!(ForceElement::<Pga>::joint_damping("bearing", joint, -0.1).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn joint_damping(name: impl Into<String>, joint: JointId, coefficient: f64) -> Result<Self, ConstraintError> {
         let name = name.into();
         if !(coefficient.is_finite() && (0.0..=MAX_PARAMETER).contains(&coefficient)) {
@@ -310,6 +371,31 @@ impl<A: Algebra> ForceElement<A> {
 
     /// Any wrench between two bodies: `wrench(t, first state, second state)` is the world wrench on `first`, the
     /// second (`None`: the world) receives the opposite. Its power is the work it does.
+    ///
+    /// A force of 3 N along the line from one ball to the other, pulling them together:
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use dynamics::force_elements::ForceElement;
+    /// use dynamics::{Algebra, Body, Mechanism, Pga, Reference, ScrewCoordinates, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ball = Body::sphere(1.0, 0.1)?;
+    /// let mut pair = Mechanism::<Pga>::new();
+    /// let (a, b) = (pair.add_body("a", ball)?, pair.add_body("b", ball)?);
+    /// let pull = Arc::new(|_t: f64, first: &State<Pga>, second: Option<&State<Pga>>| {
+    ///     let (p, q) = (first.pose().0, second.expect("a body").pose().0);
+    ///     let force = (q - p).normalize() * 3.0; // N, along the line through both centres
+    ///     Pga::screw(ScrewCoordinates { l: force, t: p.cross(&force) })
+    /// });
+    /// pair.add_force_element(ForceElement::between("pull", a, Reference::Body(b), pull))?;
+    /// let at = |x: f64| State::new(&ball, Vector3::new(x, 0.0, 0.0), &UnitQuaternion::identity(), Vector3::zeros(),
+    ///     Vector3::zeros());
+    /// let rates = pair.rates_at(0.0, &[at(0.0), at(2.0)])?;
+    /// let (on_a, on_b) = (Pga::screw_coordinates(rates[0].momentum_rate), Pga::screw_coordinates(rates[1].momentum_rate));
+    /// assert!((on_a.l - Vector3::new(3.0, 0.0, 0.0)).norm() < 1e-15 && (on_a.l + on_b.l).norm() < 1e-15); // N
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn between(name: impl Into<String>, first: BodyId, second: Reference, wrench: WrenchBetween<A>) -> Self {
         ForceElement {
             name: name.into(),

@@ -65,7 +65,7 @@ pub use joints::{JointKind, JointModel};
 pub use mechanism::{
     BodyId, CoordinateGroup, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings, Violation,
 };
-pub use motion::{BodyRates, Dynamics, FreeBody, Rates};
+pub use motion::{BodyRates, Dynamics, FreeBody, FreeBodyWorkspace, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};
 pub use state::{State, WorldMomentum, WorldVelocity};

@@ -112,7 +112,8 @@ pub trait Dynamics<A: Algebra> {
         Err(no_joint_coordinates())
     }
 
-    /// The bodies' states at joint positions and velocities, at time `t`.
+    /// The bodies' states at joint positions and velocities, at time `t` (a driven joint at its drive then, whatever
+    /// its entries hold).
     fn write_joints(
         &self,
         _t: f64,
@@ -266,6 +267,28 @@ impl<A: Algebra> FreeBody<A> {
         }
     }
 
+    /// The power of the forces other than gravity (gravity's is the rate of its potential, in the energy): each
+    /// world wrench `(f; m_O)` on the body moving with centre-of-mass velocity v and angular velocity ω,
+    /// `f·v + (m_O − c × f)·ω`.
+    fn power_at(&self, t: f64, state: &State<A>) -> f64 {
+        let mut forces = self
+            .forces
+            .iter()
+            .filter(|force| !matches!(force, Force::Gravity { .. }))
+            .peekable();
+        if forces.peek().is_none() {
+            return 0.0;
+        }
+        let (centre, _) = state.pose();
+        let velocity = state.world_velocity(&self.body);
+        forces
+            .map(|force| {
+                let w = A::screw_coordinates(force.wrench(&self.body, t, state));
+                w.l.dot(&velocity.linear) + (w.t - centre.cross(&w.l)).dot(&velocity.angular)
+            })
+            .sum()
+    }
+
     fn state_energy(&self, state: &State<A>) -> f64 {
         state.kinetic_energy(&self.body)
             + self
@@ -276,10 +299,18 @@ impl<A: Algebra> FreeBody<A> {
     }
 }
 
-impl<A: Algebra> Dynamics<A> for FreeBody<A> {
-    type Workspace = ();
+/// A free body's workspace: the power of its forces at the last evaluation.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FreeBodyWorkspace {
+    power: f64,
+}
 
-    fn workspace(&self) {}
+impl<A: Algebra> Dynamics<A> for FreeBody<A> {
+    type Workspace = FreeBodyWorkspace;
+
+    fn workspace(&self) -> FreeBodyWorkspace {
+        FreeBodyWorkspace::default()
+    }
 
     fn body_count(&self) -> usize {
         1
@@ -290,9 +321,17 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
     }
 
     #[inline]
-    fn rates(&self, t: f64, states: &[State<A>], rates: &mut [Rates<A>], _: &mut ()) -> Result<(), ConstraintError> {
+    fn rates(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        rates: &mut [Rates<A>],
+        workspace: &mut FreeBodyWorkspace,
+    ) -> Result<(), ConstraintError> {
+        workspace.power = 0.0;
         for (rate, state) in rates.iter_mut().zip(states) {
             *rate = self.rates_at(t, state);
+            workspace.power += self.power_at(t, state);
         }
         Ok(())
     }
@@ -304,12 +343,24 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
         motors: &[A::Motor],
         body_momenta: &[A::Screw],
         rates: &mut [BodyRates<A>],
-        _: &mut (),
+        workspace: &mut FreeBodyWorkspace,
     ) -> Result<(), ConstraintError> {
+        workspace.power = 0.0;
         for ((rate, &motor), &momentum) in rates.iter_mut().zip(motors).zip(body_momenta) {
             *rate = self.body_rates_of(t, motor, momentum);
+            if self.forces.iter().any(|force| !matches!(force, Force::Gravity { .. })) {
+                let state = State {
+                    motor,
+                    momentum: to_world::<A>(motor, momentum),
+                };
+                workspace.power += self.power_at(t, &state);
+            }
         }
         Ok(())
+    }
+
+    fn power(&self, workspace: &FreeBodyWorkspace) -> f64 {
+        workspace.power
     }
 
     fn energy(&self, states: &[State<A>]) -> f64 {

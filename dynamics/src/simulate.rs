@@ -522,8 +522,9 @@ pub struct Sample {
     /// [`Dynamics::energy`] of the whole system.
     pub energy: f64,
     /// The work done on the system since the start by its non-conservative forces (dampers, actuators,
-    /// controllers; [`Dynamics::power`] integrated by the method): `energy − energy at the start` equals it up to the
-    /// integration error (and the projection's drift corrections).
+    /// controllers, drives, a body's forces other than gravity; [`Dynamics::power`] integrated by the method):
+    /// `energy − energy at the start` equals it up to the integration error (and the projection's drift
+    /// corrections). The splitting methods integrate no power: with them it stays zero.
     pub work: f64,
 }
 

@@ -76,6 +76,14 @@ pub struct RobotPlan {
 
 impl RobotPlan {
     /// Both robots over [`DEFAULT_STEPS`], with every joint-coordinate method.
+    ///
+    /// ```
+    /// use report::robot_sweep::{RobotPlan, DEFAULT_STEPS};
+    ///
+    /// let plan = RobotPlan::all();
+    /// assert_eq!((plan.robots.len(), plan.joint_methods.len()), (2, 3)); // UR5 and Solo-12; RKMK4, 6 and 8
+    /// assert_eq!(plan.steps, DEFAULT_STEPS);
+    /// ```
     pub fn all() -> Self {
         RobotPlan {
             robots: RobotId::ALL.to_vec(),

@@ -1598,6 +1598,27 @@ impl SceneFile {
     }
 
     /// [`SceneFile::parse`], with a robot's URDF path relative to `folder` (the scene file's).
+    ///
+    /// ```
+    /// use report::scene_file::SceneFile;
+    ///
+    /// let folder = std::env::temp_dir().join(format!("parse-in-{}", std::process::id()));
+    /// std::fs::create_dir_all(&folder)?;
+    /// std::fs::write(folder.join("wheel.urdf"), r#"<robot name="wheel">
+    ///   <link name="base"/>
+    ///   <link name="wheel"><inertial><mass value="1"/>
+    ///     <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.2"/></inertial></link>
+    ///   <joint name="axle" type="continuous"><parent link="base"/><child link="wheel"/><axis xyz="0 0 1"/></joint>
+    /// </robot>"#)?;
+    /// let text = "dt = 1e-3\nduration = 0.1\n[robot]\nurdf = \"wheel.urdf\"\nroot = \"fixed\"\n";
+    /// let scene = SceneFile::parse_in(text, &folder)?;
+    /// assert_eq!(scene.schedule()?.step_count(), 100);
+    /// // Elsewhere the URDF is not found, and the error names it.
+    /// let error = SceneFile::parse_in(text, &folder.join("elsewhere")).unwrap_err();
+    /// assert!(error.to_string().contains("wheel.urdf"), "{error}");
+    /// std::fs::remove_dir_all(&folder)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn parse_in(text: &str, folder: &Path) -> Result<SceneFile, SceneFileError> {
         let mut scene: SceneFile = toml::from_str(text)?;
         if let Some(robot) = &scene.robot {
@@ -2326,16 +2347,6 @@ impl SceneFile {
             && self.joint_damping.is_empty()
             && self.pd.is_empty()
             && !robot_damped)
-    }
-
-    /// Whether a constant body force or couple (`[[forces]]` of kind "force" or "couple") acts: their work is not
-    /// counted in the samples' `work`.
-    pub(crate) fn has_body_loads(&self) -> Result<bool, SceneFileError> {
-        Ok(self
-            .layout()?
-            .bodies
-            .iter()
-            .any(|b| b.forces.iter().any(|f| !f.conservative())))
     }
 
     /// The robot's part of the summary, with a robot.

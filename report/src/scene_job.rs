@@ -298,7 +298,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         relative_energy: relative,
         robot: robot.as_deref(),
         elements: scene.element_list()?,
-        body_loads: scene.has_body_loads()?,
+        splitting: matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)),
     };
     let mut text = summary(&setup, &runs, &file_names);
     for warning in &warnings {
@@ -323,8 +323,8 @@ struct Setup<'a> {
     robot: Option<&'a str>,
     /// The force elements and drives, described.
     elements: Vec<String>,
-    /// Whether a constant body force or couple acts (its work is not in W).
-    body_loads: bool,
+    /// Whether a splitting method steps (it integrates no power: W stays 0).
+    splitting: bool,
 }
 
 /// Items joined by commas, or "none".
@@ -486,7 +486,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     if !setup.conservative {
         let _ = writeln!(
             out,
-            "| algebra | E(T) − E₀ (J) | work W(T) of the force elements (J) | E(T) − E₀ − W(T) (J) |"
+            "| algebra | E(T) − E₀ (J) | work W(T) (J) | E(T) − E₀ − W(T) (J) |"
         );
         let _ = writeln!(out, "|---|---|---|---|");
         for run in runs {
@@ -505,25 +505,15 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
                 scientific(change - work)
             );
         }
-        let mut uncounted = Vec::new();
-        if !scene_drives(setup).is_empty() {
-            uncounted.push(format!(
-                "the drives of the joints {} (a prescribed motion does work through its reaction)",
-                scene_drives(setup).join(", ")
-            ));
-        }
-        if setup.body_loads {
-            uncounted.push("the constant forces and couples of [[forces]] entries".to_owned());
-        }
         let _ = writeln!(
             out,
-            "\nW is the work of the force elements (dampers, torques, controllers, couples) from the start, integrated \
-             with the method's own weights; without other sources of work E(T) − E₀ − W(T) is the integration \
+            "\nW is the work of the forces without a potential (force elements, drives, constant forces and couples) \
+             from the start, integrated with the method's own weights, so E(T) − E₀ − W(T) is the integration \
              error.{}\n",
-            if uncounted.is_empty() {
-                String::new()
+            if setup.splitting {
+                " The splitting methods integrate no power: here W stays 0."
             } else {
-                format!(" W does not count the work of {}.", escape(&uncounted.join(" and ")))
+                ""
             }
         );
     }
@@ -569,17 +559,6 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         }
     }
     out
-}
-
-/// The driven joints' names.
-fn scene_drives(setup: &Setup) -> Vec<String> {
-    setup
-        .layout
-        .joints
-        .iter()
-        .filter(|j| j.drive.is_some())
-        .map(|j| j.name.clone())
-        .collect()
 }
 
 /// Whether the joints CSV has the floating base's columns.

@@ -10,8 +10,8 @@ use common::cuboid;
 use dynamics::exponential::{exp, log};
 use dynamics::motor::{self, norm_error};
 use dynamics::{
-    simulate, Algebra, BodyRates, Cga, ConstraintError, Dynamics, FreeBody, Integrator, Method, Rates, Schedule,
-    ScrewCoordinates, SplittingMethod, State, Stepper,
+    simulate, Algebra, BodyRates, Cga, ConstraintError, Dynamics, FreeBody, FreeBodyWorkspace, Integrator, Method,
+    Rates, Schedule, ScrewCoordinates, SplittingMethod, State, Stepper,
 };
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 use reference::SceneId;
@@ -148,9 +148,11 @@ fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
 struct Unnormalised<A: Algebra>(FreeBody<A>);
 
 impl<A: Algebra> Dynamics<A> for Unnormalised<A> {
-    type Workspace = ();
+    type Workspace = FreeBodyWorkspace;
 
-    fn workspace(&self) {}
+    fn workspace(&self) -> FreeBodyWorkspace {
+        FreeBodyWorkspace::default()
+    }
 
     fn body_count(&self) -> usize {
         1
@@ -160,8 +162,14 @@ impl<A: Algebra> Dynamics<A> for Unnormalised<A> {
         self.0.body(index)
     }
 
-    fn rates(&self, t: f64, states: &[State<A>], rates: &mut [Rates<A>], _: &mut ()) -> Result<(), ConstraintError> {
-        self.0.rates(t, states, rates, &mut ())
+    fn rates(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        rates: &mut [Rates<A>],
+        workspace: &mut FreeBodyWorkspace,
+    ) -> Result<(), ConstraintError> {
+        self.0.rates(t, states, rates, workspace)
     }
 
     fn body_rates(
@@ -170,12 +178,12 @@ impl<A: Algebra> Dynamics<A> for Unnormalised<A> {
         motors: &[A::Motor],
         momenta: &[A::Screw],
         rates: &mut [BodyRates<A>],
-        _: &mut (),
+        workspace: &mut FreeBodyWorkspace,
     ) -> Result<(), ConstraintError> {
-        self.0.body_rates(t, motors, momenta, rates, &mut ())
+        self.0.body_rates(t, motors, momenta, rates, workspace)
     }
 
-    fn after_step(&self, _t: f64, _states: &mut [State<A>], _: &mut ()) -> Result<(), ConstraintError> {
+    fn after_step(&self, _t: f64, _states: &mut [State<A>], _: &mut FreeBodyWorkspace) -> Result<(), ConstraintError> {
         Ok(())
     }
 

@@ -51,6 +51,15 @@ fn scene<A: Algebra>(id: RobotId) -> RobotScene<A> {
         let group = space.group(name).unwrap();
         assert_eq!(group.velocity_offset(), offset + k, "{name}");
         assert_eq!(group.position_offset(), base_positions(&scene.reference) + k, "{name}");
+        // The parents: the UR5 is one chain from the world; each of Solo-12's legs a chain from the base (HAA).
+        let expected = if name.ends_with("_HAA") {
+            scene.robot.base()
+        } else if k == 0 {
+            None
+        } else {
+            Some(space.group(&scene.reference.joints[k - 1]).unwrap().body())
+        };
+        assert_eq!(group.parent(), expected, "{name}");
     }
     scene
 }

@@ -326,6 +326,11 @@ impl<A: Algebra> Robot<A> {
 
     /// The bodies' states at `start` (exact forward kinematics, [`Mechanism::states_from_joints`]). Mimic followers
     /// take the position and velocity their leader implies; a value given for one must agree with it.
+    ///
+    /// One state per body of the mechanism, in its body order — bodies attached after the build included, which
+    /// their joint models place at zero coordinates (`start` names the URDF's joints only; a driven joint is moved
+    /// onto its drive by the simulation's first projection). It fails if a joint added after the build is not a
+    /// joint model: there are then no joint coordinates to place the bodies by.
     pub fn initial_states(&self, start: &RobotStart) -> Result<Vec<State<A>>, BuildError> {
         let space = self.mechanism.joint_space()?;
         let mut q = space.neutral_positions();

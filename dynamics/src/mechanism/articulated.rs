@@ -32,7 +32,7 @@ pub(crate) struct Articulation {
 impl Articulation {
     /// The tree of joints `(child, parent, is_model)`, if every joint is a joint model, no body is the child of two
     /// joints and no chain of parents closes on itself.
-    pub fn new(bodies: usize, joints: &[(usize, Option<usize>, bool)]) -> Option<Self> {
+    pub(crate) fn new(bodies: usize, joints: &[(usize, Option<usize>, bool)]) -> Option<Self> {
         let mut parent_joint = vec![None; bodies];
         let mut parent_body = vec![None; bodies];
         for (j, &(child, parent, is_model)) in joints.iter().enumerate() {
@@ -141,7 +141,7 @@ pub(crate) struct ArticulatedScratch {
 }
 
 impl ArticulatedScratch {
-    pub fn new(bodies: usize, joints: usize, couplings: usize) -> Self {
+    pub(crate) fn new(bodies: usize, joints: usize, couplings: usize) -> Self {
         let body = BodyTerms {
             inertia: Inertia6::ZERO,
             bias: Vector6::zeros(),

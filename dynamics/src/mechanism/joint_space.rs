@@ -53,6 +53,11 @@ impl CoordinateGroup {
         self.joint
     }
 
+    /// The body the joint attaches its child to, or `None` for the world (and for a free root).
+    pub fn parent(&self) -> Option<BodyId> {
+        self.parent.map(BodyId)
+    }
+
     /// Where the group's positions start in the position vector.
     pub fn position_offset(&self) -> usize {
         self.position_offset
@@ -450,6 +455,22 @@ impl<A: Algebra> Mechanism<A> {
         Ok(states)
     }
 
+    /// [`Self::place`] at time `t`: a driven joint at its drive's value and rate then, whatever `q` and `v` hold
+    /// (an integrator's copy of a driven coordinate carries its truncation error; the drive is exact).
+    fn place_at(
+        &self,
+        t: f64,
+        group: &CoordinateGroup,
+        parent: &WorldBody,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<WorldBody, ConstraintError> {
+        match group.model.drive_at(t) {
+            Some(drive) => self.place(group, parent, &[drive.value], &[drive.rate]),
+            None => self.place(group, parent, q, v),
+        }
+    }
+
     /// The child of `group` placed by its joint positions and velocities relative to `parent`.
     fn place(
         &self,
@@ -483,10 +504,11 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Projects states onto the joint models by their coordinates (docs/mechanisms.md §M7): the roots keep their
     /// states; every other body is placed by its joint's positions and velocities read from the states (taken
-    /// nearest `previous` positions, if any, which it updates), the couplings imposed on them, from its parent as
-    /// placed. Exact on the joints to round-off, in O(N).
+    /// nearest `previous` positions, if any, which it updates), a driven joint's its drive's at `t`, the couplings
+    /// imposed on them, from its parent as placed. Exact on the joints to round-off, in O(N).
     pub(crate) fn project_coordinates(
         &self,
+        t: f64,
         states: &mut [State<A>],
         previous: &mut Vec<f64>,
     ) -> Result<(), ConstraintError> {
@@ -501,6 +523,10 @@ impl<A: Algebra> Mechanism<A> {
             let range = group.positions();
             self.read_positions(group, &read, before.map(|p| &p[range.clone()]), &mut q[range]);
             self.read_velocities(group, &read, &mut v[group.velocities()]);
+            if let Some(drive) = group.model.drive_at(t) {
+                q[group.position_offset] = drive.value;
+                v[group.velocity_offset] = drive.rate;
+            }
         }
         for coupling in &self.couplings {
             let at =
@@ -685,7 +711,10 @@ impl<A: Algebra> Mechanism<A> {
         }
         // The external wrenches: the bodies' forces and the force elements that are not actuators.
         let mut external: Vec<ScrewCoordinates> = (0..self.bodies.len())
-            .map(|i| self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum)))
+            .map(|i| {
+                self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum))
+                    .0
+            })
             .collect();
         self.apply_elements(t, &|i: usize| &kinematics[i], &mut external, false)?;
         let mut force: Vec<Vector6<f64>> = (0..self.bodies.len())
@@ -830,7 +859,7 @@ impl<A: Algebra> Mechanism<A> {
         for &g in &space.order {
             let group = &space.groups[g];
             let parent = self.parent_of(group, &placed);
-            placed[group.body] = self.place(group, &parent, &q[group.positions()], &v[group.velocities()])?;
+            placed[group.body] = self.place_at(t, group, &parent, &q[group.positions()], &v[group.velocities()])?;
         }
         // The motors only where a force reads them (gravity and the articulated solve do not); elsewhere NaN, so
         // that a reader left out here shows as an error, not a wrong answer.
@@ -881,10 +910,16 @@ impl<A: Algebra> Mechanism<A> {
         let forces = self.body_forces(t, &momenta, workspace, super::BodyTerms::Forces);
         workspace.momenta = momenta;
         forces?;
+        // The reactions only for the drives' power: the other joints' is zero.
+        let driven = self
+            .joints
+            .iter()
+            .any(|j| j.model.as_ref().is_some_and(JointModel::is_driven));
         let super::MechanismWorkspace {
             bodies,
             external,
             articulated,
+            reactions,
             ..
         } = workspace;
         articulation
@@ -896,12 +931,18 @@ impl<A: Algebra> Mechanism<A> {
                 external,
                 &self.coupling_rows,
                 articulated,
-                None,
+                driven.then_some(reactions.as_mut_slice()),
             )
             .map_err(|body| ConstraintError::NonFinite {
                 name: self.bodies[body].name.clone(),
                 t,
             })?;
+        if driven {
+            workspace.power += self.reaction_power(workspace);
+        }
+        let super::MechanismWorkspace {
+            bodies, articulated, ..
+        } = workspace;
         let origin = articulated.origin();
         for group in &space.groups {
             let out = &mut accelerations[group.velocities()];
@@ -965,9 +1006,11 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
-    /// The bodies' states at joint positions and velocities, into `states` (`placed` is scratch).
+    /// The bodies' states at joint positions and velocities, the driven joints at their drives at `t`, into
+    /// `states` (`placed` is scratch).
     pub(crate) fn write_joints_into(
         &self,
+        t: f64,
         positions: &[f64],
         velocities: &[f64],
         states: &mut [State<A>],
@@ -984,7 +1027,8 @@ impl<A: Algebra> Mechanism<A> {
         for &g in &space.order {
             let group = &space.groups[g];
             let parent = self.parent_of(group, placed);
-            placed[group.body] = self.place(
+            placed[group.body] = self.place_at(
+                t,
                 group,
                 &parent,
                 &positions[group.positions()],

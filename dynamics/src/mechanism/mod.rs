@@ -293,7 +293,8 @@ pub struct MechanismWorkspace<A: Algebra> {
     articulated: ArticulatedScratch,
     /// The joint positions of the last projection by coordinates, so that angles read the next time unwrap from them.
     previous_positions: Vec<f64>,
-    /// The force elements' non-conservative power at the last evaluation (W).
+    /// The non-conservative power at the last evaluation (W): the force elements', the bodies' forces other than
+    /// gravity, the drives'.
     power: f64,
     /// The force elements' wrench on each body at the last evaluation (body frame; also in `external`).
     element_wrenches: Vec<ScrewCoordinates>,
@@ -967,32 +968,51 @@ impl<A: Algebra> Mechanism<A> {
         })
     }
 
-    /// The external wrench on body `index` in its own frame (gravity rotated into it directly).
+    /// The external wrench on body `index` in its own frame (gravity rotated into it directly), and the power of
+    /// its forces other than gravity (gravity's is the rate of its potential, in the energy).
     fn external_body_wrench(
         &self,
         index: usize,
         kinematics: &Kinematics<A>,
         body_momentum: A::Screw,
-    ) -> ScrewCoordinates {
+    ) -> (ScrewCoordinates, f64) {
         let body = &self.bodies[index];
-        body.forces.iter().fold(ScrewCoordinates::default(), |total, force| {
-            total
-                + match force {
-                    Force::Gravity { acceleration } => ScrewCoordinates {
+        body.forces.iter().fold(
+            (ScrewCoordinates::default(), 0.0),
+            |(total, power), force| match force {
+                Force::Gravity { acceleration } => {
+                    let weight = ScrewCoordinates {
                         l: kinematics
                             .frame
                             .rotation
                             .inverse_transform_vector(&(body.body.mass() * acceleration)),
                         t: Vector3::zeros(),
-                    },
-                    _ => {
-                        let world = force.wrench_at(&body.body, kinematics.t, kinematics.motor, || {
-                            kinematics.to_world(body_momentum)
-                        });
-                        kinematics.to_body_coordinates(&A::screw_coordinates(world))
-                    }
+                    };
+                    (total + weight, power)
                 }
-        })
+                _ => {
+                    let world = force.wrench_at(&body.body, kinematics.t, kinematics.motor, || {
+                        kinematics.to_world(body_momentum)
+                    });
+                    let wrench = kinematics.to_body_coordinates(&A::screw_coordinates(world));
+                    (
+                        total + wrench,
+                        power + wrench_power(&wrench_coordinates(&wrench), &kinematics.velocity),
+                    )
+                }
+            },
+        )
+    }
+
+    /// The power of the joints' reactions in `workspace` (`Σ yᵢ·xᵢ`, body frames): a drive's work, and for the
+    /// joints that prescribe nothing zero up to the constraint drift (docs/mechanisms.md §M8).
+    pub(crate) fn reaction_power(&self, workspace: &MechanismWorkspace<A>) -> f64 {
+        workspace
+            .reactions
+            .iter()
+            .zip(&workspace.bodies)
+            .map(|(reaction, body)| wrench_power(reaction, &body.kinematics.velocity))
+            .sum()
     }
 
     /// A workspace for this mechanism.
@@ -1069,7 +1089,9 @@ impl<A: Algebra> Mechanism<A> {
             return Ok(());
         }
         for (i, body) in workspace.bodies.iter().enumerate() {
-            workspace.external[i] = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
+            let (wrench, power) = self.external_body_wrench(i, &body.kinematics, body_momenta[i]);
+            workspace.external[i] = wrench;
+            workspace.power += power;
         }
         if !self.elements.is_empty() {
             let MechanismWorkspace {
@@ -1082,7 +1104,7 @@ impl<A: Algebra> Mechanism<A> {
                 .iter_mut()
                 .for_each(|w| *w = ScrewCoordinates::default());
             let kinematics = |i: usize| &bodies[i].kinematics;
-            workspace.power = self.apply_elements(t, &kinematics, element_wrenches, true)?;
+            workspace.power += self.apply_elements(t, &kinematics, element_wrenches, true)?;
             for (total, element) in external.iter_mut().zip(element_wrenches.iter()) {
                 *total = *total + *element;
             }
@@ -1236,7 +1258,9 @@ impl<A: Algebra> Mechanism<A> {
                     name: self.names(self.topology.incidences[body].iter().map(|incidence| incidence.joint)),
                     t,
                 })?;
-            return self.check_reactions(t, workspace);
+            self.check_reactions(t, workspace)?;
+            workspace.power += self.reaction_power(workspace);
+            return Ok(());
         }
         self.joint_rows(t, workspace, Rows::Dynamics)?;
         // The round-off floor of the loop consistency check: the size of the terms in the joints' conditions.
@@ -1248,7 +1272,9 @@ impl<A: Algebra> Mechanism<A> {
             .sqrt();
         self.solve_reactions(workspace, Condition::Acceleration, Consistency::Check { scale })?;
         workspace.stage_factors = workspace.joints.iter().all(|rows| rows.reduced.direct);
-        self.check_reactions(t, workspace)
+        self.check_reactions(t, workspace)?;
+        workspace.power += self.reaction_power(workspace);
+        Ok(())
     }
 
     /// An error naming the joints at the first body whose reaction is not finite.
@@ -1396,7 +1422,7 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         if self.articulation.is_some() {
-            return self.project_coordinates(states, &mut workspace.previous_positions);
+            return self.project_coordinates(t, states, &mut workspace.previous_positions);
         }
         for state in states.iter_mut() {
             state.motor = motor::normalise::<A>(state.motor);
@@ -1601,6 +1627,11 @@ fn largest_position_residual<A: Algebra>(workspace: &MechanismWorkspace<A>) -> f
 }
 
 /// `total += y` over six coordinates.
+/// The power `y·x` of a wrench `y = (τ; f)` on a body moving with velocity `x = (ω; v)` (the same axes and point).
+fn wrench_power(y: &[f64; 6], x: &nalgebra::Vector6<f64>) -> f64 {
+    dot6(y, &(*x).into())
+}
+
 fn add(total: &mut [f64; 6], y: &[f64; 6]) {
     total.iter_mut().zip(y).for_each(|(t, y)| *t += y);
 }
@@ -1728,13 +1759,13 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     fn write_joints(
         &self,
-        _t: f64,
+        t: f64,
         positions: &[f64],
         velocities: &[f64],
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
-        self.write_joints_into(positions, velocities, states, &mut workspace.placed)
+        self.write_joints_into(t, positions, velocities, states, &mut workspace.placed)
     }
 
     fn joint_rates(
