@@ -1,5 +1,5 @@
 //! The main job's command line refuses what cannot make a job, with a message naming the flag and an error exit
-//! status, before running anything (issue 13: `--steps 0.003` used to end with every run failed and status 0).
+//! status, before running anything (`--steps 0.003` used to end with every run failed and status 0).
 
 use std::process::{Command, Output};
 

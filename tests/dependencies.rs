@@ -1,4 +1,4 @@
-//! What a user of `dynamics` compiles (issue 13): none of our reference data, and one version of `syn` (two
+//! What a user of `dynamics` compiles: none of our reference data, and one version of `syn` (two
 //! versions of the parser double the proc-macro build time of every user crate).
 
 use std::collections::BTreeSet;

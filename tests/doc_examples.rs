@@ -1,4 +1,4 @@
-//! Docs that run (issue 14): every library crate denies missing docs, and every public constructor shows a
+//! Docs that run: every library crate denies missing docs, and every public constructor shows a
 //! runnable example. `cargo test --doc` runs the examples; this test makes sure a new constructor cannot
 //! arrive without one.
 //!

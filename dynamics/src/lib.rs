@@ -70,7 +70,7 @@ pub use pga::Pga;
 pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};
 pub use state::{State, WorldMomentum, WorldVelocity};
 
-/// Systems, states, results and errors cross threads (issue 13): a run keeps its failure in its own `Result`,
+/// Systems, states, results and errors cross threads: a run keeps its failure in its own `Result`,
 /// with no shared slot, so parallel runs never see each other's errors. Checked at compile time.
 const _: () = {
     const fn send_and_sync<T: Send + Sync>() {}

@@ -1,4 +1,4 @@
-//! Bodies and states in the user's terms (issue 14): a body from a full inertia tensor about any point, from a
+//! Bodies and states in the user's terms: a body from a full inertia tensor about any point, from a
 //! cylinder; states from a twist in world or in body axes; world momenta. Checked against classical formulas in
 //! plain nalgebra, in both algebras.
 

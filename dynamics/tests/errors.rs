@@ -1,5 +1,5 @@
-//! Every way to build a body or a mechanism that cannot work ends in its own error variant, naming the cause
-//! (issue 13). Errors met only while running (inconsistent or unreachable joints, non-finite paths or states)
+//! Every way to build a body or a mechanism that cannot work ends in its own error variant, naming the cause.
+//! Errors met only while running (inconsistent or unreachable joints, non-finite paths or states)
 //! are reached in `constraint_machinery.rs` and `integrate`'s unit tests.
 
 use std::sync::Arc;

@@ -1,4 +1,4 @@
-//! Events, observers and output at any time (issue 14): crossings located to round-off against exact times, a
+//! Events, observers and output at any time: crossings located to round-off against exact times, a
 //! terminal event and an observer ending a run, samples between steps on exact motions.
 
 use std::ops::ControlFlow;
@@ -77,7 +77,7 @@ fn pendulum_period<A: Algebra>(amplitude: f64) {
 }
 
 /// Measured worst relative errors of the crossing times over 12 s (RKMK6-body, dt = 1e-3): 4.9e-15 at 0.3 rad,
-/// 4.2e-14 at 1 rad, 3.4e-13 at 2.5 rad; the bound is the issue's 1e-12.
+/// 4.2e-14 at 1 rad, 3.4e-13 at 2.5 rad; the bound asked of event location is 1e-12.
 #[test]
 fn a_pendulum_period_from_events_matches_the_elliptic_integral() {
     for amplitude in [0.3, 1.0, 2.5] {

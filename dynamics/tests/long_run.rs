@@ -1,4 +1,4 @@
-//! A long run (issue 13): 10⁶ steps of a torque-free asymmetric body with every integrator in both algebras.
+//! A long run: 10⁶ steps of a torque-free asymmetric body with every integrator in both algebras.
 //! Its world momentum (angular about the origin and linear) is a constant of the motion, so every method must
 //! keep it to round-off; its energy may drift only by the method's truncation error; its motor must stay unit.
 //!

@@ -18,7 +18,7 @@ use crate::mujoco::{self, cost_at_error};
 use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series, Shape};
 use crate::sweep::AlgebraKind;
 
-/// M2 is exact when every sample's loop violation is at most this (m), as the mechanisms issue asks.
+/// M2 is exact when every sample's loop violation is at most this (m): round-off, for links a metre long.
 const EXACT_LOOP: f64 = 1e-12;
 /// The coupler accuracy (m) at which M2's cost is compared with MuJoCo's (whose soft loop is off by 4.5e-2 m).
 const FOUR_BAR_TARGET: f64 = 1e-9;

@@ -1,5 +1,5 @@
-//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies from the project's issue
-//! tracker, measured by the team; the mechanisms from the reference set's scripts, with the date below): orientation
+//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies measured by the team and
+//! recorded here; the mechanisms from the reference set's scripts, with the date below): orientation
 //! error at T (rad; the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per
 //! step. Drawn as reference markers on the work-precision
 //! plots: CPU per simulated second = time per step / dt.
@@ -71,8 +71,7 @@ pub(crate) const SINGLE_BODY_RECORDED: &str = "2026-11-22";
 
 /// Where the single-body scenes' MuJoCo figures come from, as far as the repository records it; printed beside
 /// them in the report.
-pub(crate) const SINGLE_BODY_MEASURED: &str =
-    "MuJoCo 4.0 (RK4) figures from the project's issue tracker, measured by the \
+pub(crate) const SINGLE_BODY_MEASURED: &str = "MuJoCo 4.0 (RK4) figures measured by the \
      team on the project's 2-core machine and recorded in this code on 2026-11-22 (the day of the measurement is \
      not recorded); constants, not measured by this run";
 

@@ -49,7 +49,7 @@ const LEGEND_SAMPLE_ROOM: f64 = 32.0;
 const LEGEND_GAP: f64 = 14.0;
 const LEGEND_MAX_WIDTH: f64 = 210.0;
 
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 
 /// The Okabe–Ito colours, in pairs of a dark and a light shade of one hue (blue, vermilion, green/purple), so a
 /// caller can give two variants of one thing (e.g. PGA and CGA runs of one integrator) one hue.
@@ -64,7 +64,7 @@ pub const PALETTE: [RGBColor; 6] = [
 /// The colour of reference series.
 pub(crate) const REFERENCE_COLOUR: RGBColor = RGBColor(0, 0, 0);
 /// The colour of notes and captions.
-const NOTE_COLOUR: RGBColor = RGBColor(60, 60, 60);
+pub(crate) const NOTE_COLOUR: RGBColor = RGBColor(60, 60, 60);
 /// The most colours (reference black included) one panel may use.
 pub const MAX_COLOURS_PER_AXIS: usize = 6;
 
@@ -73,7 +73,7 @@ fn px(reading_pixels: f64) -> u32 {
     (reading_pixels * f64::from(SIZE.0) / f64::from(READING_WIDTH)).round() as u32
 }
 
-fn register_font() {
+pub(crate) fn register_font() {
     static REGISTERED: Once = Once::new();
     REGISTERED.call_once(|| {
         // The bytes are a valid TrueType font shipped by the crate; a failure would leave text blank
@@ -359,7 +359,7 @@ pub(crate) fn figure_with_caption(path: &Path, title: &str, panels: &[Panel], ca
 
 /// Lines of at most `width` pixels, broken at spaces (a word longer than that gets a line of its own; a
 /// no-break space, U+00A0, does not break).
-fn wrap(text: &str, font: &FontDesc, width: u32) -> Vec<String> {
+pub(crate) fn wrap(text: &str, font: &FontDesc, width: u32) -> Vec<String> {
     let fits = |line: &str| font.box_size(line).map_or(true, |(w, _)| w <= width);
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();

@@ -7,17 +7,15 @@
 //! fading hue), with the same embedded font and text sizes.
 
 use std::path::Path;
-use std::sync::Once;
 
 use nalgebra::Vector3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::plot::PlotError;
+use crate::plot::{register_font, wrap, PlotError, FONT, NOTE_COLOUR};
 use crate::robot_sweep::StickFigure;
 
-const FONT: &str = "sans-serif";
 /// The image's width (px); text sizes are for an image read 800 px wide, as the other plots'.
 const WIDTH: u32 = 1000;
 const SCALE: f64 = WIDTH as f64 / 800.0;
@@ -38,18 +36,9 @@ const SHADES: [RGBColor; 5] = [
     RGBColor(37, 52, 148),
     RGBColor(8, 29, 88),
 ];
-const NOTE_COLOUR: RGBColor = RGBColor(60, 60, 60);
 
 fn px(reading_pixels: f64) -> u32 {
     (reading_pixels * SCALE).round() as u32
-}
-
-fn register_font() {
-    static REGISTERED: Once = Once::new();
-    REGISTERED.call_once(|| {
-        // As in `plot`: a failure would leave text blank rather than stop the report.
-        let _ = plotters::style::register_font(FONT, FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT);
-    });
 }
 
 /// The colour of instant `k` of `n`: from the palest shade (the first) to the darkest (the last), interpolated
@@ -60,29 +49,6 @@ fn fading(k: usize, n: usize) -> RGBColor {
     let (a, b) = (SHADES[low], SHADES[(low + 1).min(SHADES.len() - 1)]);
     let mix = |x: u8, y: u8| (f64::from(x) + fraction * (f64::from(y) - f64::from(x))).round() as u8;
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
-}
-
-/// Lines of at most `width` pixels, broken at spaces.
-fn wrap(text: &str, font: &FontDesc, width: u32) -> Vec<String> {
-    let fits = |line: &str| font.box_size(line).map_or(true, |(w, _)| w <= width);
-    let mut lines: Vec<String> = Vec::new();
-    let mut current = String::new();
-    for word in text.split(' ').filter(|w| !w.is_empty()) {
-        let candidate = if current.is_empty() {
-            word.to_owned()
-        } else {
-            format!("{current} {word}")
-        };
-        if current.is_empty() || fits(&candidate) {
-            current = candidate;
-        } else {
-            lines.push(std::mem::replace(&mut current, word.to_owned()));
-        }
-    }
-    if !current.is_empty() {
-        lines.push(current);
-    }
-    lines
 }
 
 /// A tick label: two decimals for short spans, one otherwise, never "-0.0".

@@ -1,4 +1,4 @@
-//! The scene-file parser under hostile input (issue 13, "Nothing silent"): arbitrary text, arbitrary bytes and
+//! The scene-file parser under hostile input ("Nothing silent"): arbitrary text, arbitrary bytes and
 //! TOML-ish fragments, and the shipped scene files mutated (lines deleted, duplicated, swapped or inserted,
 //! numbers replaced by extreme values, strings emptied or renamed, the file cut short) give a scene or an error,
 //! never a panic. Where a file parses, what the scene job does before its run (layout, joint geometries,

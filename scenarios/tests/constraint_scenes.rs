@@ -424,7 +424,7 @@ fn end_error<A: SceneAlgebra>(id: SceneId, method: Method, dt: f64) -> f64 {
 }
 
 /// RKMK6-body on the constrained scenes: 6th-order convergence on the top (the scene whose errors stay above
-/// the reference floor at dt = 5e-3), and MuJoCo's accuracy at dt = 1e-3 (issue tracker: hinge 4e-11 rad, top
+/// the reference floor at dt = 5e-3), and MuJoCo's accuracy at dt = 1e-3 (recorded 2026-11-22: hinge 4e-11 rad, top
 /// 2e-8 rad, circle 8e-11 m) reached with steps 5–10× longer. Measured (PGA; CGA within 2%): hinge at
 /// dt = 1e-2 1.4e-11 rad; top 3.5e-7 rad at 1e-2 and 4.9e-9 at 5e-3 (order 6.2); circle at 1e-2 5.9e-11 m.
 /// Bounds: 2× the measured values.

@@ -1,4 +1,4 @@
-//! The reference scenes' own errors are reached (issue 13: every error variant has a test): a scene asked for
+//! The reference scenes' own errors are reached (every error variant has a test): a scene asked for
 //! in a formulation its algebra cannot write, and a run measured at a time the reference does not have.
 
 use dynamics::constraints::Stabilisation;

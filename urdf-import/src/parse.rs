@@ -371,14 +371,18 @@ impl<F: Fn(Node) -> u32> Site<'_, F> {
     }
 }
 
-fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawLink, ImportError> {
+/// The `name` attribute of a link or joint of `robot`.
+fn element_name(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<String, ImportError> {
     let robot_owner = format!("robot `{robot}`");
-    let name = Site {
+    let site = Site {
         owner: &robot_owner,
         at,
-    }
-    .required(node, "name")?
-    .to_owned();
+    };
+    Ok(site.required(node, "name")?.to_owned())
+}
+
+fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawLink, ImportError> {
+    let name = element_name(node, robot, at)?;
     let owner = format!("link `{name}`");
     let site = Site { owner: &owner, at };
     let inertial = match child(node, "inertial") {
@@ -414,13 +418,7 @@ fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawL
 }
 
 fn parse_joint(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawJoint, ImportError> {
-    let robot_owner = format!("robot `{robot}`");
-    let name = Site {
-        owner: &robot_owner,
-        at,
-    }
-    .required(node, "name")?
-    .to_owned();
+    let name = element_name(node, robot, at)?;
     let owner = format!("joint `{name}`");
     let site = Site { owner: &owner, at };
     let line = at(node);

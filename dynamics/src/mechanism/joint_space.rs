@@ -595,14 +595,8 @@ impl<A: Algebra> Mechanism<A> {
     pub fn mass_matrix(&self, states: &[State<A>]) -> Result<DMatrix<f64>, MechanismError> {
         let space = self.joint_space()?;
         self.check_states(states)?;
-        let kinematics = self.kinematics_of(0.0, states);
-        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
-        let columns = self.columns(space, &kinematics, &origin);
-        let mut composite: Vec<Inertia6> = kinematics
-            .iter()
-            .enumerate()
-            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin).inertia)
-            .collect();
+        let WorldTerms { columns, spatial, .. } = self.world_terms(space, 0.0, states);
+        let mut composite: Vec<Inertia6> = spatial.iter().map(|s| s.inertia).collect();
         for &g in space.order.iter().rev() {
             let group = &space.groups[g];
             if let Some(p) = group.parent {
@@ -630,6 +624,24 @@ impl<A: Algebra> Mechanism<A> {
             }
         }
         Ok(mass)
+    }
+
+    /// The bodies' kinematics at `states` and their screws in world axes about one point, the first body's position.
+    fn world_terms(&self, space: &JointSpace, t: f64, states: &[State<A>]) -> WorldTerms<A> {
+        let kinematics = self.kinematics_of(t, states);
+        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
+        let columns = self.columns(space, &kinematics, &origin);
+        let spatial = kinematics
+            .iter()
+            .enumerate()
+            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin))
+            .collect();
+        WorldTerms {
+            kinematics,
+            origin,
+            columns,
+            spatial,
+        }
     }
 
     /// Every velocity coordinate's unit motion (world, about `origin`), in velocity order.
@@ -687,14 +699,12 @@ impl<A: Algebra> Mechanism<A> {
                 index,
             });
         }
-        let kinematics = self.kinematics_of(t, states);
-        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
-        let columns = self.columns(space, &kinematics, &origin);
-        let spatial: Vec<_> = kinematics
-            .iter()
-            .enumerate()
-            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin))
-            .collect();
+        let WorldTerms {
+            kinematics,
+            origin,
+            columns,
+            spatial,
+        } = self.world_terms(space, t, states);
         let mut acceleration = vec![Vector6::zeros(); self.bodies.len()];
         for &g in &space.order {
             let group = &space.groups[g];
@@ -772,14 +782,12 @@ impl<A: Algebra> Mechanism<A> {
         let space = self.joint_space()?;
         self.check_states(states)?;
         let rates = self.rates_at(t, states)?;
-        let kinematics = self.kinematics_of(t, states);
-        let origin = kinematics.first().map_or_else(Vector3::zeros, |k| k.frame.position);
-        let columns = self.columns(space, &kinematics, &origin);
-        let spatial: Vec<_> = kinematics
-            .iter()
-            .enumerate()
-            .map(|(i, k)| spatial_body(&self.bodies[i].body, k, &origin))
-            .collect();
+        let WorldTerms {
+            kinematics,
+            origin,
+            columns,
+            spatial,
+        } = self.world_terms(space, t, states);
         // Each body's spatial acceleration about o from its momentum rate: a_c = F/m, and about the centre of mass
         // n_c = Ī ω̇ + ω × Ī ω; then a_o = a_c − ω̇ × r − ω × v_c.
         let acceleration: Vec<Vector6<f64>> = rates
@@ -820,6 +828,16 @@ impl<A: Algebra> Mechanism<A> {
         }
         Ok(q_ddot)
     }
+}
+
+/// What the joint-space algorithms (mass matrix, inverse dynamics, joint accelerations) start from: the bodies'
+/// kinematics, and in world axes about `origin` every velocity coordinate's unit motion and every body's spatial
+/// terms (docs/mechanisms.md §M7).
+struct WorldTerms<A: Algebra> {
+    kinematics: Vec<Kinematics<A>>,
+    origin: Vector3<f64>,
+    columns: Vec<Vector6<f64>>,
+    spatial: Vec<SpatialBody>,
 }
 
 /// The rotation of the body a joint axis is fixed in.
@@ -915,24 +933,7 @@ impl<A: Algebra> Mechanism<A> {
             .joints
             .iter()
             .any(|j| j.model.as_ref().is_some_and(JointModel::is_driven));
-        let super::MechanismWorkspace {
-            bodies,
-            external,
-            articulated,
-            reactions,
-            ..
-        } = workspace;
-        articulation
-            .solve(
-                t,
-                &self.joints,
-                &self.bodies,
-                bodies,
-                external,
-                &self.coupling_rows,
-                articulated,
-                driven.then_some(reactions.as_mut_slice()),
-            )
+        self.solve_articulated(articulation, t, workspace, driven)
             .map_err(|body| ConstraintError::NonFinite {
                 name: self.bodies[body].name.clone(),
                 t,

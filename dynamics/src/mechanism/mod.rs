@@ -1236,24 +1236,7 @@ impl<A: Algebra> Mechanism<A> {
             self.keep_couplings("the general solve")?;
         }
         if let Some(articulation) = &self.articulation {
-            let MechanismWorkspace {
-                bodies,
-                external,
-                reactions,
-                articulated,
-                ..
-            } = workspace;
-            articulation
-                .solve(
-                    t,
-                    &self.joints,
-                    &self.bodies,
-                    bodies,
-                    external,
-                    &self.coupling_rows,
-                    articulated,
-                    Some(reactions),
-                )
+            self.solve_articulated(articulation, t, workspace, true)
                 .map_err(|body| ConstraintError::NonFinite {
                     name: self.names(self.topology.incidences[body].iter().map(|incidence| incidence.joint)),
                     t,
@@ -1275,6 +1258,35 @@ impl<A: Algebra> Mechanism<A> {
         self.check_reactions(t, workspace)?;
         workspace.power += self.reaction_power(workspace);
         Ok(())
+    }
+
+    /// The articulated solve (docs/mechanisms.md §M7) on the workspace's body kinematics and external wrenches,
+    /// with the joints' reactions when `reactions` is set; fails with the body whose articulated inertia is not
+    /// positive definite.
+    fn solve_articulated(
+        &self,
+        articulation: &Articulation,
+        t: f64,
+        workspace: &mut MechanismWorkspace<A>,
+        reactions: bool,
+    ) -> Result<(), usize> {
+        let MechanismWorkspace {
+            bodies,
+            external,
+            reactions: reaction_wrenches,
+            articulated,
+            ..
+        } = workspace;
+        articulation.solve(
+            t,
+            &self.joints,
+            &self.bodies,
+            bodies,
+            external,
+            &self.coupling_rows,
+            articulated,
+            reactions.then_some(reaction_wrenches.as_mut_slice()),
+        )
     }
 
     /// An error naming the joints at the first body whose reaction is not finite.

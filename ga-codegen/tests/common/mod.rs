@@ -31,7 +31,7 @@ pub fn blades(name: &str, blades: &[&str]) -> TypeDeclaration {
     }
 }
 
-/// The PGA of the issue: e0 first (bit 0), Plane, Line, Point, Motor, Translator, Multivector.
+/// The PGA of the original design: e0 first (bit 0), Plane, Line, Point, Motor, Translator, Multivector.
 pub fn pga() -> AlgebraDeclaration {
     AlgebraDeclaration {
         scalar: ScalarType::F64,

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
-use dynamics::{Algebra, JointModel, Mechanism, Reference, State};
+use dynamics::{Algebra, CoordinateGroup, JointId, JointModel, JointSpace, Mechanism, Reference, State};
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::Deserialize;
 use urdf_import::{
@@ -522,6 +522,22 @@ fn frozen_coordinates(kind: urdf_import::JointKind) -> &'static [(&'static str, 
     }
 }
 
+/// A moving URDF joint of `robot` and its coordinates in `space` (the robot's mechanism, with the scene's bodies
+/// added).
+fn coordinate_group<'s, A: Algebra>(
+    robot: &Robot<A>,
+    space: &'s JointSpace,
+    name: &str,
+) -> Result<(JointId, &'s CoordinateGroup), SceneFileError> {
+    let id = robot.joint(name).expect("every moving joint is in the mechanism");
+    let group = space
+        .groups()
+        .iter()
+        .find(|g| g.joint() == Some(id))
+        .ok_or_else(|| invalid("robot", format!("joint {name} has no coordinates")))?;
+    Ok((id, group))
+}
+
 impl LoadedRobot {
     /// The joints CSV's columns in `mechanism` (the robot's, with the scene's bodies added).
     pub(crate) fn columns<A: Algebra>(
@@ -535,14 +551,7 @@ impl LoadedRobot {
         // Moving and frozen joints in file order (by line).
         let mut entries: Vec<(u32, Vec<(String, Source)>)> = Vec::new();
         for joint in &self.model.joints {
-            let id = robot
-                .joint(&joint.name)
-                .expect("every moving joint is in the mechanism");
-            let group = space
-                .groups()
-                .iter()
-                .find(|g| g.joint() == Some(id))
-                .ok_or_else(|| invalid("robot", format!("joint {} has no coordinates", joint.name)))?;
+            let (_, group) = coordinate_group(robot, space, &joint.name)?;
             let suffixes = group.model().kind().position_names();
             let columns = suffixes
                 .iter()
@@ -602,14 +611,7 @@ impl LoadedRobot {
             .joints
             .iter()
             .map(|joint| {
-                let id = robot
-                    .joint(&joint.name)
-                    .expect("every moving joint is in the mechanism");
-                let group = space
-                    .groups()
-                    .iter()
-                    .find(|g| g.joint() == Some(id))
-                    .ok_or_else(|| invalid("robot", format!("joint {} has no coordinates", joint.name)))?;
+                let (id, group) = coordinate_group(robot, space, &joint.name)?;
                 let parent = match mechanism.joint(id).map(|(_, _, reference)| reference) {
                     Some(Reference::Body(body)) => Some(body.index()),
                     _ => None,
