@@ -387,11 +387,43 @@ fn default_stabilisation() -> StabilisationName {
     StabilisationName::Projection
 }
 
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// `baumgarte = { alpha = …, beta = … }` (1/s). Read as a table only: serde's derived struct would also take an
+/// array and drop any numbers past the second (`baumgarte = [1, 2, 3]`).
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct BaumgarteGains {
     pub(crate) alpha: f64,
     pub(crate) beta: f64,
+}
+
+impl<'de> Deserialize<'de> for BaumgarteGains {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Gains;
+        const FIELDS: &[&str] = &["alpha", "beta"];
+        impl<'de> serde::de::Visitor<'de> for Gains {
+            type Value = BaumgarteGains;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table { alpha = …, beta = … }")
+            }
+            fn visit_map<M: serde::de::MapAccess<'de>>(self, mut map: M) -> Result<BaumgarteGains, M::Error> {
+                let (mut alpha, mut beta) = (None, None);
+                while let Some(key) = map.next_key::<String>()? {
+                    let slot = match key.as_str() {
+                        "alpha" => &mut alpha,
+                        "beta" => &mut beta,
+                        other => return Err(serde::de::Error::unknown_field(other, FIELDS)),
+                    };
+                    if slot.replace(map.next_value::<f64>()?).is_some() {
+                        return Err(serde::de::Error::custom(format!("duplicate field `{key}`")));
+                    }
+                }
+                Ok(BaumgarteGains {
+                    alpha: alpha.ok_or_else(|| serde::de::Error::missing_field("alpha"))?,
+                    beta: beta.ok_or_else(|| serde::de::Error::missing_field("beta"))?,
+                })
+            }
+        }
+        deserializer.deserialize_struct("BaumgarteGains", FIELDS, Gains)
+    }
 }
 
 /// The body: its mass (kg) and either a shape or its principal moments of inertia (kg m², about the centre

@@ -243,6 +243,26 @@ fn bad_files_fail_with_clear_messages() {
             &["Baumgarte gains must be finite and non-negative"],
         ),
         (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = [1.0, 2.0, 3.0]",
+            &["line 4", "invalid type: sequence, expected a table { alpha = …, beta = … }"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0, beta = 2.0, gamma = 3.0 }",
+            &["unknown field `gamma`, expected `alpha` or `beta`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0 }",
+            &["missing field `beta`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = nan, beta = 2.0 }",
+            &["Baumgarte gains must be finite and non-negative"],
+        ),
+        (
             "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
             "kind = \"hinge\"\nbody_point = [0.0, 0.0, 0.5]\nbody_axis = [0.0, 0.0, 0.0]\n\
              world_point = [0.0, 0.0, 0.0]\nworld_axis = [0.0, 1.0, 0.0]",
