@@ -217,6 +217,27 @@ fn bad_files_fail_with_clear_messages() {
             "body_point = [0.0, 0.5]",
             &["invalid length 2"],
         ),
+        // Extra numbers are refused, not dropped.
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5, 99.0]",
+            &["line 8", "invalid length 4, expected an array of 3"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\nvelocity = [1.0, 0.0, 0.0, 0.0]",
+            &["invalid length 4, expected an array of 3"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\norientation = { quaternion = [1.0, 0.0, 0.0, 0.0, 0.0] }",
+            &["invalid length 5, expected an array of 4"],
+        ),
+        (
+            "shape = { kind = \"rod\", length = 1.0, axial_moment = 1e-3 }",
+            "principal_moments = [1.0, 1.0, 1.0, 1.0]",
+            &["invalid length 4, expected an array of 3"],
+        ),
         (
             "kind = \"ball_joint\"",
             "kind = \"ball_joint\"\nformulation = \"glue\"",
@@ -245,7 +266,10 @@ fn bad_files_fail_with_clear_messages() {
         (
             "dt = 1e-3",
             "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = [1.0, 2.0, 3.0]",
-            &["line 4", "invalid type: sequence, expected a table { alpha = …, beta = … }"],
+            &[
+                "line 4",
+                "invalid type: sequence, expected a table { alpha = …, beta = … }",
+            ],
         ),
         (
             "dt = 1e-3",
