@@ -184,7 +184,7 @@ impl<A: Algebra> ForceElement<A> {
     /// assert!(rate.l.norm() < 1e-12); // N: in equilibrium
     /// let stretched = 0.5f64 + 9.81 / 100.0;
     /// let potential = 9.81 * rest.z + 0.5 * 100.0 * (stretched - 0.5).powi(2);
-    /// assert!((hanging.energy(&[state]) - potential).abs() < 1e-12); // J
+    /// assert!((hanging.energy(&[state])? - potential).abs() < 1e-12); // J
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn spring_damper(

@@ -299,6 +299,14 @@ impl<A: Algebra> FreeBody<A> {
     }
 }
 
+/// An error unless each slice given to a free body holds exactly its one entry.
+fn one_each(counts: &[(&'static str, usize)]) -> Result<(), ConstraintError> {
+    match counts.iter().find(|&&(_, got)| got != 1) {
+        Some(&(what, got)) => Err(ConstraintError::Count { what, expected: 1, got }),
+        None => Ok(()),
+    }
+}
+
 /// A free body's workspace: the power of its forces at the last evaluation.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FreeBodyWorkspace {
@@ -328,6 +336,7 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
         rates: &mut [Rates<A>],
         workspace: &mut FreeBodyWorkspace,
     ) -> Result<(), ConstraintError> {
+        one_each(&[("states", states.len()), ("rates", rates.len())])?;
         workspace.power = 0.0;
         for (rate, state) in rates.iter_mut().zip(states) {
             *rate = self.rates_at(t, state);
@@ -345,6 +354,11 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
         rates: &mut [BodyRates<A>],
         workspace: &mut FreeBodyWorkspace,
     ) -> Result<(), ConstraintError> {
+        one_each(&[
+            ("motors", motors.len()),
+            ("body momenta", body_momenta.len()),
+            ("rates", rates.len()),
+        ])?;
         workspace.power = 0.0;
         for ((rate, &motor), &momentum) in rates.iter_mut().zip(motors).zip(body_momenta) {
             *rate = self.body_rates_of(t, motor, momentum);

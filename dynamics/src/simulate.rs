@@ -73,6 +73,9 @@ pub enum SimulationError {
         usize::MAX
     )]
     TooLong,
+    /// The system has no bodies: there is nothing to simulate.
+    #[error("the system has no bodies")]
+    NoBodies,
     /// The initial state does not have one entry per body of the system.
     #[error("the initial state has {got} bodies, the system has {expected}")]
     BodyCount {
@@ -705,6 +708,9 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         mut observer,
     } = plan.into();
     let expected = dynamics.body_count();
+    if expected == 0 {
+        return Err(SimulationError::NoBodies);
+    }
     if initial.len() != expected {
         return Err(SimulationError::BodyCount {
             expected,

@@ -430,3 +430,157 @@ fn check(cases: Vec<(&str, Outcome, &[&str])>) {
         }
     }
 }
+
+/// Every method of a system that takes one entry per body (or per joint coordinate) refuses another count, naming
+/// both counts: never an index out of bounds, and never an answer about some of the bodies (the energy of the first
+/// of two links read as the system's).
+#[test]
+fn wrong_counts_are_refused_with_both_counts() {
+    use dynamics::motion::{BodyRates, Dynamics, Rates};
+    use dynamics::{simulate, FreeBody, Schedule, SimulationError};
+
+    let arm = arm();
+    let good = states();
+    let three = [good[0], good[1], good[1]];
+    let mut workspace = arm.workspace();
+    let zero = good[0].momentum * 0.0;
+    let mut rates = vec![
+        Rates {
+            body_velocity: zero,
+            momentum_rate: zero
+        };
+        2
+    ];
+    let mut body_rates = vec![
+        BodyRates {
+            body_velocity: zero,
+            body_wrench: zero
+        };
+        2
+    ];
+    let motors: Vec<_> = good.iter().map(|s| s.motor).collect();
+    let momenta: Vec<_> = good.iter().map(|s| s.body_momentum()).collect();
+    let (mut q, mut v) = (vec![0.0; 2], vec![0.0; 2]);
+    let mut written = good.clone();
+    let mut more = three.to_vec();
+    let mut fewer = good[..1].to_vec();
+    let cases: Vec<(&str, Outcome, &[&str])> = vec![
+        (
+            "energy, one of two",
+            err(arm.energy(&good[..1])),
+            &["states", "1 given", "has 2"],
+        ),
+        ("energy, none", err(arm.energy(&[])), &["states", "0 given", "has 2"]),
+        (
+            "momentum, three",
+            err(arm.momentum(&three)),
+            &["states", "3 given", "has 2"],
+        ),
+        (
+            "violation, three",
+            err(arm.violation(0.0, &three)),
+            &["states", "3 given", "has 2"],
+        ),
+        (
+            "violation, one",
+            err(arm.violation(0.0, &good[..1])),
+            &["1 given", "has 2"],
+        ),
+        (
+            "rates_at, none",
+            err(arm.rates_at(0.0, &[])),
+            &["states", "0 given", "has 2"],
+        ),
+        ("rates_at, three", err(arm.rates_at(0.0, &three)), &["3 given", "has 2"]),
+        (
+            "reactions, three",
+            err(arm.reactions(0.0, &three)),
+            &["states", "3 given"],
+        ),
+        ("reactions, one", err(arm.reactions(0.0, &good[..1])), &["1 given"]),
+        (
+            "project, three",
+            err(arm.project(0.0, &mut more)),
+            &["states", "3 given"],
+        ),
+        ("project, one", err(arm.project(0.0, &mut fewer)), &["1 given"]),
+        (
+            "rates, three states",
+            err(arm.rates(0.0, &three, &mut rates, &mut workspace)),
+            &["states", "3 given"],
+        ),
+        (
+            "rates, one rate",
+            err(arm.rates(0.0, &good, &mut rates[..1], &mut workspace)),
+            &["rates", "1 given"],
+        ),
+        (
+            "body rates, one motor",
+            err(arm.body_rates(0.0, &motors[..1], &momenta, &mut body_rates, &mut workspace)),
+            &["motors", "1 given"],
+        ),
+        (
+            "body rates, no momenta",
+            err(arm.body_rates(0.0, &motors, &[], &mut body_rates, &mut workspace)),
+            &["body momenta", "0 given"],
+        ),
+        (
+            "after step, three",
+            err(arm.after_step(0.0, &mut more, &mut workspace)),
+            &["states", "3 given"],
+        ),
+        (
+            "read joints, one state",
+            err(arm.read_joints(&good[..1], &mut q, &mut v, &mut workspace)),
+            &["states", "1 given"],
+        ),
+        (
+            "read joints, three positions",
+            err(arm.read_joints(&good, &mut [0.0; 3], &mut v, &mut workspace)),
+            &["joint positions", "3 given", "has 2"],
+        ),
+        (
+            "write joints, one velocity",
+            err(arm.write_joints(0.0, &[0.0; 2], &[0.0], &mut written, &mut workspace)),
+            &["joint velocities", "1 given"],
+        ),
+        (
+            "joint rates, three accelerations",
+            err(arm.joint_rates(0.0, &[0.0; 2], &[0.0; 2], &mut [0.0; 3], &mut workspace)),
+            &["joint accelerations", "3 given", "has 2"],
+        ),
+        (
+            "joint rates, one position",
+            err(arm.joint_rates(0.0, &[0.0], &[0.0; 2], &mut [0.0; 2], &mut workspace)),
+            &["joint positions", "1 given"],
+        ),
+    ];
+    check(cases);
+
+    // A free body takes exactly one of each.
+    let ball = FreeBody::<Pga>::new(Body::sphere(1.0, 0.1).unwrap());
+    let mut free_workspace = ball.workspace();
+    let two = [good[0], good[0]];
+    check(vec![
+        (
+            "free body, two states",
+            err(ball.rates(0.0, &two, &mut rates, &mut free_workspace)),
+            &["states", "2 given", "has 1"],
+        ),
+        (
+            "free body, no rates",
+            err(ball.body_rates(0.0, &motors[..1], &momenta[..1], &mut [], &mut free_workspace)),
+            &["rates", "0 given", "has 1"],
+        ),
+    ]);
+
+    // The right counts still answer, and the energy is the whole system's.
+    let whole = arm.energy(&good).unwrap();
+    assert!(whole.is_finite());
+    assert!(arm.violation(0.0, &good).is_ok() && arm.rates_at(0.0, &good).is_ok());
+
+    // A mechanism without bodies has nothing to simulate.
+    let empty = Mechanism::<Pga>::new();
+    let run = simulate(&empty, &[], Method::Rk4, &Schedule::new(1e-3, 0.1).unwrap());
+    assert!(matches!(run, Err(SimulationError::NoBodies)), "{run:?}");
+}

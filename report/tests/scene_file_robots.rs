@@ -166,11 +166,17 @@ fn energy_balance<A: FileAlgebra>(scene: &SceneFile, driven: Option<&str>) -> (f
         let tau = mechanism.inverse_dynamics(t, states, &accelerations).unwrap();
         tau[*k] * mechanism.joint_velocities(states).unwrap()[*k]
     };
-    let start = (mechanism.energy(system.initial()), drive_power(0.0, system.initial()));
+    let start = (
+        mechanism.energy(system.initial()).expect("one state per body"),
+        drive_power(0.0, system.initial()),
+    );
     let seen = RefCell::new(vec![(0.0, start.0, start.1)]);
     let observer = |t: f64, states: &[State<A>]| {
-        seen.borrow_mut()
-            .push((t, mechanism.energy(states), drive_power(t, states)));
+        seen.borrow_mut().push((
+            t,
+            mechanism.energy(states).expect("one state per body"),
+            drive_power(t, states),
+        ));
         ControlFlow::Continue(())
     };
     let integrator = dynamics::Integrator::from(scene.integrator);

@@ -348,7 +348,7 @@ fn drifting_circle(offset: f64, steps: usize) -> (f64, Result<(), dynamics::cons
         let state = states[0];
         let motor = Cga::motor_coordinates(state.motor);
         assert!(motor.scalar.is_finite() && motor.l.iter().chain(motor.t.iter()).all(|x| x.is_finite()));
-        assert!(scene.system.energy(&states).is_finite());
+        assert!(scene.system.energy(&states).expect("one state per body").is_finite());
         let p = state.world_point(Vector3::new(0.0, 0.0, 0.5));
         worst = worst.max((p.norm() - 0.5).abs()).max(p.z.abs());
     }

@@ -113,7 +113,7 @@ fn observe<A: Algebra>(scene: &RobotScene<A>, integrator: impl Into<Integrator>)
     let mechanism: &Mechanism<A> = scene.robot.mechanism();
     let start = mechanism.joint_positions(&scene.initial, None).unwrap();
     let samples = RefCell::new(vec![Observed {
-        energy: mechanism.energy(&scene.initial),
+        energy: mechanism.energy(&scene.initial).expect("one state per body"),
         q: start,
     }]);
     let schedule = Schedule::new(5e-3, 1.0).unwrap();
@@ -126,7 +126,7 @@ fn observe<A: Algebra>(scene: &RobotScene<A>, integrator: impl Into<Integrator>)
             let q = mechanism.joint_positions(states, Some(&previous)).unwrap();
             samples.push(Observed {
                 q,
-                energy: mechanism.energy(states),
+                energy: mechanism.energy(states).expect("one state per body"),
             });
         }
         ControlFlow::Continue(())

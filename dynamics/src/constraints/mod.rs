@@ -124,6 +124,17 @@ pub enum ConstraintError {
         /// What is wrong with the parameter.
         reason: String,
     },
+    /// A slice given to a system does not hold one entry per body (states, motors, momenta, rates) or per joint
+    /// coordinate (positions, velocities, accelerations).
+    #[error("{what}: {got} given, the system has {expected}")]
+    Count {
+        /// What was counted.
+        what: &'static str,
+        /// The number the system needs.
+        expected: usize,
+        /// The number given.
+        got: usize,
+    },
 }
 
 /// A constraint on one body: emits its rows at a state (see the module docs).

@@ -840,6 +840,19 @@ struct WorldTerms<A: Algebra> {
     spatial: Vec<SpatialBody>,
 }
 
+/// An error unless slices of `positions` and `velocities` entries fit `space`.
+fn check_coordinate_counts(space: &JointSpace, positions: usize, velocities: usize) -> Result<(), ConstraintError> {
+    for (what, expected, got) in [
+        ("joint positions", space.positions, positions),
+        ("joint velocities", space.velocities, velocities),
+    ] {
+        if got != expected {
+            return Err(ConstraintError::Count { what, expected, got });
+        }
+    }
+    Ok(())
+}
+
 /// The rotation of the body a joint axis is fixed in.
 fn side_rotation(side: Side, parent: &WorldBody, child: &WorldBody) -> Matrix3<f64> {
     match side {
@@ -871,6 +884,14 @@ impl<A: Algebra> Mechanism<A> {
                 reason: "stepping in joint coordinates needs every joint a joint model, in a tree".to_owned(),
             });
         };
+        check_coordinate_counts(space, q.len(), v.len())?;
+        if accelerations.len() != space.velocities {
+            return Err(ConstraintError::Count {
+                what: "joint accelerations",
+                expected: space.velocities,
+                got: accelerations.len(),
+            });
+        }
         // Forward kinematics: every body's pose and velocity, then its kinematics and body momentum.
         let mut placed = std::mem::take(&mut workspace.placed);
         placed.resize(self.bodies.len(), WorldBody::world());
@@ -995,6 +1016,7 @@ impl<A: Algebra> Mechanism<A> {
                 reason: "the joint models do not form a forest".to_owned(),
             });
         };
+        check_coordinate_counts(space, positions.len(), velocities.len())?;
         let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
         let before = (previous.len() == space.positions).then_some(previous.as_slice());
         for group in &space.groups {
@@ -1023,6 +1045,7 @@ impl<A: Algebra> Mechanism<A> {
                 reason: "the joint models do not form a forest".to_owned(),
             });
         };
+        check_coordinate_counts(space, positions.len(), velocities.len())?;
         placed.clear();
         placed.resize(self.bodies.len(), WorldBody::world());
         for &g in &space.order {

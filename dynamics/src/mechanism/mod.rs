@@ -1308,9 +1308,28 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
+    /// An error unless `got` (the length of a slice of states) is the number of bodies.
+    fn check_count(&self, what: &'static str, got: usize) -> Result<(), ConstraintError> {
+        if got == self.bodies.len() {
+            Ok(())
+        } else {
+            Err(ConstraintError::Count {
+                what,
+                expected: self.bodies.len(),
+                got,
+            })
+        }
+    }
+
     /// The kinetic plus potential energy of the system: the bodies' kinetic energies, their forces' potentials
-    /// (gravity) and the conservative force elements' (springs).
-    pub fn energy(&self, states: &[State<A>]) -> f64 {
+    /// (gravity) and the conservative force elements' (springs). An error unless there is one state per body.
+    pub fn energy(&self, states: &[State<A>]) -> Result<f64, ConstraintError> {
+        self.check_count("states", states.len())?;
+        Ok(self.total_energy(states))
+    }
+
+    /// [`Mechanism::energy`] of states already counted.
+    fn total_energy(&self, states: &[State<A>]) -> f64 {
         let bodies: f64 = self
             .bodies
             .iter()
@@ -1324,22 +1343,24 @@ impl<A: Algebra> Mechanism<A> {
                         .sum::<f64>()
             })
             .sum();
-        if self.elements.is_empty() || states.len() != self.bodies.len() {
+        if self.elements.is_empty() {
             return bodies;
         }
         bodies + self.elements_potential(states)
     }
 
     /// The total momentum `Σ Ωᵢ` (world frame): linear momentum in the l-part, angular momentum about the world
-    /// origin in the t-part (theory §3).
-    pub fn momentum(&self, states: &[State<A>]) -> A::Screw {
-        states
+    /// origin in the t-part (theory §3). An error unless there is one state per body.
+    pub fn momentum(&self, states: &[State<A>]) -> Result<A::Screw, ConstraintError> {
+        self.check_count("states", states.len())?;
+        Ok(states
             .iter()
-            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum)
+            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum))
     }
 
     /// The largest position and velocity residuals over the joints at this state.
     pub fn violation(&self, t: f64, states: &[State<A>]) -> Result<Violation, ConstraintError> {
+        self.check_count("states", states.len())?;
         let mut workspace = self.new_workspace();
         self.position_rows(t, states, &mut workspace, Rows::Residuals)?;
         let (position, velocity) = self.coupling_violation(states);
@@ -1355,6 +1376,7 @@ impl<A: Algebra> Mechanism<A> {
     /// The rates of every body at this state (Ḃ and dΩ/dt), or why the reactions could not be found: the
     /// evaluation the integrators make, for diagnostics (it allocates a workspace).
     pub fn rates_at(&self, t: f64, states: &[State<A>]) -> Result<Vec<Rates<A>>, ConstraintError> {
+        self.check_count("states", states.len())?;
         let mut workspace = self.new_workspace();
         let zero = A::screw(ScrewCoordinates::default());
         let mut rates = vec![
@@ -1370,6 +1392,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The world wrench each joint exerts on its body (its reference receives the opposite), at this state.
     pub fn reactions(&self, t: f64, states: &[State<A>]) -> Result<Vec<A::Screw>, ConstraintError> {
+        self.check_count("states", states.len())?;
         let mut workspace = self.new_workspace();
         for (i, state) in states.iter().enumerate() {
             workspace.motors[i] = state.motor;
@@ -1418,6 +1441,7 @@ impl<A: Algebra> Mechanism<A> {
     /// conditions, which must satisfy both the position and the velocity constraints; joints that cannot hold
     /// together are an error naming them.
     pub fn project(&self, t: f64, states: &mut [State<A>]) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
         let iterations = match self.stabilisation {
             Stabilisation::Projection { position_iterations } => position_iterations,
             _ => 2,
@@ -1672,6 +1696,8 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         rates: &mut [Rates<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
+        self.check_count("rates", rates.len())?;
         let (mut motors, mut momenta) = (
             std::mem::take(&mut workspace.motors),
             std::mem::take(&mut workspace.momenta),
@@ -1712,6 +1738,9 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         rates: &mut [BodyRates<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        self.check_count("motors", motors.len())?;
+        self.check_count("body momenta", body_momenta.len())?;
+        self.check_count("rates", rates.len())?;
         self.evaluate(t, motors, body_momenta, workspace)?;
         for (i, rate) in rates.iter_mut().enumerate() {
             let total = workspace.external[i] + wrench_screw(&workspace.reactions[i]);
@@ -1729,6 +1758,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
         match self.stabilisation {
             Stabilisation::Projection { position_iterations } => {
                 self.project_with(t, states, position_iterations, workspace)
@@ -1743,7 +1773,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     }
 
     fn energy(&self, states: &[State<A>]) -> f64 {
-        Mechanism::energy(self, states)
+        self.total_energy(states)
     }
 
     fn power(&self, workspace: &MechanismWorkspace<A>) -> f64 {
@@ -1766,6 +1796,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         velocities: &mut [f64],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
         self.read_joints_into(states, positions, velocities, &mut workspace.previous_positions)
     }
 
@@ -1777,6 +1808,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
         self.write_joints_into(t, positions, velocities, states, &mut workspace.placed)
     }
 
