@@ -10,16 +10,25 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 /// reported as a joint's "non-finite residual"). Far beyond any physical body.
 pub const MAX_MASS_PROPERTY: f64 = 1e50;
 
+/// The smallest mass (kg) or principal moment (kg m²) a body may have, [`MAX_MASS_PROPERTY`]'s reciprocal: the
+/// dynamics divides by both, and a subnormal mass (1e-310 kg) has an infinite reciprocal. Far below any physical
+/// body.
+pub const MIN_MASS_PROPERTY: f64 = 1e-50;
+
 /// Why a body's parameters are not physical.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum BodyError {
-    /// The mass (held, in kg) is not positive and finite or exceeds [`MAX_MASS_PROPERTY`].
-    #[error("mass must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
+    /// The mass (held, in kg) is not finite or lies outside [`MIN_MASS_PROPERTY`] … [`MAX_MASS_PROPERTY`].
+    #[error(
+        "mass must be positive, finite, at least {MIN_MASS_PROPERTY:e} and at most {MAX_MASS_PROPERTY:e}, got {0:?}"
+    )]
     Mass(f64),
-    /// A principal moment (all three held, in kg m²) is not positive and finite or exceeds
+    /// A principal moment (all three held, in kg m²) is not finite or lies outside [`MIN_MASS_PROPERTY`] …
     /// [`MAX_MASS_PROPERTY`].
-    #[error("principal moments must be positive, finite and at most {MAX_MASS_PROPERTY:e}, got {0:?}")]
+    #[error(
+        "principal moments must be positive, finite, at least {MIN_MASS_PROPERTY:e} and at most {MAX_MASS_PROPERTY:e}, got {0:?}"
+    )]
     Moments([f64; 3]),
     /// The principal moments (held, in kg m²) violate `Iᵢ ≤ Iⱼ + Iₖ`, which every mass distribution satisfies.
     #[error("principal moments {0:?} violate the triangle inequality (each at most the sum of the others)")]
@@ -69,9 +78,9 @@ pub struct Body {
     moments: Vector3<f64>,
 }
 
-/// A mass or moment a body may have: positive and at most [`MAX_MASS_PROPERTY`] (NaN fails).
+/// A mass or moment a body may have: within [`MIN_MASS_PROPERTY`] … [`MAX_MASS_PROPERTY`] (NaN fails).
 fn physical(value: f64) -> bool {
-    value > 0.0 && value <= MAX_MASS_PROPERTY
+    (MIN_MASS_PROPERTY..=MAX_MASS_PROPERTY).contains(&value)
 }
 
 fn positive(values: &[f64]) -> Result<(), BodyError> {

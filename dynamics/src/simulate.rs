@@ -70,7 +70,7 @@ pub enum SimulationError {
     /// or fit in a `usize`.
     #[error(
         "the run would record more than {MAX_SAMPLES} samples or take more than {} steps",
-        usize::MAX
+        1u64 << 53
     )]
     TooLong,
     /// The system has no bodies: there is nothing to simulate.
@@ -186,7 +186,11 @@ impl Schedule {
             whole_ratio(interval, dt).ok_or(SimulationError::StepDoesNotDivideInterval { dt, interval })?;
         let intervals = whole_ratio(duration, interval)
             .ok_or(SimulationError::IntervalDoesNotDivideDuration { interval, duration })?;
-        if intervals.checked_mul(steps_per_sample).is_none() {
+        // Step counts beyond 2⁵³ are not exact in f64 (and would not finish anyway).
+        if intervals
+            .checked_mul(steps_per_sample)
+            .is_none_or(|steps| steps as f64 > (1u64 << 53) as f64)
+        {
             return Err(SimulationError::TooLong);
         }
         Ok(Schedule {

@@ -21,6 +21,15 @@ fn unphysical_bodies_are_refused() {
     assert!(matches!(Body::new(f64::NAN, Vector3::repeat(1.0)), Err(BodyError::Mass(m)) if m.is_nan()));
     // Finite but beyond what the weight and momenta can be formed from.
     assert_eq!(Body::new(1e308, Vector3::repeat(1.0)), Err(BodyError::Mass(1e308)));
+    // Positive but subnormal or so small that its reciprocal overflows the dynamics' divisions.
+    assert_eq!(Body::new(1e-310, Vector3::repeat(1.0)), Err(BodyError::Mass(1e-310)));
+    assert_eq!(Body::new(1e-60, Vector3::repeat(1.0)), Err(BodyError::Mass(1e-60)));
+    assert_eq!(
+        Body::new(1.0, Vector3::new(1e-320, 1e-320, 1e-320)),
+        Err(BodyError::Moments([1e-320; 3]))
+    );
+    // The smallest allowed values build.
+    assert!(Body::new(1e-50, Vector3::repeat(1e-50)).is_ok());
     assert_eq!(
         Body::new(1.0, Vector3::new(1e300, 1e300, 1e300)),
         Err(BodyError::Moments([1e300; 3]))

@@ -32,6 +32,9 @@ fn a_step_that_misses_the_sample_times_is_refused() {
     ));
     assert_eq!(Schedule::new(1e-3, 1e6).err(), Some(SimulationError::TooLong));
     assert_eq!(Schedule::new(1e-300, 10.0).err(), Some(SimulationError::TooLong));
+    // 1e13 steps per sample interval and 1e5 intervals: 1e18 steps, beyond the 2⁵³ counted exactly.
+    assert_eq!(Schedule::new(1e-15, 1000.0).err(), Some(SimulationError::TooLong));
+    assert!(Schedule::new(1e-9, 1000.0).is_ok()); // 1e12 steps: long, but counted exactly
     for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
         assert!(matches!(
             Schedule::new(bad, 10.0),
