@@ -126,6 +126,7 @@ fn pins_and_wrenches<A: PinningAlgebra>() -> Vec<Arc<dyn Constraint<A>>> {
                 (normal, offset),
                 (world_normal, offset + world_normal.dot(&centre)),
             )
+            .unwrap()
         }),
         Arc::new(pinning::driven_point::<A>("driven pivot", a, oscillation)),
         Arc::new(pinning::sliding_attachment::<A>(
@@ -671,6 +672,42 @@ fn pinned_lines_of_different_weights_are_refused() {
     assert!(pinning::line::<Cga>("slide", (p, 3.0 * z), (p, Vector3::new(0.0, 3.0, 0.0))).is_ok());
     let tilted = Vector3::new(1.0, 2.0, 3.0).normalize();
     assert!(pinning::line::<Pga>("slide", (p, tilted), (p, z)).is_ok());
+}
+
+/// A pinned plane needs a plane on each side: a zero normal (once accepted, holding a falling puck at z = 0), a
+/// non-finite normal or offset are refused, naming the constraint; a normal of any other length (1e-3, 1e200,
+/// whose square overflows) is the same plane.
+#[test]
+fn pinned_planes_need_planes() {
+    let z = Vector3::z();
+    for (body, world, reason) in [
+        ((Vector3::zeros(), 0.0), (z, 0.0), "body plane"),
+        ((z, 0.0), (Vector3::zeros(), 0.0), "world plane"),
+        ((z * f64::NAN, 0.0), (z, 0.0), "finite nonzero normal"),
+        ((z, f64::INFINITY), (z, 0.0), "finite offset"),
+        ((z, 0.0), (Vector3::repeat(f64::INFINITY), 0.0), "world plane"),
+    ] {
+        let error = pinning::plane::<Pga>("floor", body, world).unwrap_err().to_string();
+        assert!(error.contains(reason) && error.contains("floor"), "{error}");
+    }
+    // z = 0.02 written with a normal of length 1e-3 and one of 1e200 is the plane of the unit normal.
+    let puck = Body::cylinder(0.2, 0.04, 0.04).unwrap();
+    let on = State::<Pga>::from_world_twist(
+        &puck,
+        Vector3::new(3.0, -1.0, 0.04),
+        &UnitQuaternion::from_scaled_axis(z * 0.7),
+        z,
+        Vector3::x(),
+    );
+    for scale in [1e-3, 1.0, 1e200] {
+        let face = pinning::plane::<Pga>("floor", (z * scale, -0.02 * scale), (z, 0.02)).unwrap();
+        let system = Mechanism::single(puck).with_constraint(face).unwrap();
+        let violation = system.violation(0.0, &[on]).unwrap();
+        assert!(
+            violation.position < 1e-15 && violation.velocity < 1e-13,
+            "{scale}: {violation:?}"
+        ); // round-off
+    }
 }
 
 /// At the centre of its sphere a point's constraint row vanishes (the gradient `a − c` is zero), so no reaction

@@ -125,7 +125,7 @@ fn cases<A: PinningAlgebra>() -> Vec<Case<A>> {
         },
         Case {
             name: "planar",
-            pinned: Arc::new(pinning::plane::<A>("planar", (z, ON_B.z), (z, ON_A.z))),
+            pinned: Arc::new(pinning::plane::<A>("planar", (z, ON_B.z), (z, ON_A.z)).unwrap()),
             by_power: Arc::new(VirtualPower::planar("planar", (ON_B, z), (ON_A, z)).unwrap()),
             start: (turn(z, 0.5), Vector3::new(0.1, -0.05, 0.0)),
             // B's plane z = 0.4 stays on A's plane z = −0.5 with the normals aligned.

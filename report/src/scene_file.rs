@@ -1234,7 +1234,7 @@ fn constraint_of<A: FileAlgebra>(
             if pinned {
                 // The planes {x : n·x = n·p} of the unit normals (pinned planes need normals of one length).
                 let plane = |(point, normal): (Vector3<f64>, Vector3<f64>)| (normal, normal.dot(&point));
-                Arc::new(pinning::plane::<A>(name, plane(body), plane(world)))
+                Arc::new(pinning::plane::<A>(name, plane(body), plane(world))?)
             } else {
                 Arc::new(VirtualPower::planar(name, body, world)?)
             }

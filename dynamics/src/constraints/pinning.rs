@@ -406,7 +406,9 @@ pub fn line<A: PinningAlgebra>(
     ))
 }
 
-/// A body plane `{x : n·x = δ}` (body frame) pinned to a world plane: a planar joint, rank 3.
+/// A body plane `{x : n·x = δ}` (body frame) pinned to a world plane: a planar joint, rank 3. The normals need not
+/// be unit (each plane is scaled to a unit normal, pinned planes needing equal weights) but must be finite and
+/// nonzero, the offsets finite: a zero normal is no plane, and would pin nothing.
 ///
 /// A puck on the floor: its bottom face, the body plane z = −0.02 m, pinned to the world plane z = 0; it slides
 /// and turns on the floor.
@@ -416,8 +418,9 @@ pub fn line<A: PinningAlgebra>(
 /// use dynamics::{Body, Mechanism, Pga, State};
 /// use nalgebra::{UnitQuaternion, Vector3};
 ///
-/// let face = pinning::plane::<Pga>("on the floor", (Vector3::z(), -0.02), (Vector3::z(), 0.0));
+/// let face = pinning::plane::<Pga>("on the floor", (Vector3::z(), -0.02), (Vector3::z(), 0.0))?;
 /// assert_eq!(face.rank(), 3);
+/// assert!(pinning::plane::<Pga>("no plane", (Vector3::zeros(), 0.0), (Vector3::z(), 0.0)).is_err());
 /// let puck = Body::cylinder(0.2, 0.04, 0.04)?;
 /// let system = Mechanism::single(puck).with_constraint(face)?;
 /// let turned = UnitQuaternion::from_scaled_axis(Vector3::new(0.0, 0.0, 2.0));
@@ -431,13 +434,31 @@ pub fn plane<A: PinningAlgebra>(
     name: impl Into<String>,
     (body_normal, body_offset): (Vector3<f64>, f64),
     (world_normal, world_offset): (Vector3<f64>, f64),
-) -> Pin<A, A::PlaneObject> {
-    Pin::new(
+) -> Result<Pin<A, A::PlaneObject>, ConstraintError> {
+    let name = name.into();
+    let unit = |side: &str, normal: Vector3<f64>, offset: f64| {
+        // The length through the largest coordinate, so that a normal of 1e200 does not overflow its square.
+        let largest = normal.amax();
+        let length = largest * (normal / largest).norm();
+        if largest.is_finite() && largest > 0.0 && offset.is_finite() {
+            Ok((normal / length, offset / length))
+        } else {
+            Err(ConstraintError::InvalidParameter {
+                name: name.clone(),
+                reason: format!(
+                    "the {side} plane needs a finite nonzero normal and a finite offset, got {normal:?} and {offset:?}"
+                ),
+            })
+        }
+    };
+    let (body_normal, body_offset) = unit("body", body_normal, body_offset)?;
+    let (world_normal, world_offset) = unit("world", world_normal, world_offset)?;
+    Ok(Pin::new(
         name,
         A::plane_object(body_normal, body_offset),
         A::plane_object(world_normal, world_offset),
         3,
-    )
+    ))
 }
 
 /// A hinge: the body line through `body_point` along `body_axis` pinned to the world line through
@@ -559,7 +580,7 @@ pub fn prismatic<A: PinningAlgebra>(
             format!("{name}: plane"),
             (body_normal, body_normal.dot(&body_point)),
             (world_normal, world_normal.dot(&world_point)),
-        )),
+        )?),
     ];
     Ok(Composite::new(name, parts, 5))
 }

@@ -253,7 +253,7 @@ pub(crate) fn rows<A: FileAlgebra>(
         }
         JointKind::Planar { normal } => {
             let (body, world) = (in_child(&normal), in_parent(&normal));
-            Arc::new(pinning::plane::<A>(name, (body, body.dot(&c)), (world, world.dot(&p))))
+            Arc::new(pinning::plane::<A>(name, (body, body.dot(&c)), (world, world.dot(&p)))?)
         }
         JointKind::Weld => {
             let rest = parent * child.inverse();
