@@ -303,3 +303,81 @@ fn a_constraint_reading_the_motor_it_said_it_would_not_is_an_error() {
     );
     assert!(hanging(true).is_ok());
 }
+
+/// Solver thresholds outside their ranges (NaN, zero, negative, infinite, a relative residual above 1) are refused
+/// when set, naming the setting: they once surfaced later as a joint's "rank deficiency", or, infinite, let a
+/// contradiction pass.
+#[test]
+fn careless_solver_settings_are_refused() {
+    use dynamics::SolverSettings;
+    let mut system = Mechanism::<Pga>::new();
+    let base = SolverSettings::default();
+    for (settings, words) in [
+        (
+            SolverSettings {
+                rank_tolerance: f64::NAN,
+                ..base
+            },
+            "rank_tolerance",
+        ),
+        (
+            SolverSettings {
+                rank_tolerance: -1e-6,
+                ..base
+            },
+            "rank_tolerance",
+        ),
+        (
+            SolverSettings {
+                rank_tolerance: 0.0,
+                ..base
+            },
+            "rank_tolerance",
+        ),
+        (
+            SolverSettings {
+                rank_tolerance: 1.0,
+                ..base
+            },
+            "rank_tolerance",
+        ),
+        (
+            SolverSettings {
+                consistency_tolerance: f64::INFINITY,
+                ..base
+            },
+            "consistency_tolerance",
+        ),
+        (
+            SolverSettings {
+                consistency_tolerance: f64::NAN,
+                ..base
+            },
+            "consistency_tolerance",
+        ),
+        (
+            SolverSettings {
+                consistency_tolerance: -0.5,
+                ..base
+            },
+            "consistency_tolerance",
+        ),
+        (
+            SolverSettings {
+                consistency_tolerance: 2.0,
+                ..base
+            },
+            "consistency_tolerance",
+        ),
+    ] {
+        let error = system.set_settings(settings).unwrap_err().to_string();
+        assert!(error.contains("solver settings") && error.contains(words), "{error}");
+    }
+    assert!(system.set_settings(base).is_ok());
+    assert!(system
+        .set_settings(SolverSettings {
+            rank_tolerance: 1e-12,
+            consistency_tolerance: 1.0
+        })
+        .is_ok());
+}

@@ -812,9 +812,40 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
-    /// Sets the solver's thresholds.
-    pub fn set_settings(&mut self, settings: SolverSettings) {
+    /// Sets the solver's thresholds: `rank_tolerance` in (0, 1) and `consistency_tolerance` in (0, 1] (a relative
+    /// residual above 1 is no solution: an infinite tolerance would pass any contradiction).
+    ///
+    /// ```
+    /// use dynamics::{Mechanism, Pga, SolverSettings};
+    ///
+    /// let mut system = Mechanism::<Pga>::new();
+    /// system.set_settings(SolverSettings { rank_tolerance: 1e-8, ..SolverSettings::default() })?;
+    /// let loose = SolverSettings { consistency_tolerance: f64::INFINITY, ..SolverSettings::default() };
+    /// assert!(system.set_settings(loose).is_err());
+    /// # Ok::<(), dynamics::MechanismError>(())
+    /// ```
+    pub fn set_settings(&mut self, settings: SolverSettings) -> Result<(), MechanismError> {
+        let SolverSettings {
+            rank_tolerance,
+            consistency_tolerance,
+        } = settings;
+        let refuse = |reason: String| -> Result<(), MechanismError> {
+            Err(ConstraintError::InvalidParameter {
+                name: "solver settings".to_owned(),
+                reason,
+            }
+            .into())
+        };
+        if !(rank_tolerance > 0.0 && rank_tolerance < 1.0) {
+            return refuse(format!("rank_tolerance must be in (0, 1), got {rank_tolerance:?}"));
+        }
+        if !(consistency_tolerance > 0.0 && consistency_tolerance <= 1.0) {
+            return refuse(format!(
+                "consistency_tolerance must be in (0, 1], got {consistency_tolerance:?}"
+            ));
+        }
         self.settings = settings;
+        Ok(())
     }
 
     /// [`Mechanism::add_force`] on body 0, builder style (for [`Mechanism::single`]); a mechanism without bodies
