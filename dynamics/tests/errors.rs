@@ -58,13 +58,22 @@ fn mechanisms_refuse_bad_bodies_and_joints_naming_them() {
         Err(MechanismError::UnknownBody(0))
     ));
     let mut mechanism = Mechanism::<Pga>::new();
-    assert_eq!(mechanism.add_body("", body()), Err(MechanismError::EmptyName));
+    assert_eq!(mechanism.add_body("", body()), Err(MechanismError::EmptyName("body")));
     let arm = mechanism.add_body("arm", body()).unwrap();
     assert_eq!(
         mechanism.add_body("arm", body()),
         Err(MechanismError::DuplicateBody("arm".into()))
     );
     let ball = || pinning::point::<Pga>("elbow", Vector3::z(), Vector3::zeros());
+    // A joint is named in every error and output about it.
+    assert_eq!(
+        mechanism.add_joint(
+            arm,
+            Reference::World,
+            pinning::point::<Pga>("", Vector3::z(), Vector3::zeros())
+        ),
+        Err(MechanismError::EmptyName("joint"))
+    );
     assert_eq!(
         mechanism.add_joint(arm, Reference::Body(arm), ball()),
         Err(MechanismError::SelfJoint {

@@ -3,9 +3,7 @@
 //! NaN or a quiet answer.
 
 use dynamics::constraints::{PathPoint, Stabilisation, VirtualPower};
-use dynamics::{
-    Body, Force, JointKind, JointMethod, JointModel, Mechanism, MechanismError, Method, Pga, Reference, State, Stepper,
-};
+use dynamics::{Body, Force, JointKind, JointMethod, JointModel, Mechanism, Method, Pga, Reference, State, Stepper};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 
 type Outcome = Result<(), String>;
@@ -415,7 +413,6 @@ fn joint_methods_refuse_systems_without_joint_coordinates() {
     );
     // The body methods still take it.
     assert!(Stepper::new(&held, Method::Rkmk8Body).is_ok());
-    let _ = MechanismError::EmptyName;
 }
 
 fn check(cases: Vec<(&str, Outcome, &[&str])>) {

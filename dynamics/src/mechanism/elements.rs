@@ -106,7 +106,7 @@ impl<A: Algebra> Mechanism<A> {
             .into())
         };
         if element.name.is_empty() {
-            return Err(MechanismError::EmptyName);
+            return Err(MechanismError::EmptyName("force element"));
         }
         let bodies = self.bodies.len();
         let pair = match &element.kind {

@@ -92,9 +92,9 @@ pub enum MechanismError {
     /// A body was added with the name of one already there (the name is held).
     #[error("two bodies are named {0:?}; names identify bodies in errors and output")]
     DuplicateBody(String),
-    /// A body was added with an empty name.
-    #[error("a body needs a non-empty name")]
-    EmptyName,
+    /// A body, joint or force element was added with an empty name (what it was is held).
+    #[error("a {0} needs a non-empty name")]
+    EmptyName(&'static str),
     /// A [`BodyId`] (its index held) that is not a body of this mechanism.
     #[error("body index {0} is not a body of this mechanism")]
     UnknownBody(usize),
@@ -450,7 +450,7 @@ impl<A: Algebra> Mechanism<A> {
 
     fn push_body(&mut self, name: String, body: Body, frame: Isometry3<f64>) -> Result<BodyId, MechanismError> {
         if name.is_empty() {
-            return Err(MechanismError::EmptyName);
+            return Err(MechanismError::EmptyName("body"));
         }
         if self.bodies.iter().any(|b| b.name == name) {
             return Err(MechanismError::DuplicateBody(name));
@@ -748,6 +748,9 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     fn reference_index(&self, index: usize, reference: Reference, name: &str) -> Result<Option<usize>, MechanismError> {
+        if name.is_empty() {
+            return Err(MechanismError::EmptyName("joint"));
+        }
         match reference {
             Reference::World => Ok(None),
             Reference::Body(other) => {
