@@ -28,6 +28,15 @@ fn nonsensical_flags_are_refused_with_a_message() {
             &["--duration", "0.015"],
             &["--duration 0.015", "does not divide the duration"],
         ),
+        (
+            &["--duration", "20"],
+            &["--duration 20", "longer than the reference trajectory", "(10 s)"],
+        ),
+        (
+            &["--duration", "6", "--scenes", "four-bar"],
+            &["--duration 6", "M2 four-bar linkage (5 s)"],
+        ),
+        (&["--steps", "1e-12"], &["--steps", "1e13 steps", "at most 1e8"]),
         (&["--threads", "100000"], &["--threads", "four per core"]),
         (&["--threads", "0"], &["--threads", "got 0"]),
     ] {

@@ -7,6 +7,7 @@ use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, ValueEnum};
 use dynamics::Schedule;
 use reference::SceneId;
+use scenarios::MechanismId;
 
 use crate::job::run_job_with_robots;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
@@ -97,6 +98,10 @@ pub(crate) struct Options {
 /// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
 pub(crate) const MAX_DURATION: f64 = 1000.0;
 
+/// The most steps one run of the sweep may take, as a scene file's ([`crate::scene_file::MAX_STEPS`]): a step of
+/// 1e-12 s would otherwise run for days.
+const MAX_STEPS_PER_RUN: f64 = crate::scene_file::MAX_STEPS as f64;
+
 impl Options {
     /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,
     /// dividing the 0.01 s sample interval, and with `--duration` dividing it into whole samples), the duration
@@ -109,9 +114,33 @@ impl Options {
                 ));
             }
         }
+        // Every run is compared with its reference trajectory, so none may run past the shortest selected one.
+        if let Some(duration) = self.duration {
+            if let Some((label, own)) = self
+                .references()
+                .into_iter()
+                .find(|&(_, own)| duration > own * (1.0 + 1e-12))
+            {
+                return Err(format!(
+                    "--duration {duration}: longer than the reference trajectory of {label} ({own} s), which its runs \
+                     are compared with"
+                ));
+            }
+        }
         let duration = self.duration.unwrap_or(1.0);
+        let longest = self
+            .duration
+            .into_iter()
+            .chain(self.references().into_iter().map(|(_, own)| own))
+            .fold(duration, f64::max);
         for &dt in &self.steps {
             Schedule::new(dt, duration).map_err(|error| format!("--steps {dt}: {error}"))?;
+            if longest / dt > MAX_STEPS_PER_RUN {
+                return Err(format!(
+                    "--steps {dt}: {:.0e} steps for {longest} s, more than a run takes (at most {MAX_STEPS_PER_RUN:e})",
+                    longest / dt
+                ));
+            }
         }
         if self.duration.is_some() && self.steps.is_empty() {
             for dt in DEFAULT_STEPS {
@@ -128,6 +157,22 @@ impl Options {
             }
         }
         Ok(())
+    }
+
+    /// The selected scenes that are compared with a reference trajectory, with its length (s): the single bodies and
+    /// M1, M2 (the robots always run their reference's 1 s; M3's chain has no reference trajectory).
+    fn references(&self) -> Vec<(String, f64)> {
+        let (plan, mechanisms, _) = self.plan();
+        let single = plan
+            .scenes
+            .iter()
+            .map(|scene| (format!("scene {}", scene.label()), scene.parameters().duration));
+        let multi = mechanisms.mechanisms.iter().filter_map(|kind| match kind {
+            MechanismKind::DoublePendulum => Some(MechanismId::DoublePendulum),
+            MechanismKind::FourBar => Some(MechanismId::FourBar),
+            MechanismKind::Chain => None,
+        });
+        single.chain(multi.map(|id| (id.label(), id.duration()))).collect()
     }
 
     /// The sweep these options describe: the single-body scenes, the mechanisms and the robots.
