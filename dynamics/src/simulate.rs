@@ -272,16 +272,27 @@ impl Schedule {
         }
     }
 
-    /// Steps of `dt` to cover the duration, the last one possibly shortened.
+    /// Steps of `dt` to cover the duration, the last one possibly shortened; at least one, however short the
+    /// duration (a sample at 1e-12 s with dt = 1e-3 is one step of 1e-12 s).
     fn step_time_count(&self) -> usize {
         let steps = self.duration() / self.dt;
         // A duration that is a whole number of steps up to round-off takes that many.
         let whole = steps.round();
-        (if (steps - whole).abs() <= SAME_TIME * whole.max(1.0) {
+        (if whole >= 1.0 && (steps - whole).abs() <= SAME_TIME * whole {
             whole
         } else {
-            steps.ceil()
+            steps.ceil().max(1.0)
         }) as usize
+    }
+
+    /// Whether sample `sample` (at `time`) falls at the end of step `k`, which ends at `end` after `h`. On a grid by
+    /// counting steps (exact, however many: the times' round-off grows past any tolerance of a tiny step); at given
+    /// times within round-off of the end.
+    fn sample_ends_step(&self, k: usize, sample: usize, (time, end, h): (f64, f64, f64)) -> bool {
+        match &self.samples {
+            Samples::Grid { steps_per_sample, .. } => k + 1 == sample * steps_per_sample,
+            Samples::Times(_) => (time - end).abs() <= SAME_TIME * h + 4.0 * f64::EPSILON * end.abs(),
+        }
     }
 
     /// The simulated time.
@@ -790,7 +801,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         // Samples in (t, limit]: at the step's end from its states, inside it by a partial step.
         while sample < sample_count {
             let time = schedule.sample_time(sample);
-            let at_end = (time - end).abs() <= SAME_TIME * h;
+            let at_end = schedule.sample_ends_step(k, sample, (time, end, h));
             if at_end && terminal.is_none() {
                 clock.stop();
                 record(dynamics, (time, work + step_work), &next, &mut bodies);

@@ -193,3 +193,38 @@ for_both_algebras!(
     a_blow_up_is_reported,
     bad_steps_and_states_are_refused
 );
+
+/// Any step the caps allow runs, however small: a grid schedule counts its steps in integers, so that the sample
+/// at the end of the 10⁷th step of 1e-6 s is taken there (it was once missed by the times' round-off and taken by
+/// a partial step of zero length, "the step must be positive"); a sample time far below the step is one short step.
+#[test]
+fn tiny_steps_and_tiny_sample_times_run() {
+    let body = dynamics::Body::sphere(1.0, 0.1).unwrap();
+    let free = dynamics::FreeBody::<dynamics::Pga>::new(body);
+    let start = dynamics::State::from_world_twist(
+        &body,
+        Vector3::zeros(),
+        &nalgebra::UnitQuaternion::identity(),
+        Vector3::new(0.0, 0.0, 1.0),
+        Vector3::new(1.0, 0.0, 0.0),
+    );
+    let schedule = Schedule::new(1e-6, 10.0).unwrap();
+    let run = simulate(&free, &[start], Method::Rk4, &schedule).unwrap();
+    let samples = run.body(0);
+    assert_eq!((run.steps, samples.len()), (10_000_000, 1001));
+    for (k, sample) in samples.iter().enumerate() {
+        assert_eq!(sample.t, k as f64 * SAMPLE_INTERVAL);
+        assert!(
+            (sample.position.x - sample.t).abs() < 1e-9,
+            "{}: {}",
+            sample.t,
+            sample.position.x
+        );
+    }
+    let early = Schedule::at_times(1e-3, [1e-12]).unwrap();
+    let run = simulate(&free, &[start], Method::Rk4, &early).unwrap();
+    let samples = run.body(0);
+    assert_eq!(samples.len(), 2);
+    assert_eq!(samples[1].t, 1e-12);
+    assert!((samples[1].position.x - 1e-12).abs() < 1e-24);
+}
