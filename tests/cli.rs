@@ -37,6 +37,14 @@ fn nonsensical_flags_are_refused_with_a_message() {
             &["--duration 6", "M2 four-bar linkage (5 s)"],
         ),
         (&["--steps", "1e-12"], &["--steps", "1e13 steps", "at most 1e8"]),
+        (
+            &["--integrators", "strang", "--scenes", "pendulum"],
+            &["make no run", "only scene 1"],
+        ),
+        (
+            &["--integrators", "rkmk8-joint", "--scenes", "double-pendulum"],
+            &["make no run", "only the robots"],
+        ),
         (&["--threads", "100000"], &["--threads", "four per core"]),
         (&["--threads", "0"], &["--threads", "got 0"]),
     ] {

@@ -147,6 +147,19 @@ impl Options {
                 Schedule::new(dt, duration).map_err(|error| format!("--duration {duration}: {error}"))?;
             }
         }
+        let (plan, mechanisms, robots) = self.plan();
+        if plan.configurations().is_empty()
+            && mechanisms
+                .configurations(&plan.integrators, plan.duration, plan.stabilisation)
+                .is_empty()
+            && robots.configurations(&plan.integrators).is_empty()
+        {
+            return Err(
+                "--scenes and --integrators make no run: the splittings (strang, yoshida4) run only scene 1, the free \
+                 cuboid, and the joint-coordinate methods (rkmk4-joint, rkmk6-joint, rkmk8-joint) only the robots"
+                    .to_owned(),
+            );
+        }
         if let Some(threads) = self.threads {
             let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
             if threads == 0 || threads > 4 * cores {
