@@ -736,7 +736,12 @@ impl Emitter<'_> {
                 pieces.push(quote! { let #ident = #value; });
             }
         }
-        let zero = self.literal(Rational64::zero());
+        // Typed, so that a combination with no terms (a metric whose invariants vanish identically, such as
+        // Cl(1,0,1)'s or an all-null one's) still takes `.abs()` and `.sqrt()`.
+        let zero = {
+            let scalar = &self.scalar;
+            quote! { (0.0 as #scalar) }
+        };
         // The canonical coefficient of `blade` in a piece, as tokens (zero where the piece has no such blade).
         let coefficient = |piece: &str, blade: BladeMask| {
             form.blades(piece).contains(&blade).then(|| {

@@ -538,3 +538,45 @@ fn split_five_dimensional_signature() {
         );
     }
 }
+
+ga_macros::algebra! {
+    /// Cl(1,0,1): one Euclidean and one null vector, whose only bivector squares to zero.
+    mod degenerate {
+        scalar = f64;
+        basis = [e1 = 1, e0 = 0];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2);
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+    }
+}
+
+ga_macros::algebra! {
+    /// Two null vectors that are also orthogonal: the metric is zero.
+    mod all_null {
+        scalar = f32;
+        basis = [a = 0, b = 0];
+        types {
+            Bivector = grades(2);
+            Even = grades(0, 2);
+        }
+        fn exp_bivector(b: Bivector) -> Even = exp(b);
+        fn log_even(m: Even) -> Bivector = log(m);
+    }
+}
+
+#[test]
+fn metrics_whose_invariants_vanish() {
+    // Every bivector squares to zero, so exp(b) = 1 + b and log(1 + b) = b (the emitted code once did not compile:
+    // its empty invariants were untyped literals).
+    for x in [0.5, -3.0, 0.0, 1e-9, 1e9] {
+        let m = degenerate::exp_bivector(degenerate::Bivector { e10: x });
+        assert_eq!((m.scalar, m.e10), (1.0, x));
+        assert_eq!(degenerate::log_even(m).e10, x);
+    }
+    let m = all_null::exp_bivector(all_null::Bivector { a_b: 0.25 });
+    assert_eq!((m.scalar, m.a_b), (1.0, 0.25));
+    assert_eq!(all_null::log_even(m).a_b, 0.25);
+}
