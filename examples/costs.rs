@@ -161,6 +161,7 @@ fn moved_line(mut declaration: AlgebraDeclaration) -> AlgebraDeclaration {
         result: Some("Line".into()),
         body: Expression::new(moved),
         linear: Some("l".into()),
+        doc: None,
     }];
     declaration
 }

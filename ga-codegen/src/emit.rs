@@ -202,6 +202,14 @@ fn doc_lines(text: &str) -> TokenStream {
     quote! { #(#[doc = #lines])* }
 }
 
+/// An expression function's documentation: the user's (if any), then the generated notes.
+fn expression_doc(declared: &ExpressionDeclaration, generated: &str) -> TokenStream {
+    match &declared.doc {
+        Some(user) => doc_lines(&format!("{user}\n\n{generated}")),
+        None => doc_lines(generated),
+    }
+}
+
 fn binary_trait(operation: Operation) -> TokenStream {
     let name = trait_ident(operation);
     let method = format_ident!("{}", operation.name());
@@ -692,11 +700,14 @@ impl Emitter<'_> {
         let input = self.parameter_fields(declared, fused);
         let body = self.unrolled_body(&input, &fused.program, fused.output, Finish::Coefficients);
         let output = self.output_type(fused.output);
-        let doc = doc_lines(&format!(
-            "`{}`, fused: expanded exactly as one polynomial per output blade, common subexpressions \
-             shared.\n\nCost: {}.",
-            declared.body, fused.cost
-        ));
+        let doc = expression_doc(
+            declared,
+            &format!(
+                "`{}`, fused: expanded exactly as one polynomial per output blade, common subexpressions \
+                 shared.\n\nCost: {}.",
+                declared.body, fused.cost
+            ),
+        );
         quote! {
             #doc
             #[inline]
@@ -1192,10 +1203,13 @@ impl Emitter<'_> {
                 (body, what)
             }
         };
-        let doc = doc_lines(&format!(
-            "`{}`, in closed form ([`ga_codegen::transcendental`]): {what}.\n\nCost of the polynomial part: {}.",
-            declared.body, fused.cost
-        ));
+        let doc = expression_doc(
+            declared,
+            &format!(
+                "`{}`, in closed form ([`ga_codegen::transcendental`]): {what}.\n\nCost of the polynomial part: {}.",
+                declared.body, fused.cost
+            ),
+        );
         quote! {
             #doc
             #[inline]

@@ -24,6 +24,8 @@ pub struct ExpressionDeclaration {
     /// A parameter the formula is linear in, to also emit the formula as a matrix in it (see
     /// [`crate::fuse::linear_map`]): a type `{Name}Map` built by `{name}_map(other parameters)`, with `apply`.
     pub linear: Option<String>,
+    /// The user's documentation of the function (`///` lines in `algebra!`), emitted above the generated notes.
+    pub doc: Option<String>,
 }
 
 impl ExpressionDeclaration {

@@ -96,6 +96,7 @@ impl Fused {
     ///         result: None,
     ///         body: turned,
     ///         linear: None,
+    ///         doc: None,
     ///     }],
     /// };
     /// let fused = ga_codegen::fuse::fuse(&Algebra::new(&declaration)?, 0)?;

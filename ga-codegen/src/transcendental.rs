@@ -175,6 +175,7 @@ impl ClosedForm {
 ///     result: Some("Motor".into()),
 ///     body: Expression::new(ExpressionKind::Call("exp".into(), vec![b])),
 ///     linear: None,
+///     doc: None,
 /// };
 /// let algebra = Algebra::new(&AlgebraDeclaration {
 ///     scalar: ScalarType::F64,

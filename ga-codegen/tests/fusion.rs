@@ -72,6 +72,7 @@ fn declare(
         result: result.map(String::from),
         body: *Into::<Box<Expression>>::into(body),
         linear: None,
+        doc: None,
     }
 }
 
@@ -549,6 +550,7 @@ fn bad_expressions_are_refused_at_the_offending_node() {
     // builder `f_map` is another expression's name.
     let linear = |name: &str, body| ExpressionDeclaration {
         linear: Some("a".into()),
+        doc: None,
         ..declare(name, &[("a", "Vector")], None, body)
     };
     let e = refused(vec![linear("moved_line", identity()), linear("movedLine", identity())]);

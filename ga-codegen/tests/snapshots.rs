@@ -90,6 +90,7 @@ fn pga_fused_moved_line() {
         result: Some("Line".into()),
         body: *product(product(name("m"), name("l")), reverse),
         linear: Some("l".into()),
+        doc: Some("The line `l` moved by the motor `m`.\n\nThe user's words come first.".into()),
     }];
     let algebra = Algebra::new(&declaration).unwrap();
     insta::assert_snapshot!(ga_codegen::pretty(&emit::fused_function(&algebra, 0).unwrap()).unwrap());
@@ -114,6 +115,7 @@ fn pga_closed_forms() {
             result: Some(result.into()),
             body: call(function, parameter),
             linear: None,
+            doc: None,
         };
     let mut declaration = common::pga();
     declaration.expressions = vec![

@@ -9,7 +9,10 @@ use proc_macro2::{TokenStream, TokenTree};
 use quote::ToTokens;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
-use syn::{braced, bracketed, parenthesized, token, Attribute, Expr, Ident, Lit, LitInt, Token, Visibility};
+use syn::{
+    braced, bracketed, parenthesized, token, Attribute, Expr, ExprLit, Ident, Lit, LitInt, Meta, MetaNameValue, Token,
+    Visibility,
+};
 
 use crate::diagnostics::{both, combine};
 
@@ -357,6 +360,8 @@ impl Parse for LayoutSyntax {
 pub struct ExpressionItem {
     /// From `#[linear(l)]`: the parameter to also emit the expression's matrix in.
     pub linear: Option<Ident>,
+    /// The `///` lines above the expression, one per line, for the emitted function.
+    pub doc: Option<String>,
     pub name: Ident,
     pub parameters: Punctuated<ParameterSyntax, Token![,]>,
     /// The declared result type, if any.
@@ -388,13 +393,29 @@ impl Parse for ParameterSyntax {
 impl Parse for ExpressionItem {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let mut linear = None;
+        let mut doc: Vec<String> = Vec::new();
         for attribute in input.call(Attribute::parse_outer)? {
             let refused = || {
                 syn::Error::new_spanned(
                     &attribute,
-                    "an expression accepts one attribute, `#[linear(parameter)]` (emit its matrix in that parameter)",
+                    "an expression accepts `///` documentation and one attribute, `#[linear(parameter)]` (emit its \
+                     matrix in that parameter)",
                 )
             };
+            if let Meta::NameValue(MetaNameValue {
+                path,
+                value: Expr::Lit(ExprLit {
+                    lit: Lit::Str(text), ..
+                }),
+                ..
+            }) = &attribute.meta
+            {
+                if path.is_ident("doc") {
+                    let line = text.value();
+                    doc.push(line.strip_prefix(' ').unwrap_or(&line).to_owned());
+                    continue;
+                }
+            }
             if !attribute.path().is_ident("linear") || linear.is_some() {
                 return Err(refused());
             }
@@ -426,6 +447,7 @@ impl Parse for ExpressionItem {
         input.parse::<Token![;]>()?;
         Ok(ExpressionItem {
             linear,
+            doc: (!doc.is_empty()).then(|| doc.join("\n")),
             name,
             parameters,
             result,

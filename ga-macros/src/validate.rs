@@ -94,6 +94,7 @@ fn expression_declaration(item: &ExpressionItem) -> ExpressionDeclaration {
         result: item.result.as_ref().map(Ident::to_string),
         body: item.body.clone(),
         linear: item.linear.as_ref().map(Ident::to_string),
+        doc: item.doc.clone(),
     }
 }
 

@@ -548,8 +548,13 @@ ga_macros::algebra! {
             Bivector = grades(2);
             Even = grades(0, 2);
         }
+        /// exp of a null bivector: `1 + b`.
         fn exp_bivector(b: Bivector) -> Even = exp(b);
         fn log_even(m: Even) -> Bivector = log(m);
+        /// Documentation on a fused expression is the emitted function's.
+        ///
+        /// (Once refused as an attribute.)
+        fn twice(b: Bivector) -> Bivector = b + b;
     }
 }
 
@@ -576,6 +581,7 @@ fn metrics_whose_invariants_vanish() {
         assert_eq!((m.scalar, m.e10), (1.0, x));
         assert_eq!(degenerate::log_even(m).e10, x);
     }
+    assert_eq!(degenerate::twice(degenerate::Bivector { e10: 0.5 }).e10, 1.0);
     let m = all_null::exp_bivector(all_null::Bivector { a_b: 0.25 });
     assert_eq!((m.scalar, m.a_b), (1.0, 0.25));
     assert_eq!(all_null::log_even(m).a_b, 0.25);
