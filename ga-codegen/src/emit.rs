@@ -564,12 +564,15 @@ impl Emitter<'_> {
                 };
                 quote! { (#i, #j, #k, #c) }
             });
+            // Read through a reference: `&CONST` is promoted to a static, where indexing the constant itself would
+            // build the whole table on the stack at every iteration in an unoptimised build.
             quote! {
                 const #entries_name: [(u32, u32, u32, #scalar); #count] = [#(#entries),*];
+                let table = &#entries_name;
                 let mut #output = [#zero; #size];
                 let mut entry = 0;
                 while entry < #count {
-                    let (i, j, k, c) = #entries_name[entry];
+                    let (i, j, k, c) = table[entry];
                     #output[k as usize] += c * #left[i as usize] * #right[j as usize];
                     entry += 1;
                 }
