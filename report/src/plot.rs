@@ -35,12 +35,12 @@ pub const FIGURE_PANEL_HEIGHT: u32 = 560;
 
 /// The width at which the images are meant to be read; the text sizes below are pixels at that width.
 pub const READING_WIDTH: u32 = 800;
-const FIGURE_TITLE_SIZE: f64 = 22.0;
+pub(crate) const FIGURE_TITLE_SIZE: f64 = 22.0;
 const CAPTION_SIZE: f64 = 19.0;
-const AXIS_TITLE_SIZE: f64 = 16.0;
-const TICK_LABEL_SIZE: f64 = 14.0;
-const LEGEND_SIZE: f64 = 14.0;
-const NOTE_SIZE: f64 = 13.0;
+pub(crate) const AXIS_TITLE_SIZE: f64 = 16.0;
+pub(crate) const TICK_LABEL_SIZE: f64 = 14.0;
+pub(crate) const LEGEND_SIZE: f64 = 14.0;
+pub(crate) const NOTE_SIZE: f64 = 13.0;
 
 /// The legend's line samples, the room kept for them before the text, the gap between the plotting area and
 /// the legend, and the widest a legend may be (longer labels wrap), all at the reading width.
@@ -69,7 +69,7 @@ pub(crate) const NOTE_COLOUR: RGBColor = RGBColor(60, 60, 60);
 pub const MAX_COLOURS_PER_AXIS: usize = 6;
 
 /// Image pixels for a length in pixels at the reading width.
-fn px(reading_pixels: f64) -> u32 {
+pub(crate) fn px(reading_pixels: f64) -> u32 {
     (reading_pixels * f64::from(SIZE.0) / f64::from(READING_WIDTH)).round() as u32
 }
 

@@ -13,20 +13,17 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::plot::{register_font, wrap, PlotError, FONT, NOTE_COLOUR};
+use crate::plot::{
+    px, register_font, wrap, PlotError, AXIS_TITLE_SIZE, FIGURE_TITLE_SIZE, FONT, LEGEND_SIZE, NOTE_COLOUR, NOTE_SIZE,
+    TICK_LABEL_SIZE,
+};
 use crate::robot_sweep::StickFigure;
 
-/// The image's width (px); text sizes are for an image read 800 px wide, as the other plots'.
-const WIDTH: u32 = 1000;
-const SCALE: f64 = WIDTH as f64 / 800.0;
+/// The image's width (px), the other plots' ([`crate::plot::SIZE`]), so text sizes and [`px`] are theirs.
+const WIDTH: u32 = crate::plot::SIZE.0;
 /// The views' height (px): as the data need at the views' scale, within these bounds.
 const PANEL_HEIGHT: (u32, u32) = (380, 760);
-const TITLE_SIZE: f64 = 22.0;
 const PANEL_TITLE_SIZE: f64 = 18.0;
-const AXIS_SIZE: f64 = 16.0;
-const TICK_SIZE: f64 = 14.0;
-const LEGEND_SIZE: f64 = 14.0;
-const CAPTION_SIZE: f64 = 13.0;
 /// The instants' colours, earliest first: a sequential scale from pale green to dark blue (ColorBrewer's YlGnBu),
 /// which changes in hue as well as in lightness so that neighbouring instants stay apart.
 const SHADES: [RGBColor; 5] = [
@@ -36,10 +33,6 @@ const SHADES: [RGBColor; 5] = [
     RGBColor(37, 52, 148),
     RGBColor(8, 29, 88),
 ];
-
-fn px(reading_pixels: f64) -> u32 {
-    (reading_pixels * SCALE).round() as u32
-}
 
 /// The colour of instant `k` of `n`: from the palest shade (the first) to the darkest (the last), interpolated
 /// along [`SHADES`].
@@ -95,8 +88,8 @@ fn draw_view(
         .configure_mesh()
         .x_desc(horizontal)
         .y_desc("z (m)")
-        .label_style((FONT, px(TICK_SIZE)))
-        .axis_desc_style((FONT, px(AXIS_SIZE)))
+        .label_style((FONT, px(TICK_LABEL_SIZE)))
+        .axis_desc_style((FONT, px(AXIS_TITLE_SIZE)))
         .bold_line_style(BLACK.mix(0.12))
         .light_line_style(BLACK.mix(0.0))
         .x_labels(7)
@@ -143,10 +136,10 @@ pub(crate) fn motion_figure(path: &Path, title: &str, figures: &[StickFigure], c
         return Err(error("no instant to draw".into()));
     }
     register_font();
-    let caption_font = FontDesc::from((FONT, f64::from(px(CAPTION_SIZE))));
+    let caption_font = FontDesc::from((FONT, f64::from(px(NOTE_SIZE))));
     let caption_lines = wrap(caption, &caption_font, WIDTH - 2 * px(14.0));
-    let caption_line = (f64::from(px(CAPTION_SIZE)) * 1.3).round() as u32;
-    let title_band = px(2.0 * TITLE_SIZE);
+    let caption_line = (f64::from(px(NOTE_SIZE)) * 1.3).round() as u32;
+    let title_band = px(2.0 * FIGURE_TITLE_SIZE);
     let legend_band = px(34.0);
     let caption_band = caption_lines.len() as u32 * caption_line + px(14.0);
 
@@ -184,7 +177,7 @@ pub(crate) fn motion_figure(path: &Path, title: &str, figures: &[StickFigure], c
         let centre = Pos::new(HPos::Center, VPos::Center);
         band.draw_text(
             title,
-            &TextStyle::from((FONT, px(TITLE_SIZE))).pos(centre),
+            &TextStyle::from((FONT, px(FIGURE_TITLE_SIZE))).pos(centre),
             (WIDTH as i32 / 2, title_band as i32 / 2),
         )
         .map_err(|e| e.to_string())?;
