@@ -114,6 +114,16 @@ impl Expression {
         Expression { id: 0, kind }
     }
 
+    /// The node's operands, left to right.
+    pub fn children(&self) -> Vec<&Expression> {
+        match &self.kind {
+            ExpressionKind::Parameter(_) | ExpressionKind::Scalar(_) => Vec::new(),
+            ExpressionKind::Negate(x) | ExpressionKind::Unary(_, x) | ExpressionKind::Grade(_, x) => vec![x],
+            ExpressionKind::Sum { lhs, rhs, .. } | ExpressionKind::Binary(_, lhs, rhs) => vec![lhs, rhs],
+            ExpressionKind::Call(_, arguments) => arguments.iter().collect(),
+        }
+    }
+
     /// How tightly the node binds when printed, as in Rust: operands of a weaker operator get parentheses.
     fn precedence(&self) -> u8 {
         match &self.kind {
@@ -124,6 +134,28 @@ impl Expression {
             ExpressionKind::Binary(Operation::Geometric, ..) => 5,
             ExpressionKind::Negate(_) | ExpressionKind::Unary(Operation::Reverse, _) => 6,
             _ => 7,
+        }
+    }
+}
+
+impl Expression {
+    /// A sum as its terms with their signs, `a - b + c`, however the tree groups them (front ends balance long
+    /// sums): `negated` when the terms are subtracted, `first` for the sum's first term (written without `+`).
+    fn write_terms(&self, f: &mut std::fmt::Formatter<'_>, negated: bool, first: bool) -> std::fmt::Result {
+        if let ExpressionKind::Sum { lhs, rhs, subtract } = &self.kind {
+            lhs.write_terms(f, negated, first)?;
+            return rhs.write_terms(f, negated != *subtract, false);
+        }
+        match (first, negated) {
+            (true, false) => {}
+            (true, true) => write!(f, "-")?,
+            (false, _) => write!(f, " {} ", if negated { '-' } else { '+' })?,
+        }
+        // A term binding looser than a sum, or a negated first term binding looser than negation, is grouped.
+        let bound = if first && negated { 6 } else { 4 };
+        match self.precedence() < bound {
+            true => write!(f, "({self})"),
+            false => write!(f, "{self}"),
         }
     }
 }
@@ -173,11 +205,7 @@ impl std::fmt::Display for Expression {
                 operand(f, x, false)?;
                 write!(f, ".grade_{k}()")
             }
-            ExpressionKind::Sum { lhs, rhs, subtract } => {
-                operand(f, lhs, false)?;
-                write!(f, " {} ", if *subtract { '-' } else { '+' })?;
-                operand(f, rhs, true)
-            }
+            ExpressionKind::Sum { .. } => self.write_terms(f, false, true),
             ExpressionKind::Binary(operation, lhs, rhs) => match operator(*operation) {
                 Some(symbol) => {
                     operand(f, lhs, false)?;

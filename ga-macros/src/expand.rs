@@ -165,4 +165,39 @@ mod tests {
             "internal error: ga-codegen emitted no struct `Vector` to carry its attributes"
         );
     }
+
+    /// The whole macro (parse, validate, expand) on the longest and deepest expressions it accepts, on a
+    /// thread with rustc's stack (8 MiB), where a proc macro runs.
+    #[test]
+    fn the_longest_and_deepest_accepted_expressions_expand_on_rustcs_stack() {
+        let sum = vec!["a"; 5000].join(" + ");
+        let deep = format!(
+            "{}a{}",
+            "-".repeat(crate::parse::MAX_NESTING / 2),
+            ".reverse()".repeat(crate::parse::MAX_NESTING / 2 - 1)
+        );
+        let source = format!(
+            "mod pga {{
+                scalar = f64;
+                basis = [e0 = 0, e1 = 1, e2 = 1, e3 = 1];
+                ops = [reverse];
+                types {{ Line = grades(2); }}
+                fn long(a: Line) -> Line = {sum};
+                fn deep(a: Line) -> Line = {deep};
+            }}"
+        );
+        let expanded = std::thread::Builder::new()
+            .stack_size(8 << 20)
+            .spawn(move || {
+                let input: AlgebraInput = syn::parse_str(&source)?;
+                let validated = crate::validate::validate(&input)?;
+                expand(&input, &validated).map(|tokens| tokens.to_string())
+            })
+            .unwrap()
+            .join()
+            .expect("no overflow")
+            .unwrap();
+        assert!(expanded.contains("fn long"), "{expanded}");
+        assert!(expanded.contains("5000"), "the sum is 5000 a: {expanded}");
+    }
 }

@@ -381,6 +381,9 @@
 //! - At most 1024 fields in any type (2¹⁰, the size of `all` in 10 dimensions), since a product of two
 //!   types has up to fields² terms. The count is checked before any blade is listed, so `grades(16)`
 //!   in 32 dimensions (601 080 390 fields) is refused at once.
+//! - Expressions nest at most 128 levels: each pair of parentheses, prefix operator, call and each operation
+//!   in a chain of `*`, `^`, `&`, `|` or method calls is a level, while a sum of n terms is only log₂ n
+//!   (`a + a + … + a` with 100 000 terms is fine). The compiler walks the tree recursively, on rustc's stack.
 //!
 //! These figures are the compiler's:
 //!

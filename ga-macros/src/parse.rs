@@ -500,6 +500,23 @@ impl BinaryOperator {
 #[derive(Default)]
 struct BodyParser {
     heads: Vec<TokenStream>,
+    /// By node id: the depth of the subtree the node heads.
+    depths: Vec<usize>,
+    /// How many recursive calls of the parser are open.
+    nesting: usize,
+}
+
+/// The deepest an expression may nest, in levels of the parser's recursion or of the syntax tree: every
+/// pass of the compiler walks the tree recursively, and a proc macro runs on rustc's stack (8 MiB). A
+/// debug build of the macro takes 8–16 KiB per level, so 128 levels use at most a quarter of it; sums of any
+/// length nest only log₂ n levels (see `balanced_sum`).
+pub const MAX_NESTING: usize = 128;
+
+/// A term of a sum after its first, with the `+` or `-` before it (`id` is the operator's node).
+struct Summand {
+    id: usize,
+    subtract: bool,
+    term: Expression,
 }
 
 impl BodyParser {
@@ -512,13 +529,25 @@ impl BodyParser {
     /// An expression whose binary operators all bind at least as tightly as `min_precedence`
     /// (precedence climbing); it ends before `;`, `,` or the end of its group.
     fn expression(&mut self, input: ParseStream, min_precedence: u8) -> syn::Result<Expression> {
-        let mut lhs = self.prefix(input)?;
+        let mut lhs = self.nested(input, Self::prefix)?;
+        // The terms of a run of `+` and `-` after `lhs`, summed as a balanced tree when the run ends.
+        let mut summands = Vec::new();
         while let Some(operator) = peek_binary_operator(input)? {
             if operator.precedence() < min_precedence {
                 break;
             }
             let head: TokenTree = input.parse()?;
             let id = self.id(&head);
+            if let BinaryOperator::Add | BinaryOperator::Subtract = operator {
+                summands.push(Summand {
+                    id,
+                    subtract: matches!(operator, BinaryOperator::Subtract),
+                    term: self.expression(input, operator.precedence() + 1)?,
+                });
+                continue;
+            }
+            // Every operator binding tighter than `+` went into the last summand: this one binds looser.
+            lhs = self.balanced_sum(lhs, std::mem::take(&mut summands))?;
             let kind = match operator {
                 BinaryOperator::Divide => {
                     let divisor = self.divisor(input)?;
@@ -532,18 +561,76 @@ impl BodyParser {
                         BinaryOperator::Outer => ExpressionKind::Binary(Operation::Outer, lhs, rhs),
                         BinaryOperator::Regressive => ExpressionKind::Binary(Operation::Regressive, lhs, rhs),
                         BinaryOperator::Geometric => ExpressionKind::Binary(Operation::Geometric, lhs, rhs),
-                        BinaryOperator::Add | BinaryOperator::Subtract => ExpressionKind::Sum {
-                            lhs,
-                            rhs,
-                            subtract: matches!(operator, BinaryOperator::Subtract),
-                        },
-                        BinaryOperator::Divide => unreachable!("handled above"),
+                        BinaryOperator::Add | BinaryOperator::Subtract | BinaryOperator::Divide => {
+                            unreachable!("handled above")
+                        }
                     }
                 }
             };
-            lhs = Expression { id, kind };
+            lhs = self.node(id, kind)?;
         }
-        Ok(lhs)
+        self.balanced_sum(lhs, summands)
+    }
+
+    /// `first ± summands[0] ± …` as a balanced tree of [`ExpressionKind::Sum`], so that a sum of n terms nests
+    /// log₂ n levels deep, not n. The value is the same (the compiler's arithmetic is exact): the right half
+    /// is added or subtracted as a whole, as its first term was, its other signs flipped when subtracted.
+    fn balanced_sum(&mut self, first: Expression, mut summands: Vec<Summand>) -> syn::Result<Expression> {
+        if summands.is_empty() {
+            return Ok(first);
+        }
+        let mut right = summands.split_off(summands.len() / 2);
+        let Summand { id, subtract, term } = right.remove(0);
+        for summand in &mut right {
+            summand.subtract ^= subtract;
+        }
+        let lhs = Box::new(self.balanced_sum(first, summands)?);
+        let rhs = Box::new(self.balanced_sum(term, right)?);
+        self.node(id, ExpressionKind::Sum { lhs, rhs, subtract })
+    }
+
+    /// The node `kind` headed by node id `id`; refused when it nests more than [`MAX_NESTING`] levels deep,
+    /// so that the tree's depth stays bounded while it is built (even dropping a deeper tree recurses).
+    fn node(&mut self, id: usize, kind: ExpressionKind) -> syn::Result<Expression> {
+        let node = Expression { id, kind };
+        let depth = 1 + node
+            .children()
+            .iter()
+            .map(|child| self.depths[child.id])
+            .max()
+            .unwrap_or(0);
+        if depth > MAX_NESTING {
+            return Err(syn::Error::new_spanned(
+                &self.heads[id],
+                format!(
+                    "expression nested more than {MAX_NESTING} operations deep (a chain of `*`, `^`, `&`, `|` or \
+                     method calls nests one level per operation): split it into declared expressions that call \
+                     each other"
+                ),
+            ));
+        }
+        self.depths.resize(self.heads.len(), 0);
+        self.depths[id] = depth;
+        Ok(node)
+    }
+
+    /// `parse(input)`, one level deeper in the parser's recursion: refused beyond [`MAX_NESTING`] levels,
+    /// where the compiler's own recursion over the tree would overflow rustc's stack.
+    fn nested(
+        &mut self,
+        input: ParseStream,
+        parse: fn(&mut Self, ParseStream) -> syn::Result<Expression>,
+    ) -> syn::Result<Expression> {
+        if self.nesting == MAX_NESTING {
+            return Err(input.error(format!(
+                "expression nested more than {MAX_NESTING} levels deep (parentheses, prefix operators, call \
+                 arguments): split it into declared expressions that call each other"
+            )));
+        }
+        self.nesting += 1;
+        let parsed = parse(self, input);
+        self.nesting -= 1;
+        parsed
     }
 
     /// `-x`, `~x` (the reverse) or a postfix expression.
@@ -551,19 +638,13 @@ impl BodyParser {
         if input.peek(Token![-]) {
             let minus: Token![-] = input.parse()?;
             let id = self.id(&minus);
-            let operand = self.prefix(input)?;
-            Ok(Expression {
-                id,
-                kind: ExpressionKind::Negate(Box::new(operand)),
-            })
+            let operand = self.nested(input, Self::prefix)?;
+            self.node(id, ExpressionKind::Negate(Box::new(operand)))
         } else if input.peek(Token![~]) {
             let tilde: Token![~] = input.parse()?;
             let id = self.id(&tilde);
-            let operand = self.prefix(input)?;
-            Ok(Expression {
-                id,
-                kind: ExpressionKind::Unary(Operation::Reverse, Box::new(operand)),
-            })
+            let operand = self.nested(input, Self::prefix)?;
+            self.node(id, ExpressionKind::Unary(Operation::Reverse, Box::new(operand)))
         } else {
             self.postfix(input)
         }
@@ -588,10 +669,7 @@ impl BodyParser {
             let list;
             parenthesized!(list in input);
             let arguments = self.arguments(&list)?;
-            receiver = Expression {
-                id,
-                kind: method_call(&method, receiver, arguments)?,
-            };
+            receiver = self.node(id, method_call(&method, receiver, arguments)?)?;
         }
         Ok(receiver)
     }
@@ -608,10 +686,8 @@ impl BodyParser {
             Ok(expression)
         } else if input.peek(Lit) {
             let (literal, value) = number(input)?;
-            Ok(Expression {
-                id: self.id(&literal),
-                kind: ExpressionKind::Scalar(value),
-            })
+            let id = self.id(&literal);
+            self.node(id, ExpressionKind::Scalar(value))
         } else if input.peek(Ident) {
             let name: Ident = input.parse()?;
             let id = self.id(&name);
@@ -622,7 +698,7 @@ impl BodyParser {
             } else {
                 ExpressionKind::Parameter(name.to_string())
             };
-            Ok(Expression { id, kind })
+            self.node(id, kind)
         } else if input.peek(Token![!]) {
             Err(input.error("`!` is not an operator of expressions: the reverse is `~x`, the negation `-x`"))
         } else if input.is_empty() || input.peek(Token![;]) || input.peek(Token![,]) {
@@ -660,10 +736,8 @@ impl BodyParser {
             return Err(syn::Error::new_spanned(&head, "division by zero"));
         }
         let reciprocal = if minus.is_some() { -value.recip() } else { value.recip() };
-        Ok(Expression {
-            id: self.id(&head),
-            kind: ExpressionKind::Scalar(reciprocal),
-        })
+        let id = self.id(&head);
+        self.node(id, ExpressionKind::Scalar(reciprocal))
     }
 }
 
@@ -873,7 +947,7 @@ mod tests {
     }
 
     #[test]
-    fn binary_operators_have_rusts_precedence_and_associate_to_the_left() {
+    fn binary_operators_have_rusts_precedence_and_products_associate_to_the_left() {
         assert_eq!(
             tree("a | b ^ c & d + e * f"),
             "(left_contraction a (outer b (regressive c (+ d (geometric e f)))))"
@@ -882,7 +956,8 @@ mod tests {
             tree("a * b + c & d ^ e | f"),
             "(left_contraction (outer (regressive (+ (geometric a b) c) d) e) f)"
         );
-        assert_eq!(tree("a - b + c - d"), "(- (+ (- a b) c) d)");
+        // Sums are balanced (see `long_sums_nest_logarithmically_…`): the same value as `((a - b) + c) - d`.
+        assert_eq!(tree("a - b + c - d"), "(+ (- a b) (- c d))");
         assert_eq!(tree("a ^ b ^ c"), "(outer (outer a b) c)");
         assert_eq!(tree("a * (b + c)"), "(geometric a (+ b c))");
         assert_eq!(tree("a | (b | c)"), "(left_contraction a (left_contraction b c))");
@@ -1038,5 +1113,44 @@ mod tests {
         assert!(errors[0].starts_with("`&&` is not an operator"));
         assert!(errors[1].starts_with("`/` divides only by a number literal"));
         assert!(errors[2].starts_with("unknown method `dual`"));
+    }
+
+    fn depth(expression: &Expression) -> usize {
+        1 + expression.children().into_iter().map(depth).max().unwrap_or(0)
+    }
+
+    #[test]
+    fn long_sums_nest_logarithmically_and_keep_their_terms_and_signs() {
+        for body in ["a - b + c - d - e + f", "-a - (b - c) + d * e - f | g", "a + b - c"] {
+            let item = item(&format!("fn f() = {body};")).unwrap();
+            assert_eq!(item.body.to_string(), body.replace("(b - c)", "b + c"));
+        }
+        assert_eq!(tree("a - b - c + d"), "(- (- a b) (- c d))");
+        let terms: Vec<String> = (0..100_000).map(|i| format!("a{}", i % 7)).collect();
+        let item = item(&format!("fn f() = {};", terms.join(" - "))).unwrap();
+        assert_eq!(depth(&item.body), 18);
+        assert_eq!(item.body.to_string(), terms.join(" - "));
+    }
+
+    #[test]
+    fn expressions_nested_too_deep_are_refused_at_the_token_that_goes_too_deep() {
+        let chain = |operator: &str, count: usize| vec!["a"; count].join(operator);
+        let at_limit = item(&format!("fn f() = {};", chain(" * ", MAX_NESTING / 2 + 1))).unwrap();
+        assert_eq!(depth(&at_limit.body), MAX_NESTING / 2 + 1);
+        let long = 1 + MAX_NESTING;
+        for body in [
+            chain(" * ", long + 1),
+            chain(" | ", long + 1),
+            format!("a{}", ".reverse()".repeat(long)),
+            format!("{}a", "-".repeat(1000)),
+            format!("{}a{}", "(".repeat(1000), ")".repeat(1000)),
+            format!("{}a{}", "f(".repeat(1000), ")".repeat(1000)),
+        ] {
+            let message = item(&format!("fn f() = {body};")).err().expect("refused").to_string();
+            assert!(
+                message.starts_with(&format!("expression nested more than {MAX_NESTING}")),
+                "{message}"
+            );
+        }
     }
 }
