@@ -3,7 +3,7 @@
 
 use crate::blade::{self, BladeMask, BladeNaming, SCALAR_NAME};
 use crate::declaration::{AlgebraDeclaration, Layout, Lowering, ScalarType};
-use crate::error::{Error, NameProblem};
+use crate::error::{collect, Error, NameProblem};
 use crate::expression::ExpressionDeclaration;
 use crate::metric::Metric;
 use crate::operation::Operation;
@@ -127,7 +127,7 @@ impl Algebra {
                 max: MAX_DIMENSION,
             });
         }
-        for (index, vector) in basis.iter().enumerate() {
+        collect(basis.iter().enumerate().map(|(index, vector)| {
             if let Err(problem) = check_identifier(&vector.name) {
                 return Err(Error::InvalidBasisName {
                     index,
@@ -148,7 +148,8 @@ impl Algebra {
                     square: vector.square,
                 });
             }
-        }
+            Ok(())
+        }))?;
         let basis_names: Vec<String> = basis.iter().map(|v| v.name.clone()).collect();
         let naming = BladeNaming::new(&basis_names);
         check_blade_names(&basis_names, &naming)?;
@@ -166,8 +167,8 @@ impl Algebra {
         let operations = listed_operations(declaration)?;
         check_lowering(declaration, &operations)?;
 
-        let mut types = Vec::with_capacity(declaration.types.len());
-        for (ty_index, declared) in declaration.types.iter().enumerate() {
+        // Each type is checked on its own, so that mistakes in several are reported together.
+        let types = collect(declaration.types.iter().enumerate().map(|(ty_index, declared)| {
             check_type_name(declaration, &operations, ty_index)?;
             let mut fields: Vec<Field> = Vec::new();
             let mut push = |blade: BladeMask, sign: i64, name: String, item: usize| -> Result<(), Error> {
@@ -262,11 +263,11 @@ impl Algebra {
                     name: declared.name.clone(),
                 });
             }
-            types.push(SparseType {
+            Ok(SparseType {
                 name: declared.name.clone(),
                 fields,
-            });
-        }
+            })
+        }))?;
 
         Ok(Algebra {
             scalar: declaration.scalar,
@@ -336,7 +337,8 @@ pub fn check_identifier(name: &str) -> Result<(), NameProblem> {
 /// result types that are declared types or the scalar type.
 fn check_expressions(algebra: &Algebra) -> Result<(), Error> {
     let known = |name: &str| name == algebra.scalar.name() || algebra.type_named(name).is_some();
-    for (index, expression) in algebra.expressions.iter().enumerate() {
+    // Each expression is checked on its own, so that mistakes in several are reported together.
+    collect(algebra.expressions.iter().enumerate().map(|(index, expression)| {
         let name = &expression.name;
         if let Err(problem) = check_identifier(name) {
             return Err(Error::InvalidExpressionName {
@@ -413,8 +415,9 @@ fn check_expressions(algebra: &Algebra) -> Result<(), Error> {
                 return Err(clash(builder, format!("is the expression `{}`", other.name)));
             }
         }
-    }
-    Ok(())
+        Ok(())
+    }))
+    .map(drop)
 }
 
 /// Every chosen lowering is of an emitted product, once.

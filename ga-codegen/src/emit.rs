@@ -15,7 +15,7 @@ use quote::{format_ident, quote, ToTokens};
 use crate::algebra::{Algebra, SparseType};
 use crate::blade::BladeMask;
 use crate::declaration::ScalarType;
-use crate::error::Error;
+use crate::error::{collect, Error};
 use crate::expand::{Operand, Variable};
 use crate::expression::ExpressionDeclaration;
 use crate::functions::{self, Code, Finish, Function, Output};
@@ -66,9 +66,9 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
             }
         }
     }
-    for index in 0..algebra.expressions.len() {
-        items.push(fused_function(algebra, index)?);
-    }
+    items.extend(collect(
+        (0..algebra.expressions.len()).map(|index| fused_function(algebra, index)),
+    )?);
     Ok(quote! { #(#items)* })
 }
 

@@ -643,13 +643,40 @@ pub enum Error {
         /// What has it already.
         taken: String,
     },
+    #[error("{}", several(.0))]
+    /// Independent mistakes, each its own error (in different types, expressions or basis vectors), so that
+    /// all of them are reported at once; never fewer than two.
+    Several(Vec<Error>),
+}
+
+/// The errors, one per line.
+fn several(errors: &[Error]) -> String {
+    errors.iter().map(Error::to_string).collect::<Vec<_>>().join("\n")
+}
+
+/// `Ok` without errors, the error itself for one, [`Error::Several`] for more.
+pub(crate) fn all(mut errors: Vec<Error>) -> Result<(), Error> {
+    match errors.len() {
+        0 => Ok(()),
+        1 => Err(errors.remove(0)),
+        _ => Err(Error::Several(errors)),
+    }
+}
+
+/// The values, or every error among the results (see [`all`]).
+pub(crate) fn collect<T>(results: impl IntoIterator<Item = Result<T, Error>>) -> Result<Vec<T>, Error> {
+    let (values, errors): (Vec<_>, Vec<_>) = results.into_iter().partition(Result::is_ok);
+    all(errors.into_iter().filter_map(Result::err).collect())?;
+    Ok(values.into_iter().filter_map(Result::ok).collect())
 }
 
 impl Error {
     /// Where in the declaration the error is.
     pub fn location(&self) -> Location {
         match *self {
-            Error::EmptyBasis | Error::TooManyBasisVectors { .. } | Error::NoResultType { .. } => Location::Algebra,
+            Error::EmptyBasis | Error::TooManyBasisVectors { .. } | Error::NoResultType { .. } | Error::Several(_) => {
+                Location::Algebra
+            }
             Error::DuplicateBasisName { index, .. }
             | Error::InvalidSquare { index, .. }
             | Error::InvalidBasisName { index, .. }

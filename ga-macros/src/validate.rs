@@ -125,6 +125,12 @@ fn feature_list(names: &Punctuated<Ident, Token![,]>) -> syn::Result<Vec<(Featur
 
 /// The compiler's `error` as a `syn::Error` at the tokens of `input` it is about.
 pub fn locate(input: &AlgebraInput, error: &Error) -> syn::Error {
+    if let Error::Several(errors) = error {
+        let mut located = errors.iter().map(|error| locate(input, error));
+        let mut first = located.next().expect("`Several` holds at least two errors");
+        located.for_each(|next| first.combine(next));
+        return first;
+    }
     let message = match error {
         // The fix is in the macro's syntax, which the compiler's message cannot name.
         Error::NoResultType { operation, .. } if listed_operation(input, operation).is_some() => {
@@ -898,5 +904,46 @@ mod tests {
                 .ends_with(", or list only the operations you need in `ops = [...]`, without `geometric`"),
             "{error}"
         );
+    }
+
+    /// Mistakes in different types, expressions or basis vectors are all reported, each at its own tokens,
+    /// whether the macro or the compiler finds them.
+    #[test]
+    fn independent_mistakes_in_different_items_are_reported_together() {
+        let algebra = |items: &str| format!("mod a {{ scalar = f64; basis = [e1 = 1, e2 = 1]; {items} }}");
+        let cases: [(&str, &[&str]); 4] = [
+            (
+                "types { V = blades(e5); W = blades(e6); }",
+                &["unknown blade `e5`", "unknown blade `e6`"],
+            ),
+            (
+                "types { V = grades(1); } fn f(a: X) -> V = a; fn g(a: Y) -> V = a;",
+                &["unknown type `X`", "unknown type `Y`"],
+            ),
+            (
+                "types { V = grades(1); } fn f(a: V) -> V = a; fn f(a: V) -> V = a; fn g(a: V, a: V) -> V = a;",
+                &[
+                    "expression `f` is declared twice",
+                    "parameter `a` of expression `g` is declared twice",
+                ],
+            ),
+            ("types { V = grades(3); W = grades(1, 1); }", &["grade 3", "`grade 1`"]),
+        ];
+        for (items, expected) in cases {
+            let found = messages(&algebra(items));
+            assert_eq!(found.len(), expected.len(), "{found:?}");
+            for (message, part) in found.iter().zip(expected) {
+                assert!(message.contains(part), "{message} should name {part}");
+            }
+        }
+        // Found while emitting: unknown names in two bodies.
+        let input: AlgebraInput = syn::parse_str(&algebra(
+            "ops = [reverse]; types { V = grades(1); } fn f(a: V) -> V = b; fn g(a: V) -> V = c;",
+        ))
+        .unwrap();
+        let errors = crate::expand::expand(&input, &validate(&input).unwrap()).unwrap_err();
+        let found: Vec<String> = errors.into_iter().map(|error| error.to_string()).collect();
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(found[0].contains("`b`") && found[1].contains("`c`"), "{found:?}");
     }
 }
