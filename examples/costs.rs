@@ -31,7 +31,7 @@ fn declared(name: &str, layout: Layout) -> TypeDeclaration {
     }
 }
 
-/// PGA Cl(3,0,1) with e0 first, and the types of the README.
+/// PGA Cl(3,0,1) with e0 first, and the types of the README and docs/compiler.md.
 fn pga() -> AlgebraDeclaration {
     AlgebraDeclaration {
         scalar: ScalarType::F64,

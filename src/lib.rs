@@ -7,3 +7,8 @@
 pub use dynamics;
 pub use ga_codegen;
 pub use ga_macros::algebra;
+
+/// The README's examples, compiled and run by `cargo test --doc` so that the landing page cannot go stale.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeExamples;

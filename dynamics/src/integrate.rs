@@ -50,7 +50,7 @@ pub enum Method {
     /// The body-momentum scheme of [`Method::Rkmk4Body`] on Butcher's 7-stage explicit Runge–Kutta method of
     /// order 6 (J. C. Butcher, 1964), with `dexp⁻¹` truncated after its `ad⁴` term: 7 evaluations per step
     /// instead of 4, for an error that falls as dt⁶. At the accuracy of RK4 at dt = 1e-3 it takes steps
-    /// 5–10× longer (measured on the reference scenes, see the README).
+    /// 5–10× longer (measured on the reference scenes, see docs/dynamics.md).
     Rkmk6Body,
     /// The same scheme on Cooper and Verner's 11-stage explicit method of order 8 (1972), with `dexp⁻¹` truncated
     /// after its `ad⁶` term: 11 evaluations per step for an error that falls as dt⁸, so at tight tolerances

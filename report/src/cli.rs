@@ -80,7 +80,7 @@ pub(crate) struct Options {
     /// Output folder (default: out; with --scene-file, out/STEM for a scene file STEM.toml).
     #[arg(long)]
     pub(crate) output: Option<PathBuf>,
-    /// Run the scene described in this TOML file (README, "Scene files") instead of the sweep: writes its
+    /// Run the scene described in this TOML file (docs/scene-files.md) instead of the sweep: writes its
     /// trajectories (CSV), energy and constraint-violation plots and summary.md.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "duration", "stabilisation"])]
     pub(crate) scene_file: Option<PathBuf>,

@@ -66,7 +66,7 @@ pub(crate) fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
 }
 
 /// The day the single-body figures below entered the code (commit b6f0a06): the day they were measured is not
-/// recorded; the README calls it an earlier day than the mechanisms' 2026-11-25.
+/// recorded; docs/benchmarks.md calls it an earlier day than the mechanisms' 2026-11-25.
 pub(crate) const SINGLE_BODY_RECORDED: &str = "2026-11-22";
 
 /// Where the single-body scenes' MuJoCo figures come from, as far as the repository records it; printed beside
@@ -132,7 +132,7 @@ pub(crate) fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
 
 /// Where the mechanisms' MuJoCo and Pinocchio figures below come from ([`MECHANISMS_DATE`]), printed beside them in
 /// the report. (The
-/// M1 and M2 times are those measured beside the benchmark run the README quotes; other runs the same day gave
+/// M1 and M2 times are those measured beside the benchmark run docs/benchmarks.md quotes; other runs the same day gave
 /// 5.2–6.8 µs and 11.0–15.6 µs per step: the shared machine varies by a third from hour to hour.)
 pub(crate) const MECHANISMS_MEASURED: &str =
     "MuJoCo 4.0 (RK4) and Pinocchio 4.1 measured 2026-11-25 with the reference set's \

@@ -6,7 +6,7 @@
 //! base origin's and orientation's, and the largest energy change. Steps longer than the sample interval take the
 //! samples between steps by partial steps of the method (its own output at those times); their cost is measured on
 //! a run sampled only at its steps, so the partial steps do not count. Runs are repeated for the timing and the
-//! fastest repeat is kept ([`MIN_REPEATS`]), which filters the shared machine's interruptions out of short runs.
+//! fastest repeat is kept (at least 5 repeats), which filters the shared machine's interruptions out of short runs.
 
 use dynamics::integrate::{Integrator, Method};
 use dynamics::joint_integration::JointMethod;
@@ -191,7 +191,7 @@ pub struct RobotOutcome {
     pub base_orientation_error: Option<f64>,
     /// The largest |E − E₀| over the samples (J).
     pub energy_change: f64,
-    /// The robot at [`SNAPSHOT_TIMES`].
+    /// The robot at the snapshot times (0, 0.25, 0.5, 0.75 and 1 s).
     pub figures: Vec<StickFigure>,
 }
 

@@ -1,4 +1,4 @@
-//! Scenes described in a TOML file (README, "Scene files"): bodies with their shape or inertia, initial pose
+//! Scenes described in a TOML file (docs/scene-files.md): bodies with their shape or inertia, initial pose
 //! and velocities and forces, joints to the world or between bodies, a URDF robot, force elements between bodies,
 //! algebra, integrator, step and duration, run without writing Rust (`--scene-file`; the run and its output are in
 //! [`crate::scene_job`]).

@@ -1,11 +1,11 @@
-//! Scene files with a `[robot]`, force elements, drives and the universal and fixed joints (README, "Scene files"):
+//! Scene files with a `[robot]`, force elements, drives and the universal and fixed joints (docs/scene-files.md):
 //!
 //! * the shipped UR5 and Solo-12 files write joints CSVs with the columns of `reference/data/robots/*.csv` that match
 //!   Pinocchio's runs there at every sample (both files read back);
 //! * in the shipped UR5-with-a-paddle file (a robot, an extra body on a driven hinge, a spring-damper, joint damping
 //!   and a PD controller) the energy change equals the recorded work of the force elements and the drive;
-//! * joint coordinates are zero where the README says, drives are followed exactly, joints to robot links sit in the
-//!   links' frames, universal and fixed joints hold;
+//! * joint coordinates are zero where docs/scene-files.md says, drives are followed exactly, joints to robot links
+//!   sit in the links' frames, universal and fixed joints hold;
 //! * every new key with its careless inputs (NaN, zero, negative, huge, wrong length or type, unknown joint or link
 //!   names, a missing file, an empty URDF, a massless moving link with and without the freeze repair) fails with a
 //!   message naming the entry and the value: one row of a table each.
@@ -310,10 +310,10 @@ fn start_coordinates(text: &str) -> Vec<f64> {
     system.mechanism().joint_positions(system.initial(), None).unwrap()
 }
 
-/// Coordinates are zero where the README says: a hinge's angle is the turn about the reference axis after the smallest
-/// rotation taking the body axis onto it (here body z onto world x: a quarter turn about y), a prismatic joint's slide
-/// is along the reference axis from the reference point, a universal joint's angles turn about the reference axis and
-/// then the body axis.
+/// Coordinates are zero where docs/scene-files.md says: a hinge's angle is the turn about the reference axis after the
+/// smallest rotation taking the body axis onto it (here body z onto world x: a quarter turn about y), a prismatic
+/// joint's slide is along the reference axis from the reference point, a universal joint's angles turn about the
+/// reference axis and then the body axis.
 #[test]
 fn joint_coordinates_are_zero_where_documented() {
     let hinge = "kind = \"hinge\"\nbody_point = [0.0, 0.0, 0.0]\nbody_axis = [0.0, 0.0, 2.0]\n\

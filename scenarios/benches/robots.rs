@@ -4,7 +4,7 @@
 //! dt = 1e-3 (largest joint error over the reference's 1 s, at all 100 samples): UR5 by RKMK8-joint at dt = 1/60 s,
 //! 6.5e-10 rad against MuJoCo's 6.8e-10; Solo-12 by RKMK6-joint at dt = 0.01 s, 7.2e-14 rad against MuJoCo's 3.7e-14,
 //! both at the reference's own accuracy (3.4e-14 rad), where neither error means more than round-off. Pinocchio's ABA
-//! and MuJoCo's RK4 are measured beside these with the scripts in `shared/robots/tools` (see the README, "Robots").
+//! and MuJoCo's RK4 are measured beside these with the scripts in `shared/robots/tools` (see docs/robots.md).
 //!
 //! `cargo bench -p scenarios --bench robots [-- FILTER]`
 

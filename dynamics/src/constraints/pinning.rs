@@ -161,7 +161,7 @@ impl<A: Algebra, X: Pinnable<A>> Pin<A, X, X> {
     /// A body path U(t) pinned to a world path V(t) (theory §8).
     ///
     /// A driven pivot: the body's origin pinned to a world point moving along x at 1 m/s (exact derivatives by
-    /// [`moving_point`]). A body carried along with it keeps the pin.
+    /// [`moving_point`](super::paths::moving_point)). A body carried along with it keeps the pin.
     ///
     /// ```
     /// use dynamics::constraints::paths::{moving_point, Fixed};

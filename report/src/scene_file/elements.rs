@@ -1,4 +1,4 @@
-//! Scene files' force elements and drives (README, "Scene files"): `[[spring]]`, `[[couple]]`, `[[joint_torque]]`,
+//! Scene files' force elements and drives (docs/scene-files.md): `[[spring]]`, `[[couple]]`, `[[joint_torque]]`,
 //! `[[joint_damping]]` and `[[pd]]` entries, and a `drive` on a hinge or prismatic `[[joint]]`. Each becomes a
 //! `dynamics` force element or a driven joint model when the system is built ([`super::SceneFile::system`]); the
 //! values are checked here, every message naming the entry and the value.

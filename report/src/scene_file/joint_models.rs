@@ -1,7 +1,7 @@
 //! Scene-file joints as joint models (`dynamics::joints`): the joint frames chosen from a joint's geometry, so that
 //! its coordinates exist and the articulated solve applies, and the joint's rows in the chosen formulation.
 //!
-//! The frames (README, "Scene files"): the joint frame's origin is the reference point in the reference's frame
+//! The frames (docs/scene-files.md): the joint frame's origin is the reference point in the reference's frame
 //! (the world, a body's frame, or a robot link's frame) and the body point in the body's; its axes are the
 //! reference's axes on the reference side, and on the body side those axes turned by the smallest rotation taking
 //! the reference axis (or normal) to the body axis (or normal). So each coordinate is zero when the body is turned

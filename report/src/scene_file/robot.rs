@@ -1,4 +1,4 @@
-//! A scene file's `[robot]` (README, "Scene files"): a URDF robot read by `urdf_import`, built as the first bodies and
+//! A scene file's `[robot]` (docs/scene-files.md): a URDF robot read by `urdf_import`, built as the first bodies and
 //! joints of the scene's mechanism, started at joint positions and velocities by name (and for a floating base its
 //! pose and twist), with the URDF's joint damping as force elements and constant joint torques; its joint
 //! coordinates are written to `<stem>_joints_<algebra>.csv` in the columns of `reference/data/robots/*.csv`.
