@@ -68,3 +68,15 @@ pub fn screw_to_vectors<A: Algebra>(screw: A::Screw) -> (Vector3<f64>, Vector3<f
 pub fn vectors_to_screw<A: Algebra>(l: Vector3<f64>, t: Vector3<f64>) -> A::Screw {
     A::screw(ScrewCoordinates { l, t })
 }
+
+/// `v`'s direction and length, `None` for a zero or non-finite `v`. The length is taken through the largest
+/// coordinate, so that an axis or normal of 1e200 (whose squared norm overflows) still has its direction.
+pub(crate) fn direction_and_length(v: Vector3<f64>) -> Option<(Vector3<f64>, f64)> {
+    let largest = v.amax(); // which skips a NaN coordinate
+    if !(largest > 0.0 && v.iter().all(|x| x.is_finite())) {
+        return None;
+    }
+    let scaled = v / largest;
+    let scaled_length = scaled.norm();
+    Some((scaled / scaled_length, largest * scaled_length))
+}

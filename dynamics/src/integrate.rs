@@ -248,6 +248,20 @@ pub enum StepError {
         /// The start time that was refused.
         t: f64,
     },
+    /// A state given to the step has a motor that is not a rigid motion: its rotor part's squared norm is off 1 by
+    /// more than [`MAX_ROTOR_NORM_ERROR`] (a zero motor, or one written field by field without normalising).
+    #[error(
+        "the state given at t = {t} has a motor that is not a rigid motion (body {body}): its rotor part's squared \
+         norm is {norm_squared:e}, not 1"
+    )]
+    NotARigidMotion {
+        /// The time the step was to start at (s).
+        t: f64,
+        /// The index of the first body whose motor is not rigid.
+        body: usize,
+        /// Its rotor part's squared norm ([`State::rotor_norm_squared`]).
+        norm_squared: f64,
+    },
     /// A state given to the step has a NaN or infinite coordinate, or one beyond [`MAX_COORDINATE`].
     #[error("the state given at t = {t} is not finite or has a coordinate beyond {MAX_COORDINATE:e} (body {body})")]
     NonFiniteInput {
@@ -275,6 +289,37 @@ pub enum StepError {
         turn: f64,
         /// Its angular speed `|ω|` at the start of the step (rad/s).
         angular_speed: f64,
+    },
+    /// A step failed in the constraints (they could not be solved or held together at a stage, or after the
+    /// step) where a shorter step from the same state succeeds: the step is too large for the motion of the
+    /// joints, or for stiff Baumgarte gains. The states are left as they were.
+    #[error(
+        "at t = {t}: the step dt = {dt} is too large for the constraints ({error}); a step of {works:.3e} succeeds"
+    )]
+    ConstraintStepTooLarge {
+        /// The time the refused step started at (s).
+        t: f64,
+        /// The refused step (s).
+        dt: f64,
+        /// What went wrong in the constraints at the refused step.
+        error: ConstraintError,
+        /// The longest of dt/2, dt/4, … that succeeds from the same state (s).
+        works: f64,
+    },
+    /// The step is too long for the Baumgarte feedback: its residuals decay at up to `rate` 1/s, which an explicit
+    /// step longer than [`MAX_FEEDBACK_STEP`]`/rate` amplifies instead of damping (when the step is made).
+    #[error(
+        "at t = {t}: the step dt = {dt} is too large for the Baumgarte feedback, whose residuals decay at up to \
+         {rate:.4e} 1/s; take a step below {limit:.3e} or lower the gains",
+        limit = MAX_FEEDBACK_STEP / rate
+    )]
+    FeedbackStepTooLarge {
+        /// The time the refused step started at (s).
+        t: f64,
+        /// The refused step (s).
+        dt: f64,
+        /// The feedback's fastest rate (1/s).
+        rate: f64,
     },
     /// The step produced a NaN or infinite state: the step is too large for the motion, or a force or path
     /// returned NaN. The states are left as they were before the step.
@@ -470,6 +515,76 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         if let Some(body) = states.iter().position(|state| !state.is_representable()) {
             return Err(StepError::NonFiniteInput { t, body });
         }
+        let rotor_norms = states.iter().map(State::rotor_norm_squared).enumerate();
+        if let Some((body, norm_squared)) = rotor_norms
+            .into_iter()
+            .find(|(_, n)| (n - 1.0).abs() > MAX_ROTOR_NORM_ERROR)
+        {
+            return Err(StepError::NotARigidMotion { t, body, norm_squared });
+        }
+        let rate = self.dynamics.feedback_rate();
+        if dt * rate > MAX_FEEDBACK_STEP && matches!(self.integrator, Integrator::General(_)) {
+            return Err(StepError::FeedbackStepTooLarge { t, dt, rate });
+        }
+        let result = match self.attempt(t, states, dt) {
+            Err(StepError::Constraint { error, .. }) => Err(self.diagnose(t, states, dt, error)),
+            result => result,
+        };
+        if result.is_ok() {
+            states.copy_from_slice(&self.buffers.next);
+            let weights: &[f64] = match self.integrator {
+                Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
+                Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
+                Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
+                Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
+                Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
+                Integrator::Splitting(_) => &[],
+            };
+            self.last_work = dt
+                * weights
+                    .iter()
+                    .zip(&self.buffers.powers)
+                    .map(|(w, p)| w * p)
+                    .sum::<f64>();
+        }
+        result
+    }
+
+    /// Why a step that failed in the constraints failed: a body turning more than [`MAX_TURN_PER_STEP`] in it
+    /// ([`StepError::StepTooLarge`]); else, from a state on the constraints (within
+    /// [`MAX_DRIFT_FOR_STEP_DIAGNOSIS`]) from which a shorter step succeeds, the step's size
+    /// ([`StepError::ConstraintStepTooLarge`], with the longest of dt/2, dt/4, … that does); else the constraints'
+    /// own error.
+    fn diagnose(&mut self, t: f64, states: &[State<A>], dt: f64, error: ConstraintError) -> StepError {
+        let start_slopes: Vec<A::Screw> = (states.iter().enumerate())
+            .map(|(index, state)| state.body_velocity(self.dynamics.body(index)) * (-0.5 * dt))
+            .collect();
+        if let Err(too_large) = check_turn::<A>(&start_slopes, t, dt) {
+            return too_large;
+        }
+        // Off the constraints already, a shorter step only postpones the failure.
+        if self.dynamics.drift(t, states) > MAX_DRIFT_FOR_STEP_DIAGNOSIS {
+            return StepError::Constraint { t, error };
+        }
+        let mut shorter = dt;
+        for _ in 0..MAX_STEP_HALVINGS {
+            shorter *= 0.5;
+            if self.attempt(t, states, shorter).is_ok() {
+                return StepError::ConstraintStepTooLarge {
+                    t,
+                    dt,
+                    error,
+                    works: shorter,
+                };
+            }
+        }
+        StepError::Constraint { t, error }
+    }
+
+    /// One step from `(t, states)` to `t + dt` into `self.buffers.next`, with its checks; `states` are the
+    /// validated start.
+    fn attempt(&mut self, t: f64, states: &[State<A>], dt: f64) -> Result<(), StepError> {
+        let expected = self.dynamics.body_count();
         let dynamics = self.dynamics;
         let workspace = &mut self.workspace;
         let buffers = &mut self.buffers;
@@ -536,22 +651,28 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 Some(body) => Err(StepError::NonFinite { t: t + dt, body }),
                 None => Ok(()),
             });
-        if result.is_ok() {
-            states.copy_from_slice(&next);
-            let weights: &[f64] = match self.integrator {
-                Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
-                Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
-                Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
-                Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
-                Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
-                Integrator::Splitting(_) => &[],
-            };
-            self.last_work = dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>();
-        }
         buffers.next = next;
         result
     }
 }
+
+/// How far from 1 a start motor's rotor norm squared may be ([`StepError::NotARigidMotion`]): every step
+/// renormalises to round-off, so a larger error is a motor the user wrote, not drift.
+pub const MAX_ROTOR_NORM_ERROR: f64 = 1e-6;
+
+/// The largest step, in units of the inverse feedback rate ([`Dynamics::feedback_rate`]), at which the explicit
+/// methods still damp the Baumgarte feedback: RK4's stability region reaches 2.79 on the negative real axis and
+/// 2.83 on the imaginary one, the higher-order tableaux a little further.
+pub const MAX_FEEDBACK_STEP: f64 = 2.5;
+
+/// The largest drift off the constraints ([`Dynamics::drift`], m or rad) at which [`Stepper::step`] still blames a
+/// failed step on its size: projected runs stay within 1e-14 of their constraints, and a state a micrometre off
+/// them fails for its drift, which a shorter step does not remove.
+const MAX_DRIFT_FOR_STEP_DIAGNOSIS: f64 = 1e-6;
+
+/// How many times [`Stepper::step`] halves a step that failed in the constraints to tell whether the step's size
+/// is the cause (2⁻²⁰ ≈ 1e-6 of the step).
+const MAX_STEP_HALVINGS: usize = 20;
 
 /// The weights of the classic fourth-order stages (RK4 and the RKMK4 methods).
 const RK4_WEIGHTS: [f64; 4] = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];

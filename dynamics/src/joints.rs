@@ -19,6 +19,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::paths::{MotorPoint, Path};
 use crate::constraints::virtual_power::normals_to;
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, VirtualPower};
+use crate::convert::direction_and_length;
 use crate::motor;
 
 /// What a joint lets the child do relative to its parent. Axes and normals are in the joint frame; they need not
@@ -180,11 +181,10 @@ fn invalid(name: &str, reason: String) -> ConstraintError {
 }
 
 fn unit_axis(name: &str, what: &str, v: Vector3<f64>) -> Result<Vector3<f64>, ConstraintError> {
-    let norm = v.norm();
-    if !(norm.is_finite() && norm > 0.0 && v.iter().all(|x| x.is_finite())) {
-        return Err(invalid(name, format!("{what} {:?} has no direction", [v.x, v.y, v.z])));
+    match direction_and_length(v) {
+        Some((unit, _)) => Ok(unit),
+        None => Err(invalid(name, format!("{what} {:?} has no direction", [v.x, v.y, v.z]))),
     }
-    Ok(v / norm)
 }
 
 fn check_frame(name: &str, what: &str, frame: &Isometry3<f64>) -> Result<(), ConstraintError> {

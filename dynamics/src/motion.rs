@@ -95,6 +95,19 @@ pub trait Dynamics<A: Algebra> {
     /// Total energy (kinetic + potential), for diagnostics.
     fn energy(&self, states: &[State<A>]) -> f64;
 
+    /// The fastest rate (1/s) at which the system's constraint feedback (Baumgarte) pulls a residual back, which an
+    /// explicit step must resolve ([`crate::StepError::FeedbackStepTooLarge`]); zero (the default) without feedback.
+    fn feedback_rate(&self) -> f64 {
+        0.0
+    }
+
+    /// How far `states` are off the system's constraints: the largest position residual (m or rad), infinite if it
+    /// cannot be evaluated; zero (the default) for a system without constraints. A failed step from a state this far
+    /// off is blamed on the drift, not on the step's size ([`crate::StepError::ConstraintStepTooLarge`]).
+    fn drift(&self, _t: f64, _states: &[State<A>]) -> f64 {
+        0.0
+    }
+
     /// Where the system's joint coordinates are, for the methods that step in them
     /// ([`crate::joint_integration::JointMethod`]); `None` (the default) for a system without them.
     fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {

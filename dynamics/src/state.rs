@@ -55,6 +55,13 @@ impl<A: Algebra> State<A> {
             && momentum.l.iter().chain(momentum.t.iter()).all(within)
     }
 
+    /// The squared norm of the motor's rotor part, `s² + |a|²` (scalar and rotation bivectors): 1 for a rigid
+    /// motion; a zero or scaled motor (a state written field by field) is none.
+    pub fn rotor_norm_squared(&self) -> f64 {
+        let motor = A::motor_coordinates(self.motor);
+        motor.scalar * motor.scalar + motor.l.norm_squared()
+    }
+
     /// The state of a body at `position` (its centre of mass) with orientation `rotation`, moving
     /// with body-frame angular velocity `angular_body` and centre-of-mass velocity `linear_world`: the mixed
     /// frames of the reference scenes' files. [`State::from_body_twist`] and [`State::from_world_twist`] take

@@ -390,3 +390,115 @@ fn careless_solver_settings_are_refused() {
         })
         .is_ok());
 }
+
+/// An axis or normal is a direction: any finite nonzero length gives the same joint, 1e200 (whose squared norm
+/// overflows) and 1e-200 (whose squared norm underflows) included, in every constructor that takes one; zero, NaN
+/// and infinite lengths are refused naming the joint.
+#[test]
+fn axes_of_any_finite_length_are_directions() {
+    use dynamics::{JointKind, JointModel, Method, Schedule};
+    use nalgebra::Isometry3;
+    type Build = fn(Vector3<f64>) -> Result<Arc<dyn Constraint<Pga>>, ConstraintError>;
+    fn point() -> Vector3<f64> {
+        Vector3::new(0.0, 0.0, 0.5) // the arm's top end, at the world origin
+    }
+    let builders: [(&str, Build); 5] = [
+        ("virtual power hinge", |axis| {
+            Ok(Arc::new(VirtualPower::hinge(
+                "pivot",
+                (point(), axis),
+                (Vector3::zeros(), axis),
+            )?))
+        }),
+        ("pinned hinge", |axis| {
+            Ok(Arc::new(pinning::hinge::<Pga>(
+                "pivot",
+                (point(), axis),
+                (Vector3::zeros(), axis),
+            )?))
+        }),
+        ("pinned plane", |normal| {
+            Ok(Arc::new(pinning::plane::<Pga>("pivot", (normal, 0.0), (normal, 0.0))?))
+        }),
+        ("virtual power prismatic", |axis| {
+            Ok(Arc::new(VirtualPower::prismatic(
+                "pivot",
+                (point(), axis, Vector3::y()),
+                (Vector3::zeros(), axis, Vector3::y()),
+            )?))
+        }),
+        ("revolute joint model", |axis| {
+            let model = JointModel::new(
+                "pivot",
+                JointKind::Revolute { axis },
+                Isometry3::identity(),
+                Isometry3::identity(),
+            )?;
+            Ok(model.virtual_power::<Pga>()?.expect("a revolute joint constrains"))
+        }),
+    ];
+    let start = State::<Pga>::new(
+        &body(),
+        Vector3::new(0.0, 0.0, -0.5),
+        &UnitQuaternion::identity(),
+        Vector3::new(0.7, 0.0, 0.0),
+        Vector3::new(0.0, 0.35, 0.0),
+    );
+    let run = |constraint: Arc<dyn Constraint<Pga>>| {
+        let mut mechanism = Mechanism::<Pga>::new();
+        let arm = mechanism.add_body("arm", body()).unwrap();
+        mechanism.add_force(arm, dynamics::Force::gravity()).unwrap();
+        mechanism.add_joint(arm, Reference::World, constraint).unwrap();
+        let run = dynamics::simulate(&mechanism, &[start], Method::Rk4, &Schedule::new(1e-3, 0.01).unwrap()).unwrap();
+        *run.body(0).last().unwrap()
+    };
+    for (label, build) in builders {
+        let unit = run(build(Vector3::x()).unwrap());
+        for length in [1e200, 1e-200, 3.0] {
+            let end = run(build(Vector3::x() * length).unwrap_or_else(|error| panic!("{label} at {length}: {error}")));
+            assert_eq!(end, unit, "{label} at {length}");
+        }
+        for bad in [
+            Vector3::zeros(),
+            Vector3::new(f64::NAN, 0.0, 0.0),
+            Vector3::new(f64::INFINITY, 0.0, 0.0),
+        ] {
+            let error = build(bad).err().unwrap_or_else(|| panic!("{label} accepted {bad:?}"));
+            assert!(error.to_string().contains("pivot"), "{label}: {error}");
+        }
+    }
+}
+
+/// A state written field by field whose motor is not a rigid motion (zero, or twice a unit motor) is refused before
+/// the step, naming the body and the norm, by the stepper and by `simulate` (a zero motor was once blamed on the
+/// step size).
+#[test]
+fn a_motor_that_is_not_a_rigid_motion_is_refused() {
+    use dynamics::{MotorCoordinates, StepError};
+    let mechanism = Mechanism::<Pga>::single(body());
+    let unit = State::<Pga>::new(
+        &body(),
+        Vector3::new(1.0, 2.0, 3.0),
+        &UnitQuaternion::identity(),
+        Vector3::new(0.1, 0.0, 0.0),
+        Vector3::zeros(),
+    );
+    let coordinates = Pga::motor_coordinates(unit.motor);
+    for (scale, norm_squared) in [(0.0, 0.0), (2.0, 4.0), (1.0 + 1e-3, (1.0f64 + 1e-3).powi(2))] {
+        let motor = Pga::motor(MotorCoordinates {
+            scalar: coordinates.scalar * scale,
+            l: coordinates.l * scale,
+            t: coordinates.t * scale,
+            pseudoscalar: coordinates.pseudoscalar * scale,
+        });
+        let mut states = [State { motor, ..unit }];
+        let error = dynamics::Stepper::new(&mechanism, dynamics::Method::Rkmk6Body)
+            .unwrap()
+            .step(0.0, &mut states, 1e-3)
+            .unwrap_err();
+        assert_eq!(error, StepError::NotARigidMotion { t: 0.0, body: 0, norm_squared }, "{error}");
+        let schedule = dynamics::Schedule::new(1e-3, 0.01).unwrap();
+        let error = dynamics::simulate(&mechanism, &states, dynamics::Method::Rk4, &schedule).unwrap_err();
+        assert!(error.to_string().contains("not a rigid motion"), "{error}");
+    }
+}

@@ -261,7 +261,12 @@ fn bad_files_fail_with_clear_messages() {
         (
             "dt = 1e-3",
             "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = -1.0, beta = 20.0 }",
-            &["Baumgarte gains must be finite and non-negative"],
+            &["Baumgarte gains must be non-negative and at most 1e6"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 10.0, beta = 1e300 }",
+            &["Baumgarte gains must be non-negative and at most 1e6", "β = 1e300"],
         ),
         (
             "dt = 1e-3",
@@ -284,7 +289,7 @@ fn bad_files_fail_with_clear_messages() {
         (
             "dt = 1e-3",
             "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = nan, beta = 2.0 }",
-            &["Baumgarte gains must be finite and non-negative"],
+            &["Baumgarte gains must be non-negative and at most 1e6"],
         ),
         (
             "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
@@ -824,4 +829,35 @@ fn the_sample_cap_counts_every_body() {
         error.contains("100001 samples") && error.contains("of 16 bodies"),
         "{error}"
     );
+}
+
+/// A step too large for the motion is named as such, with a step that works, never blamed on a joint ("rank
+/// deficient", "cannot hold together"): the slider scene of every joint kind at dt = 0.1 and 0.3 (its own step is
+/// 1e-3).
+#[test]
+fn a_step_too_large_for_a_scene_names_the_step() {
+    let mut constraint_step_refusals = 0;
+    for joint in SLIDER_JOINTS {
+        for dt in ["0.1", "0.3"] {
+            let source = slider_scene(joint, "virtual_power", "pga")
+                .replace("dt = 1e-3", &format!("dt = {dt}"))
+                .replace(
+                    "duration = 0.2",
+                    &format!("duration = 3.0\nsample_interval = {dt}\nstabilisation = \"projection\""),
+                );
+            let scene = SceneFile::parse(&source).unwrap();
+            if let Err(error) = scene.simulate::<Pga>() {
+                let message = error.to_string();
+                let names_the_step = message.contains(&format!("the step dt = {dt} is too large for the constraints"))
+                    || message.contains(&format!("rad in the step dt = {dt}"));
+                assert!(
+                    names_the_step && message.contains("succeeds") != message.contains("take a step below"),
+                    "{message}"
+                );
+                constraint_step_refusals += usize::from(message.contains("succeeds"));
+            }
+        }
+    }
+    // Measured: the point on a line at both steps and the point on a plane at 0.3 (5 of 14 runs fail by turning).
+    assert!(constraint_step_refusals >= 3, "{constraint_step_refusals}");
 }

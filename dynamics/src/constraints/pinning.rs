@@ -24,7 +24,9 @@ use crate::constraints::kinematics::Kinematics;
 use crate::constraints::objects::{cga_circle, cga_sphere, Coefficients, Pinnable, PinningAlgebra};
 use crate::constraints::paths::{CarriedPath, Fixed, MotorPath, Path, TranslatedPath};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
+use crate::constraints::virtual_power::unit;
 use crate::constraints::{Composite, Constraint, ConstraintError};
+use crate::convert::direction_and_length;
 
 /// A linear map from X to Y, fixed in the body frame. Linearity is the caller's promise: the rows apply
 /// it to each term of theory §9's equation separately.
@@ -436,20 +438,14 @@ pub fn plane<A: PinningAlgebra>(
     (world_normal, world_offset): (Vector3<f64>, f64),
 ) -> Result<Pin<A, A::PlaneObject>, ConstraintError> {
     let name = name.into();
-    let unit = |side: &str, normal: Vector3<f64>, offset: f64| {
-        // The length through the largest coordinate, so that a normal of 1e200 does not overflow its square.
-        let largest = normal.amax();
-        let length = largest * (normal / largest).norm();
-        if largest.is_finite() && largest > 0.0 && offset.is_finite() {
-            Ok((normal / length, offset / length))
-        } else {
-            Err(ConstraintError::InvalidParameter {
-                name: name.clone(),
-                reason: format!(
-                    "the {side} plane needs a finite nonzero normal and a finite offset, got {normal:?} and {offset:?}"
-                ),
-            })
-        }
+    let unit = |side: &str, normal: Vector3<f64>, offset: f64| match direction_and_length(normal) {
+        Some((unit, length)) if offset.is_finite() => Ok((unit, offset / length)),
+        _ => Err(ConstraintError::InvalidParameter {
+            name: name.clone(),
+            reason: format!(
+                "the {side} plane needs a finite nonzero normal and a finite offset, got {normal:?} and {offset:?}"
+            ),
+        }),
     };
     let (body_normal, body_offset) = unit("body", body_normal, body_offset)?;
     let (world_normal, world_offset) = unit("world", world_normal, world_offset)?;
@@ -498,14 +494,10 @@ pub fn hinge<A: PinningAlgebra>(
     (world_point, world_axis): (Vector3<f64>, Vector3<f64>),
 ) -> Result<Composite<A>, ConstraintError> {
     let name = name.into();
-    let unit = |axis: Vector3<f64>| {
-        axis.try_normalize(0.0)
-            .ok_or_else(|| ConstraintError::InvalidParameter {
-                name: name.clone(),
-                reason: format!("hinge axis {axis:?} has no direction"),
-            })
-    };
-    let (body_axis, world_axis) = (unit(body_axis)?, unit(world_axis)?);
+    let (body_axis, world_axis) = (
+        unit(&name, "hinge axis", body_axis)?,
+        unit(&name, "hinge axis", world_axis)?,
+    );
     let parts: Vec<Arc<dyn Constraint<A>>> = vec![
         Arc::new(line::<A>(
             format!("{name}: line"),
@@ -556,14 +548,7 @@ pub fn prismatic<A: PinningAlgebra>(
     (world_point, world_axis, world_normal): (Vector3<f64>, Vector3<f64>, Vector3<f64>),
 ) -> Result<Composite<A>, ConstraintError> {
     let name = name.into();
-    let unit = |what: &str, v: Vector3<f64>| {
-        v.try_normalize(0.0)
-            .filter(|u| u.iter().all(|c| c.is_finite()))
-            .ok_or_else(|| ConstraintError::InvalidParameter {
-                name: name.clone(),
-                reason: format!("{what} {v:?} has no direction"),
-            })
-    };
+    let unit = |what: &str, v: Vector3<f64>| unit(&name, what, v);
     let (body_axis, world_axis) = (unit("body axis", body_axis)?, unit("world axis", world_axis)?);
     let body_normal = unit("body normal", body_normal - body_axis * body_axis.dot(&body_normal))?;
     let world_normal = unit(

@@ -34,6 +34,10 @@ pub enum Stabilisation {
     },
 }
 
+/// The largest Baumgarte gain α or β accepted (1/s): the feedback's rates reach about the gain, which an explicit
+/// method follows only with steps below about 1/gain (here 1 µs); stiffer gains are a wrong unit or a typo.
+pub const MAX_BAUMGARTE_GAIN: f64 = 1e6;
+
 impl Stabilisation {
     /// Projection with the 2 Gauss–Newton steps of theory §10.
     pub const PROJECTION: Stabilisation = Stabilisation::Projection { position_iterations: 2 };
@@ -42,13 +46,24 @@ impl Stabilisation {
     pub(crate) fn invalid_reason(&self) -> Option<String> {
         match *self {
             Stabilisation::Baumgarte { alpha, beta }
-                if !(alpha.is_finite() && beta.is_finite() && alpha >= 0.0 && beta >= 0.0) =>
+                if !((0.0..=MAX_BAUMGARTE_GAIN).contains(&alpha) && (0.0..=MAX_BAUMGARTE_GAIN).contains(&beta)) =>
             {
                 Some(format!(
-                    "Baumgarte gains must be finite and non-negative, got α = {alpha}, β = {beta}"
+                    "Baumgarte gains must be non-negative and at most {MAX_BAUMGARTE_GAIN:e} 1/s, got α = {alpha:?}, \
+                     β = {beta:?}: gains of g 1/s need steps below about 1/g s with these explicit methods"
                 ))
             }
             _ => None,
+        }
+    }
+
+    /// The fastest rate (1/s) of the Baumgarte feedback: the largest |s| of `s² + 2α s + β² = 0`, the residual's
+    /// own equation `ë + 2α ė + β² e = 0`; zero without feedback.
+    pub fn feedback_rate(&self) -> f64 {
+        match *self {
+            Stabilisation::Baumgarte { alpha, beta } if alpha >= beta => alpha + (alpha * alpha - beta * beta).sqrt(),
+            Stabilisation::Baumgarte { beta, .. } => beta,
+            _ => 0.0,
         }
     }
 

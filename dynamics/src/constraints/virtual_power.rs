@@ -31,6 +31,7 @@ use crate::constraints::kinematics::Kinematics;
 use crate::constraints::paths::{Fixed, MotorPath, MotorPoint, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
+use crate::convert::direction_and_length;
 use crate::exponential::log;
 use crate::forces::{couple, force_line};
 
@@ -169,9 +170,10 @@ impl<A: Algebra> std::fmt::Debug for VirtualPower<A> {
     }
 }
 
-fn unit(name: &str, what: &str, v: Vector3<f64>) -> Result<Vector3<f64>, ConstraintError> {
-    v.try_normalize(0.0)
-        .filter(|u| u.iter().all(|c| c.is_finite()))
+/// `v`'s direction, or an error naming the constraint `name` and `what` `v` is.
+pub(crate) fn unit(name: &str, what: &str, v: Vector3<f64>) -> Result<Vector3<f64>, ConstraintError> {
+    direction_and_length(v)
+        .map(|(unit, _)| unit)
         .ok_or_else(|| ConstraintError::InvalidParameter {
             name: name.to_owned(),
             reason: format!("{what} {v:?} has no direction"),

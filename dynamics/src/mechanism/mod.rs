@@ -1709,6 +1709,14 @@ fn add(total: &mut [f64; 6], y: &[f64; 6]) {
 impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     type Workspace = MechanismWorkspace<A>;
 
+    fn feedback_rate(&self) -> f64 {
+        self.stabilisation.feedback_rate()
+    }
+
+    fn drift(&self, t: f64, states: &[State<A>]) -> f64 {
+        self.violation(t, states).map_or(f64::INFINITY, |violation| violation.position)
+    }
+
     fn workspace(&self) -> MechanismWorkspace<A> {
         self.new_workspace()
     }
