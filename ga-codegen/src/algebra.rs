@@ -6,10 +6,11 @@ use crate::declaration::{AlgebraDeclaration, Layout, Lowering, ScalarType};
 use crate::error::{collect, Error, NameProblem};
 use crate::expression::ExpressionDeclaration;
 use crate::metric::Metric;
+use crate::naming::{map_builder_name, map_type_name, snake_case, trait_name};
 use crate::operation::Operation;
 
-/// At most this many basis vectors: blades are `u32` masks.
-pub const MAX_DIMENSION: usize = 32;
+// Also here, with the other limits a declaration is checked against (`ga-macros` documents them together).
+pub use crate::blade::MAX_DIMENSION;
 
 /// `Multivector = all` is refused above this dimension: its products would have 4ⁿ terms.
 pub const MAX_FULL_MULTIVECTOR_DIMENSION: usize = 10;
@@ -402,15 +403,15 @@ fn check_expressions(algebra: &Algebra) -> Result<(), Error> {
                 name,
                 taken,
             };
-            let map = expression.map_type_name();
+            let map = map_type_name(&expression.name);
             if algebra.type_named(&map).is_some() {
                 return Err(clash(map, "is a declared type".to_string()));
             }
             let mut earlier_maps = algebra.expressions[..index].iter().filter(|e| e.linear.is_some());
-            if let Some(other) = earlier_maps.find(|e| e.map_type_name() == map) {
+            if let Some(other) = earlier_maps.find(|e| map_type_name(&e.name) == map) {
                 return Err(clash(map, format!("is the type of the linear map of `{}`", other.name)));
             }
-            let builder = format!("{name}_map");
+            let builder = map_builder_name(name);
             if let Some(other) = algebra.expressions.iter().find(|e| e.name == builder) {
                 return Err(clash(builder, format!("is the expression `{}`", other.name)));
             }
@@ -525,7 +526,7 @@ fn check_type_name(declaration: &AlgebraDeclaration, operations: &[Operation], i
         });
     }
     let binary = operations.iter().copied().filter(|op| op.is_binary());
-    let clash = if let Some(operation) = binary.clone().find(|&op| crate::emit::trait_name(op) == *name) {
+    let clash = if let Some(operation) = binary.clone().find(|&op| trait_name(op) == *name) {
         Some(format!(
             "the trait `{name}` the module defines for the `{}` operation",
             operation.name()
@@ -549,10 +550,10 @@ fn check_type_name(declaration: &AlgebraDeclaration, operations: &[Operation], i
         });
     }
     if let Some(operation) = binary.clone().next() {
-        let method_suffix = crate::emit::snake_case(name);
+        let method_suffix = snake_case(name);
         if let Some(other) = earlier
             .iter()
-            .find(|earlier| crate::emit::snake_case(&earlier.name) == method_suffix)
+            .find(|earlier| snake_case(&earlier.name) == method_suffix)
         {
             return Err(Error::TypeMethodCollision {
                 index,

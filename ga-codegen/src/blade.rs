@@ -6,6 +6,9 @@
 /// A basis blade: bit `i` set means basis vector `i` is a factor.
 pub type BladeMask = u32;
 
+/// At most this many basis vectors: blades are `u32` masks.
+pub const MAX_DIMENSION: usize = 32;
+
 /// The grade (number of vector factors) of a blade.
 pub fn grade(blade: BladeMask) -> u32 {
     blade.count_ones()

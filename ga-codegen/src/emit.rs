@@ -20,6 +20,7 @@ use crate::expand::{Operand, Variable};
 use crate::expression::ExpressionDeclaration;
 use crate::functions::{self, Code, Finish, Function, Output};
 use crate::fuse::{self, Fused, LinearMap};
+use crate::naming::{const_method_name, map_builder_name, map_type_name, trait_name};
 use crate::operation::Operation;
 use crate::product::reverse_sign;
 use crate::program::{Definition, Program, Term, Value};
@@ -111,22 +112,6 @@ pub fn binary_function(algebra: &Algebra, function: &Function) -> TokenStream {
     .binary_impl(function)
 }
 
-/// `PlaneSet` → `plane_set` (`Ω` → `ω`): the suffix of the `const fn` form of a binary operation.
-pub(crate) fn snake_case(name: &str) -> String {
-    let mut out = String::with_capacity(name.len() + 4);
-    for (i, c) in name.chars().enumerate() {
-        if c.is_uppercase() {
-            if i > 0 {
-                out.push('_');
-            }
-            out.extend(c.to_lowercase());
-        } else {
-            out.push(c);
-        }
-    }
-    out
-}
-
 fn blades(ty: &SparseType) -> Vec<u32> {
     ty.fields.iter().map(|f| f.blade).collect()
 }
@@ -138,21 +123,6 @@ fn field_ident(ty: &SparseType, index: usize) -> Ident {
 /// The trait of a binary operation.
 fn trait_ident(operation: Operation) -> Ident {
     format_ident!("{}", trait_name(operation))
-}
-
-/// The name of a binary operation's trait (`left_contraction` → `LeftContraction`).
-pub(crate) fn trait_name(operation: Operation) -> String {
-    operation
-        .name()
-        .split('_')
-        .map(|word| {
-            let mut chars = word.chars();
-            chars
-                .next()
-                .map(|c| c.to_ascii_uppercase().to_string() + chars.as_str())
-                .unwrap_or_default()
-        })
-        .collect()
 }
 
 fn operation_doc(operation: Operation) -> &'static str {
@@ -1230,8 +1200,8 @@ impl Emitter<'_> {
         let fused = &map.fused;
         let scalar = &self.scalar;
         let (rows, columns) = map.shape;
-        let map_type = format_ident!("{}", declared.map_type_name());
-        let builder = format_ident!("{}_map", declared.name);
+        let map_type = format_ident!("{}", map_type_name(&declared.name));
+        let builder = format_ident!("{}", map_builder_name(&declared.name));
         let linear = &declared.parameters[map.linear];
         let linear_ident = format_ident!("{}", linear.name);
         let linear_type = self.output_type(fused.parameters[map.linear]);
@@ -1391,9 +1361,8 @@ impl Emitter<'_> {
             }
         });
         let const_method = format_ident!(
-            "{}_{}",
-            operation.name(),
-            snake_case(&self.algebra.types[function.rhs.expect("binary")].name)
+            "{}",
+            const_method_name(operation, &self.algebra.types[function.rhs.expect("binary")].name)
         );
         let forward_doc = format!("Forwards to the `const fn` [`{lhs}::{const_method}`].");
         quote! {

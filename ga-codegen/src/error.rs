@@ -64,7 +64,7 @@ pub enum Error {
     TooManyBasisVectors {
         /// How many basis vectors were declared.
         count: usize,
-        /// The limit, [`MAX_DIMENSION`](crate::algebra::MAX_DIMENSION).
+        /// The limit, [`MAX_DIMENSION`](crate::blade::MAX_DIMENSION).
         max: usize,
     },
     #[error("basis vector `{name}` is declared twice")]

@@ -28,26 +28,6 @@ pub struct ExpressionDeclaration {
     pub doc: Option<String>,
 }
 
-impl ExpressionDeclaration {
-    /// The name of the type of its linear map: `moved_line` → `MovedLineMap`.
-    pub fn map_type_name(&self) -> String {
-        let mut name: String = self
-            .name
-            .split('_')
-            .filter(|part| !part.is_empty())
-            .map(|part| {
-                let mut chars = part.chars();
-                chars
-                    .next()
-                    .map(|c| c.to_uppercase().chain(chars).collect::<String>())
-                    .unwrap_or_default()
-            })
-            .collect();
-        name.push_str("Map");
-        name
-    }
-}
-
 /// `name: Type`: a declared type's name, or the scalar type's (`t: f64`, a scalar on the blade `1`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Parameter {
@@ -167,6 +147,55 @@ pub fn operator(operation: Operation) -> Option<&'static str> {
         Operation::Outer => Some("^"),
         Operation::Regressive => Some("&"),
         Operation::LeftContraction => Some("|"),
+        _ => None,
+    }
+}
+
+/// The functions generated in closed form ([`crate::transcendental`]), which an [`ExpressionKind::Call`] may name
+/// besides the declared expressions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Function {
+    /// `exp(b)` of a bivector.
+    Exp,
+    /// `log(m)` of a unit even element.
+    Log,
+    /// `sqrt(m)` of a unit even element.
+    Sqrt,
+    /// `normalized(m)`: `m` scaled so that `m ~m = 1`.
+    Normalized,
+}
+
+impl Function {
+    /// All of them.
+    pub const ALL: [Function; 4] = [Function::Exp, Function::Log, Function::Sqrt, Function::Normalized];
+
+    /// The name used in expressions.
+    pub fn name(self) -> &'static str {
+        match self {
+            Function::Exp => "exp",
+            Function::Log => "log",
+            Function::Sqrt => "sqrt",
+            Function::Normalized => "normalized",
+        }
+    }
+
+    /// The function called `name`, if any.
+    ///
+    /// ```
+    /// use ga_codegen::expression::Function;
+    ///
+    /// assert_eq!(Function::named("exp"), Some(Function::Exp));
+    /// assert_eq!(Function::named("sin"), None);
+    /// ```
+    pub fn named(name: &str) -> Option<Function> {
+        Function::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The function an expression's whole body calls, if its body is a call of one of [`Function::ALL`].
+pub fn called(declared: &ExpressionDeclaration) -> Option<Function> {
+    match &declared.body.kind {
+        ExpressionKind::Call(name, _) => Function::named(name),
         _ => None,
     }
 }

@@ -380,7 +380,6 @@ pub fn mint(ty: &SparseType, scalar: &Ident, mapping: &MintMapping) -> TokenStre
 mod tests {
     use super::*;
     use crate::declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, ScalarType, TypeDeclaration};
-    use crate::operation::Operation;
 
     fn algebra(basis: &[(&str, i64)], types: &[(&str, Layout)]) -> Algebra {
         Algebra::new(&AlgebraDeclaration {
@@ -506,36 +505,5 @@ mod tests {
         );
         assert_eq!(example(&vga.types[0]), "1 - 2*e12");
         assert_eq!(example(&vga.types[1]), "1*e1 - 2*e2");
-    }
-
-    #[test]
-    fn features_only_add_items() {
-        let declaration = AlgebraDeclaration {
-            scalar: ScalarType::F64,
-            basis: [("e1", 1), ("e2", 1)]
-                .map(|(name, square)| BasisVectorDeclaration {
-                    name: name.to_string(),
-                    square,
-                })
-                .to_vec(),
-            metric: None,
-            types: vec![TypeDeclaration {
-                name: "Vector".to_string(),
-                layout: Layout::Grades(vec![1]),
-            }],
-            operations: Some(vec![Operation::Reverse]),
-            lowering: vec![],
-            expressions: vec![],
-        };
-        let plain = crate::generate(&declaration).unwrap().to_string();
-        assert_eq!(
-            crate::generate_with_features(&declaration, &[]).unwrap().to_string(),
-            plain
-        );
-        let featured = crate::generate_with_features(&declaration, &Feature::ALL)
-            .unwrap()
-            .to_string();
-        assert!(featured.starts_with(&plain) && featured.len() > plain.len());
-        assert!(featured.contains(":: mint :: Vector2"), "{featured}");
     }
 }

@@ -34,13 +34,12 @@ use crate::algebra::Algebra;
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
 use crate::expand::{Operand, Variable};
-use crate::expression::{Expression, ExpressionDeclaration, ExpressionKind};
+use crate::expression::{called, Expression, ExpressionDeclaration, ExpressionKind, Function};
 use crate::functions::Output;
 use crate::operation::Operation;
 use crate::product::{Combination, Rules};
 use crate::program::{self, Builder, Cost, Program, Term, Value};
 use crate::table::MAX_UNROLLED_TERMS;
-use crate::transcendental::Function;
 
 /// A fused expression: its parameters' types, its result, and the program computing the result's blades.
 #[derive(Clone, Debug)]
@@ -375,7 +374,7 @@ impl Expander<'_> {
             });
         }
         let declared = &expressions[callee];
-        if let Some(function) = crate::transcendental::called(declared) {
+        if let Some(function) = called(declared) {
             return Err(not_polynomial(
                 function,
                 format!("`{name}` is not a polynomial, so it cannot be called inside a formula; call it from Rust"),
@@ -606,7 +605,7 @@ fn expand(algebra: &Algebra, index: usize) -> Result<Expanded, Error> {
 /// past the term limit.
 pub fn fuse(algebra: &Algebra, index: usize) -> Result<Fused, Error> {
     let declared = &algebra.expressions[index];
-    if let Some(function) = crate::transcendental::called(declared) {
+    if let Some(function) = called(declared) {
         return Err(Error::TranscendentalUse {
             index,
             node: declared.body.id,

@@ -52,6 +52,8 @@
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
 //!
+//! Each module refers only to modules before it in the pipeline (`tests/module_order.rs` lists the order, checks it).
+//!
 //! Most users call it through the `algebra!` macro of `ga-macros`; [`generate`] is the library entry.
 
 #![deny(missing_docs)]
@@ -67,6 +69,7 @@ pub mod features;
 pub mod functions;
 pub mod fuse;
 pub mod metric;
+mod naming;
 pub mod operation;
 pub mod product;
 pub mod program;
@@ -105,4 +108,35 @@ pub fn generate_with_features(
 /// Formats emitted tokens as readable Rust source (prettyplease), e.g. to inspect or snapshot them.
 pub fn pretty(tokens: &proc_macro2::TokenStream) -> Result<String, syn::Error> {
     Ok(prettyplease::unparse(&syn::parse2::<syn::File>(tokens.clone())?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn features_only_add_items() {
+        let declaration = AlgebraDeclaration {
+            scalar: ScalarType::F64,
+            basis: [("e1", 1), ("e2", 1)]
+                .map(|(name, square)| BasisVectorDeclaration {
+                    name: name.to_string(),
+                    square,
+                })
+                .to_vec(),
+            metric: None,
+            types: vec![TypeDeclaration {
+                name: "Vector".to_string(),
+                layout: Layout::Grades(vec![1]),
+            }],
+            operations: Some(vec![Operation::Reverse]),
+            lowering: vec![],
+            expressions: vec![],
+        };
+        let plain = generate(&declaration).unwrap().to_string();
+        assert_eq!(generate_with_features(&declaration, &[]).unwrap().to_string(), plain);
+        let featured = generate_with_features(&declaration, &Feature::ALL).unwrap().to_string();
+        assert!(featured.starts_with(&plain) && featured.len() > plain.len());
+        assert!(featured.contains(":: mint :: Vector2"), "{featured}");
+    }
 }

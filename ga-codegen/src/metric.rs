@@ -7,8 +7,7 @@
 use num_rational::Rational64;
 use num_traits::{Signed, ToPrimitive, Zero};
 
-use crate::algebra::MAX_DIMENSION;
-use crate::blade::BladeMask;
+use crate::blade::{BladeMask, MAX_DIMENSION};
 use crate::error::Error;
 
 /// The largest coefficient magnitude a metric may produce (see [`Metric::from_matrix`]). The compiler

@@ -76,7 +76,7 @@ use num_traits::One;
 use crate::algebra::Algebra;
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
-use crate::expression::{ExpressionDeclaration, ExpressionKind};
+use crate::expression::ExpressionKind;
 use crate::fuse::{
     accumulate, blades_and_signs, lower_parameters, result_type, value_type, Expander, Fused, Polynomial, Symbolic,
 };
@@ -84,53 +84,8 @@ use crate::operation::Operation;
 use crate::product::Rules;
 use crate::program::{sum_cost, Cost, Term};
 
-/// The functions generated in closed form.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Function {
-    /// `exp(b)` of a bivector.
-    Exp,
-    /// `log(m)` of a unit even element.
-    Log,
-    /// `sqrt(m)` of a unit even element.
-    Sqrt,
-    /// `normalized(m)`: `m` scaled so that `m ~m = 1`.
-    Normalized,
-}
-
-impl Function {
-    /// All of them.
-    pub const ALL: [Function; 4] = [Function::Exp, Function::Log, Function::Sqrt, Function::Normalized];
-
-    /// The name used in expressions.
-    pub fn name(self) -> &'static str {
-        match self {
-            Function::Exp => "exp",
-            Function::Log => "log",
-            Function::Sqrt => "sqrt",
-            Function::Normalized => "normalized",
-        }
-    }
-
-    /// The function called `name`, if any.
-    ///
-    /// ```
-    /// use ga_codegen::transcendental::Function;
-    ///
-    /// assert_eq!(Function::named("exp"), Some(Function::Exp));
-    /// assert_eq!(Function::named("sin"), None);
-    /// ```
-    pub fn named(name: &str) -> Option<Function> {
-        Function::ALL.into_iter().find(|f| f.name() == name)
-    }
-}
-
-/// The function an expression's whole body calls, if its body is a call of one of [`Function::ALL`].
-pub fn called(declared: &ExpressionDeclaration) -> Option<Function> {
-    match &declared.body.kind {
-        ExpressionKind::Call(name, _) => Function::named(name),
-        _ => None,
-    }
-}
+// Public here too: this module generates them (they are defined with the syntax that names them).
+pub use crate::expression::{called, Function};
 
 /// A generated closed form: the polynomial pieces of its argument, lowered together.
 #[derive(Clone, Debug)]
