@@ -26,7 +26,7 @@ fn nonsensical_flags_are_refused_with_a_message() {
         (&["--duration", "1e308"], &["--duration", "at most 1000"]),
         (
             &["--duration", "0.015"],
-            &["--duration 0.015", "does not divide the duration"],
+            &["--duration 0.015", "a whole number of 0.01 s"],
         ),
         (
             &["--duration", "20"],

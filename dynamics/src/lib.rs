@@ -63,7 +63,8 @@ pub use integrate::{Integrator, KineticSplitting, Method, SplittingMethod, StepE
 pub use joint_integration::JointMethod;
 pub use joints::{JointKind, JointModel};
 pub use mechanism::{
-    BodyId, CoordinateGroup, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings, Violation,
+    BodyId, CoordinateGroup, Correction, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings,
+    Violation,
 };
 pub use motion::{BodyRates, Dynamics, FreeBody, FreeBodyWorkspace, Rates};
 pub use pga::Pga;

@@ -58,14 +58,6 @@ pub enum SimulationError {
         /// The sample interval (s).
         interval: f64,
     },
-    /// The duration is not a whole number of sample intervals (to a relative 1e-9).
-    #[error("the sample interval {interval} does not divide the duration {duration} into whole samples")]
-    IntervalDoesNotDivideDuration {
-        /// The sample interval (s).
-        interval: f64,
-        /// The duration that was refused (s).
-        duration: f64,
-    },
     /// The schedule would record more than [`MAX_SAMPLES`] samples, or count more steps than are exact in `f64`
     /// or fit in a `usize`.
     #[error(
@@ -102,6 +94,10 @@ pub enum SimulationError {
         /// The refused time (s).
         time: f64,
     },
+    /// A schedule's start time is not finite, or so large that f64 times near it do not resolve the step to a
+    /// millionth of it.
+    #[error("the start time must be finite and small enough for the clock to resolve the step to 1e-6 of it, got {0}")]
+    StartTime(f64),
     /// A step failed (a reaction that could not be solved names its joints), or the integrator does not apply.
     #[error(transparent)]
     Step(#[from] StepError),
@@ -112,6 +108,8 @@ pub enum SimulationError {
 pub struct Schedule {
     dt: f64,
     samples: Samples,
+    /// The time the run starts at (s); every time of the schedule is counted from it.
+    start: f64,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -162,8 +160,8 @@ impl Schedule {
         Schedule::with_sample_interval(dt, duration, SAMPLE_INTERVAL)
     }
 
-    /// Steps of `dt` for `duration`, sampled every `sample_interval`, which `dt` must divide, as the
-    /// interval must divide the duration.
+    /// Steps of `dt` for `duration`, sampled every `sample_interval`, which `dt` must divide; a duration that is
+    /// not a whole number of intervals ends with a shorter one, sampled at its end.
     ///
     /// ```
     /// use dynamics::Schedule;
@@ -171,7 +169,10 @@ impl Schedule {
     /// let schedule = Schedule::with_sample_interval(1e-3, 2.0, 0.1)?; // s
     /// assert_eq!((schedule.sample_count(), schedule.step_count()), (21, 2000));
     /// assert_eq!(schedule.sample_time(5), 0.5); // s
-    /// assert!(Schedule::with_sample_interval(1e-3, 2.0, 0.3).is_err()); // 0.3 s does not divide 2 s
+    /// // 0.3 s does not divide 2 s: samples every 0.3 s up to 1.8 s, then at 2 s.
+    /// let uneven = Schedule::with_sample_interval(1e-3, 2.0, 0.3)?;
+    /// assert_eq!((uneven.sample_count(), uneven.sample_time(7)), (8, 2.0));
+    /// assert!(Schedule::with_sample_interval(0.07, 2.0, 0.3).is_err()); // 0.07 s does not divide 0.3 s
     /// # Ok::<(), dynamics::SimulationError>(())
     /// ```
     pub fn with_sample_interval(dt: f64, duration: f64, sample_interval: f64) -> Result<Self, SimulationError> {
@@ -184,8 +185,14 @@ impl Schedule {
         }
         let steps_per_sample =
             whole_ratio(interval, dt).ok_or(SimulationError::StepDoesNotDivideInterval { dt, interval })?;
-        let intervals = whole_ratio(duration, interval)
-            .ok_or(SimulationError::IntervalDoesNotDivideDuration { interval, duration })?;
+        let Some(intervals) = whole_ratio(duration, interval) else {
+            // A last, shorter interval: samples at the whole intervals and at the end, reached by a partial step.
+            let whole = (duration / interval).floor() as usize;
+            let times = (1..=whole)
+                .map(|k| k as f64 * interval)
+                .chain(std::iter::once(duration));
+            return Schedule::at_times(interval / steps_per_sample as f64, times);
+        };
         // Step counts beyond 2⁵³ are not exact in f64 (and would not finish anyway).
         if intervals
             .checked_mul(steps_per_sample)
@@ -201,7 +208,35 @@ impl Schedule {
                 steps_per_sample,
                 intervals,
             },
+            start: 0.0,
         })
+    }
+
+    /// The same schedule starting at `start` (s) instead of 0: to continue a run from where another stopped (at an
+    /// event, say) with the clock the forces, paths and events read.
+    ///
+    /// ```
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::sphere(1.0, 0.1)?;
+    /// let start = State::<Pga>::from_world_twist(&body, Vector3::zeros(), &UnitQuaternion::identity(), Vector3::zeros(), Vector3::x());
+    /// let later = Schedule::new(1e-3, 0.5)?.starting_at(2.0)?;
+    /// let run = simulate(&FreeBody::new(body), &[start], Method::Rk4, &later)?;
+    /// assert_eq!((run.body(0)[0].t, run.body(0).last().unwrap().t), (2.0, 2.5));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn starting_at(self, start: f64) -> Result<Self, SimulationError> {
+        // The clock must still tell the steps apart: f64 times near `start` are spaced by its ulp.
+        if !(start.is_finite() && f64::EPSILON * (start.abs() + self.duration()) <= 1e-6 * self.dt) {
+            return Err(SimulationError::StartTime(start));
+        }
+        Ok(Schedule { start, ..self })
+    }
+
+    /// The time the run starts at (s).
+    pub fn start(&self) -> f64 {
+        self.start
     }
 
     /// Steps of `dt` (any size) on the grid `k·dt`, with samples at t = 0 and at each of `times` (finite,
@@ -235,6 +270,7 @@ impl Schedule {
         Ok(Schedule {
             dt,
             samples: Samples::Times(times),
+            start: 0.0,
         })
     }
 
@@ -307,25 +343,32 @@ impl Schedule {
         }
     }
 
-    /// The time of sample `index`: on a grid `index · interval`, computed from the index so it does not
+    /// The time of sample `index`: on a grid the start plus `index · interval`, computed from the index so it does not
     /// accumulate round-off (and equals the reference files' times).
     pub fn sample_time(&self, index: usize) -> f64 {
-        match &self.samples {
-            Samples::Grid { sample_interval, .. } => index as f64 * sample_interval,
-            Samples::Times(times) => {
-                if index == 0 {
-                    0.0
-                } else {
-                    times[index - 1]
+        self.start
+            + match &self.samples {
+                Samples::Grid { sample_interval, .. } => index as f64 * sample_interval,
+                Samples::Times(times) => {
+                    if index == 0 {
+                        0.0
+                    } else {
+                        times[index - 1]
+                    }
                 }
             }
-        }
     }
 
     /// Step `k`: its start time and length. On a grid, `k` runs through the sample intervals (times computed from
     /// the interval's start, as the reference files' are); at given times, through `k·dt`, the last step ending on
     /// the last time.
     fn step(&self, k: usize) -> (f64, f64) {
+        let (start, h) = self.step_from_start(k);
+        (self.start + start, h)
+    }
+
+    /// [`Schedule::step`] counted from the schedule's start.
+    fn step_from_start(&self, k: usize) -> (f64, f64) {
         match &self.samples {
             Samples::Grid {
                 sample_interval,
@@ -738,17 +781,18 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     // record before its first step (10⁷ samples of 64 bodies would be 77 GB).
     let reserved = sample_count.min(RESERVED_SAMPLES);
     let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
-    record(dynamics, (0.0, 0.0), initial, &mut bodies);
+    let start = schedule.start();
+    record(dynamics, (start, 0.0), initial, &mut bodies);
     // The work done up to `state`'s time.
     let mut work = 0.0;
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     let mut values = events
         .iter_mut()
-        .map(|event| event.value(0.0, initial))
+        .map(|event| event.value(start, initial))
         .collect::<Result<Vec<f64>, _>>()?;
     let (mut hits, mut stopped) = (Vec::new(), None);
     let mut sample = 1;
-    let mut last_recorded = 0.0;
+    let mut last_recorded = start;
     let mut clock = Stopwatch {
         since: None,
         total: Duration::ZERO,

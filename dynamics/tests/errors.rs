@@ -496,7 +496,15 @@ fn a_motor_that_is_not_a_rigid_motion_is_refused() {
             .unwrap()
             .step(0.0, &mut states, 1e-3)
             .unwrap_err();
-        assert_eq!(error, StepError::NotARigidMotion { t: 0.0, body: 0, norm_squared }, "{error}");
+        assert_eq!(
+            error,
+            StepError::NotARigidMotion {
+                t: 0.0,
+                body: 0,
+                norm_squared
+            },
+            "{error}"
+        );
         let schedule = dynamics::Schedule::new(1e-3, 0.01).unwrap();
         let error = dynamics::simulate(&mechanism, &states, dynamics::Method::Rk4, &schedule).unwrap_err();
         assert!(error.to_string().contains("not a rigid motion"), "{error}");

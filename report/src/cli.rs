@@ -5,6 +5,7 @@ use std::process::ExitCode;
 
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, ValueEnum};
+use dynamics::simulate::SAMPLE_INTERVAL;
 use dynamics::Schedule;
 use reference::SceneId;
 use scenarios::MechanismId;
@@ -104,7 +105,7 @@ const MAX_STEPS_PER_RUN: f64 = crate::scene_file::MAX_STEPS as f64;
 
 impl Options {
     /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,
-    /// dividing the 0.01 s sample interval, and with `--duration` dividing it into whole samples), the duration
+    /// dividing the 0.01 s sample interval, and `--duration` a whole number of them), the duration
     /// must be positive and at most [`MAX_DURATION`], the thread count between one and four per core.
     pub(crate) fn validate(&self) -> Result<(), String> {
         if let Some(duration) = self.duration {
@@ -114,8 +115,16 @@ impl Options {
                 ));
             }
         }
-        // Every run is compared with its reference trajectory, so none may run past the shortest selected one.
+        // Every run is compared with its reference trajectory, so none may run past the shortest selected one, and
+        // every sample must fall on the reference's 0.01 s grid.
         if let Some(duration) = self.duration {
+            let samples = duration / SAMPLE_INTERVAL;
+            if (samples - samples.round()).abs() > 1e-9 * samples {
+                return Err(format!(
+                    "--duration {duration}: the runs are compared with their references every {SAMPLE_INTERVAL} s, so \
+                     the duration must be a whole number of {SAMPLE_INTERVAL} s"
+                ));
+            }
             if let Some((label, own)) = self
                 .references()
                 .into_iter()

@@ -33,8 +33,8 @@ use dynamics::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::integrate::Integrator;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::{
-    motor, Algebra, Body, BodyError, Cga, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism, MechanismError,
-    Pga, Reference, ScrewCoordinates, Simulation, State,
+    motor, Algebra, Body, BodyError, Cga, Correction, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism,
+    MechanismError, Pga, Reference, ScrewCoordinates, Simulation, State,
 };
 use nalgebra::{DVector, Isometry3, Quaternion, SVector, Translation3, Unit, UnitQuaternion, Vector3};
 use scenarios::Formulation;
@@ -157,13 +157,17 @@ pub struct SceneFile {
     pub integrator: IntegratorName,
     /// The step (s); it must divide the sample interval.
     pub dt: f64,
-    /// Simulated time (s), a whole number of sample intervals.
+    /// Simulated time (s); the last sample interval may be shorter.
     pub duration: f64,
     /// Time between recorded samples (s).
     #[serde(default = "default_sample_interval")]
     pub sample_interval: f64,
     #[serde(default = "default_stabilisation")]
     pub(crate) stabilisation: StabilisationName,
+    /// How far the start may be moved onto its joints (m and rad) before it is refused as breaking them: its
+    /// rounding passes, a body placed off its joint does not.
+    #[serde(default = "default_max_start_correction")]
+    pub(crate) max_start_correction: f64,
     /// Gains for `stabilisation = "baumgarte"` (default α = β = 10, as on the command line).
     #[serde(default)]
     pub(crate) baumgarte: Option<BaumgarteGains>,
@@ -381,6 +385,11 @@ fn default_integrator() -> IntegratorName {
 
 fn default_sample_interval() -> f64 {
     SAMPLE_INTERVAL
+}
+
+/// A millimetre or a milliradian: far above a start written to six digits, far below a body off its joint.
+fn default_max_start_correction() -> f64 {
+    1e-3
 }
 
 fn default_stabilisation() -> StabilisationName {
@@ -1464,6 +1473,8 @@ pub struct SceneSystem<A: Algebra> {
     pub(crate) robot_joints: Vec<RobotJoint>,
     /// The joints CSV's columns, with a robot.
     pub(crate) robot_columns: Option<RobotColumns>,
+    /// How far putting the file's start on the joints moved each body.
+    pub(crate) start_correction: Correction,
 }
 
 impl<A: Algebra> SceneSystem<A> {
@@ -2058,9 +2069,11 @@ impl SceneFile {
             built.as_ref().map(|(r, _)| r),
             &file_joints,
         )?;
-        // Onto the joints (theory §10); joints that cannot hold together are an error naming them.
+        // Onto the joints (theory §10); joints that cannot hold together are an error naming them, and a start that
+        // breaks them by more than the file allows is refused.
         let mut initial = states;
-        system.project(0.0, &mut initial)?;
+        let start_correction = system.project(0.0, &mut initial)?;
+        self.check_start_correction(&start_correction, &system)?;
         if !driven.is_empty() {
             // The driven joints start on their paths (the projection by joint coordinates leaves them where they are).
             let mut q = system.joint_positions(&initial, None)?;
@@ -2089,10 +2102,40 @@ impl SceneFile {
             names: system.body_names().map(str::to_owned).collect(),
             system,
             initial,
+            start_correction,
             geometries,
             robot_joints,
             robot_columns,
         })
+    }
+
+    /// Refuses a start that the projection onto the joints moved by more than `max_start_correction`, naming the body.
+    fn check_start_correction<A: Algebra>(
+        &self,
+        correction: &Correction,
+        system: &Mechanism<A>,
+    ) -> Result<(), SceneFileError> {
+        let limit = self.max_start_correction;
+        if !(limit.is_finite() && limit > 0.0) {
+            return Err(invalid(
+                "max_start_correction",
+                format!("must be positive and finite (m and rad), got {limit}"),
+            ));
+        }
+        match correction.largest() {
+            Some((body, largest)) if largest > limit => Err(invalid(
+                "max_start_correction",
+                format!(
+                    "the start breaks the joints: putting it on them moves body `{}` by {:.3e} m and turns it by \
+                     {:.3e} rad, more than max_start_correction = {limit} (m and rad); correct its initial state or \
+                     raise max_start_correction",
+                    system.body_names().nth(body).unwrap_or_default(),
+                    correction.moved[body],
+                    correction.turned[body],
+                ),
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// Adds the force elements: the robot's URDF damping and torques, then the file's springs, couples, joint torques,

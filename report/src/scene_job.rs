@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
 use dynamics::simulate::Sample;
-use dynamics::{Cga, Dynamics, Pga, State};
+use dynamics::{Cga, Correction, Dynamics, Pga, State};
 
 use crate::csv;
 use crate::figures::{running_max, styled, LOG_FLOOR};
@@ -67,6 +67,8 @@ pub struct AlgebraRun {
     pub names: Vec<String>,
     /// With a robot: the joints CSV's headers between `t` and `energy`, and per sample its values between them.
     pub joints: Option<(Vec<String>, Vec<Vec<f64>>)>,
+    /// How far putting the file's start on the joints moved each body.
+    pub start_correction: Correction,
 }
 
 /// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
@@ -169,6 +171,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         names: system.body_names().to_vec(),
         joints,
         bodies,
+        start_correction: system.start_correction.clone(),
     })
 }
 
@@ -449,6 +452,27 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         );
     }
     let _ = writeln!(out);
+    if !layout.joints.is_empty() || setup.robot.is_some() {
+        let corrections: Vec<String> = runs
+            .iter()
+            .filter_map(|run| {
+                let (body, _) = run.start_correction.largest()?;
+                Some(format!(
+                    "{} moved `{}` by {} m and turned it by {} rad",
+                    run.algebra.name(),
+                    escape(&run.names[body]),
+                    scientific(run.start_correction.moved[body]),
+                    scientific(run.start_correction.turned[body]),
+                ))
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "Putting the start on the joints (at most max_start_correction = {} m and rad) {}.\n",
+            scene.max_start_correction,
+            corrections.join("; ")
+        );
+    }
     let _ = writeln!(
         out,
         "Energy change: {}.",

@@ -26,10 +26,8 @@ fn a_step_that_misses_the_sample_times_is_refused() {
         Schedule::new(2e-2, 10.0),
         Err(SimulationError::StepDoesNotDivideInterval { .. })
     ));
-    assert!(matches!(
-        Schedule::new(1e-3, 10.005),
-        Err(SimulationError::IntervalDoesNotDivideDuration { .. })
-    ));
+    // A duration off the sample grid is not refused: it ends with a shorter interval (`a_run_continues_…` below).
+    assert_eq!(Schedule::new(1e-3, 10.005).unwrap().sample_count(), 1002);
     assert_eq!(Schedule::new(1e-3, 1e6).err(), Some(SimulationError::TooLong));
     assert_eq!(Schedule::new(1e-300, 10.0).err(), Some(SimulationError::TooLong));
     // 1e13 steps per sample interval and 1e5 intervals: 1e18 steps, beyond the 2⁵³ counted exactly.
@@ -227,4 +225,80 @@ fn tiny_steps_and_tiny_sample_times_run() {
     assert_eq!(samples.len(), 2);
     assert_eq!(samples[1].t, 1e-12);
     assert!((samples[1].position.x - 1e-12).abs() < 1e-24);
+}
+
+/// A run stopped at 0.4 s and continued from its last state with `starting_at(0.4)` is the run to 1 s, sample for
+/// sample, under a force that reads the clock (it would differ if the continuation restarted at t = 0); and a
+/// duration off the sample grid ends with a shorter interval at exactly its end. Careless start times are refused,
+/// and so is one so large (1e12 s) that the clock no longer resolves a millisecond step; a day (86 400 s) is fine.
+#[test]
+fn a_run_continues_from_a_start_time_and_ends_off_the_grid() {
+    use dynamics::Pga;
+    let cuboid = cuboid::<Pga>();
+    let pulse = dynamics::Force::Custom(Arc::new(|t: f64, _state: &dynamics::State<Pga>| {
+        dynamics::forces::couple::<Pga>(Vector3::new(0.0, 0.0, (10.0 * t).sin()))
+    }));
+    let system = Mechanism::single(cuboid.body).with_force(pulse).unwrap();
+    let whole = simulate(
+        &system,
+        &[cuboid.initial],
+        Method::Rkmk6Body,
+        &Schedule::new(1e-3, 1.0).unwrap(),
+    )
+    .unwrap();
+    let first = simulate(
+        &system,
+        &[cuboid.initial],
+        Method::Rkmk6Body,
+        &Schedule::new(1e-3, 0.4).unwrap(),
+    )
+    .unwrap();
+    let end = first.body(0).last().unwrap();
+    let resumed_at = dynamics::State::<Pga>::from_world_twist(
+        &cuboid.body,
+        end.position,
+        &end.orientation,
+        end.angular_velocity,
+        end.velocity,
+    );
+    let later = Schedule::new(1e-3, 0.6).unwrap().starting_at(0.4).unwrap();
+    let second = simulate(&system, &[resumed_at], Method::Rkmk6Body, &later).unwrap();
+    assert_eq!(second.body(0).len(), 61);
+    for (continued, straight) in second.body(0).iter().zip(&whole.body(0)[40..]) {
+        assert!(
+            (continued.t - straight.t).abs() < 1e-15,
+            "{} against {}",
+            continued.t,
+            straight.t
+        );
+        let turned = continued.orientation.angle_to(&straight.orientation);
+        assert!(turned < 1e-13, "{turned:e} rad at t = {}", continued.t);
+    }
+
+    let uneven = simulate(
+        &system,
+        &[cuboid.initial],
+        Method::Rkmk6Body,
+        &Schedule::new(1e-3, 0.405).unwrap(),
+    )
+    .unwrap();
+    let last = uneven.body(0).last().unwrap();
+    assert_eq!((uneven.body(0).len(), last.t), (42, 0.405));
+    let straight = simulate(
+        &system,
+        &[cuboid.initial],
+        Method::Rkmk6Body,
+        &Schedule::at_times(1e-3, [0.405]).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(last, straight.body(0).last().unwrap());
+
+    for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY, f64::MAX, 1e12] {
+        let refused = Schedule::new(1e-3, 1.0).unwrap().starting_at(bad);
+        assert!(
+            matches!(refused, Err(SimulationError::StartTime(t)) if t.to_bits() == bad.to_bits()),
+            "{bad}"
+        );
+    }
+    assert!(Schedule::new(1e-3, 1.0).unwrap().starting_at(86_400.0).is_ok());
 }

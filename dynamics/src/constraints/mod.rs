@@ -111,7 +111,10 @@ pub enum ConstraintError {
     },
     /// Projection (theory §10) needs a position residual, which this constraint does not provide (e.g. virtual
     /// power from user wrenches, theory §6).
-    #[error("constraint {name}: has no position-level residual, so it cannot be stabilised by projection")]
+    #[error(
+        "constraint {name}: has no position-level residual, so it cannot be stabilised by projection (the default): \
+         choose Stabilisation::None or Baumgarte before adding it"
+    )]
     NoPositionResidual {
         /// The name of the constraint.
         name: String,

@@ -787,18 +787,20 @@ impl<A: Algebra> VirtualPower<A> {
     /// the body's state. Rank = the number of wrenches (they must be independent). No position residual.
     ///
     /// A body held by one vertical force line through its centre of mass: the reaction cancels its weight, so at
-    /// rest it does not accelerate. Such a constraint has no position residual.
+    /// rest it does not accelerate. Such a constraint has no position residual, so its mechanism is not stabilised
+    /// by projection (the default).
     ///
     /// ```
     /// use dynamics::constraints::{Constraint, VirtualPower, WrenchPoint};
-    /// use dynamics::{forces::force_line, Algebra, Body, Force, Mechanism, Pga, State};
+    /// use dynamics::{forces::force_line, Algebra, Body, Force, Mechanism, Pga, Stabilisation, State};
     /// use nalgebra::{UnitQuaternion, Vector3};
     ///
     /// let vertical = WrenchPoint::<Pga>::fixed(force_line::<Pga>(Vector3::z(), Vector3::zeros()));
     /// let held = VirtualPower::from_wrenches("held up", [move |_t: f64| vertical]);
     /// assert_eq!((held.rank(), held.has_position_residual()), (1, false));
     /// let ball = Body::sphere(2.0, 0.1)?;
-    /// let system = Mechanism::single(ball).with_force(Force::gravity())?.with_constraint(held)?;
+    /// let unstabilised = Mechanism::single(ball).with_stabilisation(Stabilisation::None)?;
+    /// let system = unstabilised.with_force(Force::gravity())?.with_constraint(held)?;
     /// let still = UnitQuaternion::identity();
     /// let at_rest = State::new(&ball, Vector3::zeros(), &still, Vector3::zeros(), Vector3::zeros());
     /// let rate = Pga::screw_coordinates(system.rates_at(0.0, &[at_rest])?[0].momentum_rate);

@@ -268,6 +268,26 @@ const ROUND_OFF_ULPS: f64 = 16.0;
 /// leave their whole disagreement): an error, never a run with a broken joint.
 const UNREACHABLE_RESIDUAL: f64 = 1e-6;
 
+/// How far [`Mechanism::project`] moved each body of a start onto its joints, by body index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Correction {
+    /// How far each body's centre of mass moved (m).
+    pub moved: Vec<f64>,
+    /// How far each body turned (rad).
+    pub turned: Vec<f64>,
+}
+
+impl Correction {
+    /// The body that moved or turned the most, and by how much (m or rad, whichever is larger); `None` without
+    /// bodies.
+    pub fn largest(&self) -> Option<(usize, f64)> {
+        (self.moved.iter().zip(&self.turned))
+            .map(|(moved, turned)| moved.max(*turned))
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+    }
+}
+
 /// Gauss–Newton steps at most when projecting initial conditions, which may start far from the joints.
 const INITIAL_PROJECTION_STEPS: usize = 50;
 
@@ -342,7 +362,8 @@ pub(crate) enum Rows {
 }
 
 impl<A: Algebra> Mechanism<A> {
-    /// A mechanism with no bodies, no stabilisation and the default solver settings.
+    /// A mechanism with no bodies, stabilised by projection ([`Stabilisation::PROJECTION`]: the joints hold to
+    /// round-off unless [`Mechanism::set_stabilisation`] chooses otherwise) and the default solver settings.
     ///
     /// Two rods joined end to end by a ball joint, floating free: the joint's reactions on the two bodies are equal
     /// and opposite, so the total momentum does not change.
@@ -374,7 +395,7 @@ impl<A: Algebra> Mechanism<A> {
         Mechanism {
             bodies: Vec::new(),
             joints: Vec::new(),
-            stabilisation: Stabilisation::None,
+            stabilisation: Stabilisation::PROJECTION,
             settings: SolverSettings::default(),
             topology: Topology::default(),
             articulation: None,
@@ -1473,15 +1494,44 @@ impl<A: Algebra> Mechanism<A> {
     /// says and at least enough to converge from afar, stopping once the residuals are round-off; skipped if a
     /// joint has no position residual), then the kinetic-metric velocity projection. Use it on initial
     /// conditions, which must satisfy both the position and the velocity constraints; joints that cannot hold
-    /// together are an error naming them.
-    pub fn project(&self, t: f64, states: &mut [State<A>]) -> Result<(), ConstraintError> {
+    /// together are an error naming them. Returns how far each body moved: a start off its joints by round-off moves
+    /// by round-off, one that breaks a joint moves by as much as it breaks it, which the caller may refuse.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use dynamics::constraints::VirtualPower;
+    /// use dynamics::{Body, Mechanism, Pga, Reference, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let rod = Body::cuboid(1.0, Vector3::new(0.1, 0.1, 1.0))?;
+    /// let mut pendulum = Mechanism::<Pga>::new();
+    /// let arm = pendulum.add_body("arm", rod)?;
+    /// let top = (Vector3::new(0.0, 0.0, 0.5), Vector3::x());
+    /// pendulum.add_joint(arm, Reference::World, Arc::new(VirtualPower::hinge("pivot", top, (Vector3::zeros(), Vector3::x()))?))?;
+    /// // The rod's top end 13 cm below its pivot.
+    /// let still = Vector3::zeros();
+    /// let mut start = [State::new(&rod, Vector3::new(0.0, 0.0, -0.63), &UnitQuaternion::identity(), still, still)];
+    /// let correction = pendulum.project(0.0, &mut start)?;
+    /// assert!((correction.moved[0] - 0.13).abs() < 1e-12); // m
+    /// assert!(correction.turned[0] < 1e-15); // rad
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn project(&self, t: f64, states: &mut [State<A>]) -> Result<Correction, ConstraintError> {
         self.check_count("states", states.len())?;
         let iterations = match self.stabilisation {
             Stabilisation::Projection { position_iterations } => position_iterations,
             _ => 2,
         };
         let mut workspace = self.new_workspace();
-        self.project_with(t, states, iterations.max(INITIAL_PROJECTION_STEPS), &mut workspace)
+        let before: Vec<_> = states.iter().map(State::pose).collect();
+        self.project_with(t, states, iterations.max(INITIAL_PROJECTION_STEPS), &mut workspace)?;
+        let (moved, turned) = (before.iter().zip(states.iter()))
+            .map(|((position, orientation), state)| {
+                let (now, turned_to) = state.pose();
+                ((now - position).norm(), orientation.angle_to(&turned_to))
+            })
+            .unzip();
+        Ok(Correction { moved, turned })
     }
 
     fn project_with(
@@ -1714,7 +1764,8 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     }
 
     fn drift(&self, t: f64, states: &[State<A>]) -> f64 {
-        self.violation(t, states).map_or(f64::INFINITY, |violation| violation.position)
+        self.violation(t, states)
+            .map_or(f64::INFINITY, |violation| violation.position)
     }
 
     fn workspace(&self) -> MechanismWorkspace<A> {
