@@ -10,6 +10,7 @@ use dynamics::Schedule;
 use reference::SceneId;
 use scenarios::MechanismId;
 
+use crate::anchors::Anchors;
 use crate::job::run_job_with_robots;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
 use crate::names::{IntegratorName, StabilisationName};
@@ -94,6 +95,10 @@ pub(crate) struct Options {
     /// No progress bar.
     #[arg(long)]
     pub(crate) quiet: bool,
+    /// MuJoCo's and Pinocchio's times measured on this machine beside the run by `tools/anchors/measure`
+    /// (docs/benchmarks.md); the report compares with them instead of the recorded constants and says which is which.
+    #[arg(long, value_name = "FILE", conflicts_with = "scene_file")]
+    pub(crate) anchors: Option<PathBuf>,
 }
 
 /// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
@@ -268,10 +273,21 @@ pub fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     }
+    // Read before the sweep: a bad file should not cost a whole run.
+    let anchors = match &options.anchors {
+        Some(path) => match Anchors::read(path) {
+            Ok(anchors) => anchors,
+            Err(error) => {
+                eprintln!("error: --anchors {}: {error}", path.display());
+                return ExitCode::FAILURE;
+            }
+        },
+        None => Anchors::none(),
+    };
     let started = std::time::Instant::now();
     let output = options.output.clone().unwrap_or_else(|| PathBuf::from("out"));
     let (plan, mechanisms, robots) = options.plan();
-    match run_job_with_robots(&plan, &mechanisms, &robots, &output, !options.quiet) {
+    match run_job_with_robots(&plan, &mechanisms, &robots, &anchors, &output, !options.quiet) {
         Ok(summary) => {
             println!(
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",

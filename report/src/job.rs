@@ -8,6 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use reference::SceneId;
 
+use crate::anchors::Anchors;
 use crate::csv;
 use crate::figures::{self, showcase_step};
 use crate::markdown::{self, RunResult};
@@ -91,15 +92,23 @@ pub fn run_job(
     output: &Path,
     show_progress: bool,
 ) -> Result<JobSummary, JobError> {
-    run_job_with_robots(plan, mechanisms, &RobotPlan::default(), output, show_progress)
+    run_job_with_robots(
+        plan,
+        mechanisms,
+        &RobotPlan::default(),
+        &Anchors::none(),
+        output,
+        show_progress,
+    )
 }
 
 /// [`run_job`], and the reference robots of `robots` with the plan's general integrators (each over the
-/// reference's 1 s).
+/// reference's 1 s); MuJoCo's and Pinocchio's times from `anchors` where it measured them.
 pub fn run_job_with_robots(
     plan: &SweepPlan,
     mechanisms: &MechanismPlan,
     robots: &RobotPlan,
+    anchors: &Anchors,
     output: &Path,
     show_progress: bool,
 ) -> Result<JobSummary, JobError> {
@@ -177,8 +186,9 @@ pub fn run_job_with_robots(
     let threads = rayon::current_num_threads();
     let report_path = output.join("report.md");
     let mut text = markdown::report(&results, threads, &figure_files);
-    text.push_str(&mechanism_section(output, &mechanism_results)?);
-    text.push_str(&robot_section(output, &robot_results)?);
+    text.push_str(&mechanism_section(output, &mechanism_results, anchors)?);
+    text.push_str(&robot_section(output, &robot_results, anchors)?);
+    text.push_str(&anchors.section());
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
     let single_failures = results.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;

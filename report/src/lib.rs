@@ -10,11 +10,15 @@
 //!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
 //!
+//! MuJoCo's and Pinocchio's times come from [`anchors`] where `--anchors FILE` measured them beside the run,
+//! else from the recorded constants.
+//!
 //! The command line is [`cli`]; the integrators and stabilisations by the names it and scene files use are in
 //! [`names`].
 
 #![deny(missing_docs)]
 
+pub mod anchors;
 pub mod cli;
 pub mod csv;
 mod figures;

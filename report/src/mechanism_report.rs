@@ -9,6 +9,7 @@ use std::path::Path;
 use dynamics::integrate::Integrator;
 use scenarios::MechanismId;
 
+use crate::anchors::{sources_short, Anchors, Source, Time, SPREAD_NOTE};
 use crate::figures::{panel_title, styled, Family};
 use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, RowKey};
 use crate::mechanism_sweep::{
@@ -41,9 +42,34 @@ fn length_mismatch(results: &[MechanismResult], id: MechanismId) -> Option<Strin
         .find_map(|(c, _)| mujoco::length_mismatch(c.duration, id.duration()))
 }
 
-/// The legend of the mechanisms' MuJoCo points.
-fn mechanism_legend(what: &str) -> String {
-    format!("MuJoCo 4.0 RK4{what} (measured\u{a0}{})", mujoco::MECHANISMS_DATE)
+/// The legend of the mechanisms' MuJoCo points, `source` saying where their times come from.
+fn mechanism_legend(what: &str, source: &str) -> String {
+    // No-break spaces: the legend wraps before the source, not inside it.
+    format!("MuJoCo 4.0 RK4{what} ({})", source.replace(' ', "\u{a0}"))
+}
+
+/// Where a figure caption's MuJoCo points come from.
+fn provenance(source: Source) -> String {
+    match source {
+        Source::Measured(occasion, _) => format!(
+            "their time per step measured in this run ({}{}), their errors recorded {} with the reference set's \
+             scripts (errors do not depend on the machine)",
+            occasion.when,
+            source.flag(),
+            mujoco::MECHANISMS_DATE
+        ),
+        Source::Recorded(date) => format!(
+            "measured {date} with the reference set's scripts on the project's 2-core machine type (thread CPU \
+             time); constants, not measured by this run"
+        ),
+    }
+}
+
+/// Writes [`SPREAD_NOTE`] if any of `times` is flagged.
+fn spread_note(out: &mut String, times: &[Time]) {
+    if times.iter().any(|t| t.source.uncertain()) {
+        let _ = writeln!(out, "\n{SPREAD_NOTE}.");
+    }
 }
 
 /// The successful runs of one mechanism, by series label, each sorted by cost.
@@ -152,45 +178,52 @@ fn work_precision_table(out: &mut String, results: &[MechanismResult], id: Mecha
 }
 
 /// Per chain length: our time per RK4 step in each algebra beside MuJoCo's and Pinocchio's.
-fn chain_table(out: &mut String, results: &[MechanismResult]) {
+fn chain_table(out: &mut String, results: &[MechanismResult], anchors: &Anchors) {
     let time = |n: usize, algebra: AlgebraKind| {
         results.iter().find_map(|(c, r)| {
             let timing = c.id == MechanismId::Chain(n) && c.algebra == algebra && c.is_chain_timing();
             r.as_ref().ok().filter(|_| timing).map(|o| o.time_per_step)
         })
     };
+    let (ball, hinge) = (mujoco::chain_times(anchors, true), mujoco::chain_times(anchors, false));
+    let pinocchio = mujoco::pinocchio_chain_times(anchors);
+    let sources = |times: &[(usize, Time)]| sources_short(&times.iter().map(|(_, t)| t.source).collect::<Vec<_>>());
     table_header(
         out,
         &[
             "links N",
             "PGA µs/step",
             "CGA µs/step",
-            &format!("MuJoCo ball µs/step (measured {})", mujoco::MECHANISMS_DATE),
+            &format!("MuJoCo ball µs/step ({})", sources(&ball)),
             "MuJoCo / PGA",
-            &format!("MuJoCo hinge µs/step (measured {})", mujoco::MECHANISMS_DATE),
-            &format!("Pinocchio ABA µs/evaluation (measured {})", mujoco::MECHANISMS_DATE),
+            &format!("MuJoCo hinge µs/step ({})", sources(&hinge)),
+            &format!("Pinocchio ABA µs/evaluation ({})", sources(&pinocchio)),
             "PGA µs per evaluation per degree of freedom",
         ],
     );
     let micro = |x: Option<f64>| x.map_or("–".into(), |x| format!("{:.2}", x * 1e6));
-    for (&(n, ball), &(_, hinge)) in mujoco::CHAIN_BALL_TIME_PER_STEP
-        .iter()
-        .zip(&mujoco::CHAIN_HINGE_TIME_PER_STEP)
-    {
+    for (&(n, ball), &(_, hinge)) in ball.iter().zip(&hinge) {
         let pga = time(n, AlgebraKind::Pga);
-        let pinocchio = mujoco::PINOCCHIO_CHAIN_EVALUATION
-            .iter()
-            .find(|(m, _)| *m == n)
-            .map(|p| p.1);
+        let pinocchio = pinocchio.iter().find(|(m, _)| *m == n).map(|p| p.1);
         let _ = writeln!(
             out,
-            "| {n} | {} | {} | {:.1} | {} | {:.1} | {} | {} |",
+            "| {n} | {} | {} | {:.1}{} | {} | {:.1}{} | {} | {} |",
             micro(pga),
             micro(time(n, AlgebraKind::Cga)),
-            ball * 1e6,
-            pga.map_or("–".into(), |t| format!("{:.1}×", ball / t)),
-            hinge * 1e6,
-            micro(pinocchio),
+            ball.seconds * 1e6,
+            ball.source.flag(),
+            pga.map_or("–".into(), |t| format!(
+                "{:.1}×{}",
+                ball.seconds / t,
+                ball.source.flag()
+            )),
+            hinge.seconds * 1e6,
+            hinge.source.flag(),
+            pinocchio.map_or("–".into(), |p| format!(
+                "{}{}",
+                micro(Some(p.seconds)),
+                p.source.flag()
+            )),
             // RK4: four evaluations per step; a ball joint leaves 3 degrees of freedom per link.
             pga.map_or("–".into(), |t| format!("{:.3}", t * 1e6 / 4.0 / (3 * n) as f64)),
         );
@@ -201,26 +234,29 @@ fn chain_table(out: &mut String, results: &[MechanismResult]) {
         "\nt(64)/t(8): PGA {}, CGA {}; MuJoCo's ball chain {:.0} (its dense mass-matrix factorisation).",
         ratio(AlgebraKind::Pga).map_or("–".into(), |r| format!("{r:.1}")),
         ratio(AlgebraKind::Cga).map_or("–".into(), |r| format!("{r:.1}")),
-        mujoco::CHAIN_BALL_TIME_PER_STEP[6].1 / mujoco::CHAIN_BALL_TIME_PER_STEP[3].1
+        ball[6].1.seconds / ball[3].1.seconds
     );
+    let shown: Vec<Time> = [ball, hinge, pinocchio].iter().flatten().map(|(_, t)| *t).collect();
+    spread_note(out, &shown);
 }
 
 /// The speed summary: M1 and M2 at MuJoCo's accuracy (or exact), M3 at N = 64.
-fn summary(out: &mut String, results: &[MechanismResult]) {
+fn summary(out: &mut String, results: &[MechanismResult], anchors: &Anchors) {
+    let m1 = mujoco::DOUBLE_PENDULUM;
+    let (m1_time, m2_time) = (mujoco::double_pendulum_time(anchors), mujoco::four_bar_time(anchors));
     let _ = writeln!(
         out,
-        "| mechanism | target | algebra | cheapest configuration | its CPU per simulated s (s) | MuJoCo's (measured \
-         {date}) | MuJoCo's / ours (MuJoCo measured {date}) |",
-        date = mujoco::MECHANISMS_DATE
+        "| mechanism | target | algebra | cheapest configuration | its CPU per simulated s (s) | MuJoCo's ({source}) \
+         | MuJoCo's / ours (MuJoCo {source}) |",
+        source = sources_short(&[m1_time.source, m2_time.source])
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|");
-    let m1 = mujoco::DOUBLE_PENDULUM;
     let rows = [
         (
             MechanismId::DoublePendulum,
             m1.reference_error(),
             format!("orientation {:.1e} rad (MuJoCo at dt = 1e-3)", m1.reference_error()),
-            m1.reference_cost(),
+            m1_time,
         ),
         (
             MechanismId::FourBar,
@@ -230,10 +266,12 @@ fn summary(out: &mut String, results: &[MechanismResult]) {
                 mujoco::FOUR_BAR_COUPLER_ERROR,
                 mujoco::FOUR_BAR_VIOLATION
             ),
-            mujoco::FOUR_BAR_TIME_PER_STEP / 1e-3,
+            m2_time,
         ),
     ];
-    for (id, target, what, theirs) in rows {
+    // Both MuJoCo times are per step at dt = 1e-3.
+    for (id, target, what, time) in rows {
+        let (theirs, flag) = (time.seconds / 1e-3, time.source.flag());
         let groups = series_of(results, id);
         if groups.is_empty() {
             continue;
@@ -242,7 +280,7 @@ fn summary(out: &mut String, results: &[MechanismResult]) {
             // The targets are errors at the mechanism's T: a run of another length is not compared with them.
             let _ = writeln!(
                 out,
-                "| {} | {what} | both | – | – | {} | {why} |",
+                "| {} | {what} | both | – | – | {}{flag} | {why} |",
                 id.label(),
                 scientific(theirs)
             );
@@ -253,15 +291,16 @@ fn summary(out: &mut String, results: &[MechanismResult]) {
                 cheapest(&groups, target, algebra).map_or(("none reaches it".to_string(), None), |(l, c)| (l, Some(c)));
             let _ = writeln!(
                 out,
-                "| {} | {what} | {} | {label} | {} | {} | {} |",
+                "| {} | {what} | {} | {label} | {} | {}{flag} | {} |",
                 id.label(),
                 algebra.name(),
                 ours.map_or("–".into(), scientific),
                 scientific(theirs),
-                ours.map_or("–".into(), |c| format!("{:.1}×", theirs / c)),
+                ours.map_or("–".into(), |c| format!("{:.1}×{flag}", theirs / c)),
             );
         }
     }
+    spread_note(out, &[m1_time, m2_time]);
 }
 
 /// Work-precision of M1 or M2: a panel per integrator family and joint formulation (two integrators in two
@@ -271,26 +310,32 @@ fn work_precision_figure(
     results: &[MechanismResult],
     id: MechanismId,
     name: &str,
+    anchors: &Anchors,
 ) -> Result<bool, PlotError> {
     let groups = series_of(results, id);
     if groups.is_empty() {
         return Ok(false);
     }
-    let (y, mujoco_points, what): (&str, Vec<(f64, f64)>, &str) = match id {
+    let (y, time, what) = match id {
         MechanismId::FourBar => (
             "coupler centre-of-mass error at T (m)",
-            vec![(mujoco::FOUR_BAR_TIME_PER_STEP / 1e-3, mujoco::FOUR_BAR_COUPLER_ERROR)],
+            mujoco::four_bar_time(anchors),
             "at dt = 1e-3, its loop closed by a soft equality constraint",
         ),
         _ => (
             "orientation error at T (rad)",
-            mujoco::DOUBLE_PENDULUM
-                .points
-                .iter()
-                .map(|&(dt, e)| (mujoco::DOUBLE_PENDULUM.time_per_step / dt, e))
-                .collect(),
+            mujoco::double_pendulum_time(anchors),
             "at dt = 1e-2, 1e-3, 1e-4",
         ),
+    };
+    // MuJoCo's time per step is that at dt = 1e-3, taken for every step as the recorded constants are.
+    let mujoco_points: Vec<(f64, f64)> = match id {
+        MechanismId::FourBar => vec![(time.seconds / 1e-3, mujoco::FOUR_BAR_COUPLER_ERROR)],
+        _ => mujoco::DOUBLE_PENDULUM
+            .points
+            .iter()
+            .map(|&(dt, e)| (time.seconds / dt, e))
+            .collect(),
     };
     let mismatch = length_mismatch(results, id);
     // Panels by family, then formulation; in each, a series per palette slot (algebra and integrator).
@@ -333,7 +378,10 @@ fn work_precision_figure(
                 })
                 .collect();
             if mismatch.is_none() {
-                series.push(Series::reference_points(mechanism_legend(""), mujoco_points.clone()));
+                series.push(Series::reference_points(
+                    mechanism_legend("", &time.source.short()),
+                    mujoco_points.clone(),
+                ));
             }
             Panel::new(Labels::new(title, "CPU per simulated second (s)", y), series)
                 .log_x()
@@ -346,10 +394,8 @@ fn work_precision_figure(
              PGA; light, dashed: CGA."
         ),
         None => format!(
-            "Black triangles: MuJoCo 4.0 RK4 {what}, measured {} with the reference set's scripts on the project's \
-             2-core machine type (thread CPU time); constants, not measured by this run. Dark, solid: PGA; light, \
-             dashed: CGA.",
-            mujoco::MECHANISMS_DATE
+            "Black triangles: MuJoCo 4.0 RK4 {what}, {}. Dark, solid: PGA; light, dashed: CGA.",
+            provenance(time.source)
         ),
     };
     figure_with_caption(
@@ -362,7 +408,7 @@ fn work_precision_figure(
 }
 
 /// M3's cost per step against N, log–log, with MuJoCo's and Pinocchio's.
-fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<bool, PlotError> {
+fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str, anchors: &Anchors) -> Result<bool, PlotError> {
     let ours = |algebra: AlgebraKind| -> Vec<(f64, f64)> {
         let mut points: Vec<(f64, f64)> = results
             .iter()
@@ -379,9 +425,15 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
     if pga.is_empty() && cga.is_empty() {
         return Ok(false);
     }
-    let points =
-        |table: &[(usize, f64)], factor: f64| table.iter().map(|&(n, t)| (n as f64, t * 1e6 * factor)).collect();
-    let date = mujoco::MECHANISMS_DATE;
+    let points = |table: &[(usize, Time)], factor: f64| {
+        table
+            .iter()
+            .map(|(n, t)| (*n as f64, t.seconds * 1e6 * factor))
+            .collect()
+    };
+    let sources = |table: &[(usize, Time)]| sources_short(&table.iter().map(|(_, t)| t.source).collect::<Vec<_>>());
+    let (ball, hinge) = (mujoco::chain_times(anchors, true), mujoco::chain_times(anchors, false));
+    let pinocchio = mujoco::pinocchio_chain_times(anchors);
     let series = vec![
         styled(
             Series {
@@ -399,26 +451,23 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
             AlgebraKind::Cga,
             0,
         ),
-        Series::reference_points(
-            mechanism_legend(", ball joints"),
-            points(&mujoco::CHAIN_BALL_TIME_PER_STEP, 1.0),
-        ),
+        Series::reference_points(mechanism_legend(", ball joints", &sources(&ball)), points(&ball, 1.0)),
         Series {
             markers_only: true,
             shape: Shape::Triangle,
             slot: Some(4),
-            ..Series::line(
-                mechanism_legend(", hinges"),
-                points(&mujoco::CHAIN_HINGE_TIME_PER_STEP, 1.0),
-            )
+            ..Series::line(mechanism_legend(", hinges", &sources(&hinge)), points(&hinge, 1.0))
         },
         Series {
             markers_only: true,
             shape: Shape::Diamond,
             slot: Some(2),
             ..Series::line(
-                format!("Pinocchio 4.1 ABA × 4 evaluations (measured\u{a0}{date})"),
-                points(&mujoco::PINOCCHIO_CHAIN_EVALUATION, 4.0),
+                format!(
+                    "Pinocchio 4.1 ABA × 4 evaluations ({})",
+                    sources(&pinocchio).replace(' ', "\u{a0}")
+                ),
+                points(&pinocchio, 4.0),
             )
         },
     ];
@@ -433,15 +482,26 @@ fn chain_figure(dir: &Path, results: &[MechanismResult], name: &str) -> Result<b
         "M3 chain: cost against the number of links",
         &[panel],
         &format!(
-            "MuJoCo and Pinocchio: constants measured {date} with the reference set's scripts on the project's 2-core \
-             machine type (thread CPU time), not by this run; ours: this run."
+            "MuJoCo and Pinocchio: {} (thread CPU time); ours: this run.",
+            match anchors.occasion() {
+                Some(occasion) => format!("{} ({})", sources(&[ball, hinge, pinocchio].concat()), occasion.when),
+                None => format!(
+                    "constants measured {} with the reference set's scripts on the project's 2-core machine type, \
+                     not by this run",
+                    mujoco::MECHANISMS_DATE
+                ),
+            }
         ),
     )?;
     Ok(true)
 }
 
 /// The mechanisms' section of `report.md`, writing its plots into `dir`.
-pub(crate) fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Result<String, PlotError> {
+pub(crate) fn mechanism_section(
+    dir: &Path,
+    results: &[MechanismResult],
+    anchors: &Anchors,
+) -> Result<String, PlotError> {
     let mut out = String::new();
     if results.is_empty() {
         return Ok(out);
@@ -452,10 +512,16 @@ pub(crate) fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Resu
          momentum, the reactions solved for the whole system in the kinetic metric (docs/mechanisms.md). Errors are \
          against the GA-independent references of `reference::multibody` (M1: reduced coordinates, DOP853; M2: the \
          crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}.\n",
-        mujoco::MECHANISMS_MEASURED
+        match anchors.occasion_note() {
+            Some(note) => format!(
+                "their errors and the figures marked recorded, {}. {note}",
+                mujoco::MECHANISMS_MEASURED
+            ),
+            None => mujoco::MECHANISMS_MEASURED.to_owned(),
+        }
     );
     let _ = writeln!(out, "### Speed at MuJoCo's accuracy\n");
-    summary(&mut out, results);
+    summary(&mut out, results, anchors);
     for (id, stem, what) in [
         (MechanismId::DoublePendulum, "m1_double_pendulum", "the two hinges hold"),
         (
@@ -469,7 +535,7 @@ pub(crate) fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Resu
         }
         // The table lists failed runs with their reasons, so it is written even when no run succeeded.
         let name = format!("{stem}_work_precision.png");
-        let figure = if work_precision_figure(dir, results, id, &name)? {
+        let figure = if work_precision_figure(dir, results, id, &name, anchors)? {
             format!("![{name}]({name})\n")
         } else {
             "No run succeeded.\n".to_owned()
@@ -478,13 +544,13 @@ pub(crate) fn mechanism_section(dir: &Path, results: &[MechanismResult]) -> Resu
         work_precision_table(&mut out, results, id);
     }
     let name = "m3_chain_cost.png";
-    if chain_figure(dir, results, name)? {
+    if chain_figure(dir, results, name, anchors)? {
         let _ = writeln!(
             out,
             "\n### M3 chain: cost per step against N\n\nRK4 at dt = 1e-3 over {CHAIN_TIMING_DURATION} s, \
              projection after each step.\n\n![{name}]({name})\n"
         );
-        chain_table(&mut out, results);
+        chain_table(&mut out, results, anchors);
         let (n, _, dt) = CHAIN_LONG_RUN;
         for (config, result) in results
             .iter()

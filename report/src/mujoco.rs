@@ -4,15 +4,18 @@
 //! step. Drawn as reference markers on the work-precision
 //! plots: CPU per simulated second = time per step / dt.
 //!
-//! These are constants, not measured by the job: wherever the report shows them it says when and where they were
-//! measured ([`SINGLE_BODY_MEASURED`], [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a
+//! These are constants, the fallback wherever `--anchors` did not measure a figure beside the run
+//! ([`crate::anchors`]; the single bodies have no shared MuJoCo script and are always these): wherever the report
+//! shows them it says when and where they were measured ([`SINGLE_BODY_MEASURED`], [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a
 //! run of another length (`--duration`) is not compared with them ([`length_mismatch`]).
 
 use reference::SceneId;
 
+use crate::anchors::{Anchors, Key, Time};
 use crate::measure::Measurements;
 
 /// (dt, error) points and the time per step (s).
+#[derive(Clone, Copy)]
 pub(crate) struct Anchor {
     pub(crate) points: [(f64, f64); 3],
     pub(crate) time_per_step: f64,
@@ -182,6 +185,47 @@ pub(crate) const PINOCCHIO_CHAIN_EVALUATION: [(usize, f64); 7] = [
     (32, 12.35e-6),
     (64, 25.04e-6),
 ];
+
+/// M1's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`DOUBLE_PENDULUM`]'s.
+pub(crate) fn double_pendulum_time(anchors: &Anchors) -> Time<'_> {
+    anchors.time(Key::DoublePendulum, DOUBLE_PENDULUM.time_per_step, MECHANISMS_DATE)
+}
+
+/// M2's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`FOUR_BAR_TIME_PER_STEP`].
+pub(crate) fn four_bar_time(anchors: &Anchors) -> Time<'_> {
+    anchors.time(Key::FourBar, FOUR_BAR_TIME_PER_STEP, MECHANISMS_DATE)
+}
+
+/// M3's MuJoCo times per step by chain length, ball joints or hinges: measured where `anchors` has them.
+pub(crate) fn chain_times(anchors: &Anchors, ball: bool) -> Vec<(usize, Time<'_>)> {
+    let recorded = if ball {
+        &CHAIN_BALL_TIME_PER_STEP
+    } else {
+        &CHAIN_HINGE_TIME_PER_STEP
+    };
+    recorded
+        .iter()
+        .map(|&(links, seconds)| {
+            (
+                links,
+                anchors.time(Key::Chain { ball, links }, seconds, MECHANISMS_DATE),
+            )
+        })
+        .collect()
+}
+
+/// M3's Pinocchio times per evaluation by chain length: measured where `anchors` has them.
+pub(crate) fn pinocchio_chain_times(anchors: &Anchors) -> Vec<(usize, Time<'_>)> {
+    PINOCCHIO_CHAIN_EVALUATION
+        .iter()
+        .map(|&(links, seconds)| {
+            (
+                links,
+                anchors.time(Key::PinocchioChain(links), seconds, MECHANISMS_DATE),
+            )
+        })
+        .collect()
+}
 
 #[cfg(test)]
 mod tests {

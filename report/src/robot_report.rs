@@ -1,5 +1,5 @@
 //! The robots' part of `report.md` ("Robots (URDF)") and its figures: per robot a model line, the CPU per simulated
-//! second at MuJoCo's accuracy at dt = 1e-3 against MuJoCo's recorded cost, a work-precision figure with MuJoCo's
+//! second at MuJoCo's accuracy at dt = 1e-3 against MuJoCo's cost (recorded, or measured beside the run), a work-precision figure with MuJoCo's
 //! points, a picture of the motion, and a table of every run.
 
 use std::collections::BTreeMap;
@@ -11,6 +11,7 @@ use dynamics::joint_integration::JointMethod;
 use dynamics::Pga;
 use reference::robots::{RobotId, RobotReference};
 
+use crate::anchors::{sources_short, Anchors, Key, Source, Time, SPREAD_NOTE};
 use crate::figures::{panel_title, slot, styled, Family};
 use crate::markdown::{compare_rows, integrator_rank, scientific, RowKey};
 use crate::mujoco::cost_at_error;
@@ -22,8 +23,8 @@ use crate::robot_sweep::{
 };
 use crate::sweep::AlgebraKind;
 
-/// Where the MuJoCo and Pinocchio figures come from; said wherever they are shown.
-const RECORDED: &str = "recorded when the reference was made (see reference/data/robots/README.md)";
+/// When the reference's MuJoCo and Pinocchio figures were recorded; said wherever they are shown.
+const RECORDED_WHEN: &str = "when the reference was made (see reference/data/robots/README.md)";
 /// The versions of the reference's `versions` field.
 const MUJOCO: &str = "MuJoCo 4.0 RK4";
 const PINOCCHIO: &str = "Pinocchio 4.1";
@@ -137,6 +138,18 @@ fn model_line(id: RobotId) -> String {
     )
 }
 
+/// MuJoCo's time per step of a recorded run of robot `id`: measured in this run if `anchors` has it.
+fn mujoco_time<'a>(anchors: &'a Anchors, id: RobotId, run: &reference::robots::MujocoRun) -> Time<'a> {
+    let recorded = run.microseconds_per_step * 1e-6;
+    match Key::robot(id, run.dt) {
+        Some(key) => anchors.time(key, recorded, RECORDED_WHEN),
+        None => Time {
+            seconds: recorded,
+            source: Source::Recorded(RECORDED_WHEN),
+        },
+    }
+}
+
 /// MuJoCo's run at `dt`, if recorded.
 fn mujoco_run(reference: &RobotReference, dt: f64) -> Option<reference::robots::MujocoRun> {
     reference
@@ -148,23 +161,25 @@ fn mujoco_run(reference: &RobotReference, dt: f64) -> Option<reference::robots::
 
 /// Per series: the cheapest run at or below MuJoCo's error, and the cost interpolated log–log between the runs that
 /// bracket it.
-fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference: &RobotReference) {
+fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference: &RobotReference, anchors: &Anchors) {
     let Some(anchor) = mujoco_run(reference, MUJOCO_DT) else {
         let _ = writeln!(out, "No MuJoCo run at dt = {MUJOCO_DT:.0e} was recorded.\n");
         return;
     };
-    let theirs = anchor.microseconds_per_step * 1e-6 / anchor.dt;
+    let time = mujoco_time(anchors, id, &anchor);
+    let (theirs, flag) = (time.seconds / anchor.dt, time.source.flag());
     let target = anchor.max_joint_error;
     let _ = writeln!(
         out,
         "**CPU per simulated second at MuJoCo's accuracy**: {MUJOCO} at dt = {:.0e} s is off by at most {} rad over \
-         the samples at {:.2} µs per step, {} s per simulated second — {RECORDED}. Per configuration: the cheapest of \
-         its runs at or below that error, and the cost interpolated log–log between the two runs that bracket it \
-         (a fixed-step method's error is a power of its cost).\n",
+         the samples (recorded {RECORDED_WHEN}) at {:.2}{flag} µs per step, {} s per simulated second — {}. Per \
+         configuration: the cheapest of its runs at or below that error, and the cost interpolated log–log between \
+         the two runs that bracket it (a fixed-step method's error is a power of its cost).\n",
         anchor.dt,
         scientific(target),
-        anchor.microseconds_per_step,
-        scientific(theirs)
+        time.seconds * 1e6,
+        scientific(theirs),
+        time.source.short()
     );
     table_header(
         out,
@@ -201,7 +216,7 @@ fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference
                 })
             }
         };
-        let ratio = |cost: f64| ratio(theirs / cost);
+        let ratio = |cost: f64| format!("{}{flag}", ratio(theirs / cost));
         let _ = writeln!(
             out,
             "| {label} | {run_cell} | {} | {} | {} | {} |",
@@ -236,7 +251,7 @@ fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference
             let _ = write!(
                 out,
                 "; at our floor, the cheapest run within 1.5× of the smallest error, {} at dt = {:e}, is off by {} \
-                 rad at {} s per simulated second (MuJoCo's / ours: {})",
+                 rad at {} s per simulated second (MuJoCo's / ours: {}{flag})",
                 o.config.series_label(),
                 o.config.dt,
                 scientific(o.joint_error),
@@ -251,13 +266,16 @@ fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference
             .rev()
             .map(|(_, (label, cost))| {
                 format!(
-                    "{label}, {} s per simulated second (interpolated), {:.1}× less than MuJoCo's",
+                    "{label}, {} s per simulated second (interpolated), {:.1}×{flag} less than MuJoCo's",
                     scientific(*cost),
                     theirs / cost
                 )
             })
             .collect();
         let _ = writeln!(out, "Cheapest at MuJoCo's accuracy: {}.\n", summary.join("; "));
+    }
+    if time.source.uncertain() {
+        let _ = writeln!(out, "{SPREAD_NOTE}.\n");
     }
 }
 
@@ -307,15 +325,19 @@ fn work_precision_figure(
     id: RobotId,
     reference: &RobotReference,
     name: &str,
+    anchors: &Anchors,
 ) -> Result<bool, PlotError> {
     let groups = series_of(results, id);
     if groups.is_empty() {
         return Ok(false);
     }
+    let times: Vec<Time> = reference.mujoco.iter().map(|r| mujoco_time(anchors, id, r)).collect();
+    let mujoco_source = sources_short(&times.iter().map(|t| t.source).collect::<Vec<_>>());
     let mut mujoco: Vec<(f64, f64)> = reference
         .mujoco
         .iter()
-        .map(|r| (r.microseconds_per_step * 1e-6 / r.dt, r.max_joint_error))
+        .zip(&times)
+        .map(|(r, time)| (time.seconds / r.dt, r.max_joint_error))
         .collect();
     mujoco.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut steps: Vec<f64> = reference.mujoco.iter().map(|r| r.dt).collect();
@@ -347,7 +369,7 @@ fn work_precision_figure(
         .map(|(series, title)| {
             let mut series: Vec<Series> = series.into_values().collect();
             series.push(Series::reference_points(
-                format!("{MUJOCO}, dt\u{a0}=\u{a0}{}, {RECORDED}", steps.join(" and ")),
+                format!("{MUJOCO}, dt\u{a0}=\u{a0}{}, {mujoco_source}", steps.join(" and ")),
                 mujoco.clone(),
             ));
             Panel::new(
@@ -363,8 +385,8 @@ fn work_precision_figure(
         })
         .collect();
     let caption = format!(
-        "Black triangles: {MUJOCO} on the same URDF at dt = {}; {PINOCCHIO}'s C++ ABA takes {:.2} µs per evaluation; \
-         both {RECORDED}, constants, not measured by this run. Ours: this job's, the fastest of repeated timings. Error: the largest joint-position error against Pinocchio's reference over the 101 samples every \
+        "Black triangles: {MUJOCO} on the same URDF at dt = {}, its errors recorded {RECORDED_WHEN}, its times \
+         {mujoco_source}; {PINOCCHIO}'s C++ ABA takes {:.2} µs per evaluation, recorded {RECORDED_WHEN}. Ours: this job's, the fastest of repeated timings. Error: the largest joint-position error against Pinocchio's reference over the 101 samples every \
          0.01 s. Dark, solid: PGA; light, dashed: CGA.",
         steps.join(" and "),
         reference.pinocchio_aba_microseconds
@@ -473,7 +495,7 @@ fn floors(results: &[RobotResult], id: RobotId, accuracy: f64) -> String {
 }
 
 /// The robots' section of `report.md`, writing its figures into `dir`.
-pub(crate) fn robot_section(dir: &Path, results: &[RobotResult]) -> Result<String, PlotError> {
+pub(crate) fn robot_section(dir: &Path, results: &[RobotResult], anchors: &Anchors) -> Result<String, PlotError> {
     let mut out = String::new();
     if results.is_empty() {
         return Ok(out);
@@ -488,7 +510,12 @@ pub(crate) fn robot_section(dir: &Path, results: &[RobotResult]) -> Result<Strin
          of the method, and their cost is timed on a run sampled at its steps only. CPU: the stepping time in this job, two \
          runs in parallel, the fastest of {MIN_REPEATS} timed runs (fewer where they take over {LONG_TIMING} s) and \
          of at least {MIN_TIMING} s of stepping (at most {MAX_REPEATS} runs). MuJoCo's and \
-         Pinocchio's figures were {RECORDED}.\n"
+         Pinocchio's figures were recorded {RECORDED_WHEN}{}.\n",
+        if anchors.is_empty() {
+            ""
+        } else {
+            ", except MuJoCo's times per step where they say they were measured in this run"
+        }
     );
     for id in RobotId::ALL {
         if !results.iter().any(|(c, _)| c.robot == id) {
@@ -502,12 +529,12 @@ pub(crate) fn robot_section(dir: &Path, results: &[RobotResult]) -> Result<Strin
             }
         };
         let _ = writeln!(out, "### {}\n\nModel: {}.\n", robot_label(id), model_line(id));
-        speed_table(&mut out, results, id, &reference);
+        speed_table(&mut out, results, id, &reference, anchors);
         let evaluation = reference.pinocchio_aba_microseconds;
         let _ = writeln!(
             out,
             "{PINOCCHIO}'s C++ ABA: {evaluation:.2} µs per evaluation of the accelerations; RK4 needs four per step, \
-             {:.2} µs, or {} s per simulated second at dt = 1e-3 — {RECORDED}.\n",
+             {:.2} µs, or {} s per simulated second at dt = 1e-3 — recorded {RECORDED_WHEN}.\n",
             4.0 * evaluation,
             scientific(4.0 * evaluation * 1e-6 / 1e-3)
         );
@@ -516,7 +543,7 @@ pub(crate) fn robot_section(dir: &Path, results: &[RobotResult]) -> Result<Strin
         }
         let stem = file_stem(id);
         let name = format!("{stem}_work_precision.png");
-        if work_precision_figure(dir, results, id, &reference, &name)? {
+        if work_precision_figure(dir, results, id, &reference, &name, anchors)? {
             let _ = writeln!(out, "![{name}]({name})\n");
         }
         let name = format!("{stem}_motion.png");
