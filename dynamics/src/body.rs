@@ -285,6 +285,11 @@ impl Body {
         self.moments
     }
 
+    /// The smallest radius of gyration, √(I_min / m) (m): the size of the body as its rotation sees it.
+    pub fn smallest_gyration_radius(&self) -> f64 {
+        (self.moments().min() / self.mass()).sqrt()
+    }
+
     /// `H = diag(I₁, I₂, I₃, m, m, m)`: the inertia in velocity coordinates `(ω; v)` (theory §3–§4).
     pub fn kinetic_metric(&self) -> nalgebra::Matrix6<f64> {
         let m = self.mass;

@@ -27,7 +27,7 @@ use crate::forces::Force;
 use crate::joint_integration::{self, JointBuffers, JointMethod};
 use crate::motion::{to_body, to_world, BodyRates, Dynamics, FreeBody, Rates};
 use crate::motor;
-use crate::state::{State, MAX_COORDINATE};
+use crate::state::{State, MAX_COORDINATE, MAX_DISTANCE_IN_GYRATION_RADII};
 
 /// A general integration method: valid for any [`Dynamics`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -247,6 +247,23 @@ pub enum StepError {
     InvalidTime {
         /// The start time that was refused.
         t: f64,
+    },
+    /// A body is farther from the world origin than [`MAX_DISTANCE_IN_GYRATION_RADII`] of its radii of gyration,
+    /// where its momentum about the origin no longer carries its spin to 1e-9 of its points' velocities.
+    #[error(
+        "at t = {t}: body {body} is {distance:.3e} m from the world origin, farther than {limit:.3e} m (4.5e6 of its \
+         radii of gyration), where its momentum about the origin no longer carries its spin to 1e-9 of its \
+         points' velocities; put the scene's origin near the bodies"
+    )]
+    TooFarFromOrigin {
+        /// The time the step was to start at (s).
+        t: f64,
+        /// The index of the first body that is too far.
+        body: usize,
+        /// Its distance from the origin (m).
+        distance: f64,
+        /// The farthest it may be (m).
+        limit: f64,
     },
     /// A state given to the step has a motor that is not a rigid motion: its rotor part's squared norm is off 1 by
     /// more than [`MAX_ROTOR_NORM_ERROR`] (a zero motor, or one written field by field without normalising).
@@ -514,6 +531,18 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         }
         if let Some(body) = states.iter().position(|state| !state.is_representable()) {
             return Err(StepError::NonFiniteInput { t, body });
+        }
+        for (body, state) in states.iter().enumerate() {
+            let distance = state.pose().0.norm();
+            let limit = MAX_DISTANCE_IN_GYRATION_RADII * self.dynamics.body(body).smallest_gyration_radius();
+            if distance > limit {
+                return Err(StepError::TooFarFromOrigin {
+                    t,
+                    body,
+                    distance,
+                    limit,
+                });
+            }
         }
         let rotor_norms = states.iter().map(State::rotor_norm_squared).enumerate();
         if let Some((body, norm_squared)) = rotor_norms

@@ -510,3 +510,41 @@ fn a_motor_that_is_not_a_rigid_motion_is_refused() {
         assert!(error.to_string().contains("not a rigid motion"), "{error}");
     }
 }
+
+/// Far from the origin a state cannot carry a body's spin (at 1e8 m a free cuboid read its spin back 1e-6 off, at
+/// 1e16 m it lost it): beyond `MAX_DISTANCE_IN_GYRATION_RADII` radii of gyration the step is refused with the reason;
+/// just within it, the spin reads back to 1e-9 of the points' velocities. (The round-off of each step adds to it: the
+/// motion there ends 1.4e-7 rad from the same motion at the origin after 1 s of RKMK8-body at dt = 1e-2.)
+#[test]
+fn a_body_too_far_from_the_origin_is_refused_and_one_within_keeps_its_spin() {
+    use dynamics::state::MAX_DISTANCE_IN_GYRATION_RADII;
+    use dynamics::{FreeBody, Method, Schedule, StepError};
+    let cuboid = Body::cuboid(2.0, Vector3::new(0.1, 0.2, 0.3)).unwrap();
+    let radius = cuboid.smallest_gyration_radius();
+    let limit = MAX_DISTANCE_IN_GYRATION_RADII * radius;
+    let system = FreeBody::<Pga>::new(cuboid);
+    let tilted = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.2, 0.5));
+    let (spin, velocity) = (Vector3::new(0.2, 1.0, 0.3), Vector3::new(1.0, -2.0, 0.5));
+    let direction = Vector3::new(1.0, 0.3, 0.0).normalize();
+    let at = |distance: f64| State::<Pga>::new(&cuboid, direction * distance, &tilted, spin, velocity);
+    let second = Schedule::new(1e-2, 1.0).unwrap();
+    for distance in [1.01 * limit, 1e8, 1e16, 1e30] {
+        let error = dynamics::simulate(&system, &[at(distance)], Method::Rkmk8Body, &second)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("from the world origin") && error.contains("body 0"),
+            "{distance}: {error}"
+        );
+        assert!(matches!(
+            dynamics::Stepper::new(&system, Method::Rk4).unwrap().step(0.0, &mut [at(distance)], 1e-3),
+            Err(StepError::TooFarFromOrigin { body: 0, distance: d, .. }) if (d - distance).abs() < 1e-9 * distance
+        ));
+    }
+    let within = 0.99 * limit;
+    let read_back = at(within).body_velocity(&cuboid);
+    let spin_error = (Pga::screw_coordinates(read_back).l - spin).norm();
+    let relative = spin_error * radius / velocity.norm();
+    assert!(relative < 1e-9, "{relative:e}");
+    assert!(dynamics::simulate(&system, &[at(within)], Method::Rkmk8Body, &second).is_ok());
+}

@@ -1,7 +1,7 @@
 //! MuJoCo's and Pinocchio's times measured on this machine beside the run (`--anchors FILE`, written by
 //! `tools/anchors/measure`; docs/benchmarks.md). A ratio of our cost to a constant measured on another day reads
 //! whatever load the machine had then; measured in the same hour, both sides see the same machine. Every figure the
-//! file lacks falls back to the recorded constant of [`crate::mujoco`], and the report says which is which.
+//! file lacks falls back to the recorded constant of `report/src/mujoco.rs`, and the report says which is which.
 //!
 //! The file is checked whole before the job runs: a careless or stale file is an error naming the figure, never a
 //! silent fallback.
@@ -276,11 +276,24 @@ pub(crate) struct Time<'a> {
 
 impl Anchors {
     /// No measured figures: the report uses its recorded constants.
+    ///
+    /// ```
+    /// use report::anchors::Anchors;
+    ///
+    /// assert_eq!(format!("{:?}", Anchors::none()), format!("{:?}", Anchors::default()));
+    /// ```
     pub fn none() -> Anchors {
         Anchors::default()
     }
 
     /// Reads and checks the file at `path` ([`Anchors::parse`]).
+    ///
+    /// ```
+    /// use report::anchors::{Anchors, AnchorsError};
+    ///
+    /// let missing = Anchors::read(std::path::Path::new("no/such/anchors.json"));
+    /// assert!(matches!(missing, Err(AnchorsError::Io { .. })));
+    /// ```
     pub fn read(path: &Path) -> Result<Anchors, AnchorsError> {
         let text = std::fs::read_to_string(path).map_err(|source| AnchorsError::Io {
             path: path.to_path_buf(),

@@ -63,6 +63,17 @@ pub enum SceneFileError {
     /// the line and column.
     #[error("{0}")]
     Format(#[from] toml::de::Error),
+    /// An unknown key in a table that the TOML reader can only point at as a whole (a joint or constraint, whose
+    /// kind decides its keys): the key's own line.
+    #[error("TOML parse error at line {line}: {message} (in the table from line {table_line})")]
+    UnknownKey {
+        /// The line of the unknown key (1-based).
+        line: usize,
+        /// The line the table starts at (1-based).
+        table_line: usize,
+        /// The reader's message: the key and the keys expected.
+        message: String,
+    },
     /// A value the format allows but a run cannot use.
     #[error("{what}: {reason}")]
     Invalid {
@@ -111,6 +122,39 @@ fn invalid(what: impl Into<String>, reason: impl Into<String>) -> SceneFileError
     SceneFileError::Invalid {
         what: what.into(),
         reason: reason.into(),
+    }
+}
+
+/// The reader's error, or, for an unknown key it can only place at its table's header (tables read through a `kind`
+/// tag), the same message at the key's own line: the first `key =` between the header and the next one.
+fn at_unknown_key(text: &str, error: toml::de::Error) -> SceneFileError {
+    let message = error.message().trim().to_owned();
+    let key = message
+        .strip_prefix("unknown field `")
+        .and_then(|rest| rest.split('`').next());
+    let (Some(key), Some(span)) = (key, error.span()) else {
+        return error.into();
+    };
+    let line_of = |offset: usize| text[..offset].matches('\n').count() + 1;
+    // The span is the table's header; its keys run to the next header.
+    let after_header = text[span.end..].find('\n').map_or(text.len(), |end| span.end + end);
+    let end = text[after_header..]
+        .match_indices("\n[")
+        .next()
+        .map_or(text.len(), |(at, _)| after_header + at);
+    let table = &text[span.start..end];
+    let assigned = table.match_indices(key).find(|&(at, _)| {
+        let before = table[..at].chars().next_back();
+        let after = table[at + key.len()..].trim_start();
+        before.is_none_or(|c| c.is_whitespace() || c == '{' || c == ',') && after.starts_with('=')
+    });
+    match assigned {
+        Some((at, _)) if line_of(span.start + at) != line_of(span.start) => SceneFileError::UnknownKey {
+            line: line_of(span.start + at),
+            table_line: line_of(span.start),
+            message,
+        },
+        _ => error.into(),
     }
 }
 
@@ -252,7 +296,7 @@ pub(crate) struct NamedBody {
     #[serde(deserialize_with = "maybe_exactly")]
     pub(crate) principal_moments: Option<[f64; 3]>,
     #[serde(default)]
-    pub(crate) initial: InitialSpec,
+    pub(crate) initial: Option<InitialSpec>,
     #[serde(default)]
     pub(crate) forces: Vec<ForceSpec>,
 }
@@ -282,6 +326,8 @@ pub struct LayoutBody {
     pub(crate) spec: BodySpec,
     /// Its state at t = 0, as the file gives it.
     pub initial: InitialSpec,
+    /// Whether the file gives it (an `initial` table); otherwise its joint places it.
+    pub(crate) initial_given: bool,
     pub(crate) forces: Vec<ForceSpec>,
 }
 
@@ -1663,7 +1709,7 @@ impl SceneFile {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn parse_in(text: &str, folder: &Path) -> Result<SceneFile, SceneFileError> {
-        let mut scene: SceneFile = toml::from_str(text)?;
+        let mut scene: SceneFile = toml::from_str(text).map_err(|error| at_unknown_key(text, error))?;
         if let Some(robot) = &scene.robot {
             scene.loaded_robot = Some(Arc::new(robot.load(folder)?));
         }
@@ -1811,6 +1857,7 @@ impl SceneFile {
                         name: "body".to_owned(),
                         spec: spec.clone(),
                         initial: self.initial.clone().unwrap_or_default(),
+                        initial_given: self.initial.is_some(),
                         forces: self.forces.clone(),
                     }],
                     joints,
@@ -1873,7 +1920,8 @@ impl SceneFile {
                     shape: entry.shape.clone(),
                     principal_moments: entry.principal_moments,
                 },
-                initial: entry.initial.clone(),
+                initial: entry.initial.clone().unwrap_or_default(),
+                initial_given: entry.initial.is_some(),
                 forces: entry.forces.clone(),
             });
         }
@@ -2073,7 +2121,15 @@ impl SceneFile {
         // breaks them by more than the file allows is refused.
         let mut initial = states;
         let start_correction = system.project(0.0, &mut initial)?;
-        self.check_start_correction(&start_correction, &system)?;
+        // Bodies on a joint model are placed by their joint, from the coordinates their state gives; the others' states
+        // are where the file puts them.
+        let held_as_given: Vec<bool> = (parent_of.iter().enumerate())
+            .map(|(index, parent)| {
+                let given = |name: &str| layout.bodies.iter().any(|body| body.initial_given && body.name == name);
+                parent.is_none() && system.body_names().nth(index).is_some_and(given)
+            })
+            .collect();
+        self.check_start_correction(&start_correction, &system, &held_as_given)?;
         if !driven.is_empty() {
             // The driven joints start on their paths (the projection by joint coordinates leaves them where they are).
             let mut q = system.joint_positions(&initial, None)?;
@@ -2109,11 +2165,13 @@ impl SceneFile {
         })
     }
 
-    /// Refuses a start that the projection onto the joints moved by more than `max_start_correction`, naming the body.
+    /// Refuses a start that the projection onto the joints moved by more than `max_start_correction`, naming the body:
+    /// of the bodies `checked` by index, those whose initial state the file gives and no joint model places.
     fn check_start_correction<A: Algebra>(
         &self,
         correction: &Correction,
         system: &Mechanism<A>,
+        checked: &[bool],
     ) -> Result<(), SceneFileError> {
         let limit = self.max_start_correction;
         if !(limit.is_finite() && limit > 0.0) {
@@ -2122,16 +2180,19 @@ impl SceneFile {
                 format!("must be positive and finite (m and rad), got {limit}"),
             ));
         }
-        match correction.largest() {
+        let names: Vec<&str> = system.body_names().collect();
+        let largest = (correction.moved.iter().zip(&correction.turned).enumerate())
+            .filter(|(body, _)| checked.get(*body).copied().unwrap_or(false))
+            .map(|(body, (moved, turned))| (body, moved.max(*turned)))
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        match largest {
             Some((body, largest)) if largest > limit => Err(invalid(
                 "max_start_correction",
                 format!(
                     "the start breaks the joints: putting it on them moves body `{}` by {:.3e} m and turns it by \
                      {:.3e} rad, more than max_start_correction = {limit} (m and rad); correct its initial state or \
                      raise max_start_correction",
-                    system.body_names().nth(body).unwrap_or_default(),
-                    correction.moved[body],
-                    correction.turned[body],
+                    names[body], correction.moved[body], correction.turned[body],
                 ),
             )),
             _ => Ok(()),

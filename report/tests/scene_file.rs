@@ -934,3 +934,17 @@ fn a_duration_off_the_sample_grid_ends_with_a_shorter_interval() {
     assert_eq!(times.len(), 12);
     assert!((times[10] - 0.1).abs() < 1e-15 && times[11] == 0.105, "{times:?}");
 }
+
+/// A typo in a joint or constraint, whose keys depend on its `kind`, is reported at its own line, not at the table's
+/// first line; elsewhere the reader's own position stands.
+#[test]
+fn a_typo_in_a_joint_is_reported_at_its_line() {
+    let typo = VALID.replace("world_point = [0.0, 0.0, 0.0]", "world_pont = [0.0, 0.0, 0.0]");
+    let message = SceneFile::parse(&typo).unwrap_err().to_string();
+    let line = typo.lines().position(|l| l.starts_with("world_pont")).unwrap() + 1;
+    assert!(
+        message.starts_with(&format!("TOML parse error at line {line}: unknown field `world_pont`")),
+        "{message}"
+    );
+    assert!(message.contains("(in the table from line"), "{message}");
+}
