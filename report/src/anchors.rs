@@ -305,6 +305,15 @@ impl Anchors {
     /// Checks the text of an anchors file measured no later than `now`: the format, the date, the machine, and per
     /// figure a key the report uses, the step it names, at least [`MIN_REPEATS`] positive finite repeats, and a
     /// minimum and spread that are those of the repeats.
+    ///
+    /// ```
+    /// use std::time::SystemTime;
+    /// use report::anchors::Anchors;
+    ///
+    /// // Not what `tools/anchors/measure` writes: an error naming what is missing, never a silent fallback.
+    /// let error = Anchors::parse("{}", SystemTime::now()).unwrap_err();
+    /// assert!(error.to_string().contains("missing field"), "{error}");
+    /// ```
     pub fn parse(text: &str, now: SystemTime) -> Result<Anchors, AnchorsError> {
         let file: File = serde_json::from_str(text)?;
         if file.format != FORMAT {
