@@ -58,13 +58,17 @@ def m2(reference_set, python, workdir):
     yield command, "m2", "MuJoCo 4.0 RK4 step at dt = 1e-3, loop by a soft equality", 1e-3, at["us_per_step"] * 1e-6, errors
 
 
+def chain_script(reference_set, python, workdir, simulator, output_name):
+    """Runs the reference set's `<simulator>/chain.py` into `output_name`: its command and the JSON it wrote."""
+    output = os.path.join(workdir, output_name)
+    command = [python, os.path.join(reference_set, "scenes/multibody", simulator, "chain.py"), output]
+    run(command, workdir)
+    return command, json_in(output)
+
+
 def m3(reference_set, python, workdir):
     """M3: MuJoCo RK4 s per step at dt = 1e-3 for the ball and the hinge chains of N links."""
-    script = os.path.join(reference_set, "scenes/multibody/mujoco/chain.py")
-    output = os.path.join(workdir, "chain.json")
-    command = [python, script, output]
-    run(command, workdir)
-    chains = json_in(output)
+    command, chains = chain_script(reference_set, python, workdir, "mujoco", "chain.json")
     for joint in ("ball", "hinge"):
         for n in CHAIN_LINKS:
             seconds = chains[f"{joint}_{n}"]["us_per_step"] * 1e-6
@@ -73,11 +77,7 @@ def m3(reference_set, python, workdir):
 
 def m3_pinocchio(reference_set, python, workdir):
     """M3: Pinocchio's ABA on the ball chain, s per dynamics evaluation (no step size)."""
-    script = os.path.join(reference_set, "scenes/multibody/pinocchio/chain.py")
-    output = os.path.join(workdir, "pinocchio_chain.json")
-    command = [python, script, output]
-    run(command, workdir)
-    chains = json_in(output)
+    command, chains = chain_script(reference_set, python, workdir, "pinocchio", "pinocchio_chain.json")
     for n in CHAIN_LINKS:
         seconds = chains[str(n)]["pinocchio_aba_us"] * 1e-6
         yield command, f"m3-pinocchio-{n}", "Pinocchio 4.1 ABA evaluation, ball joints", None, seconds, None
