@@ -24,17 +24,38 @@ use crate::naming::{const_method_name, map_builder_name, map_type_name, trait_na
 use crate::operation::Operation;
 use crate::product::reverse_sign;
 use crate::program::{Definition, Program, Term, Value};
-use crate::table::{Source, Table};
+use crate::table::{EncodedStage, Source, Table};
 use crate::transcendental::{self, ClosedForm, Function as Closed};
 
 /// The traits every emitted struct derives (it is also `#[repr(C)]`).
 pub const DERIVED_TRAITS: [&str; 5] = ["Clone", "Copy", "Debug", "PartialEq", "Default"];
 
-/// Emits the items of the algebra's module.
+/// Emits the items of the algebra's module, refusing a declaration whose functions take more than
+/// [`functions::MAX_BUILD_WORK`] to build.
 pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
+    emit_within(algebra, functions::MAX_BUILD_WORK)
+}
+
+/// [`emit`] with a limit of `max_build_work` ([`Function::build_work`] summed over the functions), checked as the
+/// functions are made, so a refusal comes before the rest is built.
+pub fn emit_within(algebra: &Algebra, max_build_work: usize) -> Result<TokenStream, Error> {
     let emitter = Emitter {
         algebra,
         scalar: format_ident!("{}", algebra.scalar.name()),
+    };
+    let mut work = 0usize;
+    let mut within = |function: &Function| {
+        work = work.saturating_add(function.build_work());
+        if work <= max_build_work {
+            return Ok(());
+        }
+        Err(Error::TooMuchCode {
+            ty_index: function.lhs,
+            ty: algebra.types[function.lhs].name.clone(),
+            work,
+            limit: max_build_work,
+            unrolled_multiply: functions::UNROLLED_MULTIPLY_WORK,
+        })
     };
     let mut items = Vec::new();
     let binary: Vec<Operation> = algebra.operations.iter().copied().filter(|op| op.is_binary()).collect();
@@ -44,6 +65,7 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
         let mut methods = Vec::new();
         for &op in algebra.operations.iter().filter(|op| !op.is_binary()) {
             for function in functions::unary(algebra, op, index)? {
+                within(&function)?;
                 methods.push(emitter.unary_method(&function));
             }
         }
@@ -55,6 +77,7 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
         for rhs in 0..algebra.types.len() {
             for subtract in [false, true] {
                 if let Some(function) = functions::sum(algebra, lhs, rhs, subtract) {
+                    within(&function)?;
                     items.push(emitter.sum_impl(&function));
                 }
             }
@@ -63,6 +86,7 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
             }
             for &op in &binary {
                 let function = functions::binary(algebra, op, lhs, rhs)?;
+                within(&function)?;
                 items.push(binary_function(algebra, &function));
             }
         }
@@ -196,6 +220,10 @@ fn binary_trait(operation: Operation) -> TokenStream {
 
 /// How emitted code reads an input variable (an operand's field).
 type Inputs<'a> = &'a dyn Fn(Variable) -> TokenStream;
+
+/// How a tabled function's doc reads its tables.
+const TABLE_LAYOUT: &str = "A table holds one entry `i, j, k, n` per product, each a little-endian `u16` (`u32` where \
+     an index needs it): `stage[k] += coefficients[n] · left[i] · right[j]`.";
 
 struct Emitter<'a> {
     algebra: &'a Algebra,
@@ -503,8 +531,13 @@ impl Emitter<'_> {
         quote! { #locals #result }
     }
 
-    /// Per stage a constant table `(i, j, k, c)` and a loop `stage[k] += c · left[i] · right[j]` (a `while`
-    /// loop: the function stays `const`), then the result read from the last stage.
+    /// Per stage a constant table and a loop `stage[k] += c · left[i] · right[j]` (a `while` loop: the function
+    /// stays `const`), then the result read from the last stage.
+    ///
+    /// A table is one byte-string literal of entries `i, j, k, n`, each a little-endian `u16` (or `u32` where an
+    /// index needs it), `n` indexing the stage's distinct coefficients: one token however many entries, where an
+    /// array of tuples is ten per entry, which rustc and the macro's token bridge handle entry by entry (a
+    /// million-entry product took minutes to build).
     fn table_body(&self, function: &Function, table: &Table) -> TokenStream {
         let scalar = &self.scalar;
         let zero = self.literal(Rational64::zero());
@@ -519,32 +552,57 @@ impl Emitter<'_> {
             .any(|s| s.left == Source::Rhs || s.right == Source::Rhs);
         let rhs = reads_rhs.then(|| quote! { let rhs = rhs.to_array(); });
         let stages = table.stages.iter().enumerate().map(|(s, stage)| {
-            let entries_name = format_ident!("STAGE_{s}");
+            let (entries_name, coefficients_name) = (format_ident!("STAGE_{s}"), format_ident!("COEFFICIENTS_{s}"));
             let output = array(Source::Stage(s));
             let (left, right) = (array(stage.left), array(stage.right));
+            let encoded = EncodedStage::new(stage);
             let index = Literal::usize_unsuffixed;
-            let (count, size) = (index(stage.entries.len()), index(stage.blades.len()));
-            let entries = stage.entries.iter().map(|e| {
-                let (i, j, k) = (index(e.left), index(e.right), index(e.output));
-                let c = self.literal(e.coefficient.abs());
-                let c = if e.coefficient.is_negative() {
-                    quote! { -#c }
+            let (bytes, size) = (index(encoded.bytes.len()), index(stage.blades.len()));
+            let coefficients = encoded.coefficients.iter().map(|&c| {
+                let literal = self.literal(c.abs());
+                if c.is_negative() {
+                    quote! { -#literal }
                 } else {
-                    quote! { #c }
-                };
-                quote! { (#i, #j, #k, #c) }
+                    quote! { #literal }
+                }
             });
-            // Read through a reference: `&CONST` is promoted to a static, where indexing the constant itself would
-            // build the whole table on the stack at every iteration in an unoptimised build.
+            let coefficient_count = index(encoded.coefficients.len());
+            let literal = Literal::byte_string(&encoded.bytes);
+            let width = encoded.width;
+            // Shifts and ors rather than `u16::from_le_bytes`, a call per index in an unoptimised build.
+            let read = |position: usize| {
+                let bytes = (0..width).map(|b| {
+                    let byte = match position * width + b {
+                        0 => quote! { table[at] as usize },
+                        offset => {
+                            let offset = index(offset);
+                            quote! { table[at + #offset] as usize }
+                        }
+                    };
+                    match 8 * b {
+                        0 => byte,
+                        shift => {
+                            let shift = index(shift);
+                            quote! { (#byte) << #shift }
+                        }
+                    }
+                });
+                quote! { #(#bytes)|* }
+            };
+            let (i, j, k, n) = (read(0), read(1), read(2), read(3));
+            let stride = index(4 * width);
+            // Read through references: `&CONST` is promoted to a static, where indexing the constant itself would
+            // build it on the stack at every iteration in an unoptimised build.
             quote! {
-                const #entries_name: [(u32, u32, u32, #scalar); #count] = [#(#entries),*];
-                let table = &#entries_name;
+                const #entries_name: &[u8; #bytes] = #literal;
+                const #coefficients_name: [#scalar; #coefficient_count] = [#(#coefficients),*];
+                let (table, coefficients) = (#entries_name, &#coefficients_name);
                 let mut #output = [#zero; #size];
-                let mut entry = 0;
-                while entry < #count {
-                    let (i, j, k, c) = table[entry];
-                    #output[k as usize] += c * #left[i as usize] * #right[j as usize];
-                    entry += 1;
+                let mut at = 0;
+                while at < #bytes {
+                    let (i, j, k, n) = (#i, #j, #k, #n);
+                    #output[k] += coefficients[n] * #left[i] * #right[j];
+                    at += #stride;
                 }
             }
         });
@@ -597,12 +655,13 @@ impl Emitter<'_> {
         let lowering = match &function.code {
             Code::Unrolled(_) => String::new(),
             Code::Table(table) if table.stages.len() == 2 => format!(
-                "\n\nTable-driven: {} products in two stages, `m = a x` then `m ~a`, each a constant table and a loop.",
+                "\n\nTable-driven: {} products in two stages, `m = a x` then `m ~a`, each a constant table and a loop. \
+                 {TABLE_LAYOUT}",
                 table.entries()
             ),
             Code::Table(table) => {
                 format!(
-                    "\n\nTable-driven: {} products in a constant table and a loop.",
+                    "\n\nTable-driven: {} products in a constant table and a loop. {TABLE_LAYOUT}",
                     table.entries()
                 )
             }

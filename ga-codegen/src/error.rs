@@ -324,6 +324,25 @@ pub enum Error {
         /// The largest dimension allowed for `all`.
         max_dimension: usize,
     },
+    #[error(
+        "the functions of `{ty}` bring the declaration's code to {work} units of build work, over the {limit} that \
+         build in under a minute (a table entry is one unit, an unrolled multiply {unrolled_multiply}): declare \
+         only the operations you use (`ops = [...]`), or fewer or smaller types"
+    )]
+    /// The declaration's functions would take more than [`MAX_BUILD_WORK`](crate::functions::MAX_BUILD_WORK) to
+    /// build: refused when the sum of [`build_work`](crate::functions::Function::build_work) crosses it.
+    TooMuchCode {
+        /// Index into `types`: the left operand of the function that crossed the limit.
+        ty_index: usize,
+        /// The type's name.
+        ty: String,
+        /// The work of the functions emitted so far, that one included.
+        work: usize,
+        /// [`MAX_BUILD_WORK`](crate::functions::MAX_BUILD_WORK).
+        limit: usize,
+        /// [`UNROLLED_MULTIPLY_WORK`](crate::functions::UNROLLED_MULTIPLY_WORK).
+        unrolled_multiply: usize,
+    },
     #[error("operation `{name}` is listed twice")]
     /// An operation is listed twice in `operations`.
     DuplicateOperation {
@@ -688,7 +707,9 @@ impl Error {
             | Error::InvalidTypeName { index, .. }
             | Error::ReservedTypeName { index, .. }
             | Error::TypeMethodCollision { index, .. } => Location::Type(index),
-            Error::AllTooLarge { ty_index, .. } | Error::TooManyFields { ty_index, .. } => Location::Type(ty_index),
+            Error::AllTooLarge { ty_index, .. }
+            | Error::TooManyFields { ty_index, .. }
+            | Error::TooMuchCode { ty_index, .. } => Location::Type(ty_index),
             Error::UnknownBlade { ty_index, item, .. }
             | Error::InvalidBladeName { ty_index, item, .. }
             | Error::DuplicateBlade { ty_index, item, .. }

@@ -156,12 +156,36 @@ pub struct Expansion {
 }
 
 impl Expansion {
-    fn add(&mut self, blade: BladeMask, factors: &[Variable], coefficient: Rational64) {
-        let polynomial = self.outputs.entry(blade).or_default();
-        polynomial.add_term(factors, coefficient);
-        if polynomial.is_zero() {
-            self.outputs.remove(&blade);
+    /// Sums `coefficient · monomial` into each blade's polynomial: equal monomials of a blade merged, zero sums
+    /// dropped (so a blade that cancels identically is absent), each polynomial built from its sorted terms in
+    /// one pass, where inserting a million products one by one was most of a big product's expansion. A binary
+    /// product's terms arrive sorted per blade, so only the sandwich's need sorting.
+    fn from_terms(terms: Vec<(BladeMask, Monomial, Rational64)>) -> Expansion {
+        let mut by_blade: BTreeMap<BladeMask, Vec<(Monomial, Rational64)>> = BTreeMap::new();
+        for (blade, monomial, coefficient) in terms {
+            by_blade.entry(blade).or_default().push((monomial, coefficient));
         }
+        let outputs = by_blade
+            .into_iter()
+            .filter_map(|(blade, mut terms)| {
+                if !terms.is_sorted_by(|a, b| a.0 <= b.0) {
+                    terms.sort_unstable_by_key(|term| term.0);
+                }
+                let mut merged: Vec<(Monomial, Rational64)> = Vec::with_capacity(terms.len());
+                for (monomial, coefficient) in terms {
+                    match merged.last_mut() {
+                        Some(last) if last.0 == monomial => last.1 += coefficient,
+                        _ => merged.push((monomial, coefficient)),
+                    }
+                }
+                merged.retain(|term| !term.1.is_zero());
+                (!merged.is_empty()).then(|| {
+                    let terms = merged.into_iter().collect();
+                    (blade, Polynomial { terms })
+                })
+            })
+            .collect();
+        Expansion { outputs }
     }
 
     /// The output blades, in canonical bitmask order.
@@ -223,16 +247,16 @@ fn rhs(field: usize) -> Variable {
 /// ```
 pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in left.fields.iter().enumerate() {
         for (j, b) in right.fields.iter().enumerate() {
             let signs = Rational64::from_integer(a.sign * b.sign);
             for &(blade, c) in rules.binary(operation, a.blade, b.blade).terms() {
-                expansion.add(blade, &[lhs(i), rhs(j)], c * signs);
+                terms.push((blade, Monomial::new(&[lhs(i), rhs(j)]), c * signs));
             }
         }
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 /// Expands the sandwich `a x ~a` as one cubic polynomial (`a` = `versor`, `x` = `operand`): the
@@ -268,7 +292,7 @@ pub fn binary(algebra: &Algebra, operation: Operation, left: &SparseType, right:
 /// ```
 pub fn sandwich(algebra: &Algebra, versor: &SparseType, operand: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in versor.fields.iter().enumerate() {
         for (k, x) in operand.fields.iter().enumerate() {
             let ax = rules.geometric(a.blade, x.blade);
@@ -276,13 +300,13 @@ pub fn sandwich(algebra: &Algebra, versor: &SparseType, operand: &SparseType) ->
                 for (j, b) in versor.fields.iter().enumerate() {
                     let signs = reverse_sign(b.blade) * Rational64::from_integer(a.sign * x.sign * b.sign);
                     for &(blade, c2) in rules.geometric(middle, b.blade).terms() {
-                        expansion.add(blade, &[lhs(i), rhs(k), lhs(j)], c1 * c2 * signs);
+                        terms.push((blade, Monomial::new(&[lhs(i), rhs(k), lhs(j)]), c1 * c2 * signs));
                     }
                 }
             }
         }
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 /// Which side of `x` the commutator form of the sandwich puts the versor's norm on.
@@ -335,6 +359,7 @@ pub fn commutator_form(
 ) -> CommutatorForm {
     let rules = Rules::new(&algebra.metric);
     let mut form = CommutatorForm::default();
+    let mut commutator = Vec::new();
     // C = x ~a − ~a x (left) or a x − x a (right), term by term.
     for (i, a) in versor.fields.iter().enumerate() {
         let a_sign = Rational64::from_integer(a.sign);
@@ -349,13 +374,15 @@ pub fn commutator_form(
                 Side::Right => (rules.geometric(a.blade, x.blade), rules.geometric(x.blade, a.blade)),
             };
             for &(blade, c) in first.terms() {
-                form.commutator.add(blade, &[lhs(i), rhs(k)], c * signs);
+                commutator.push((blade, Monomial::new(&[lhs(i), rhs(k)]), c * signs));
             }
             for &(blade, c) in second.terms() {
-                form.commutator.add(blade, &[lhs(i), rhs(k)], -c * signs);
+                commutator.push((blade, Monomial::new(&[lhs(i), rhs(k)]), -c * signs));
             }
         }
     }
+    form.commutator = Expansion::from_terms(commutator);
+    let (mut product_terms, mut vanishing) = (Vec::new(), Vec::new());
     for (k, &c_blade) in form.commutator.outputs.keys().enumerate() {
         for (i, a) in versor.fields.iter().enumerate() {
             let (product, signs) = match side {
@@ -367,13 +394,15 @@ pub fn commutator_form(
             };
             for &(blade, c) in product.terms() {
                 if outputs.contains(&blade) {
-                    form.product.add(blade, &[lhs(i), rhs(k)], c * signs);
+                    product_terms.push((blade, Monomial::new(&[lhs(i), rhs(k)]), c * signs));
                 } else if norm == Norm::Unit {
-                    form.vanishing.add(blade, &[lhs(i), rhs(k)], c * signs);
+                    vanishing.push((blade, Monomial::new(&[lhs(i), rhs(k)]), c * signs));
                 }
             }
         }
     }
+    form.product = Expansion::from_terms(product_terms);
+    form.vanishing = Expansion::from_terms(vanishing);
     match norm {
         Norm::Unit => {
             for (k, x) in operand.fields.iter().enumerate() {
@@ -385,6 +414,7 @@ pub fn commutator_form(
         }
         Norm::General => {
             form.norm = times_own_reverse(algebra, versor);
+            let mut norm_product = Vec::new();
             for (k, &n_blade) in form.norm.outputs.keys().enumerate() {
                 for (j, x) in operand.fields.iter().enumerate() {
                     let product = match side {
@@ -394,11 +424,12 @@ pub fn commutator_form(
                     for &(blade, c) in product.terms() {
                         if outputs.contains(&blade) {
                             let sign = Rational64::from_integer(x.sign);
-                            form.norm_product.add(blade, &[lhs(k), rhs(j)], c * sign);
+                            norm_product.push((blade, Monomial::new(&[lhs(k), rhs(j)]), c * sign));
                         }
                     }
                 }
             }
+            form.norm_product = Expansion::from_terms(norm_product);
         }
     }
     form
@@ -435,13 +466,13 @@ pub fn commutator_form(
 /// ```
 pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expansion {
     let rules = Rules::new(&algebra.metric);
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in ty.fields.iter().enumerate() {
         for &(blade, c) in rules.unary(operation, a.blade).terms() {
-            expansion.add(blade, &[lhs(i)], c * Rational64::from_integer(a.sign));
+            terms.push((blade, Monomial::new(&[lhs(i)]), c * Rational64::from_integer(a.sign)));
         }
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 /// The grade-`k` part of a type.
@@ -466,11 +497,11 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: &SparseType) -> Expans
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in ty.fields.iter().enumerate().filter(|(_, a)| grade(a.blade) == k) {
-        expansion.add(a.blade, &[lhs(i)], Rational64::from(a.sign));
+        terms.push((a.blade, Monomial::new(&[lhs(i)]), Rational64::from(a.sign)));
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 /// `a ~a` with both factors taken from `self` (so symmetric terms merge). Its scalar part is the
@@ -505,17 +536,29 @@ pub fn grade_part(ty: &SparseType, k: u32) -> Expansion {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
+    times_own_reverse_where(algebra, ty, |_| true)
+}
+
+/// The scalar part of [`times_own_reverse`] alone, `⟨a ~a⟩₀` (the squared norm): only the products that reach
+/// the scalar are expanded, where a full multivector in 10 dimensions has a million.
+pub fn norm_squared(algebra: &Algebra, ty: &SparseType) -> Expansion {
+    times_own_reverse_where(algebra, ty, |blade| blade == 0)
+}
+
+fn times_own_reverse_where(algebra: &Algebra, ty: &SparseType, keep: impl Fn(BladeMask) -> bool) -> Expansion {
     let rules = Rules::new(&algebra.metric);
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in ty.fields.iter().enumerate() {
         for (j, b) in ty.fields.iter().enumerate() {
             let signs = reverse_sign(b.blade) * Rational64::from_integer(a.sign * b.sign);
             for &(blade, c) in rules.geometric(a.blade, b.blade).terms() {
-                expansion.add(blade, &[lhs(i), lhs(j)], c * signs);
+                if keep(blade) {
+                    terms.push((blade, Monomial::new(&[lhs(i), lhs(j)]), c * signs));
+                }
             }
         }
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 /// The sum or difference of two types, blade by blade.
@@ -546,15 +589,15 @@ pub fn times_own_reverse(algebra: &Algebra, ty: &SparseType) -> Expansion {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn sum(left: &SparseType, right: &SparseType, subtract: bool) -> Expansion {
-    let mut expansion = Expansion::default();
+    let mut terms = Vec::new();
     for (i, a) in left.fields.iter().enumerate() {
-        expansion.add(a.blade, &[lhs(i)], Rational64::from(a.sign));
+        terms.push((a.blade, Monomial::new(&[lhs(i)]), Rational64::from(a.sign)));
     }
     let sign = if subtract { -1 } else { 1 };
     for (j, b) in right.fields.iter().enumerate() {
-        expansion.add(b.blade, &[rhs(j)], Rational64::from(sign * b.sign));
+        terms.push((b.blade, Monomial::new(&[rhs(j)]), Rational64::from(sign * b.sign)));
     }
-    expansion
+    Expansion::from_terms(terms)
 }
 
 #[cfg(test)]

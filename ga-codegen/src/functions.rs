@@ -80,6 +80,27 @@ pub struct Function {
     pub cost: Cost,
 }
 
+/// The build work of one unrolled multiply, in table entries: an unrolled function is lowered with common
+/// subexpressions and emitted as source rustc checks term by term, a table entry is eight bytes of one literal.
+/// Measured in debug builds: 6.2 million table entries (a 10-dimensional `all` with every operation) took 23 s,
+/// 302 000 unrolled multiplies and 298 000 entries (ten types of Cl(5,1) with every operation) 55 s.
+pub const UNROLLED_MULTIPLY_WORK: usize = 32;
+
+/// The most build work ([`Function::build_work`]) a declaration's functions may take together: about 45 s for a
+/// debug build on a 2-core machine, where the macro itself runs unoptimised.
+pub const MAX_BUILD_WORK: usize = 8_000_000;
+
+impl Function {
+    /// What building this function costs, in table entries: its entries if tabled, else
+    /// [`UNROLLED_MULTIPLY_WORK`] per multiply (and per add, for a function without multiplies such as a sum).
+    pub fn build_work(&self) -> usize {
+        match &self.code {
+            Code::Table(table) => table.entries(),
+            Code::Unrolled(_) => UNROLLED_MULTIPLY_WORK * self.cost.multiplies.max(self.cost.adds),
+        }
+    }
+}
+
 /// Lowers with the names of the operands' fields and of the algebra's blades.
 fn lower_with(
     algebra: &Algebra,
@@ -151,7 +172,7 @@ pub fn binary(algebra: &Algebra, operation: Operation, lhs: usize, rhs: usize) -
     let blades = expansion.blades();
     let table = || match operation {
         Operation::Sandwich => Table::sandwich(algebra, left, right, Some(&blades)),
-        _ => Table::binary(algebra, operation, left, right, &blades),
+        _ => Table::bilinear(&expansion),
     };
     let declared = algebra.declared_lowering(operation);
     if declared == Some(Lowering::Table) || (declared.is_none() && expansion.term_count() > MAX_UNROLLED_TERMS) {
@@ -210,7 +231,7 @@ fn sandwich_by_reach(
             .copied()
             .filter(|&b| grades.contains(&grade(b)))
             .collect();
-        table = Table::sandwich(algebra, left, right, Some(&kept));
+        table = table.keeping(&kept);
     }
     let describe = || (operation.name().to_string(), left.name.clone(), right.name.clone());
     let output = Output::Type(result_type(algebra, table.output_blades(), describe)?);
@@ -240,7 +261,7 @@ fn tabled(operation: Operation, (lhs, rhs): (usize, usize), output: Output, tabl
 /// part (so it is never 1) the transform is the sandwich.
 fn transform(algebra: &Algebra, lhs: usize, rhs: usize) -> Result<Function, Error> {
     let (left, right) = (&algebra.types[lhs], &algebra.types[rhs]);
-    let unit = expand::times_own_reverse(algebra, left).outputs.contains_key(&0);
+    let unit = !expand::norm_squared(algebra, left).outputs.is_empty();
     let grades: Vec<u32> = right.fields.iter().map(|f| grade(f.blade)).collect();
     if too_big_to_expand(left, right) {
         return sandwich_by_reach(algebra, Operation::Transform, (lhs, rhs), unit.then_some(&grades));
@@ -371,8 +392,7 @@ pub fn unary(algebra: &Algebra, operation: Operation, ty: usize) -> Result<Vec<F
                 .collect()
         }
         Operation::NormSquared => {
-            let mut product = expand::times_own_reverse(algebra, declared);
-            product.outputs.retain(|&blade, _| blade == 0);
+            let product = expand::norm_squared(algebra, declared);
             Ok(vec![finish(
                 algebra,
                 Some(operation),

@@ -199,10 +199,21 @@ impl Metric {
     /// blades have in common), zero if any of them is null.
     pub fn shared_factor(&self, shared: BladeMask) -> Rational64 {
         debug_assert!(self.diagonal, "only an orthogonal basis has single-term products");
-        (0..self.dimension)
-            .filter(|i| shared & (1 << i) != 0)
-            .map(|i| self.square(i))
-            .product()
+        // Visits only the shared vectors and flips a sign for a square of −1, without rational arithmetic: the
+        // products of full multivectors in 10 dimensions call this a million times each.
+        let (one, minus_one) = (Rational64::from_integer(1), Rational64::from_integer(-1));
+        let mut factor = one;
+        let mut rest = shared;
+        while rest != 0 {
+            let square = self.square(rest.trailing_zeros() as usize);
+            if square == minus_one {
+                factor = -factor;
+            } else if square != one {
+                factor *= square;
+            }
+            rest &= rest - 1;
+        }
+        factor
     }
 
     /// The number of basis vectors.

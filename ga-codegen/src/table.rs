@@ -6,20 +6,23 @@
 //! LLVM walks the debug-info scope chain recursively). Here a bilinear product is instead a constant table of
 //! entries `(i, j, k, c)` and one loop `out[k] += c · left[i] · right[j]`; a sandwich `a x ~a` is two such
 //! stages, `m = a x` over every blade the products reach, then `m ~a` (the reverse's signs folded into the
-//! coefficients). The source is a few bytes per entry and compiles in time linear in it.
+//! coefficients). The emitted table is one byte-string literal ([`EncodedStage`]): eight bytes per entry and a
+//! single token, so neither the macro's token stream nor rustc handles entries one by one (as an array of
+//! tuples made them do: a 10-dimensional `all` with every operation took five minutes and 12 GB to build, now
+//! half a minute).
 //!
 //! Exactness is kept where it matters: the output blades are those of the exact symbolic expansion (a blade
 //! whose coefficient cancels identically is dropped, as in unrolled code), so only the rounding of the sums
 //! differs from the unrolled form.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use num_rational::Rational64;
 use num_traits::{ToPrimitive, Zero};
 
 use crate::algebra::{Algebra, SparseType};
 use crate::blade::BladeMask;
-use crate::operation::Operation;
+use crate::expand::{Expansion, Operand, Variable};
 use crate::product::{reverse_sign, Rules};
 use crate::program::Cost;
 
@@ -93,12 +96,13 @@ pub struct Table {
 }
 
 impl Table {
-    /// The bilinear operation `operation` of `left` and `right`, keeping only `outputs` (the exact
-    /// expansion's blades: every other blade cancels identically).
+    /// A bilinear operation's exact expansion (each monomial `aᵢ xⱼ` of each output blade) as one stage: its
+    /// entries are the monomials the unrolled code would sum, its outputs the expansion's blades (every other
+    /// blade cancels identically).
     ///
     /// ```
     /// use ga_codegen::table::Table;
-    /// use ga_codegen::{Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, Operation, ScalarType};
+    /// use ga_codegen::{expand, Algebra, AlgebraDeclaration, BasisVectorDeclaration, Layout, Operation, ScalarType};
     /// use ga_codegen::TypeDeclaration;
     ///
     /// // The plane's geometric product of vectors: e1 e1 = 1, e1 e2 = e12, …: four products, one per pair.
@@ -112,31 +116,47 @@ impl Table {
     ///     expressions: vec![],
     /// })?;
     /// let vector = &plane.types[0];
-    /// let table = Table::binary(&plane, Operation::Geometric, vector, vector, &[0b00, 0b11]);
-    /// assert_eq!(table.entries(), 4);
+    /// let table = Table::bilinear(&expand::binary(&plane, Operation::Geometric, vector, vector));
+    /// assert_eq!((table.entries(), table.output_blades()), (4, [0b00, 0b11].as_slice()));
     /// // (3 e1 + 4 e2)(3 e1 + 4 e2) = 25: the scalar blade (mask 0) is 25, the e12 blade cancels.
     /// let square = table.evaluate(&[3.0, 4.0], &[3.0, 4.0]);
     /// assert_eq!((square[&0b00], square[&0b11]), (25.0, 0.0));
     /// # Ok::<(), ga_codegen::Error>(())
     /// ```
-    pub fn binary(
-        algebra: &Algebra,
-        operation: Operation,
-        left: &SparseType,
-        right: &SparseType,
-        outputs: &[BladeMask],
-    ) -> Table {
-        let rules = Rules::new(&algebra.metric);
-        let pairs = left.fields.iter().enumerate().flat_map(|(i, a)| {
-            let rules = &rules;
-            right.fields.iter().enumerate().flat_map(move |(j, b)| {
-                let sign = Rational64::from_integer(a.sign * b.sign);
-                let terms = rules.binary(operation, a.blade, b.blade).terms().to_vec();
-                terms.into_iter().map(move |(blade, c)| (i, j, blade, c * sign))
+    pub fn bilinear(expansion: &Expansion) -> Table {
+        let mut entries: Vec<Entry> = expansion
+            .outputs
+            .values()
+            .enumerate()
+            .flat_map(|(output, polynomial)| {
+                polynomial
+                    .terms
+                    .iter()
+                    .filter_map(move |(monomial, &coefficient)| match **monomial {
+                        [Variable {
+                            operand: Operand::Lhs,
+                            field: left,
+                        }, Variable {
+                            operand: Operand::Rhs,
+                            field: right,
+                        }] => Some(Entry {
+                            left,
+                            right,
+                            output,
+                            coefficient,
+                        }),
+                        _ => None,
+                    })
             })
-        });
+            .collect();
+        entries.sort_by_key(|e| (e.output, e.left, e.right));
         Table {
-            stages: vec![stage(Source::Lhs, Source::Rhs, pairs, Some(outputs))],
+            stages: vec![Stage {
+                left: Source::Lhs,
+                right: Source::Rhs,
+                blades: expansion.blades(),
+                entries,
+            }],
         }
     }
 
@@ -198,6 +218,25 @@ impl Table {
         }
     }
 
+    /// The same table with only the outputs `blades` (a subset of [`Self::output_blades`], in this order): the
+    /// last stage's other entries dropped.
+    pub fn keeping(mut self, blades: &[BladeMask]) -> Table {
+        if let Some(last) = self.stages.last_mut() {
+            let position: BTreeMap<BladeMask, usize> = blades.iter().enumerate().map(|(k, &b)| (b, k)).collect();
+            let old_blades = std::mem::replace(&mut last.blades, blades.to_vec());
+            last.entries
+                .retain_mut(|entry| match position.get(&old_blades[entry.output]) {
+                    Some(&k) => {
+                        entry.output = k;
+                        true
+                    }
+                    None => false,
+                });
+            last.entries.sort_by_key(|e| (e.output, e.left, e.right));
+        }
+        self
+    }
+
     /// The blades of the result, in output order.
     pub fn output_blades(&self) -> &[BladeMask] {
         self.stages.last().map_or(&[], |stage| stage.blades.as_slice())
@@ -231,9 +270,9 @@ impl Table {
                     Source::Stage(s) => results[s].as_slice(),
                 };
                 let (left, right) = (read(stage.left), read(stage.right));
-                for entry in &stage.entries {
-                    output[entry.output] +=
-                        entry.coefficient.to_f64().unwrap_or(f64::NAN) * left[entry.left] * right[entry.right];
+                let encoded = EncodedStage::new(stage);
+                for [i, j, k, n] in encoded.entries() {
+                    output[k] += encoded.coefficients[n].to_f64().unwrap_or(f64::NAN) * left[i] * right[j];
                 }
             }
             results.push(output);
@@ -246,8 +285,84 @@ impl Table {
     }
 }
 
-/// Collects `(i, j, blade, c)` products into a stage: equal `(i, j, blade)` merged, zeros dropped, outputs
-/// restricted to `keep` (in its order) or else every blade reached, in blade order.
+/// Up to this many distinct coefficients a stage's encoding finds each by a linear search.
+const LINEAR_SEARCH: usize = 16;
+
+/// A stage's entries as the emitted code stores them: one byte string of entries `i, j, k, n`, each index a
+/// little-endian integer of `width` bytes (2, or 4 where an index reaches 2¹⁶), `n` indexing `coefficients`
+/// (the stage's distinct coefficients, in order of first use).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EncodedStage {
+    /// The entries, `4 · width` bytes each, in the stage's order.
+    pub bytes: Vec<u8>,
+    /// Bytes per index: 2 or 4.
+    pub width: usize,
+    /// The distinct coefficients.
+    pub coefficients: Vec<Rational64>,
+}
+
+impl EncodedStage {
+    /// Encodes `stage`'s entries.
+    pub fn new(stage: &Stage) -> EncodedStage {
+        // Few distinct coefficients (±1 in an orthogonal basis): a linear search, and a map once there are many.
+        let mut coefficients: Vec<Rational64> = Vec::new();
+        let mut indexed: HashMap<Rational64, usize> = HashMap::new();
+        let mut index_of = |c: Rational64| -> usize {
+            let known = if coefficients.len() <= LINEAR_SEARCH {
+                coefficients.iter().position(|&known| known == c)
+            } else {
+                indexed.get(&c).copied()
+            };
+            known.unwrap_or_else(|| {
+                coefficients.push(c);
+                if coefficients.len() > LINEAR_SEARCH {
+                    indexed.extend(
+                        coefficients
+                            .iter()
+                            .enumerate()
+                            .skip(indexed.len())
+                            .map(|(n, &c)| (c, n)),
+                    );
+                }
+                coefficients.len() - 1
+            })
+        };
+        let indices: Vec<[usize; 4]> = stage
+            .entries
+            .iter()
+            .map(|e| [e.left, e.right, e.output, index_of(e.coefficient)])
+            .collect();
+        let largest = indices.iter().flatten().copied().max().unwrap_or(0);
+        let width = if largest <= usize::from(u16::MAX) { 2 } else { 4 };
+        let mut bytes = Vec::with_capacity(indices.len() * 4 * width);
+        for index in indices.into_iter().flatten() {
+            let index = u32::try_from(index).expect("a stage's indices are below its 2³² products");
+            bytes.extend_from_slice(&index.to_le_bytes()[..width]);
+        }
+        EncodedStage {
+            bytes,
+            width,
+            coefficients,
+        }
+    }
+
+    /// The entries `[i, j, k, n]` read back from the bytes, as the emitted loop reads them.
+    pub fn entries(&self) -> impl Iterator<Item = [usize; 4]> + '_ {
+        self.bytes.chunks_exact(4 * self.width).map(|entry| {
+            let mut indices = entry.chunks_exact(self.width).map(|index| {
+                let mut word = [0u8; 4];
+                word[..self.width].copy_from_slice(index);
+                u32::from_le_bytes(word) as usize
+            });
+            std::array::from_fn(|_| indices.next().unwrap_or(0))
+        })
+    }
+}
+
+/// Collects `(i, j, blade, c)` products into a stage: zeros dropped, outputs restricted to `keep` (in its order)
+/// or else every blade reached, in blade order. Each operand pair `(i, j)` comes once with its product's
+/// distinct blades, so no two products share `(i, j, blade)` and nothing needs merging; the pairs come in
+/// `(i, j)` order, so each output's entries are already in order.
 fn stage(
     left: Source,
     right: Source,
@@ -255,32 +370,29 @@ fn stage(
     keep: Option<&[BladeMask]>,
 ) -> Stage {
     let kept: Option<BTreeSet<BladeMask>> = keep.map(|keep| keep.iter().copied().collect());
-    let mut merged: BTreeMap<(BladeMask, usize, usize), Rational64> = BTreeMap::new();
+    let mut by_blade: BTreeMap<BladeMask, Vec<(usize, usize, Rational64)>> = BTreeMap::new();
     for (i, j, blade, c) in products {
-        if kept.as_ref().is_none_or(|kept| kept.contains(&blade)) {
-            *merged.entry((blade, i, j)).or_insert_with(Rational64::zero) += c;
+        if !c.is_zero() && kept.as_ref().is_none_or(|kept| kept.contains(&blade)) {
+            by_blade.entry(blade).or_default().push((i, j, c));
         }
     }
-    merged.retain(|_, c| !c.is_zero());
     let blades: Vec<BladeMask> = match keep {
         Some(keep) => keep.to_vec(),
-        None => {
-            let mut reached: Vec<BladeMask> = merged.keys().map(|&(blade, _, _)| blade).collect();
-            reached.dedup();
-            reached
-        }
+        None => by_blade.keys().copied().collect(),
     };
-    let position: BTreeMap<BladeMask, usize> = blades.iter().enumerate().map(|(k, &b)| (b, k)).collect();
-    let mut entries: Vec<Entry> = merged
-        .into_iter()
-        .map(|((blade, i, j), coefficient)| Entry {
-            left: i,
-            right: j,
-            output: position[&blade],
-            coefficient,
+    let entries = blades
+        .iter()
+        .enumerate()
+        .flat_map(|(output, blade)| {
+            let products = by_blade.remove(blade).unwrap_or_default();
+            products.into_iter().map(move |(left, right, coefficient)| Entry {
+                left,
+                right,
+                output,
+                coefficient,
+            })
         })
         .collect();
-    entries.sort_by_key(|e| (e.output, e.left, e.right));
     Stage {
         left,
         right,

@@ -143,3 +143,116 @@ fn sandwiches_too_big_to_expand_are_tabled_by_reach() {
         "{error}"
     );
 }
+
+/// A stage's entries survive their encoding as bytes, in both index widths: `u16` while every index fits, `u32`
+/// once one (here an output position of a stage reaching 70 000 blades) does not.
+#[test]
+fn encoded_tables_read_back_as_their_entries() {
+    use ga_codegen::table::{EncodedStage, Entry, Source, Stage};
+    use num_rational::Rational64;
+    let stage = |largest_output: usize| Stage {
+        left: Source::Lhs,
+        right: Source::Rhs,
+        blades: (0..=largest_output as u32).collect(),
+        entries: [(3, 1, 0, -2), (0, 0, 7, 1), (1023, 2, largest_output, -2)]
+            .map(|(left, right, output, c)| Entry {
+                left,
+                right,
+                output,
+                coefficient: Rational64::new(c, 3),
+            })
+            .to_vec(),
+    };
+    for (largest_output, width) in [(65_534, 2), (70_000, 4)] {
+        let stage = stage(largest_output);
+        let encoded = EncodedStage::new(&stage);
+        assert_eq!(encoded.width, width);
+        assert_eq!(encoded.bytes.len(), 3 * 4 * width);
+        assert_eq!(encoded.coefficients, [Rational64::new(-2, 3), Rational64::new(1, 3)]);
+        let read: Vec<[usize; 4]> = encoded.entries().collect();
+        assert_eq!(read, [[3, 1, 0, 0], [0, 0, 7, 1], [1023, 2, largest_output, 0]]);
+    }
+    // Many distinct coefficients (a general metric's), each used twice: every entry reads back its own.
+    let coefficients: Vec<Rational64> = (1..=40).map(|n| Rational64::new(n, 7)).collect();
+    let many = Stage {
+        left: Source::Lhs,
+        right: Source::Rhs,
+        blades: vec![0],
+        entries: (0..80)
+            .map(|e| Entry {
+                left: e,
+                right: 0,
+                output: 0,
+                coefficient: coefficients[e % 40],
+            })
+            .collect(),
+    };
+    let encoded = EncodedStage::new(&many);
+    assert_eq!(encoded.coefficients, coefficients);
+    for (e, [i, _, _, n]) in encoded.entries().enumerate() {
+        assert_eq!((i, encoded.coefficients[n]), (e, coefficients[e % 40]));
+    }
+}
+
+/// Keeping some outputs of a tabled sandwich (a transform keeps the operand's grades) gives the table built for
+/// those outputs alone.
+#[test]
+fn a_table_keeping_some_outputs_is_the_table_built_for_them() {
+    use ga_codegen::table::Table;
+    let algebra = Algebra::new(&cl51(vec![])).unwrap();
+    let full = &algebra.types[0];
+    let whole = Table::sandwich(&algebra, full, full, None);
+    let odd: Vec<u32> = whole
+        .output_blades()
+        .iter()
+        .copied()
+        .filter(|b| b.count_ones() % 2 == 1)
+        .rev()
+        .collect();
+    assert_eq!(odd.len(), 32);
+    let kept = whole.clone().keeping(&odd);
+    assert_eq!(kept, Table::sandwich(&algebra, full, full, Some(&odd)));
+    assert!(kept.entries() < whole.entries());
+}
+
+/// A declaration whose functions take more build work than the limit is refused at the type whose function
+/// crossed it; the work counts a table entry once and an unrolled multiply `UNROLLED_MULTIPLY_WORK` times.
+#[test]
+fn declarations_beyond_the_build_work_limit_are_refused() {
+    use ga_codegen::functions::{MAX_BUILD_WORK, UNROLLED_MULTIPLY_WORK};
+    let algebra = Algebra::new(&cl51(vec![(Operation::Sandwich, Lowering::Table)])).unwrap();
+    let geometric = functions::binary(&algebra, Operation::Geometric, 0, 0).unwrap();
+    assert!(matches!(geometric.code, Code::Unrolled(_)));
+    assert_eq!(geometric.build_work(), UNROLLED_MULTIPLY_WORK * 4096);
+    let sandwich = functions::binary(&algebra, Operation::Sandwich, 0, 0).unwrap();
+    let Code::Table(table) = &sandwich.code else {
+        panic!("declared tabled")
+    };
+    assert_eq!(sandwich.build_work(), table.entries());
+    // Every function of the declaration: reverse, the sum and difference, the geometric product, the sandwich.
+    let reverse = &functions::unary(&algebra, Operation::Reverse, 0).unwrap()[0];
+    let sums: usize = [false, true]
+        .into_iter()
+        .filter_map(|subtract| functions::sum(&algebra, 0, 0, subtract))
+        .map(|f| f.build_work())
+        .sum();
+    let total = reverse.build_work() + sums + geometric.build_work() + sandwich.build_work();
+    assert!(ga_codegen::emit::emit_within(&algebra, total).is_ok());
+    let error = ga_codegen::emit::emit_within(&algebra, total - 1).unwrap_err();
+    assert_eq!(
+        error,
+        Error::TooMuchCode {
+            ty_index: 0,
+            ty: "Multivector".into(),
+            work: total,
+            limit: total - 1,
+            unrolled_multiply: UNROLLED_MULTIPLY_WORK,
+        }
+    );
+    assert_eq!(error.location(), Location::Type(0));
+    assert!(
+        error.to_string().contains("declare only the operations you use"),
+        "{error}"
+    );
+    assert!(total < MAX_BUILD_WORK);
+}

@@ -173,7 +173,7 @@ fn a_type_may_have_at_most_1024_fields() {
         ),
         "{error:?}"
     );
-    // 10 dimensions: every grade is 1024 fields, allowed (validated only: emitting takes minutes).
+    // 10 dimensions: every grade is 1024 fields, allowed (validated only: emitting takes half a minute).
     let every_grade: Vec<u32> = (0..=10).collect();
     let algebra = Algebra::new(&declaration(&basis[..10], vec![common::grades("Full", &every_grade)])).unwrap();
     assert_eq!(algebra.types[0].fields.len(), 1024);
