@@ -255,4 +255,12 @@ fn declarations_beyond_the_build_work_limit_are_refused() {
         "{error}"
     );
     assert!(total < MAX_BUILD_WORK);
+    // No work allowed: the reverse (sign flips, no arithmetic) passes, the first sum is refused; any declaration
+    // fits under usize::MAX.
+    assert_eq!(reverse.build_work(), 0);
+    assert!(matches!(
+        ga_codegen::emit::emit_within(&algebra, 0),
+        Err(Error::TooMuchCode { work, limit: 0, .. }) if work > 0 && work < total
+    ));
+    assert!(ga_codegen::emit::emit_within(&algebra, usize::MAX).is_ok());
 }
