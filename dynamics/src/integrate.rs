@@ -533,7 +533,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             return Err(StepError::NonFiniteInput { t, body });
         }
         for (body, state) in states.iter().enumerate() {
-            let distance = state.pose().0.norm();
+            let distance = motor::position_of::<A>(state.motor).norm();
             let limit = MAX_DISTANCE_IN_GYRATION_RADII * self.dynamics.body(body).smallest_gyration_radius();
             if distance > limit {
                 return Err(StepError::TooFarFromOrigin {

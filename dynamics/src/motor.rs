@@ -62,6 +62,12 @@ pub fn pose<A: Algebra>(motor: A::Motor) -> (Vector3<f64>, UnitQuaternion<f64>) 
     (origin_image(&c), rotation)
 }
 
+/// The position alone (the first part of [`pose`]), without building the rotation: what the step's check of the
+/// distance from the origin reads for every body at every step.
+pub(crate) fn position_of<A: Algebra>(motor: A::Motor) -> Vector3<f64> {
+    origin_image(&A::motor_coordinates(motor))
+}
+
 /// `c = −2(s t + p l − l⨯t) / (s² + |l|²)`, see [`pose`].
 fn origin_image(c: &MotorCoordinates) -> Vector3<f64> {
     let scale = c.scalar * c.scalar + c.l.norm_squared();
@@ -215,6 +221,7 @@ mod tests {
             assert!((ours - sandwich).norm() < 1e-13, "{} {ours} vs {sandwich}", A::NAME);
             assert!((ours - position).norm() < 1e-13);
             assert!(orientation.angle_to(&rotation) < 1e-15);
+            assert_eq!(position_of::<A>(motor), ours);
         }
     }
 

@@ -303,6 +303,25 @@ pub struct EncodedStage {
 
 impl EncodedStage {
     /// Encodes `stage`'s entries.
+    ///
+    /// ```
+    /// use ga_codegen::table::{EncodedStage, Entry, Source, Stage};
+    /// use ga_codegen::Rational64;
+    ///
+    /// // out[0] += −1 · left[2] · right[1]; out[1] += ½ · left[0] · right[0].
+    /// let entry = |left, right, output, c| Entry { left, right, output, coefficient: Rational64::new(c, 2) };
+    /// let stage = Stage {
+    ///     left: Source::Lhs,
+    ///     right: Source::Rhs,
+    ///     blades: vec![0b00, 0b11],
+    ///     entries: vec![entry(2, 1, 0, -2), entry(0, 0, 1, 1)],
+    /// };
+    /// let encoded = EncodedStage::new(&stage);
+    /// assert_eq!(encoded.width, 2);
+    /// assert_eq!(encoded.bytes, [2, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 1, 0]);
+    /// assert_eq!(encoded.coefficients, [Rational64::from_integer(-1), Rational64::new(1, 2)]);
+    /// assert_eq!(encoded.entries().collect::<Vec<_>>(), [[2, 1, 0, 0], [0, 0, 1, 1]]);
+    /// ```
     pub fn new(stage: &Stage) -> EncodedStage {
         // Few distinct coefficients (±1 in an orthogonal basis): a linear search, and a map once there are many.
         let mut coefficients: Vec<Rational64> = Vec::new();
