@@ -71,7 +71,11 @@ impl PrincipalFrame {
 
 /// Mass and principal moments (about the centre of mass, along the body axes). The fields are private so
 /// that every `Body` went through [`Body::new`]'s checks: a negative mass or moments that no mass distribution
-/// has would otherwise simulate without a word.
+/// has would otherwise simulate without a word. A struct literal does not compile (E0451, private fields):
+///
+/// ```compile_fail,E0451
+/// let _ = dynamics::Body { mass: -1.0, moments: nalgebra::Vector3::new(-1.0, 2.0, 3.0) };
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Body {
     mass: f64,

@@ -10,6 +10,41 @@
 /// pair of basis screws. Each algebra is given as
 /// `from_coordinates, commutator, pairing, to_coordinates` (all `const fn`), with coordinates
 /// `[l₁, l₂, l₃, t₁, t₂, t₃]`.
+///
+/// The crate's own maps pass (the crate compiles with this check on them):
+///
+/// ```
+/// dynamics::assert_same_screw_algebra!(
+///     dynamics::pga::line_from_coordinates, dynamics::pga::generated::Line::commutator_line,
+///     dynamics::pga::wedge_pi, dynamics::pga::line_coordinates;
+///     dynamics::cga::screw_from_coordinates, dynamics::cga::generated::Screw::commutator_screw,
+///     dynamics::cga::wedge_pi, dynamics::cga::screw_coordinates;
+/// );
+/// ```
+///
+/// A CGA map that reads l₁ and l₃ swapped, consistently in both directions (a plausible slip that relabels the
+/// screws), fails the build with the constant evaluation's panic (E0080), "the two screw algebras have different
+/// commutator structure constants":
+///
+/// ```compile_fail,E0080
+/// use dynamics::cga::generated::Screw;
+/// use dynamics::cga::{screw_coordinates, screw_from_coordinates};
+///
+/// const fn from_swapped(c: [f64; 6]) -> Screw {
+///     screw_from_coordinates([c[2], c[1], c[0], c[3], c[4], c[5]])
+/// }
+///
+/// const fn to_swapped(s: Screw) -> [f64; 6] {
+///     let c = screw_coordinates(s);
+///     [c[2], c[1], c[0], c[3], c[4], c[5]]
+/// }
+///
+/// dynamics::assert_same_screw_algebra!(
+///     dynamics::pga::line_from_coordinates, dynamics::pga::generated::Line::commutator_line,
+///     dynamics::pga::wedge_pi, dynamics::pga::line_coordinates;
+///     from_swapped, Screw::commutator_screw, dynamics::cga::wedge_pi, to_swapped;
+/// );
+/// ```
 #[macro_export]
 macro_rules! assert_same_screw_algebra {
     ($from_a:path, $commutator_a:path, $pairing_a:path, $to_a:path;
