@@ -105,7 +105,7 @@ fn null_basis_cga() -> AlgebraDeclaration {
 }
 
 /// Cl(9,6), the quadric conformal algebra's 15 dimensions, with scalars, vectors and bivectors and the six
-/// operations that keep grades 0 to 2 (as in `ga-codegen/tests/large_algebras.rs`; the geometric product of
+/// operations that keep grades 0 to 2 (as in `ga-codegen/tests/integration/large_algebras.rs`; the geometric product of
 /// two bivectors has grade 4, which no declared type holds).
 fn cl_9_6() -> AlgebraDeclaration {
     let names: Vec<String> = (1..=15).map(|i| format!("e{i}")).collect();

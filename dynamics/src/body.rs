@@ -169,7 +169,7 @@ impl Body {
             (inertia + inertia.transpose()) * 0.5 - (Matrix3::identity() * d.norm_squared() - d * d.transpose()) * mass;
         // Jacobi rotations rather than nalgebra's `SymmetricEigen`, whose eigenvectors can miss the tensor by 5e-9
         // relative when two moments are close (0.08981 and 0.08991 kg m²; nalgebra issue #1109): the body must
-        // keep the inertia it was given (`scenarios/tests/joint_space.rs`).
+        // keep the inertia it was given (`scenarios/tests/integration/joint_space.rs`).
         let mut eigenvectors = central;
         let mut values = [0.0; 3];
         let mut work = [0.0; 9];

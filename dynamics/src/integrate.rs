@@ -942,7 +942,7 @@ fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
 /// would grow the momentum by ~5e-16 per round trip, a systematic energy drift (5e-11 relative after 1e5
 /// steps, measured on scene 1). In CGA the map also avoids the sandwiches' `½|x|²` round-off: at 100 m the
 /// orientation error of this method on scene 1 fell from 4.7e-6 to 2.1e-9 rad, and at 1e4 m from total loss
-/// to 1.6e-4 rad (`tests/hard_cases.rs`).
+/// to 1.6e-4 rad (`scenarios/tests/integration/hard_cases.rs`).
 fn rkmk4_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized>(
     dynamics: &D,
     t: f64,

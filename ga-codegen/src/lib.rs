@@ -52,7 +52,7 @@
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
 //!
-//! Each module refers only to modules before it in the pipeline (`tests/module_order.rs` lists the order, checks it).
+//! Each module refers only to modules before it in the pipeline (`tests/integration/module_order.rs` lists the order, checks it).
 //!
 //! Most users call it through the `algebra!` macro of `ga-macros`; [`generate`] is the library entry.
 

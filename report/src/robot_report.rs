@@ -477,7 +477,7 @@ fn floors(results: &[RobotResult], id: RobotId, accuracy: f64) -> String {
             "The methods that step the bodies' motors and momenta reach {} rad at best: round-off of the poses in \
              world axes, which grows as the base falls away from the origin (4.6 m in the second) and which the light \
              lower legs turn into joint angles when the next step reads them back (the same run started 10 m along x \
-             is off by 4.4e-10 rad, `scenarios/tests/robots.rs`).",
+             is off by 4.4e-10 rad, `scenarios/tests/integration/robots.rs`).",
             scientific(floor)
         );
     }

@@ -1,0 +1,22 @@
+//! The integration tests of `dynamics`, one module per file, built as one test binary: the generic code
+//! they instantiate (both algebras, every integrator) is compiled once instead of once per file.
+//! `cargo test --release -p dynamics --test integration <module>::` runs one file's tests.
+
+#[macro_use]
+mod common;
+
+mod algebra_layer;
+mod bodies_and_states;
+mod constraint_machinery;
+mod convert;
+mod errors;
+mod events;
+mod force_elements;
+mod force_line;
+mod joint_integration;
+mod joint_space_errors;
+mod joints;
+mod long_run;
+mod mechanism_solve;
+mod newton_euler;
+mod orders;

@@ -1,0 +1,13 @@
+//! The integration tests of `urdf-import`, one module per importer stage, built as one test binary.
+//! `cargo test --release -p urdf-import --test integration <module>::` runs one file's tests.
+
+#[macro_use]
+mod common;
+
+mod bodies;
+mod inertia;
+mod merge;
+mod mimic;
+mod parse;
+mod pose;
+mod structure;
