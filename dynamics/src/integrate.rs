@@ -1,4 +1,5 @@
-//! Fixed-step integrators for the state of N rigid bodies, one `[R, Ω]` per body (`docs/theory.md` §5, §10).
+//! Integrators for the state of N rigid bodies, one `[R, Ω]` per body (`docs/theory.md` §5, §10), one step of
+//! a length the caller chooses.
 //!
 //! Two families:
 //! * [`Method`]: general methods, valid for any [`Dynamics`] (free bodies, constrained bodies, mechanisms):
@@ -13,10 +14,9 @@
 //! [`Integrator`] names any of them; a [`Stepper`] takes steps of one integrator on one system, with its
 //! buffers made once (a step allocates nothing).
 //!
-//! All steps are fixed. Adaptive stepping would go in `crate::simulate`'s loop, which owns the step size:
-//! an embedded error estimate (e.g. RK4 step doubling, or Strang against Yoshida4) would choose `dt` per
-//! step and land on the sample times by shortening the last step of each interval. The reference scenes'
-//! work-precision sweeps fix `dt`, so that is not implemented.
+//! A step's length is the caller's: [`crate::simulate()`] takes it from a fixed schedule, or from the step-size
+//! controller of an adaptive one ([`crate::step_control`]), which reads the error estimate of the embedded pair
+//! [`Method::Dopri5Body`] and takes samples and events from its continuous extension.
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
@@ -28,6 +28,7 @@ use crate::joint_integration::{self, JointBuffers, JointMethod};
 use crate::motion::{to_body, to_world, BodyRates, Dynamics, FreeBody, Rates};
 use crate::motor;
 use crate::state::{State, MAX_COORDINATE, MAX_DISTANCE_IN_GYRATION_RADII};
+use crate::step_control::{self, Tolerance};
 
 /// A general integration method: valid for any [`Dynamics`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -57,19 +58,29 @@ pub enum Method {
     /// (MuJoCo's accuracy on the double pendulum, 2.2e-10 rad) it takes steps about three times as long as
     /// RKMK6-body's and needs fewer evaluations per simulated second.
     Rkmk8Body,
+    /// The same scheme on Dormand and Prince's 7-stage pair of orders 5 and 4 (J. R. Dormand and P. J. Prince,
+    /// "A family of embedded Runge–Kutta formulae", J. Comp. Appl. Math. 6(1), 1980), with `dexp⁻¹` truncated after
+    /// its `ad⁴` term. The 5th-order solution is kept; the difference from the embedded 4th-order one, taken in the
+    /// Lie algebra, estimates the step's error, which an adaptive [`crate::Schedule`] turns into step sizes
+    /// ([`crate::step_control`]). Its continuous extension of order 4 (Shampine's, in Hairer, Nørsett & Wanner,
+    /// *Solving ODEs I*, §II.6) gives the state anywhere inside a step without another evaluation, so samples and
+    /// events never shorten a step.
+    Dopri5Body,
 }
 
 impl Method {
     /// Every general method, in the order of the enum.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Rk4,
         Method::Rkmk4,
         Method::Rkmk4Body,
         Method::Rkmk6Body,
         Method::Rkmk8Body,
+        Method::Dopri5Body,
     ];
 
-    /// The method's name in reports and tables ("RK4", "RKMK4", "RKMK4-body", "RKMK6-body", "RKMK8-body").
+    /// The method's name in reports and tables ("RK4", "RKMK4", "RKMK4-body", "RKMK6-body", "RKMK8-body",
+    /// "DP5(4)-body").
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4 => "RK4",
@@ -77,6 +88,7 @@ impl Method {
             Method::Rkmk4Body => "RKMK4-body",
             Method::Rkmk6Body => "RKMK6-body",
             Method::Rkmk8Body => "RKMK8-body",
+            Method::Dopri5Body => "DP5(4)-body",
         }
     }
 
@@ -84,6 +96,7 @@ impl Method {
     pub fn order(self) -> u32 {
         match self {
             Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body => 4,
+            Method::Dopri5Body => 5,
             Method::Rkmk6Body => 6,
             Method::Rkmk8Body => 8,
         }
@@ -136,12 +149,13 @@ pub enum Integrator {
 
 impl Integrator {
     /// Every integrator: the general methods, then the splittings.
-    pub const ALL: [Integrator; 7] = [
+    pub const ALL: [Integrator; 8] = [
         Integrator::General(Method::Rk4),
         Integrator::General(Method::Rkmk4),
         Integrator::General(Method::Rkmk4Body),
         Integrator::General(Method::Rkmk6Body),
         Integrator::General(Method::Rkmk8Body),
+        Integrator::General(Method::Dopri5Body),
         Integrator::Splitting(SplittingMethod::Strang),
         Integrator::Splitting(SplittingMethod::Yoshida4),
     ];
@@ -364,6 +378,10 @@ pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
     joints: Option<JointBuffers<A>>,
     /// The work done by the non-conservative forces over the last successful step (J).
     last_work: f64,
+    /// The length of the last successful step (s), if its stages are still in the buffers (for the dense output).
+    last_step: Option<f64>,
+    /// Evaluations of the equations of motion so far.
+    evaluations: usize,
 }
 
 /// The per-body buffers of a step, sized once for the system.
@@ -377,8 +395,13 @@ struct Buffers<A: Algebra> {
     /// A stage's motors and body momenta (body-momentum methods).
     motors: Vec<A::Motor>,
     momenta: Vec<A::Screw>,
-    /// The body momenta at the start of the step.
+    /// The body momenta and the motors at the start of the step (the dense output starts from them).
     start_momenta: Vec<A::Screw>,
+    start_motors: Vec<A::Motor>,
+    /// An embedded pair's error estimate per body: the difference of its two solutions in the Lie algebra, the
+    /// motor's `Σ eᵢKᵢ` and the body momentum's `h Σ eᵢ dΩ_b/dt` (`eᵢ` the difference of the two weights).
+    error_sigmas: Vec<A::Screw>,
+    error_momenta: Vec<A::Screw>,
     /// A stage's Lie-algebra offsets σ (the stage motors are `R₀ exp(σ)`).
     sigmas: Vec<A::Screw>,
     /// Per stage and body, stage-major: `(dR/dt, dΩ/dt)` (RK4), or the Lie-algebra slopes σ-increments and
@@ -420,6 +443,9 @@ impl<A: Algebra> Buffers<A> {
             motors: vec![zero_motor; bodies],
             momenta: vec![zero_screw; bodies],
             start_momenta: vec![zero_screw; bodies],
+            start_motors: vec![zero_motor; bodies],
+            error_sigmas: vec![zero_screw; bodies],
+            error_momenta: vec![zero_screw; bodies],
             sigmas: vec![zero_screw; bodies],
             derivatives: vec![
                 Derivative {
@@ -488,6 +514,8 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             buffers: Buffers::new(dynamics.body_count()),
             joints,
             last_work: 0.0,
+            last_step: None,
+            evaluations: 0,
         })
     }
 
@@ -511,6 +539,73 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
     /// The system's workspace, for evaluations between steps.
     pub fn workspace(&mut self) -> &mut D::Workspace {
         &mut self.workspace
+    }
+
+    /// Evaluations of the equations of motion by this stepper's steps so far: every stage of every step tried,
+    /// including failed and partial ones (a splitting method's force evaluations).
+    pub fn evaluations(&self) -> usize {
+        self.evaluations
+    }
+
+    /// Whether the method estimates its error (an embedded pair, for adaptive schedules).
+    pub(crate) fn has_error_estimate(&self) -> bool {
+        self.integrator == Integrator::General(Method::Dopri5Body)
+    }
+
+    /// The error norm ([`crate::step_control`]) of the last successful step from `start` to `end`, for a method with
+    /// an error estimate ([`Method::Dopri5Body`]); `None` for the others, or before a step.
+    pub(crate) fn error_norm(&self, tolerance: &Tolerance, start: &[State<A>], end: &[State<A>]) -> Option<f64> {
+        if !self.has_error_estimate() || self.last_step.is_none() {
+            return None;
+        }
+        let buffers = &self.buffers;
+        let estimates = buffers
+            .error_sigmas
+            .iter()
+            .copied()
+            .zip(buffers.error_momenta.iter().copied());
+        Some(step_control::error_norm(
+            tolerance,
+            self.dynamics,
+            (start, end),
+            estimates,
+        ))
+    }
+
+    /// The state at the fraction `theta` ∈ [0, 1] of the last successful step, from the method's continuous
+    /// extension, into `out`; returns the work done from the step's start to there. `None` for a method without
+    /// one, or when the last step's stages are gone (after a failed or partial step).
+    pub(crate) fn dense_output(&self, theta: f64, out: &mut [State<A>]) -> Option<f64> {
+        let dt = self.last_step?;
+        if !self.has_error_estimate() {
+            return None;
+        }
+        let weights = dormand_prince_5_dense_weights(theta);
+        let buffers = &self.buffers;
+        for (b, state) in out.iter_mut().enumerate() {
+            let (sigma, momentum) = weighted_slopes(buffers, &weights, b, (dt, buffers.start_momenta[b]));
+            let motor = A::compose(buffers.start_motors[b], exp::<A>(sigma));
+            *state = State {
+                motor,
+                momentum: to_world::<A>(motor, momentum),
+            };
+        }
+        Some(dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>())
+    }
+
+    /// The evaluations of the equations of motion one step of `integrator` takes.
+    fn evaluations_per_step(integrator: Integrator) -> usize {
+        match integrator {
+            Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => 4,
+            Integrator::General(Method::Rkmk6Body | Method::Dopri5Body) => 7,
+            Integrator::General(Method::Rkmk8Body) => 11,
+            Integrator::Joint(JointMethod::Rkmk4) => 4,
+            Integrator::Joint(JointMethod::Rkmk6) => 7,
+            Integrator::Joint(JointMethod::Rkmk8) => 11,
+            // The force kicks: two per Strang step, three Strang steps per Yoshida step.
+            Integrator::Splitting(SplittingMethod::Strang) => 2,
+            Integrator::Splitting(SplittingMethod::Yoshida4) => 6,
+        }
     }
 
     /// One step from `(t, states)` to `t + dt`, followed by [`Dynamics::after_step`]. On an error the states are
@@ -559,11 +654,13 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             Err(StepError::Constraint { error, .. }) => Err(self.diagnose(t, states, dt, error)),
             result => result,
         };
+        self.last_step = result.is_ok().then_some(dt);
         if result.is_ok() {
             states.copy_from_slice(&self.buffers.next);
             let weights: &[f64] = match self.integrator {
                 Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
                 Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
+                Integrator::General(Method::Dopri5Body) => &DORMAND_PRINCE_5.b,
                 Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
                 Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
                 Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
@@ -613,6 +710,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
     /// One step from `(t, states)` to `t + dt` into `self.buffers.next`, with its checks; `states` are the
     /// validated start.
     fn attempt(&mut self, t: f64, states: &[State<A>], dt: f64) -> Result<(), StepError> {
+        self.evaluations += Self::evaluations_per_step(self.integrator);
         let expected = self.dynamics.body_count();
         let dynamics = self.dynamics;
         let workspace = &mut self.workspace;
@@ -626,11 +724,21 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 rkmk4_body_momentum(dynamics, t, &mut next, dt, buffers, workspace)
             }
             (Integrator::General(Method::Rkmk6Body), _) => {
-                rkmk_body_momentum(&BUTCHER_6, dynamics, t, &mut next, dt, buffers, workspace)
+                rkmk_body_momentum(&BUTCHER_6, None, dynamics, t, &mut next, dt, buffers, workspace)
             }
             (Integrator::General(Method::Rkmk8Body), _) => {
-                rkmk_body_momentum(&COOPER_VERNER_8, dynamics, t, &mut next, dt, buffers, workspace)
+                rkmk_body_momentum(&COOPER_VERNER_8, None, dynamics, t, &mut next, dt, buffers, workspace)
             }
+            (Integrator::General(Method::Dopri5Body), _) => rkmk_body_momentum(
+                &DORMAND_PRINCE_5,
+                Some(&DORMAND_PRINCE_5_ERROR),
+                dynamics,
+                t,
+                &mut next,
+                dt,
+                buffers,
+                workspace,
+            ),
             (Integrator::Splitting(method), Some(splitting)) => {
                 buffers.slopes[0] = next[0].body_velocity(dynamics.body(0)) * (-0.5 * dt);
                 next[0] = step_splitting(method, splitting, t, &next[0], dt);
@@ -1136,6 +1244,110 @@ const COOPER_VERNER_8: Tableau<11> = {
     }
 };
 
+/// Dormand and Prince's 7-stage pair (J. R. Dormand and P. J. Prince, J. Comp. Appl. Math. 6(1), 1980): the weights
+/// of the 5th-order solution, which is kept, equal the last row (the last stage is the next step's first in the
+/// classical method; here the step's end is projected or turned afterwards, so it is evaluated anew).
+/// `integrate::tests::dormand_prince_5_satisfies_the_order_conditions` checks the 17 conditions up to order 5, the
+/// embedded solution's 8 up to order 4, and the continuous extension's 8 at several points of the step.
+const DORMAND_PRINCE_5: Tableau<7> = Tableau {
+    a: [
+        row(&[]),
+        row(&[1.0 / 5.0]),
+        row(&[3.0 / 40.0, 9.0 / 40.0]),
+        row(&[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0]),
+        row(&[19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0]),
+        row(&[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ]),
+        row(&DORMAND_PRINCE_5_WEIGHTS),
+    ],
+    b: {
+        let mut b = [0.0; 7];
+        let mut i = 0;
+        while i < 6 {
+            b[i] = DORMAND_PRINCE_5_WEIGHTS[i];
+            i += 1;
+        }
+        b
+    },
+    c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0],
+    order: 5,
+};
+
+/// The weights of Dormand and Prince's 5th-order solution (stages 1–6; the 7th weighs 0).
+const DORMAND_PRINCE_5_WEIGHTS: [f64; 6] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+];
+
+/// `b − b̂`: the 5th-order weights minus those of the embedded 4th-order solution (5179/57600, 0, 7571/16695,
+/// 393/640, −92097/339200, 187/2100, 1/40).
+const DORMAND_PRINCE_5_ERROR: [f64; 7] = [
+    35.0 / 384.0 - 5179.0 / 57600.0,
+    0.0,
+    500.0 / 1113.0 - 7571.0 / 16695.0,
+    125.0 / 192.0 - 393.0 / 640.0,
+    -2187.0 / 6784.0 + 92097.0 / 339200.0,
+    11.0 / 84.0 - 187.0 / 2100.0,
+    -1.0 / 40.0,
+];
+
+/// The continuous extension of order 4 (Shampine, "Some practical Runge–Kutta formulas", Math. Comp. 46, 1986; as
+/// tabulated in Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.6): the weight of stage i at the fraction θ of the
+/// step is `Σₖ P[i][k] θ^(k+1)`, which equals the 5th-order weight at θ = 1.
+const DORMAND_PRINCE_5_DENSE: [[f64; 4]; 7] = [
+    [
+        1.0,
+        -8048581381.0 / 2820520608.0,
+        8663915743.0 / 2820520608.0,
+        -12715105075.0 / 11282082432.0,
+    ],
+    [0.0; 4],
+    [
+        0.0,
+        131558114200.0 / 32700410799.0,
+        -68118460800.0 / 10900136933.0,
+        87487479700.0 / 32700410799.0,
+    ],
+    [
+        0.0,
+        -1754552775.0 / 470086768.0,
+        14199869525.0 / 1410260304.0,
+        -10690763975.0 / 1880347072.0,
+    ],
+    [
+        0.0,
+        127303824393.0 / 49829197408.0,
+        -318862633887.0 / 49829197408.0,
+        701980252875.0 / 199316789632.0,
+    ],
+    [
+        0.0,
+        -282668133.0 / 205662961.0,
+        2019193451.0 / 616988883.0,
+        -1453857185.0 / 822651844.0,
+    ],
+    [
+        0.0,
+        40617522.0 / 29380423.0,
+        -110615467.0 / 29380423.0,
+        69997945.0 / 29380423.0,
+    ],
+];
+
+/// The dense-output weights of [`DORMAND_PRINCE_5_DENSE`] at the fraction `theta` of the step.
+fn dormand_prince_5_dense_weights(theta: f64) -> [f64; 7] {
+    DORMAND_PRINCE_5_DENSE.map(|p| theta * (p[0] + theta * (p[1] + theta * (p[2] + theta * p[3]))))
+}
+
 /// A row of a strictly lower triangular tableau: its leading entries, then zeros.
 const fn row<const S: usize>(leading: &[f64]) -> [f64; S] {
     let mut row = [0.0; S];
@@ -1171,9 +1383,12 @@ fn dexp_inverse<A: Algebra>(sigma: A::Screw, k: A::Screw, order: u32) -> A::Scre
 /// stage i evaluates the rates at `R₀ exp(σᵢ)`, `σᵢ = Σⱼ aᵢⱼ Kⱼ`, and turns `kᵢ = −½hḂᵢ` into
 /// `Kᵢ = dexp⁻¹_{−σᵢ}(kᵢ)` (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic
 /// stages of `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of
-/// the new motor.
+/// the new motor. With `error` weights (an embedded pair's `b − b̂`) it also leaves the error estimate of every body
+/// in `buffers.error_sigmas` and `buffers.error_momenta`.
+#[allow(clippy::too_many_arguments)]
 fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     tableau: &Tableau<S>,
+    error: Option<&[f64; S]>,
     dynamics: &D,
     t: f64,
     y: &mut [State<A>],
@@ -1184,8 +1399,14 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     let n = y.len();
     let zero = A::screw(ScrewCoordinates::default());
     let conserving = dynamics.conserves_world_momenta();
-    for (start, state) in buffers.start_momenta.iter_mut().zip(y.iter()) {
+    for ((start, motor), state) in buffers
+        .start_momenta
+        .iter_mut()
+        .zip(&mut buffers.start_motors)
+        .zip(y.iter())
+    {
         *start = to_body::<A>(state.motor, state.momentum);
+        *motor = state.motor;
     }
     for s in 0..S {
         for b in 0..n {
@@ -1212,20 +1433,33 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
         }
     }
     for (b, state) in y.iter_mut().enumerate() {
-        let (sigma, momentum) =
-            (0..S)
-                .filter(|&s| tableau.b[s] != 0.0)
-                .fold((zero, buffers.start_momenta[b]), |(sigma, m), s| {
-                    let weight = tableau.b[s];
-                    (
-                        sigma + buffers.slopes[s * n + b] * weight,
-                        m + buffers.momentum_slopes[s * n + b] * (weight * dt),
-                    )
-                });
+        let (sigma, momentum) = weighted_slopes(buffers, &tableau.b, b, (dt, buffers.start_momenta[b]));
         let motor = A::compose(state.motor, exp::<A>(sigma));
         *state = end_of_body_step(conserving, state, motor, momentum);
+        if let Some(weights) = error {
+            (buffers.error_sigmas[b], buffers.error_momenta[b]) = weighted_slopes(buffers, weights, b, (dt, zero));
+        }
     }
     Ok(())
+}
+
+/// `(Σ wₛKₛ, m₀ + h Σ wₛ dΩ_b/dtₛ)` of body `b` from the stages in `buffers` (zero weights skipped).
+fn weighted_slopes<A: Algebra>(
+    buffers: &Buffers<A>,
+    weights: &[f64],
+    b: usize,
+    (dt, start_momentum): (f64, A::Screw),
+) -> (A::Screw, A::Screw) {
+    let n = buffers.start_momenta.len();
+    let zero = A::screw(ScrewCoordinates::default());
+    (0..weights.len())
+        .filter(|&s| weights[s] != 0.0)
+        .fold((zero, start_momentum), |(sigma, m), s| {
+            (
+                sigma + buffers.slopes[s * n + b] * weights[s],
+                m + buffers.momentum_slopes[s * n + b] * (weights[s] * dt),
+            )
+        })
 }
 
 /// The state at the end of a body-momentum step from `start`: the step's motor with the world view of the step's
@@ -1436,7 +1670,7 @@ mod tests {
 
     /// The order conditions `Σ bᵢ Φᵢ(τ) = 1/γ(τ)` for every tree τ up to the tableau's order (Butcher), where
     /// `Φᵢ(τ) = Πₖ Σⱼ aᵢⱼ Φⱼ(τₖ)` over the root's subtrees τₖ and `γ(τ) = |τ| Πₖ γ(τₖ)`.
-    fn order_condition_defects<const S: usize>(tableau: &Tableau<S>) -> Vec<f64> {
+    fn order_condition_defects<const S: usize>(tableau: &Tableau<S>, theta: f64) -> Vec<f64> {
         let trees = rooted_trees(tableau.order as usize);
         let mut weights: Vec<[f64; S]> = Vec::new();
         let mut densities: Vec<f64> = Vec::new();
@@ -1455,7 +1689,10 @@ mod tests {
         weights
             .iter()
             .zip(&densities)
-            .map(|(phi, gamma)| ((0..S).map(|i| tableau.b[i] * phi[i]).sum::<f64>() - 1.0 / gamma).abs())
+            .zip(&trees)
+            .map(|((phi, gamma), (_, order))| {
+                ((0..S).map(|i| tableau.b[i] * phi[i]).sum::<f64>() - theta.powi(*order as i32) / gamma).abs()
+            })
             .collect()
     }
 
@@ -1477,7 +1714,7 @@ mod tests {
                 "c{i} is not the row sum: {sum}"
             );
         }
-        let defects = order_condition_defects(&COOPER_VERNER_8);
+        let defects = order_condition_defects(&COOPER_VERNER_8, 1.0);
         assert_eq!(defects.len(), 200);
         let worst = defects.iter().copied().fold(0.0, f64::max);
         assert!(worst < 1e-13, "largest order-condition defect {worst:e}");
@@ -1485,7 +1722,7 @@ mod tests {
             order: 9,
             ..COOPER_VERNER_8
         };
-        assert!(order_condition_defects(&ninth).iter().any(|&d| d > 1e-6));
+        assert!(order_condition_defects(&ninth, 1.0).iter().any(|&d| d > 1e-6));
     }
 
     #[test]
@@ -1496,12 +1733,51 @@ mod tests {
                 "c{i} is not the row sum"
             );
         }
-        let defects = order_condition_defects(&BUTCHER_6);
+        let defects = order_condition_defects(&BUTCHER_6, 1.0);
         assert_eq!(defects.len(), 37);
         let worst = defects.iter().copied().fold(0.0, f64::max);
         assert!(worst < 1e-15, "largest order-condition defect {worst:e}");
         // And it is not of order 7: some order-7 condition fails.
         let seventh = Tableau { order: 7, ..BUTCHER_6 };
-        assert!(order_condition_defects(&seventh).iter().any(|&d| d > 1e-6));
+        assert!(order_condition_defects(&seventh, 1.0).iter().any(|&d| d > 1e-6));
+    }
+
+    #[test]
+    fn dormand_prince_5_satisfies_the_order_conditions() {
+        let pair = &DORMAND_PRINCE_5;
+        for (i, row) in pair.a.iter().enumerate() {
+            assert!(
+                (row.iter().sum::<f64>() - pair.c[i]).abs() < 1e-14,
+                "c{i} is not the row sum"
+            );
+        }
+        let worst = |defects: Vec<f64>| defects.iter().copied().fold(0.0, f64::max);
+        let defects = order_condition_defects(pair, 1.0);
+        assert_eq!(defects.len(), 17);
+        assert!(worst(defects) < 1e-14);
+        assert!(order_condition_defects(&Tableau { order: 6, ..*pair }, 1.0)
+            .iter()
+            .any(|&d| d > 1e-6));
+        // The embedded solution, b̂ = b − e: order 4, not 5.
+        let embedded = Tableau {
+            b: std::array::from_fn(|i| pair.b[i] - DORMAND_PRINCE_5_ERROR[i]),
+            order: 4,
+            ..*pair
+        };
+        assert!(worst(order_condition_defects(&embedded, 1.0)) < 1e-14);
+        assert!(order_condition_defects(&Tableau { order: 5, ..embedded }, 1.0)
+            .iter()
+            .any(|&d| d > 1e-6));
+        // The continuous extension: order 4 at every fraction of the step, the kept solution at its end.
+        for theta in [0.1, 1.0 / 3.0, 0.5, 0.8, 1.0] {
+            let dense = Tableau {
+                b: dormand_prince_5_dense_weights(theta),
+                order: 4,
+                ..*pair
+            };
+            assert!(worst(order_condition_defects(&dense, theta)) < 1e-14, "θ = {theta}");
+        }
+        let at_end = dormand_prince_5_dense_weights(1.0);
+        assert!(at_end.iter().zip(&pair.b).all(|(d, b)| (d - b).abs() < 1e-15));
     }
 }

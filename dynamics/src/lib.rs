@@ -50,6 +50,7 @@ pub mod motor;
 pub mod pga;
 pub mod simulate;
 pub mod state;
+pub mod step_control;
 #[cfg(test)]
 mod test_random;
 
@@ -70,6 +71,7 @@ pub use motion::{BodyRates, Dynamics, FreeBody, FreeBodyWorkspace, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};
 pub use state::{State, WorldMomentum, WorldVelocity};
+pub use step_control::{StepStatistics, Tolerance};
 
 /// Systems, states, results and errors cross threads: a run keeps its failure in its own `Result`,
 /// with no shared slot, so parallel runs never see each other's errors. Checked at compile time.

@@ -21,6 +21,11 @@ pub enum IntegratorName {
     Rkmk6Body,
     /// RKMK of order 8 (Cooper–Verner) with the momentum in the body frame.
     Rkmk8Body,
+    /// Dormand–Prince's embedded pair of orders 5 and 4 on the body-momentum RKMK scheme: the integrator of
+    /// adaptive runs (`tolerance`), or a 5th-order method at a fixed step.
+    #[serde(rename = "dp5-body")]
+    #[value(name = "dp5-body")]
+    Dp5Body,
     /// Strang splitting, order 2; a free body only.
     Strang,
     /// Yoshida's triple jump of Strang steps, order 4; a free body only.
@@ -41,6 +46,7 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rkmk4Body => Integrator::General(Method::Rkmk4Body),
             IntegratorName::Rkmk6Body => Integrator::General(Method::Rkmk6Body),
             IntegratorName::Rkmk8Body => Integrator::General(Method::Rkmk8Body),
+            IntegratorName::Dp5Body => Integrator::General(Method::Dopri5Body),
             IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
             IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
             IntegratorName::Rkmk4Joint => Integrator::Joint(JointMethod::Rkmk4),

@@ -32,6 +32,7 @@ use dynamics::constraints::{
 use dynamics::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::integrate::Integrator;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
+use dynamics::step_control::Tolerance;
 use dynamics::{
     motor, Algebra, Body, BodyError, Cga, Correction, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism,
     MechanismError, Pga, Reference, ScrewCoordinates, Simulation, State,
@@ -85,8 +86,8 @@ pub enum SceneFileError {
     /// The body's mass or moments of inertia are not physical.
     #[error("body: {0}")]
     Body(#[from] BodyError),
-    /// `dt`, `duration` and `sample_interval` make no schedule.
-    #[error("dt, duration, sample_interval: {0}")]
+    /// `dt` (or `tolerance`), `duration` and `sample_interval` make no schedule.
+    #[error("dt or tolerance, duration, sample_interval: {0}")]
     Schedule(SimulationError),
     /// A joint's geometry was refused, or the joints cannot hold at the initial state or their reactions cannot
     /// be solved for; the message names the joints.
@@ -199,8 +200,14 @@ pub struct SceneFile {
     /// [`SceneFile::parse`]); the splittings run a single body without constraints only.
     #[serde(skip, default = "default_integrator")]
     pub integrator: IntegratorName,
-    /// The step (s); it must divide the sample interval.
-    pub dt: f64,
+    /// The fixed step (s); it must divide the sample interval. A file gives this or `tolerance`.
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// The accuracy an adaptive run chooses its steps by, in place of `dt` (relative and absolute alike, in rad,
+    /// m, rad/s and m/s: `dynamics::step_control`); the integrator then defaults to `"dp5-body"`, the one with an
+    /// error estimate.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
     /// Simulated time (s); the last sample interval may be shorter.
     pub duration: f64,
     /// Time between recorded samples (s).
@@ -1630,7 +1637,7 @@ impl SceneFile {
     ///
     /// // The heavy top shipped in the workspace's `scenes` folder: a cone on a ball joint at its tip.
     /// let scene = SceneFile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml"))?;
-    /// assert_eq!((scene.dt, scene.duration), (1e-3, 10.0));
+    /// assert_eq!((scene.dt, scene.duration), (Some(1e-3), 10.0));
     /// assert_eq!(scene.constraints.len(), 1);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -1713,12 +1720,24 @@ impl SceneFile {
         if let Some(robot) = &scene.robot {
             scene.loaded_robot = Some(Arc::new(robot.load(folder)?));
         }
-        scene.integrator = scene.integrator_written.unwrap_or(if scene.robot.is_some() {
+        scene.integrator = scene.integrator_written.unwrap_or(if scene.tolerance.is_some() {
+            IntegratorName::Dp5Body
+        } else if scene.robot.is_some() {
             IntegratorName::Rkmk8Body
         } else {
             IntegratorName::Rk4
         });
         scene.schedule()?;
+        if scene.tolerance.is_some() && scene.integrator != IntegratorName::Dp5Body {
+            return Err(invalid(
+                "integrator",
+                format!(
+                    "{} has no error estimate to choose its steps by: with a tolerance, name \"dp5-body\" (or leave \
+                     the integrator out), or give dt in place of the tolerance",
+                    Integrator::from(scene.integrator).name()
+                ),
+            ));
+        }
         let layout = scene.layout()?;
         let splitting = matches!(Integrator::from(scene.integrator), Integrator::Splitting(_));
         if splitting && !scene.free_body(&layout) {
@@ -1774,10 +1793,37 @@ impl SceneFile {
         }
     }
 
+    /// How the run steps, for titles and summaries: "dt = 0.001 s", or "tolerance = 1e-8 (adaptive steps)".
+    pub(crate) fn stepping(&self) -> String {
+        match (self.dt, self.tolerance) {
+            (_, Some(tolerance)) => format!("tolerance = {tolerance:e} (adaptive steps)"),
+            (dt, None) => format!("dt = {:e} s", dt.unwrap_or(f64::NAN)),
+        }
+    }
+
     /// The run's steps and samples, within [`MAX_STEPS`] and [`MAX_SAMPLES`].
     pub fn schedule(&self) -> Result<Schedule, SceneFileError> {
-        let schedule = Schedule::with_sample_interval(self.dt, self.duration, self.sample_interval)
-            .map_err(SceneFileError::Schedule)?;
+        let schedule = match (self.dt, self.tolerance) {
+            (Some(dt), None) => Schedule::with_sample_interval(dt, self.duration, self.sample_interval),
+            (None, Some(tolerance)) => {
+                let tolerance =
+                    Tolerance::new(tolerance, tolerance).map_err(|error| invalid("tolerance", error.to_string()))?;
+                Schedule::adaptive(tolerance, self.duration, self.sample_interval)
+            }
+            (Some(_), Some(_)) => {
+                return Err(invalid(
+                    "dt, tolerance",
+                    "give one: dt for fixed steps, or tolerance for steps chosen by the error",
+                ))
+            }
+            (None, None) => {
+                return Err(invalid(
+                    "dt",
+                    "missing: give dt (s) for fixed steps, or tolerance for steps chosen by the error",
+                ))
+            }
+        }
+        .map_err(SceneFileError::Schedule)?;
         if schedule.step_count() > MAX_STEPS {
             return Err(invalid(
                 "dt, duration",
@@ -1785,7 +1831,7 @@ impl SceneFile {
                     "{} steps ({} s at dt = {:e} s) is more than a scene file runs (at most {MAX_STEPS:e})",
                     schedule.step_count(),
                     self.duration,
-                    self.dt
+                    schedule.dt()
                 ),
             ));
         }

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
 use dynamics::simulate::Sample;
-use dynamics::{Cga, Correction, Dynamics, Pga, State};
+use dynamics::{Cga, Correction, Dynamics, Pga, State, StepStatistics};
 
 use crate::csv;
 use crate::figures::{running_max, styled, LOG_FLOOR};
@@ -69,6 +69,8 @@ pub struct AlgebraRun {
     pub joints: Option<(Vec<String>, Vec<Vec<f64>>)>,
     /// How far putting the file's start on the joints moved each body.
     pub start_correction: Correction,
+    /// The steps kept and refused, the evaluations, the shortest and longest step.
+    pub statistics: StepStatistics,
 }
 
 /// Energy changes are relative to |E₀| unless it is below this (J): a chain released from z = 0 starts at
@@ -172,6 +174,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         joints,
         bodies,
         start_correction: system.start_correction.clone(),
+        statistics: simulation.statistics,
     })
 }
 
@@ -246,7 +249,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .first()
         .and_then(|r| r.bodies[0].first())
         .is_some_and(|s| s.energy.abs() >= ABSOLUTE_ENERGY_BELOW);
-    let energy_title = format!("{title}: energy change, dt = {:e} s", scene.dt);
+    let energy_title = format!("{title}: energy change, {}", scene.stepping());
     let energy_axis = if relative {
         "|E(t) − E₀| / |E₀|"
     } else {
@@ -260,7 +263,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     )?;
     files.push(energy_path);
     if !layout.joints.is_empty() || robot.is_some() {
-        let violation_title = format!("{title}: constraint violation, dt = {:e} s", scene.dt);
+        let violation_title = format!("{title}: constraint violation, {}", scene.stepping());
         let violation_path = output.join(format!("{stem}_violation.png"));
         // The running maximum: per-sample violations at round-off are noise that hides the curves.
         let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation up to t (m)");
@@ -283,11 +286,11 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .map(|run| {
             format!(
                 "{}: the energy of this conservative scene changed by {}{} (more than {ENERGY_WARNING:e}): the \
-                 step dt = {:e} s is probably too large for its motion",
+                 steps ({}) are probably too coarse for its motion",
                 run.algebra.name(),
                 scientific(run.max_energy_change()),
                 if relative { "" } else { " J" },
-                scene.dt
+                scene.stepping()
             )
         })
         .collect();
@@ -391,7 +394,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     let _ = writeln!(out, "# {}\n", escape(title));
     let _ = writeln!(
         out,
-        "From {}: {}forces: {}; constraints: {}. {}, dt = {:e} s, {} s simulated, sampled every {} s{}.\n",
+        "From {}: {}forces: {}; constraints: {}. {}, {}, {} s simulated, sampled every {} s{}.\n",
         escape(&path.display().to_string()),
         if layout.named {
             format!(
@@ -409,7 +412,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         listed(forces),
         listed(constraints),
         Integrator::from(scene.integrator).name(),
-        scene.dt,
+        scene.stepping(),
         scene.duration,
         scene.sample_interval,
         match setup.stabilisation {
@@ -449,6 +452,20 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             },
             scientific(run.cpu_per_simulated_second),
             run.time_per_step * 1e6,
+        );
+    }
+    let _ = writeln!(out);
+    for run in runs {
+        let steps = run.statistics;
+        let _ = writeln!(
+            out,
+            "Steps ({}): {} kept, {} refused, {} evaluations of the equations of motion, from {} s to {} s.",
+            run.algebra.name(),
+            steps.accepted,
+            steps.rejected,
+            steps.evaluations,
+            scientific(steps.smallest_step),
+            scientific(steps.largest_step),
         );
     }
     let _ = writeln!(out);

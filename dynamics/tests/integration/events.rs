@@ -21,10 +21,9 @@ fn complete_elliptic_k(modulus: f64) -> f64 {
     std::f64::consts::PI / (2.0 * a)
 }
 
-/// A 1 m, 1 kg rod hinged at its top end about world x, released at rest from `amplitude`: its period is
-/// `4√(I/mgd) K(sin(θ₀/2))` with `I/md = (l²/3)/(l/2) = 2l/3`. The turning points (the angular velocity's
-/// crossings) in each direction are a period apart, and the two directions half a period.
-fn pendulum_period<A: Algebra>(amplitude: f64) {
+/// A 1 m, 1 kg rod hinged at its top end about world x, released at rest from `amplitude` (rad), and its
+/// period `4√(I/mgd) K(sin(θ₀/2))` with `I/md = (l²/3)/(l/2) = 2l/3` (s).
+pub(crate) fn released_pendulum<A: Algebra>(amplitude: f64) -> (Body, Mechanism<A>, State<A>, f64) {
     let rod = Body::rod(1.0, 1.0, 1e-3).unwrap();
     let hinge = VirtualPower::hinge(
         "pivot",
@@ -45,13 +44,20 @@ fn pendulum_period<A: Algebra>(amplitude: f64) {
         Vector3::zeros(),
         Vector3::zeros(),
     );
+    let period = 4.0 * (2.0 / (3.0 * G)).sqrt() * complete_elliptic_k((0.5 * amplitude).sin());
+    (rod, pendulum, start, period)
+}
+
+/// The pendulum of [`released_pendulum`]: the turning points (the angular velocity's crossings) in each direction
+/// are a period apart, and the two directions half a period.
+fn pendulum_period<A: Algebra>(amplitude: f64) {
+    let (rod, pendulum, start, exact) = released_pendulum::<A>(amplitude);
     let swing = |_t: f64, states: &[State<A>]| states[0].world_velocity(&rod).angular.x;
     let schedule = Schedule::new(1e-3, 12.0).unwrap();
     let plan = Plan::new(&schedule)
         .event(Event::new("rising", swing).crossing(Crossing::Rising))
         .event(Event::new("falling", swing).crossing(Crossing::Falling));
     let run = simulate(&pendulum, &[start], Method::Rkmk6Body, plan).unwrap();
-    let exact = 4.0 * (2.0 / (3.0 * G)).sqrt() * complete_elliptic_k((0.5 * amplitude).sin());
     let times = |event: usize| -> Vec<f64> { run.events.iter().filter(|h| h.event == event).map(|h| h.t).collect() };
     let (rising, falling) = (times(0), times(1));
     assert!(rising.len() >= 3 && falling.len() >= 3, "{rising:?} {falling:?}");

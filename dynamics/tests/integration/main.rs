@@ -5,12 +5,13 @@
 #[macro_use]
 mod common;
 
+mod adaptive;
 mod algebra_layer;
 mod bodies_and_states;
 mod constraint_machinery;
 mod convert;
 mod errors;
-mod events;
+pub(crate) mod events;
 mod force_elements;
 mod force_line;
 mod joint_integration;

@@ -14,7 +14,7 @@ use proptest::prelude::*;
 use reference::SceneId;
 use report::markdown::agreement;
 use report::scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, SceneFile};
-use report::scene_job::run_scene_file;
+use report::scene_job::{run_scene_file, AlgebraRun};
 use scenarios::mechanism_measures::measure;
 use scenarios::{build, build_mechanism, Formulation, MechanismId, SceneAlgebra};
 
@@ -31,7 +31,7 @@ fn heavy_top_text() -> String {
 fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, formulation: Formulation) -> (f64, f64) {
     let from_file = scene.simulate::<A>().expect("the file runs");
     let builtin = build::<A>(SceneId::TopCusp, formulation, Stabilisation::PROJECTION).expect("scene 3a builds");
-    let schedule = Schedule::new(scene.dt, builtin.duration).expect("scene 3a's schedule");
+    let schedule = Schedule::new(scene.dt.expect("a fixed step"), builtin.duration).expect("scene 3a's schedule");
     let builtin =
         dynamics::simulate(&builtin.system, &[builtin.initial], Method::Rk4, &schedule).expect("scene 3a runs");
     assert_eq!(from_file.body(0).len(), builtin.body(0).len());
@@ -42,7 +42,7 @@ fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, fo
 fn heavy_top_file_runs_as_the_builtin_scene_3a() {
     let scene = SceneFile::load(&heavy_top_path()).expect("scenes/heavy_top.toml parses");
     assert_eq!(scene.algebra, AlgebraChoice::Both);
-    assert_eq!((scene.dt, scene.duration), (1e-3, 10.0));
+    assert_eq!((scene.dt, scene.duration), (Some(1e-3), 10.0));
     assert_eq!(scene.constraints.len(), 1);
     // The same top by pinning its tip instead of a ball joint by virtual power.
     let pinned =
@@ -66,24 +66,65 @@ fn heavy_top_file_runs_as_the_builtin_scene_3a() {
     }
 }
 
-#[test]
-fn a_scene_file_writes_trajectories_plots_and_summary() {
-    let dir = std::env::temp_dir().join("report-scene-file");
+/// An empty folder of this name in the temporary directory.
+fn fresh_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A run with `samples` samples whose joints held to 1e-12 and whose energy changed by less than 1e-9.
+fn assert_held_and_conserved(run: &AlgebraRun, samples: usize) {
+    assert_eq!(run.bodies[0].len(), samples);
+    assert!(run.max_violation() < 1e-12, "violation {}", run.max_violation());
+    assert!(
+        run.max_energy_change() < 1e-9,
+        "energy change {}",
+        run.max_energy_change()
+    );
+}
+
+/// `tolerance` in place of `dt`: the pair DP5(4)-body chooses the steps (without an integrator named), the rod
+/// stays on its joint, the samples stay on the 0.01 s grid, and the summary names the tolerance and counts the
+/// steps; `dp5-body` also runs at a fixed step.
+#[test]
+fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
+    let dir = fresh_dir("report-scene-file-tolerance");
+    let file = dir.join("adaptive_rod.toml");
+    std::fs::write(&file, VALID.replace("dt = 1e-3", "tolerance = 1e-9")).unwrap();
+    let summary = run_scene_file(&file, &dir.join("out")).expect("the scene runs");
+    for run in &summary.runs {
+        assert_held_and_conserved(run, 11);
+        let steps = run.statistics;
+        assert!(
+            steps.accepted > 0 && steps.evaluations >= 7 * steps.accepted,
+            "{steps:?}"
+        );
+    }
+    let text = std::fs::read_to_string(dir.join("out/summary.md")).unwrap();
+    assert_mentions(
+        &text,
+        &[
+            "DP5(4)-body, tolerance = 1e-9 (adaptive steps)",
+            "Steps (PGA): ",
+            " kept, ",
+        ],
+    );
+    let fixed = SceneFile::parse(&VALID.replace("dt = 1e-3", "dt = 1e-3\nintegrator = \"dp5-body\"")).unwrap();
+    assert_eq!((fixed.dt, fixed.tolerance), (Some(1e-3), None));
+}
+
+#[test]
+fn a_scene_file_writes_trajectories_plots_and_summary() {
+    let dir = fresh_dir("report-scene-file");
     let file = dir.join("short_top.toml");
     std::fs::write(&file, heavy_top_text().replace("duration = 10.0", "duration = 1.0")).unwrap();
     let output = dir.join("out");
     let summary = run_scene_file(&file, &output).expect("the scene runs");
     assert_eq!(summary.runs.len(), 2);
     for run in &summary.runs {
-        assert_eq!(run.bodies[0].len(), 101);
-        assert!(run.max_violation() < 1e-12, "violation {}", run.max_violation());
-        assert!(
-            run.max_energy_change() < 1e-9,
-            "energy change {}",
-            run.max_energy_change()
-        );
+        assert_held_and_conserved(run, 101);
     }
     for name in [
         "short_top_pga.csv",
@@ -192,7 +233,79 @@ fn bad_files_fail_with_clear_messages() {
         (
             "dt = 1e-3",
             "dt = -1e-3",
-            &["dt, duration, sample_interval", "step must be positive", "-0.001"],
+            &[
+                "dt or tolerance, duration, sample_interval",
+                "step must be positive",
+                "-0.001",
+            ],
+        ),
+        (
+            "dt = 1e-3",
+            "",
+            &["dt: missing: give dt (s) for fixed steps, or tolerance"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\ntolerance = 1e-8",
+            &["dt, tolerance: give one: dt for fixed steps, or tolerance"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = nan",
+            &["tolerance: the relative tolerance must be at least 0 and below 1, got NaN"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = -1e-8",
+            &["tolerance: the relative tolerance must be at least 0 and below 1, got -0.00000001"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = 1.5",
+            &["tolerance: the relative tolerance must be at least 0 and below 1, got 1.5"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = inf",
+            &["tolerance: the relative tolerance must be at least 0 and below 1, got inf"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = 0.0",
+            &[
+                "tolerance: the absolute tolerance must be finite and at least 1e-15",
+                "got 0",
+            ],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = 1e-16",
+            &["tolerance: the absolute tolerance must be finite and at least 1e-15"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = [1e-8]",
+            &["line 2", "invalid type: sequence, expected f64"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = \"tight\"",
+            &["line 2", "invalid type: string"],
+        ),
+        (
+            "dt = 1e-3\nduration = 0.1",
+            "tolerance = 1e-8\nduration = 1e300",
+            &["more than 10000000 samples"],
+        ),
+        (
+            "dt = 1e-3\nduration = 0.1",
+            "tolerance = 1e-8\nduration = 0.0",
+            &["the duration must be positive and finite, got 0"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = 1e-8\nintegrator = \"rkmk8-body\"",
+            &["integrator: RKMK8-body has no error estimate", "name \"dp5-body\""],
         ),
         (
             "dt = 1e-3",
@@ -750,9 +863,7 @@ proptest! {
 /// cannot start a heading or a table row (it once could: the title was copied in unescaped).
 #[test]
 fn user_text_in_the_summary_is_escaped() {
-    let dir = std::env::temp_dir().join("report-scene-file-escaped");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("report-scene-file-escaped");
     let file = dir.join("top.toml");
     let text = heavy_top_text()
         .replace(
@@ -780,9 +891,7 @@ fn user_text_in_the_summary_is_escaped() {
 /// that would do.
 #[test]
 fn a_conservative_scene_whose_energy_drifts_is_flagged() {
-    let dir = std::env::temp_dir().join("report-scene-file-energy");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("report-scene-file-energy");
     let scene = |spin: f64, dt: f64| {
         format!(
             "integrator = \"rk4\"\ndt = {dt:e}\nduration = 1.0\n[body]\nmass = 1.0\n\
@@ -895,9 +1004,7 @@ fn a_step_too_large_for_a_scene_names_the_step() {
 /// start written to six digits passes the default.
 #[test]
 fn the_summary_says_how_far_the_start_was_moved_onto_the_joints() {
-    let dir = std::env::temp_dir().join("report-scene-file-start-correction");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = fresh_dir("report-scene-file-start-correction");
     let file = dir.join("off.toml");
     let off = VALID
         .replace("position = [0.0, 0.0, -0.5]", "position = [0.0, 0.0, -0.63]")

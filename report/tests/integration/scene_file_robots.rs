@@ -17,7 +17,7 @@ use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
 use dynamics::simulate::Plan;
-use dynamics::{Cga, Pga, Schedule, State};
+use dynamics::{Cga, Pga, State};
 use nalgebra::{UnitQuaternion, Vector3};
 use report::scene_file::{FileAlgebra, SceneFile};
 use report::scene_job::run_scene_file;
@@ -150,7 +150,7 @@ fn solo12_file_matches_the_reference() {
 fn energy_balance<A: FileAlgebra>(scene: &SceneFile, driven: Option<&str>) -> (f64, f64, f64) {
     let system = scene.system::<A>().expect("the scene builds");
     let mechanism = system.mechanism();
-    let schedule = Schedule::with_sample_interval(scene.dt, scene.duration, scene.sample_interval).unwrap();
+    let schedule = scene.schedule().unwrap();
     let slot = driven.map(|name| {
         let group = mechanism
             .joint_space()

@@ -5,6 +5,8 @@
 #[macro_use]
 mod common;
 
+mod adaptive;
+
 mod constraint_scenes;
 mod errors;
 mod hard_cases;

@@ -1,0 +1,230 @@
+//! Step sizes chosen by the error the user asks for (`docs/dynamics.md`, "Adaptive steps"): a [`Tolerance`], the
+//! error norm an embedded pair's estimate is measured in, and the step-size controller of an adaptive
+//! [`crate::Schedule`].
+//!
+//! The estimate of a step is the difference of the pair's two solutions, taken where the body-momentum methods
+//! compute: in the Lie algebra (the screw `Σ eᵢKᵢ` whose exponential takes the lower-order motor to the kept one)
+//! and in the body momentum. Each body contributes four errors in the user's units: the turn of its orientation
+//! (rad), the shift of its centre of mass (m), and the errors of its angular velocity (rad/s) and of its
+//! centre-of-mass velocity (m/s), the momentum's error through the inverse inertia map. Each is divided by
+//! `absolute + relative · size`, the size being the larger of the quantity at the step's two ends (none for the
+//! orientation, whose tolerance is absolute: an angle has no scale to be relative to); the step's error is the
+//! root mean square over every body's four ratios, and a step is kept when it is at most 1.
+
+use crate::algebra::Algebra;
+use crate::motion::Dynamics;
+use crate::state::State;
+
+/// The accuracy asked of an adaptive run (see the module docs for the units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    relative: f64,
+    absolute: f64,
+}
+
+/// The smallest absolute tolerance: below it a body a metre from the origin is asked for less than a few ulps
+/// of its position, which no step can deliver.
+pub const MIN_ABSOLUTE_TOLERANCE: f64 = 1e-15;
+
+/// Why a tolerance was refused.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ToleranceError {
+    /// The relative tolerance is NaN, negative, or not below 1 (which asks for no accuracy at all).
+    #[error("the relative tolerance must be at least 0 and below 1, got {0}")]
+    Relative(f64),
+    /// The absolute tolerance is NaN, infinite, or below [`MIN_ABSOLUTE_TOLERANCE`].
+    #[error(
+        "the absolute tolerance must be finite and at least {MIN_ABSOLUTE_TOLERANCE:e} (round-off of a position a \
+         metre from the origin), got {0}"
+    )]
+    Absolute(f64),
+}
+
+impl Tolerance {
+    /// A relative tolerance in [0, 1) and an absolute one of at least [`MIN_ABSOLUTE_TOLERANCE`], finite.
+    ///
+    /// ```
+    /// use dynamics::step_control::{Tolerance, ToleranceError};
+    ///
+    /// let tight = Tolerance::new(1e-10, 1e-10)?; // relative, absolute
+    /// assert_eq!((tight.relative(), tight.absolute()), (1e-10, 1e-10));
+    /// assert_eq!(Tolerance::new(1e-6, 0.0).err(), Some(ToleranceError::Absolute(0.0)));
+    /// # Ok::<(), ToleranceError>(())
+    /// ```
+    pub fn new(relative: f64, absolute: f64) -> Result<Self, ToleranceError> {
+        if !(0.0..1.0).contains(&relative) {
+            return Err(ToleranceError::Relative(relative));
+        }
+        if !(absolute.is_finite() && absolute >= MIN_ABSOLUTE_TOLERANCE) {
+            return Err(ToleranceError::Absolute(absolute));
+        }
+        Ok(Tolerance { relative, absolute })
+    }
+
+    /// The relative tolerance.
+    pub fn relative(&self) -> f64 {
+        self.relative
+    }
+
+    /// The absolute tolerance (rad, m, rad/s and m/s alike).
+    pub fn absolute(&self) -> f64 {
+        self.absolute
+    }
+
+    /// `error / (absolute + relative · size)`.
+    fn ratio(&self, error: f64, size: f64) -> f64 {
+        error / (self.absolute + self.relative * size)
+    }
+}
+
+/// The error norm of a step from `start` to `end` whose estimate per body is `(σ error, body momentum error)`:
+/// the root mean square of the four ratios of every body (module docs).
+pub(crate) fn error_norm<A: Algebra, D: Dynamics<A> + ?Sized>(
+    tolerance: &Tolerance,
+    dynamics: &D,
+    (start, end): (&[State<A>], &[State<A>]),
+    estimates: impl Iterator<Item = (A::Screw, A::Screw)>,
+) -> f64 {
+    let mut sum = 0.0;
+    let mut count = 0;
+    for (index, (sigma, momentum)) in estimates.enumerate() {
+        let body = dynamics.body(index);
+        // exp(σ) of a screw σ = −½ h Ḃ turns by 2|σ_l| and shifts the centre by 2|σ_t| to first order.
+        let motion = A::screw_coordinates(sigma);
+        let velocity = A::screw_coordinates(body.velocity::<A>(momentum));
+        let speeds = |state: &State<A>| {
+            let v = A::screw_coordinates(state.body_velocity(body));
+            (v.l.norm(), v.t.norm())
+        };
+        let ((spin0, speed0), (spin1, speed1)) = (speeds(&start[index]), speeds(&end[index]));
+        let distance = crate::motor::position_of::<A>(start[index].motor)
+            .norm()
+            .max(crate::motor::position_of::<A>(end[index].motor).norm());
+        let ratios = [
+            tolerance.ratio(2.0 * motion.l.norm(), 0.0),
+            tolerance.ratio(2.0 * motion.t.norm(), distance),
+            tolerance.ratio(velocity.l.norm(), spin0.max(spin1)),
+            tolerance.ratio(velocity.t.norm(), speed0.max(speed1)),
+        ];
+        sum += ratios.iter().map(|r| r * r).sum::<f64>();
+        count += ratios.len();
+    }
+    (sum / count.max(1) as f64).sqrt()
+}
+
+/// The controller's safety factor: the next step aims at 0.9 of the step the estimate allows.
+const SAFETY: f64 = 0.9;
+/// A step grows at most fivefold and shrinks at most fivefold at a time.
+const MAX_GROWTH: f64 = 5.0;
+const MAX_SHRINK: f64 = 0.2;
+/// The PI controller's exponents for an estimate of order 5 (k = 5): `h ← h·(1/err)^(0.7/k)·err_prev^(0.4/k)`
+/// (Gustafsson's controller, in Hairer & Wanner, *Solving ODEs II*, §IV.2).
+const PROPORTIONAL: f64 = 0.7 / 5.0;
+const INTEGRAL: f64 = 0.4 / 5.0;
+
+/// How many steps an adaptive run took and how long they were.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepStatistics {
+    /// Steps kept (for a fixed-step run, every step).
+    pub accepted: usize,
+    /// Steps tried and refused because their error estimate was above the tolerance, or because they failed
+    /// (too large for the motion or for the constraints).
+    pub rejected: usize,
+    /// Evaluations of the equations of motion, by the steps, the rejected steps and the partial steps that took
+    /// samples or located events.
+    pub evaluations: usize,
+    /// The shortest and the longest step kept (s); the run's last step may be shortened to land on its end.
+    pub smallest_step: f64,
+    /// See `smallest_step`.
+    pub largest_step: f64,
+}
+
+impl StepStatistics {
+    pub(crate) fn record_accepted(&mut self, h: f64) {
+        if self.accepted == 0 {
+            (self.smallest_step, self.largest_step) = (h, h);
+        }
+        self.accepted += 1;
+        self.smallest_step = self.smallest_step.min(h);
+        self.largest_step = self.largest_step.max(h);
+    }
+}
+
+/// The step-size controller of an adaptive run.
+pub(crate) struct Controller {
+    pub(crate) tolerance: Tolerance,
+    /// The step to try next (s).
+    pub(crate) next: f64,
+    /// The error of the last kept step (at least 1e-4, so that a tiny one does not blow the next step up).
+    previous_error: f64,
+    /// Whether the last attempt was refused: the step after a refusal does not grow.
+    after_rejection: bool,
+}
+
+impl Controller {
+    pub(crate) fn new(tolerance: Tolerance, first: f64) -> Self {
+        Controller {
+            tolerance,
+            next: first,
+            previous_error: 1.0,
+            after_rejection: false,
+        }
+    }
+
+    /// After a step of `h` with error norm `error`: whether to keep it, and the step to try next.
+    pub(crate) fn judge(&mut self, h: f64, error: f64) -> bool {
+        if error <= 1.0 {
+            let factor = SAFETY * error.max(1e-10).powf(-PROPORTIONAL) * self.previous_error.powf(INTEGRAL);
+            let ceiling = if self.after_rejection { 1.0 } else { MAX_GROWTH };
+            self.next = h * factor.clamp(MAX_SHRINK, ceiling);
+            self.previous_error = error.max(1e-4);
+            self.after_rejection = false;
+            true
+        } else {
+            // NaN lands here too: a step whose estimate is not finite is refused and shrunk as far as allowed.
+            let factor = SAFETY * error.powf(-1.0 / 5.0);
+            self.next = h * if factor.is_nan() {
+                MAX_SHRINK
+            } else {
+                factor.max(MAX_SHRINK)
+            };
+            self.after_rejection = true;
+            false
+        }
+    }
+
+    /// After a step of `h` that failed outright (too large for the motion or the constraints): shrink it, to
+    /// `suggested` if the failure named a step that works.
+    pub(crate) fn refuse(&mut self, h: f64, suggested: Option<f64>) {
+        self.next = suggested.unwrap_or(h * MAX_SHRINK).min(h * 0.5);
+        self.after_rejection = true;
+    }
+}
+
+/// The first step to try: what the start's fastest motion allows for the tolerance at the pair's order (the local
+/// error of a step of order 5 is about `(ωh)⁶`, so `h ≈ tol^{1/6}/ω`), capped at a fifth of a turn per step and at
+/// the run's length; too long a guess costs one refused step.
+pub(crate) fn first_step<A: Algebra, D: Dynamics<A> + ?Sized>(
+    tolerance: &Tolerance,
+    dynamics: &D,
+    states: &[State<A>],
+    duration: f64,
+) -> f64 {
+    let rate = states
+        .iter()
+        .enumerate()
+        .map(|(index, state)| {
+            let body = dynamics.body(index);
+            let v = A::screw_coordinates(state.body_velocity(body));
+            v.l.norm().max(v.t.norm() / body.smallest_gyration_radius())
+        })
+        .fold(0.0, f64::max);
+    let guess = tolerance.absolute.powf(1.0 / 6.0) / rate;
+    let turn = 0.2 / rate;
+    // A body at rest: a hundredth of the run, from which the controller grows the step.
+    if !(guess.is_finite() && guess > 0.0) {
+        return 0.01 * duration;
+    }
+    guess.min(turn).min(duration)
+}
