@@ -593,18 +593,26 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         Some(dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>())
     }
 
-    /// The evaluations of the equations of motion one step of `integrator` takes.
+    /// The weights of `integrator`'s stages (none for a splitting, whose sub-steps are exact flows).
+    fn stage_weights(integrator: Integrator) -> &'static [f64] {
+        match integrator {
+            Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
+            Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
+            Integrator::General(Method::Dopri5Body) => &DORMAND_PRINCE_5.b,
+            Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
+            Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
+            Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
+            Integrator::Splitting(_) => &[],
+        }
+    }
+
+    /// The evaluations of the equations of motion one step of `integrator` takes: one per stage, or a splitting's
+    /// force kicks (two per Strang step, three Strang steps per Yoshida step).
     fn evaluations_per_step(integrator: Integrator) -> usize {
         match integrator {
-            Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => 4,
-            Integrator::General(Method::Rkmk6Body | Method::Dopri5Body) => 7,
-            Integrator::General(Method::Rkmk8Body) => 11,
-            Integrator::Joint(JointMethod::Rkmk4) => 4,
-            Integrator::Joint(JointMethod::Rkmk6) => 7,
-            Integrator::Joint(JointMethod::Rkmk8) => 11,
-            // The force kicks: two per Strang step, three Strang steps per Yoshida step.
             Integrator::Splitting(SplittingMethod::Strang) => 2,
             Integrator::Splitting(SplittingMethod::Yoshida4) => 6,
+            _ => Self::stage_weights(integrator).len(),
         }
     }
 
@@ -657,15 +665,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         self.last_step = result.is_ok().then_some(dt);
         if result.is_ok() {
             states.copy_from_slice(&self.buffers.next);
-            let weights: &[f64] = match self.integrator {
-                Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
-                Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
-                Integrator::General(Method::Dopri5Body) => &DORMAND_PRINCE_5.b,
-                Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
-                Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
-                Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
-                Integrator::Splitting(_) => &[],
-            };
+            let weights = Self::stage_weights(self.integrator);
             self.last_work = dt
                 * weights
                     .iter()
@@ -1265,15 +1265,7 @@ const DORMAND_PRINCE_5: Tableau<7> = Tableau {
         ]),
         row(&DORMAND_PRINCE_5_WEIGHTS),
     ],
-    b: {
-        let mut b = [0.0; 7];
-        let mut i = 0;
-        while i < 6 {
-            b[i] = DORMAND_PRINCE_5_WEIGHTS[i];
-            i += 1;
-        }
-        b
-    },
+    b: row(&DORMAND_PRINCE_5_WEIGHTS),
     c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0],
     order: 5,
 };
