@@ -66,21 +66,29 @@ pub enum Method {
     /// *Solving ODEs I*, §II.6) gives the state anywhere inside a step without another evaluation, so samples and
     /// events never shorten a step.
     Dopri5Body,
+    /// The same scheme on Dormand and Prince's 12-stage pair of order 8 with embedded solutions of orders 5 and 3
+    /// (DOP853: P. J. Prince and J. R. Dormand, J. Comp. Appl. Math. 7(1), 1981, as published with Hairer's code),
+    /// with `dexp⁻¹` truncated after its `ad⁶` term: the 8th-order solution is kept, and Hairer's combination of
+    /// the two embedded differences, `e₅²/√(e₅² + 0.01 e₃²)`, estimates the error with a step-size law of order 8.
+    /// Its continuous extension of order 7 costs four more evaluations, made only in steps that hold a sample or
+    /// an event. For tight tolerances: 12 evaluations per step for an error that falls as dt⁸.
+    Dop853Body,
 }
 
 impl Method {
     /// Every general method, in the order of the enum.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Rk4,
         Method::Rkmk4,
         Method::Rkmk4Body,
         Method::Rkmk6Body,
         Method::Rkmk8Body,
         Method::Dopri5Body,
+        Method::Dop853Body,
     ];
 
     /// The method's name in reports and tables ("RK4", "RKMK4", "RKMK4-body", "RKMK6-body", "RKMK8-body",
-    /// "DP5(4)-body").
+    /// "DP5(4)-body", "DOP853-body").
     pub fn name(self) -> &'static str {
         match self {
             Method::Rk4 => "RK4",
@@ -89,6 +97,7 @@ impl Method {
             Method::Rkmk6Body => "RKMK6-body",
             Method::Rkmk8Body => "RKMK8-body",
             Method::Dopri5Body => "DP5(4)-body",
+            Method::Dop853Body => "DOP853-body",
         }
     }
 
@@ -98,7 +107,18 @@ impl Method {
             Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body => 4,
             Method::Dopri5Body => 5,
             Method::Rkmk6Body => 6,
-            Method::Rkmk8Body => 8,
+            Method::Rkmk8Body | Method::Dop853Body => 8,
+        }
+    }
+
+    /// For an embedded pair, the order `k` of its error estimate's step-size law (the estimate of a step of
+    /// length h falls as h^k, so the controller scales steps by `(1/err)^(1/k)`); `None` for a method without an
+    /// estimate, which an adaptive schedule refuses.
+    pub fn estimate_order(self) -> Option<u32> {
+        match self {
+            Method::Dopri5Body => Some(5),
+            Method::Dop853Body => Some(8),
+            Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body | Method::Rkmk6Body | Method::Rkmk8Body => None,
         }
     }
 }
@@ -149,13 +169,14 @@ pub enum Integrator {
 
 impl Integrator {
     /// Every integrator: the general methods, then the splittings.
-    pub const ALL: [Integrator; 8] = [
+    pub const ALL: [Integrator; 9] = [
         Integrator::General(Method::Rk4),
         Integrator::General(Method::Rkmk4),
         Integrator::General(Method::Rkmk4Body),
         Integrator::General(Method::Rkmk6Body),
         Integrator::General(Method::Rkmk8Body),
         Integrator::General(Method::Dopri5Body),
+        Integrator::General(Method::Dop853Body),
         Integrator::Splitting(SplittingMethod::Strang),
         Integrator::Splitting(SplittingMethod::Yoshida4),
     ];
@@ -175,6 +196,14 @@ impl Integrator {
             Integrator::General(method) => method.order(),
             Integrator::Splitting(method) => method.order(),
             Integrator::Joint(method) => method.order(),
+        }
+    }
+
+    /// The order of the error estimate of an embedded pair ([`Method::estimate_order`]); `None` for the others.
+    pub fn estimate_order(self) -> Option<u32> {
+        match self {
+            Integrator::General(method) => method.estimate_order(),
+            Integrator::Splitting(_) | Integrator::Joint(_) => None,
         }
     }
 }
@@ -378,8 +407,12 @@ pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
     joints: Option<JointBuffers<A>>,
     /// The work done by the non-conservative forces over the last successful step (J).
     last_work: f64,
-    /// The length of the last successful step (s), if its stages are still in the buffers (for the dense output).
-    last_step: Option<f64>,
+    /// The start and the length of the last successful step (s), if its stages are still in the buffers (for the
+    /// error estimate and the dense output).
+    last_step: Option<(f64, f64)>,
+    /// Whether the last successful step's extra stages for the continuous extension have been evaluated
+    /// ([`Method::Dop853Body`] makes them only in steps that need them).
+    extended: bool,
     /// Evaluations of the equations of motion so far.
     evaluations: usize,
 }
@@ -398,10 +431,6 @@ struct Buffers<A: Algebra> {
     /// The body momenta and the motors at the start of the step (the dense output starts from them).
     start_momenta: Vec<A::Screw>,
     start_motors: Vec<A::Motor>,
-    /// An embedded pair's error estimate per body: the difference of its two solutions in the Lie algebra, the
-    /// motor's `Σ eᵢKᵢ` and the body momentum's `h Σ eᵢ dΩ_b/dt` (`eᵢ` the difference of the two weights).
-    error_sigmas: Vec<A::Screw>,
-    error_momenta: Vec<A::Screw>,
     /// A stage's Lie-algebra offsets σ (the stage motors are `R₀ exp(σ)`).
     sigmas: Vec<A::Screw>,
     /// Per stage and body, stage-major: `(dR/dt, dΩ/dt)` (RK4), or the Lie-algebra slopes σ-increments and
@@ -422,7 +451,7 @@ impl<A: Algebra> Buffers<A> {
             motor: zero_motor,
             momentum: zero_screw,
         };
-        let stages = COOPER_VERNER_8.b.len();
+        let stages = DOP853_EXTENDED_STAGES;
         Buffers {
             next: vec![state; bodies],
             stage: vec![state; bodies],
@@ -444,8 +473,6 @@ impl<A: Algebra> Buffers<A> {
             momenta: vec![zero_screw; bodies],
             start_momenta: vec![zero_screw; bodies],
             start_motors: vec![zero_motor; bodies],
-            error_sigmas: vec![zero_screw; bodies],
-            error_momenta: vec![zero_screw; bodies],
             sigmas: vec![zero_screw; bodies],
             derivatives: vec![
                 Derivative {
@@ -515,6 +542,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             joints,
             last_work: 0.0,
             last_step: None,
+            extended: false,
             evaluations: 0,
         })
     }
@@ -547,50 +575,85 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         self.evaluations
     }
 
-    /// Whether the method estimates its error (an embedded pair, for adaptive schedules).
-    pub(crate) fn has_error_estimate(&self) -> bool {
-        self.integrator == Integrator::General(Method::Dopri5Body)
-    }
-
     /// The error norm ([`crate::step_control`]) of the last successful step from `start` to `end`, for a method with
-    /// an error estimate ([`Method::Dopri5Body`]); `None` for the others, or before a step.
+    /// an error estimate ([`Integrator::estimate_order`]); `None` for the others, or before a step. An embedded
+    /// difference is the pair's two solutions apart in the Lie algebra, per body: the motor's `Σ eᵢKᵢ` and the body
+    /// momentum's `h Σ eᵢ dΩ_b/dt` (`eᵢ` the difference of the two weights).
     pub(crate) fn error_norm(&self, tolerance: &Tolerance, start: &[State<A>], end: &[State<A>]) -> Option<f64> {
-        if !self.has_error_estimate() || self.last_step.is_none() {
-            return None;
+        let (_, dt) = self.last_step?;
+        let zero = A::screw(ScrewCoordinates::default());
+        let difference = |weights: &[f64]| {
+            let estimates = (0..start.len()).map(|b| weighted_slopes(&self.buffers, weights, b, (dt, zero)));
+            step_control::error_norm(tolerance, self.dynamics, (start, end), estimates)
+        };
+        match self.integrator {
+            Integrator::General(Method::Dopri5Body) => Some(difference(&DORMAND_PRINCE_5_ERROR)),
+            Integrator::General(Method::Dop853Body) => {
+                // Hairer's combination: the 5th-order difference, damped where the 3rd-order one says the
+                // asymptotic regime is not reached; it falls as h⁸. A NaN stays a NaN (the step is refused).
+                let (fifth, third) = (difference(&DOP853_ERROR_5), difference(&DOP853_ERROR_3));
+                let scale = (fifth * fifth + 0.01 * third * third).sqrt();
+                Some(if scale == 0.0 { 0.0 } else { fifth * fifth / scale })
+            }
+            _ => None,
         }
-        let buffers = &self.buffers;
-        let estimates = buffers
-            .error_sigmas
-            .iter()
-            .copied()
-            .zip(buffers.error_momenta.iter().copied());
-        Some(step_control::error_norm(
-            tolerance,
-            self.dynamics,
-            (start, end),
-            estimates,
-        ))
     }
 
     /// The state at the fraction `theta` ∈ [0, 1] of the last successful step, from the method's continuous
     /// extension, into `out`; returns the work done from the step's start to there. `None` for a method without
-    /// one, or when the last step's stages are gone (after a failed or partial step).
-    pub(crate) fn dense_output(&self, theta: f64, out: &mut [State<A>]) -> Option<f64> {
-        let dt = self.last_step?;
-        if !self.has_error_estimate() {
-            return None;
-        }
-        let weights = dormand_prince_5_dense_weights(theta);
+    /// one, or when the last step's stages are gone (after a failed or partial step). [`Method::Dop853Body`]
+    /// evaluates its extension's four stages on the first call in a step, which can fail as a stage can.
+    pub(crate) fn dense_output(&mut self, theta: f64, out: &mut [State<A>]) -> Result<Option<f64>, StepError> {
+        let Some((t, dt)) = self.last_step else {
+            return Ok(None);
+        };
+        let (dormand_prince, dop853);
+        let weights: &[f64] = match self.integrator {
+            Integrator::General(Method::Dopri5Body) => {
+                dormand_prince = dormand_prince_5_dense_weights(theta);
+                &dormand_prince
+            }
+            Integrator::General(Method::Dop853Body) => {
+                self.extend_dop853(t, dt)?;
+                dop853 = dop853_dense_weights(theta);
+                &dop853
+            }
+            _ => return Ok(None),
+        };
         let buffers = &self.buffers;
         for (b, state) in out.iter_mut().enumerate() {
-            let (sigma, momentum) = weighted_slopes(buffers, &weights, b, (dt, buffers.start_momenta[b]));
+            let (sigma, momentum) = weighted_slopes(buffers, weights, b, (dt, buffers.start_momenta[b]));
             let motor = A::compose(buffers.start_motors[b], exp::<A>(sigma));
             *state = State {
                 motor,
                 momentum: to_world::<A>(motor, momentum),
             };
         }
-        Some(dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>())
+        Ok(Some(
+            dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>(),
+        ))
+    }
+
+    /// The four stages DOP853's continuous extension adds to the last step from `t` of length `dt`, once per step.
+    fn extend_dop853(&mut self, t: f64, dt: f64) -> Result<(), StepError> {
+        if self.extended {
+            return Ok(());
+        }
+        self.evaluations += DOP853_EXTENSION.len();
+        for (k, (row, node)) in DOP853_EXTENSION.iter().enumerate() {
+            let at = (DOP853.b.len() + k, t + node * dt, dt);
+            rkmk_stage(
+                self.dynamics,
+                at,
+                row,
+                DOP853.order,
+                &mut self.buffers,
+                &mut self.workspace,
+            )
+            .map_err(|error| StepError::Constraint { t, error })?;
+        }
+        self.extended = true;
+        Ok(())
     }
 
     /// The weights of `integrator`'s stages (none for a splitting, whose sub-steps are exact flows).
@@ -599,6 +662,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
             Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
             Integrator::General(Method::Dopri5Body) => &DORMAND_PRINCE_5.b,
+            Integrator::General(Method::Dop853Body) => &DOP853.b,
             Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
             Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
             Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
@@ -662,7 +726,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             Err(StepError::Constraint { error, .. }) => Err(self.diagnose(t, states, dt, error)),
             result => result,
         };
-        self.last_step = result.is_ok().then_some(dt);
+        self.last_step = result.is_ok().then_some((t, dt));
         if result.is_ok() {
             states.copy_from_slice(&self.buffers.next);
             let weights = Self::stage_weights(self.integrator);
@@ -711,6 +775,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
     /// validated start.
     fn attempt(&mut self, t: f64, states: &[State<A>], dt: f64) -> Result<(), StepError> {
         self.evaluations += Self::evaluations_per_step(self.integrator);
+        self.extended = false;
         let expected = self.dynamics.body_count();
         let dynamics = self.dynamics;
         let workspace = &mut self.workspace;
@@ -724,21 +789,17 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 rkmk4_body_momentum(dynamics, t, &mut next, dt, buffers, workspace)
             }
             (Integrator::General(Method::Rkmk6Body), _) => {
-                rkmk_body_momentum(&BUTCHER_6, None, dynamics, t, &mut next, dt, buffers, workspace)
+                rkmk_body_momentum(&BUTCHER_6, dynamics, t, &mut next, dt, buffers, workspace)
             }
             (Integrator::General(Method::Rkmk8Body), _) => {
-                rkmk_body_momentum(&COOPER_VERNER_8, None, dynamics, t, &mut next, dt, buffers, workspace)
+                rkmk_body_momentum(&COOPER_VERNER_8, dynamics, t, &mut next, dt, buffers, workspace)
             }
-            (Integrator::General(Method::Dopri5Body), _) => rkmk_body_momentum(
-                &DORMAND_PRINCE_5,
-                Some(&DORMAND_PRINCE_5_ERROR),
-                dynamics,
-                t,
-                &mut next,
-                dt,
-                buffers,
-                workspace,
-            ),
+            (Integrator::General(Method::Dopri5Body), _) => {
+                rkmk_body_momentum(&DORMAND_PRINCE_5, dynamics, t, &mut next, dt, buffers, workspace)
+            }
+            (Integrator::General(Method::Dop853Body), _) => {
+                rkmk_body_momentum(&DOP853, dynamics, t, &mut next, dt, buffers, workspace)
+            }
             (Integrator::Splitting(method), Some(splitting)) => {
                 buffers.slopes[0] = next[0].body_velocity(dynamics.body(0)) * (-0.5 * dt);
                 next[0] = step_splitting(method, splitting, t, &next[0], dt);
@@ -1011,17 +1072,21 @@ fn rkmk4<A: Algebra, D: Dynamics<A> + ?Sized>(
 fn body_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
     dynamics: &D,
     (s, at, dt): (usize, f64, f64),
-    y: &[State<A>],
     buffers: &mut Buffers<A>,
     workspace: &mut D::Workspace,
 ) -> Result<(), ConstraintError> {
-    let n = y.len();
+    let n = buffers.motors.len();
     let skip_motors = s == 0 || !dynamics.rates_depend_on_motors();
-    for ((motor, start), &sigma) in buffers.motors.iter_mut().zip(y).zip(&buffers.sigmas) {
+    for ((motor, &start), &sigma) in buffers
+        .motors
+        .iter_mut()
+        .zip(&buffers.start_motors)
+        .zip(&buffers.sigmas)
+    {
         *motor = if skip_motors {
-            start.motor
+            start
         } else {
-            A::compose(start.motor, exp::<A>(sigma))
+            A::compose(start, exp::<A>(sigma))
         };
     }
     dynamics.body_rates(
@@ -1062,8 +1127,12 @@ fn rkmk4_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized>(
     let n = y.len();
     let half = 0.5 * dt;
     let conserving = dynamics.conserves_world_momenta();
-    for (start, state) in buffers.start_momenta.iter_mut().zip(y.iter()) {
+    for ((start, motor), state) in (buffers.start_momenta.iter_mut())
+        .zip(&mut buffers.start_motors)
+        .zip(y.iter())
+    {
         *start = to_body::<A>(state.motor, state.momentum);
+        *motor = state.motor;
     }
     // Stage s + 1 starts from momentum slope s over h, with σ from `sigma(k₁, k₂, k₃)` of body i.
     let prepare = |buffers: &mut Buffers<A>, s: usize, h: f64, sigma: fn(&[A::Screw], usize, usize) -> A::Screw| {
@@ -1073,15 +1142,15 @@ fn rkmk4_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized>(
         }
     };
     buffers.momenta.copy_from_slice(&buffers.start_momenta);
-    body_stage(dynamics, (0, t, dt), y, buffers, workspace)?;
+    body_stage(dynamics, (0, t, dt), buffers, workspace)?;
     prepare(buffers, 0, half, |k, _, i| k[i] * 0.5);
-    body_stage(dynamics, (1, t + half, dt), y, buffers, workspace)?;
+    body_stage(dynamics, (1, t + half, dt), buffers, workspace)?;
     prepare(buffers, 1, half, |k, n, i| {
         k[n + i] * 0.5 + bracket::<A>(k[i], k[n + i]) * 0.125
     });
-    body_stage(dynamics, (2, t + half, dt), y, buffers, workspace)?;
+    body_stage(dynamics, (2, t + half, dt), buffers, workspace)?;
     prepare(buffers, 2, dt, |k, n, i| k[2 * n + i]);
-    body_stage(dynamics, (3, t + dt, dt), y, buffers, workspace)?;
+    body_stage(dynamics, (3, t + dt, dt), buffers, workspace)?;
 
     let (k, m) = (&buffers.slopes, &buffers.momentum_slopes);
     for (i, state) in y.iter_mut().enumerate() {
@@ -1340,6 +1409,327 @@ fn dormand_prince_5_dense_weights(theta: f64) -> [f64; 7] {
     DORMAND_PRINCE_5_DENSE.map(|p| theta * (p[0] + theta * (p[1] + theta * (p[2] + theta * p[3]))))
 }
 
+/// Dormand and Prince's 12-stage method of order 8 with embedded solutions of orders 5 and 3 (P. J. Prince and
+/// J. R. Dormand, "High order embedded Runge–Kutta formulae", J. Comp. Appl. Math. 7(1), 1981; the coefficients as
+/// published with Hairer's DOP853, in Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.10, to 30 digits).
+/// `integrate::tests::dop853_satisfies_the_order_conditions` checks the 200 conditions up to order 8, the embedded
+/// solutions' up to orders 5 and 3, and the continuous extension's up to order 7 at several points of the step.
+#[allow(clippy::excessive_precision)] // the coefficients as published; each rounds to the nearest f64
+const DOP853: Tableau<12> = Tableau {
+    a: [
+        row(&[]),
+        row(&[5.26001519587677318785587544488e-2]),
+        row(&[1.97250569845378994544595329183e-2, 5.91751709536136983633785987549e-2]),
+        row(&[
+            2.95875854768068491816892993775e-2,
+            0.0,
+            8.87627564304205475450678981324e-2,
+        ]),
+        row(&[
+            2.41365134159266685502369798665e-1,
+            0.0,
+            -8.84549479328286085344864962717e-1,
+            9.24834003261792003115737966543e-1,
+        ]),
+        row(&[
+            3.7037037037037037037037037037e-2,
+            0.0,
+            0.0,
+            1.70828608729473871279604482173e-1,
+            1.25467687566822425016691814123e-1,
+        ]),
+        row(&[
+            3.7109375e-2,
+            0.0,
+            0.0,
+            1.70252211019544039314978060272e-1,
+            6.02165389804559606850219397283e-2,
+            -1.7578125e-2,
+        ]),
+        row(&[
+            3.70920001185047927108779319836e-2,
+            0.0,
+            0.0,
+            1.70383925712239993810214054705e-1,
+            1.07262030446373284651809199168e-1,
+            -1.53194377486244017527936158236e-2,
+            8.27378916381402288758473766002e-3,
+        ]),
+        row(&[
+            6.24110958716075717114429577812e-1,
+            0.0,
+            0.0,
+            -3.36089262944694129406857109825,
+            -8.68219346841726006818189891453e-1,
+            2.75920996994467083049415600797e1,
+            2.01540675504778934086186788979e1,
+            -4.34898841810699588477366255144e1,
+        ]),
+        row(&[
+            4.77662536438264365890433908527e-1,
+            0.0,
+            0.0,
+            -2.48811461997166764192642586468,
+            -5.90290826836842996371446475743e-1,
+            2.12300514481811942347288949897e1,
+            1.52792336328824235832596922938e1,
+            -3.32882109689848629194453265587e1,
+            -2.03312017085086261358222928593e-2,
+        ]),
+        row(&[
+            -9.3714243008598732571704021658e-1,
+            0.0,
+            0.0,
+            5.18637242884406370830023853209,
+            1.09143734899672957818500254654,
+            -8.14978701074692612513997267357,
+            -1.85200656599969598641566180701e1,
+            2.27394870993505042818970056734e1,
+            2.49360555267965238987089396762,
+            -3.0467644718982195003823669022,
+        ]),
+        row(&[
+            2.27331014751653820792359768449,
+            0.0,
+            0.0,
+            -1.05344954667372501984066689879e1,
+            -2.00087205822486249909675718444,
+            -1.79589318631187989172765950534e1,
+            2.79488845294199600508499808837e1,
+            -2.85899827713502369474065508674,
+            -8.87285693353062954433549289258,
+            1.23605671757943030647266201528e1,
+            6.43392746015763530355970484046e-1,
+        ]),
+    ],
+    b: DOP853_WEIGHTS,
+    c: [
+        0.0,
+        0.526001519587677318785587544488e-1,
+        0.789002279381515978178381316732e-1,
+        0.118350341907227396726757197510,
+        0.281649658092772603273242802490,
+        1.0 / 3.0,
+        0.25,
+        4.0 / 13.0,
+        127.0 / 195.0,
+        0.6,
+        6.0 / 7.0,
+        1.0,
+    ],
+    order: 8,
+};
+
+/// The weights of DOP853's 8th-order solution.
+#[allow(clippy::excessive_precision)]
+const DOP853_WEIGHTS: [f64; 12] = [
+    5.42937341165687622380535766363e-2,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    4.45031289275240888144113950566,
+    1.89151789931450038304281599044,
+    -5.8012039600105847814672114227,
+    3.1116436695781989440891606237e-1,
+    -1.52160949662516078556178806805e-1,
+    2.01365400804030348374776537501e-1,
+    4.47106157277725905176885569043e-2,
+];
+
+/// `b − b̂₅`: the 8th-order weights minus those of the embedded 5th-order solution.
+#[allow(clippy::excessive_precision)]
+const DOP853_ERROR_5: [f64; 12] = [
+    0.1312004499419488073250102996e-1,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    -0.1225156446376204440720569753e1,
+    -0.4957589496572501915214079952,
+    0.1664377182454986536961530415e1,
+    -0.3503288487499736816886487290,
+    0.3341791187130174790297318841,
+    0.8192320648511571246570742613e-1,
+    -0.2235530786388629525884427845e-1,
+];
+
+/// `b − b̂₃`: the 8th-order weights minus those of the embedded 3rd-order solution, whose only weights are on
+/// stages 1, 9 and 12 (0.244094488188976377952755905512, 0.733846688281611857341361741547,
+/// 0.220588235294117647058823529412e-1).
+#[allow(clippy::excessive_precision)]
+const DOP853_ERROR_3: [f64; 12] = {
+    let mut e = DOP853_WEIGHTS;
+    e[0] -= 0.244094488188976377952755905512;
+    e[8] -= 0.733846688281611857341361741547;
+    e[11] -= 0.220588235294117647058823529412e-1;
+    e
+};
+
+/// The stages of all of DOP853's steps and of its continuous extension.
+const DOP853_EXTENDED_STAGES: usize = 16;
+
+/// The four stages the continuous extension adds, with their rows over the 16 stages and their nodes: the first is
+/// at the step's end (before any projection), the others at 0.1, 0.2 and 7/9 of the step.
+#[allow(clippy::excessive_precision)]
+const DOP853_EXTENSION: [([f64; DOP853_EXTENDED_STAGES], f64); 4] = [
+    (row(&DOP853_WEIGHTS), 1.0),
+    (
+        row(&[
+            5.61675022830479523392909219681e-2,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            2.53500210216624811088794765333e-1,
+            -2.46239037470802489917441475441e-1,
+            -1.24191423263816360469010140626e-1,
+            1.5329179827876569731206322685e-1,
+            8.20105229563468988491666602057e-3,
+            7.56789766054569976138603589584e-3,
+            -8.298e-3,
+        ]),
+        0.1,
+    ),
+    (
+        row(&[
+            3.18346481635021405060768473261e-2,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            2.83009096723667755288322961402e-2,
+            5.35419883074385676223797384372e-2,
+            -5.49237485713909884646569340306e-2,
+            0.0,
+            0.0,
+            -1.08347328697249322858509316994e-4,
+            3.82571090835658412954920192323e-4,
+            -3.40465008687404560802977114492e-4,
+            1.41312443674632500278074618366e-1,
+        ]),
+        0.2,
+    ),
+    (
+        row(&[
+            -4.28896301583791923408573538692e-1,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            -4.69762141536116384314449447206,
+            7.68342119606259904184240953878,
+            4.06898981839711007970213554331,
+            3.56727187455281109270669543021e-1,
+            0.0,
+            0.0,
+            0.0,
+            -1.39902416515901462129418009734e-3,
+            2.9475147891527723389556272149,
+            -9.15095847217987001081870187138,
+        ]),
+        7.0 / 9.0,
+    ),
+];
+
+/// The continuous extension's last four coefficient rows, over the 16 stages (Hairer's `d` coefficients; see
+/// [`dop853_dense_weights`]).
+#[allow(clippy::excessive_precision)]
+const DOP853_DENSE: [[f64; DOP853_EXTENDED_STAGES]; 4] = [
+    [
+        -0.84289382761090128651353491142e1,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.56671495351937776962531783590,
+        -0.30689499459498916912797304727e1,
+        0.23846676565120698287728149680e1,
+        0.21170345824450282767155149946e1,
+        -0.87139158377797299206789907490,
+        0.22404374302607882758541771650e1,
+        0.63157877876946881815570249290,
+        -0.88990336451333310820698117400e-1,
+        0.18148505520854727256656404962e2,
+        -0.91946323924783554000451984436e1,
+        -0.44360363875948939664310572000e1,
+    ],
+    [
+        0.10427508642579134603413151009e2,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.24228349177525818288430175319e3,
+        0.16520045171727028198505394887e3,
+        -0.37454675472269020279518312152e3,
+        -0.22113666853125306036270938578e2,
+        0.77334326684722638389603898808e1,
+        -0.30674084731089398182061213626e2,
+        -0.93321305264302278729567221706e1,
+        0.15697238121770843886131091075e2,
+        -0.31139403219565177677282850411e2,
+        -0.93529243588444783865713862664e1,
+        0.35816841486394083752465898540e2,
+    ],
+    [
+        0.19985053242002433820987653617e2,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -0.38703730874935176555105901742e3,
+        -0.18917813819516756882830838328e3,
+        0.52780815920542364900561016686e3,
+        -0.11573902539959630126141871134e2,
+        0.68812326946963000169666922661e1,
+        -0.10006050966910838403183860980e1,
+        0.77771377980534432092869265740,
+        -0.27782057523535084065932004339e1,
+        -0.60196695231264120758267380846e2,
+        0.84320405506677161018159903784e2,
+        0.11992291136182789328035130030e2,
+    ],
+    [
+        -0.25693933462703749003312586129e2,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -0.15418974869023643374053993627e3,
+        -0.23152937917604549567536039109e3,
+        0.35763911791061412378285349910e3,
+        0.93405324183624310003907691704e2,
+        -0.37458323136451633156875139351e2,
+        0.10409964950896230045147246184e3,
+        0.29840293426660503123344363579e2,
+        -0.43533456590011143754432175058e2,
+        0.96324553959188282948394950600e2,
+        -0.39177261675615439165231486172e2,
+        -0.14972683625798562581422125276e3,
+    ],
+];
+
+/// The dense-output weights of DOP853 over its 16 stages at the fraction `theta` of the step, from Hairer's
+/// form of the order-7 extension, `y(θ) = y₀ + θ(r₂ + θ'(r₃ + θ(r₄ + θ'(r₅ + θ(r₆ + θ'(r₇ + θr₈))))))` with
+/// `θ' = 1 − θ`: `r₂` the step's increment `Σ bᵢKᵢ`, `r₃ = K₁ − r₂`, `r₄ = r₂ − K₁₃ − r₃` (K₁₃ the slope at the
+/// step's end), `r₅…r₈` the rows of [`DOP853_DENSE`]. Every `r` is linear in the stages, so the extension is a set of
+/// weights, the increment's at θ = 1.
+fn dop853_dense_weights(theta: f64) -> [f64; DOP853_EXTENDED_STAGES] {
+    let increment: [f64; DOP853_EXTENDED_STAGES] = row(&DOP853_WEIGHTS);
+    let unit = |i: usize| -> [f64; DOP853_EXTENDED_STAGES] { std::array::from_fn(|j| if j == i { 1.0 } else { 0.0 }) };
+    let (first, end) = (unit(0), unit(DOP853.b.len()));
+    let r3: [f64; DOP853_EXTENDED_STAGES] = std::array::from_fn(|j| first[j] - increment[j]);
+    let r4: [f64; DOP853_EXTENDED_STAGES] = std::array::from_fn(|j| increment[j] - end[j] - r3[j]);
+    let after = 1.0 - theta;
+    let [r5, r6, r7, r8] = DOP853_DENSE;
+    std::array::from_fn(|j| {
+        let inner = r5[j] + theta * (r6[j] + after * (r7[j] + theta * r8[j]));
+        theta * (increment[j] + after * (r3[j] + theta * (r4[j] + after * inner)))
+    })
+}
+
 /// A row of a strictly lower triangular tableau: its leading entries, then zeros.
 const fn row<const S: usize>(leading: &[f64]) -> [f64; S] {
     let mut row = [0.0; S];
@@ -1371,16 +1761,11 @@ fn dexp_inverse<A: Algebra>(sigma: A::Screw, k: A::Screw, order: u32) -> A::Scre
     result
 }
 
-/// A body-momentum Runge–Kutta–Munthe-Kaas step ([`Method::Rkmk6Body`]) on any explicit tableau, body by body:
-/// stage i evaluates the rates at `R₀ exp(σᵢ)`, `σᵢ = Σⱼ aᵢⱼ Kⱼ`, and turns `kᵢ = −½hḂᵢ` into
-/// `Kᵢ = dexp⁻¹_{−σᵢ}(kᵢ)` (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic
-/// stages of `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of
-/// the new motor. With `error` weights (an embedded pair's `b − b̂`) it also leaves the error estimate of every body
-/// in `buffers.error_sigmas` and `buffers.error_momenta`.
-#[allow(clippy::too_many_arguments)]
+/// A body-momentum Runge–Kutta–Munthe-Kaas step ([`Method::Rkmk6Body`]) on any explicit tableau, body by body
+/// ([`rkmk_stage`]). The step ends at `R₀ exp(Σ bᵢKᵢ)` with the world momentum of the new motor; the stages stay in
+/// `buffers` for an embedded pair's error estimate and continuous extension.
 fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     tableau: &Tableau<S>,
-    error: Option<&[f64; S]>,
     dynamics: &D,
     t: f64,
     y: &mut [State<A>],
@@ -1388,8 +1773,6 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     buffers: &mut Buffers<A>,
     workspace: &mut D::Workspace,
 ) -> Result<(), ConstraintError> {
-    let n = y.len();
-    let zero = A::screw(ScrewCoordinates::default());
     let conserving = dynamics.conserves_world_momenta();
     for ((start, motor), state) in buffers
         .start_momenta
@@ -1401,35 +1784,40 @@ fn rkmk_body_momentum<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
         *motor = state.motor;
     }
     for s in 0..S {
-        for b in 0..n {
-            // The high-order tableaux are sparse: a zero coefficient adds nothing.
-            let (sigma, momentum) =
-                (0..s)
-                    .filter(|&j| tableau.a[s][j] != 0.0)
-                    .fold((zero, buffers.start_momenta[b]), |(sigma, m), j| {
-                        let a = tableau.a[s][j];
-                        (
-                            sigma + buffers.slopes[j * n + b] * a,
-                            m + buffers.momentum_slopes[j * n + b] * (a * dt),
-                        )
-                    });
-            buffers.sigmas[b] = sigma;
-            buffers.momenta[b] = momentum;
-        }
-        body_stage(dynamics, (s, t + tableau.c[s] * dt, dt), y, buffers, workspace)?;
-        if s > 0 {
-            for b in 0..n {
-                let slope = &mut buffers.slopes[s * n + b];
-                *slope = dexp_inverse::<A>(buffers.sigmas[b], *slope, tableau.order);
-            }
-        }
+        let at = (s, t + tableau.c[s] * dt, dt);
+        rkmk_stage(dynamics, at, &tableau.a[s], tableau.order, buffers, workspace)?;
     }
     for (b, state) in y.iter_mut().enumerate() {
         let (sigma, momentum) = weighted_slopes(buffers, &tableau.b, b, (dt, buffers.start_momenta[b]));
         let motor = A::compose(state.motor, exp::<A>(sigma));
         *state = end_of_body_step(conserving, state, motor, momentum);
-        if let Some(weights) = error {
-            (buffers.error_sigmas[b], buffers.error_momenta[b]) = weighted_slopes(buffers, weights, b, (dt, zero));
+    }
+    Ok(())
+}
+
+/// Stage `s` at time `at` of a body-momentum RKMK step of `order`, with coefficients `row` on the earlier stages:
+/// it evaluates the rates at `R₀ exp(σₛ)`, `σₛ = Σⱼ aₛⱼ Kⱼ`, and turns `kₛ = −½hḂₛ` into `Kₛ = dexp⁻¹_{−σₛ}(kₛ)`
+/// (see [`rkmk4`] for the right-action form); the body momentum `Ω_b` takes the classic stages of
+/// `dΩ_b/dt = Ḃ × Ω_b + W_b` (theory §5).
+fn rkmk_stage<A: Algebra, D: Dynamics<A> + ?Sized>(
+    dynamics: &D,
+    (s, at, dt): (usize, f64, f64),
+    row: &[f64],
+    order: u32,
+    buffers: &mut Buffers<A>,
+    workspace: &mut D::Workspace,
+) -> Result<(), ConstraintError> {
+    let n = buffers.motors.len();
+    for b in 0..n {
+        // The high-order tableaux are sparse: `weighted_slopes` skips a zero coefficient.
+        (buffers.sigmas[b], buffers.momenta[b]) =
+            weighted_slopes(buffers, &row[..s], b, (dt, buffers.start_momenta[b]));
+    }
+    body_stage(dynamics, (s, at, dt), buffers, workspace)?;
+    if s > 0 {
+        for b in 0..n {
+            let slope = &mut buffers.slopes[s * n + b];
+            *slope = dexp_inverse::<A>(buffers.sigmas[b], *slope, order);
         }
     }
     Ok(())
@@ -1771,5 +2159,71 @@ mod tests {
         }
         let at_end = dormand_prince_5_dense_weights(1.0);
         assert!(at_end.iter().zip(&pair.b).all(|(d, b)| (d - b).abs() < 1e-15));
+    }
+
+    #[test]
+    fn dop853_satisfies_the_order_conditions() {
+        let worst = |defects: Vec<f64>| defects.iter().copied().fold(0.0, f64::max);
+        let pair = &DOP853;
+        for (i, row) in pair.a.iter().enumerate() {
+            let sum = row.iter().sum::<f64>();
+            assert!((sum - pair.c[i]).abs() < 1e-14, "c{i} is not the row sum: {sum}");
+        }
+        let defects = order_condition_defects(pair, 1.0);
+        assert_eq!(defects.len(), 200);
+        assert!(worst(defects) < 1e-13);
+        assert!(order_condition_defects(&Tableau { order: 9, ..*pair }, 1.0)
+            .iter()
+            .any(|&d| d > 1e-6));
+        // The embedded solutions b̂ = b − e: orders 5 and 3, not higher.
+        for (error, order) in [(&DOP853_ERROR_5, 5), (&DOP853_ERROR_3, 3)] {
+            let embedded = Tableau {
+                b: std::array::from_fn(|i| pair.b[i] - error[i]),
+                order,
+                ..*pair
+            };
+            assert!(worst(order_condition_defects(&embedded, 1.0)) < 1e-13, "order {order}");
+            assert!(order_condition_defects(
+                &Tableau {
+                    order: order + 1,
+                    ..embedded
+                },
+                1.0
+            )
+            .iter()
+            .any(|&d| d > 1e-6));
+        }
+        // The extension's stages on top of the step's, and the continuous extension: order 7 at every fraction of
+        // the step, the kept solution at its end.
+        let mut a = [[0.0; DOP853_EXTENDED_STAGES]; DOP853_EXTENDED_STAGES];
+        let mut c = [0.0; DOP853_EXTENDED_STAGES];
+        for (i, step_row) in pair.a.iter().enumerate() {
+            a[i] = row(step_row);
+            c[i] = pair.c[i];
+        }
+        for (k, (extension_row, node)) in DOP853_EXTENSION.iter().enumerate() {
+            let i = pair.b.len() + k;
+            (a[i], c[i]) = (*extension_row, *node);
+            let sum = extension_row.iter().sum::<f64>();
+            assert!((sum - node).abs() < 1e-14, "c{i} is not the row sum");
+        }
+        for theta in [0.1, 1.0 / 3.0, 0.5, 0.8, 1.0] {
+            let dense = Tableau {
+                a,
+                b: dop853_dense_weights(theta),
+                c,
+                order: 7,
+            };
+            assert!(worst(order_condition_defects(&dense, theta)) < 1e-13, "θ = {theta}");
+            // Inside the step it is of order 7 only (at its end it is the 8th-order solution).
+            let eighth = Tableau { order: 8, ..dense };
+            let defects = order_condition_defects(&eighth, theta);
+            assert!(theta == 1.0 || defects.iter().any(|&d| d > 1e-9), "θ = {theta}");
+        }
+        let at_end = dop853_dense_weights(1.0);
+        assert!(at_end
+            .iter()
+            .zip(&row::<DOP853_EXTENDED_STAGES>(&pair.b))
+            .all(|(d, b)| (d - b).abs() < 1e-15));
     }
 }

@@ -105,7 +105,7 @@ pub enum SimulationError {
     /// An adaptive schedule was given an integrator without an error estimate.
     #[error(
         "{method} has no error estimate to choose its steps by: an adaptive schedule needs an embedded pair \
-         (DP5(4)-body), or give a fixed step"
+         (DP5(4)-body, DOP853-body), or give a fixed step"
     )]
     NoErrorEstimate {
         /// The integrator's name.
@@ -300,7 +300,8 @@ impl Schedule {
         })
     }
 
-    /// Steps chosen by the error estimate of an embedded pair ([`crate::Method::Dopri5Body`]) to meet `tolerance`
+    /// Steps chosen by the error estimate of an embedded pair ([`crate::Method::Dopri5Body`],
+    /// [`crate::Method::Dop853Body`]) to meet `tolerance`
     /// ([`crate::step_control`]), for `duration`, sampled every `sample_interval` (and at the end, if the interval
     /// does not divide the duration). Samples and events inside a step come from the method's continuous
     /// extension: they never shorten a step.
@@ -807,7 +808,7 @@ fn state_inside<A: Algebra, D: Dynamics<A> + ?Sized>(
     start: &[State<A>],
     probe: &mut [State<A>],
 ) -> Result<f64, SimulationError> {
-    if let Some(work) = stepper.dense_output(offset / h, probe) {
+    if let Some(work) = stepper.dense_output(offset / h, probe)? {
         let dynamics = stepper.dynamics();
         dynamics
             .after_step(t + offset, probe, stepper.workspace())
@@ -829,8 +830,10 @@ fn adaptive_step<A: Algebra, D: Dynamics<A> + ?Sized>(
     (start, next): (&[State<A>], &mut [State<A>]),
     statistics: &mut StepStatistics,
 ) -> Result<f64, SimulationError> {
+    // A step the turn check would refuse is not tried: at loose tolerances the error allows longer steps.
+    let turn_limit = step_control::turn_limit(stepper.dynamics(), start);
     loop {
-        let h = controller.next.min(finish - t);
+        let h = controller.next.min(turn_limit).min(finish - t);
         next.copy_from_slice(start);
         let refused = match stepper.step(t, next, h) {
             Ok(()) => {
@@ -931,12 +934,14 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     let mut controller = match schedule.tolerance() {
         None => None,
         Some(tolerance) => {
-            let method = stepper.integrator().name();
-            if !stepper.has_error_estimate() {
-                return Err(SimulationError::NoErrorEstimate { method });
-            }
-            let first = step_control::first_step(&tolerance, dynamics, initial, schedule.duration());
-            Some(Controller::new(tolerance, first))
+            let integrator = stepper.integrator();
+            let Some(order) = integrator.estimate_order() else {
+                return Err(SimulationError::NoErrorEstimate {
+                    method: integrator.name(),
+                });
+            };
+            let first = step_control::first_step(&tolerance, order, dynamics, initial, schedule.duration());
+            Some(Controller::new(tolerance, order, first))
         }
     };
     let mut statistics = StepStatistics::default();

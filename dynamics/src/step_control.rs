@@ -12,6 +12,7 @@
 //! root mean square over every body's four ratios, and a step is kept when it is at most 1.
 
 use crate::algebra::Algebra;
+use crate::integrate::MAX_TURN_PER_STEP;
 use crate::motion::Dynamics;
 use crate::state::State;
 
@@ -118,10 +119,10 @@ const SAFETY: f64 = 0.9;
 /// A step grows at most fivefold and shrinks at most fivefold at a time.
 const MAX_GROWTH: f64 = 5.0;
 const MAX_SHRINK: f64 = 0.2;
-/// The PI controller's exponents for an estimate of order 5 (k = 5): `h ← h·(1/err)^(0.7/k)·err_prev^(0.4/k)`
+/// The PI controller's exponents over the order k of the estimate: `h ← h·(1/err)^(0.7/k)·err_prev^(0.4/k)`
 /// (Gustafsson's controller, in Hairer & Wanner, *Solving ODEs II*, §IV.2).
-const PROPORTIONAL: f64 = 0.7 / 5.0;
-const INTEGRAL: f64 = 0.4 / 5.0;
+const PROPORTIONAL: f64 = 0.7;
+const INTEGRAL: f64 = 0.4;
 
 /// How many steps an adaptive run took and how long they were.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -160,22 +161,27 @@ pub(crate) struct Controller {
     previous_error: f64,
     /// Whether the last attempt was refused: the step after a refusal does not grow.
     after_rejection: bool,
+    /// The order of the pair's error estimate ([`crate::Method::estimate_order`]).
+    order: f64,
 }
 
 impl Controller {
-    pub(crate) fn new(tolerance: Tolerance, first: f64) -> Self {
+    pub(crate) fn new(tolerance: Tolerance, order: u32, first: f64) -> Self {
         Controller {
             tolerance,
             next: first,
             previous_error: 1.0,
             after_rejection: false,
+            order: f64::from(order),
         }
     }
 
     /// After a step of `h` with error norm `error`: whether to keep it, and the step to try next.
     pub(crate) fn judge(&mut self, h: f64, error: f64) -> bool {
         if error <= 1.0 {
-            let factor = SAFETY * error.max(1e-10).powf(-PROPORTIONAL) * self.previous_error.powf(INTEGRAL);
+            let factor = SAFETY
+                * error.max(1e-10).powf(-PROPORTIONAL / self.order)
+                * self.previous_error.powf(INTEGRAL / self.order);
             let ceiling = if self.after_rejection { 1.0 } else { MAX_GROWTH };
             self.next = h * factor.clamp(MAX_SHRINK, ceiling);
             self.previous_error = error.max(1e-4);
@@ -183,7 +189,7 @@ impl Controller {
             true
         } else {
             // NaN lands here too: a step whose estimate is not finite is refused and shrunk as far as allowed.
-            let factor = SAFETY * error.powf(-1.0 / 5.0);
+            let factor = SAFETY * error.powf(-1.0 / self.order);
             self.next = h * if factor.is_nan() {
                 MAX_SHRINK
             } else {
@@ -202,11 +208,13 @@ impl Controller {
     }
 }
 
-/// The first step to try: what the start's fastest motion allows for the tolerance at the pair's order (the local
-/// error of a step of order 5 is about `(ωh)⁶`, so `h ≈ tol^{1/6}/ω`), capped at a fifth of a turn per step and at
-/// the run's length; too long a guess costs one refused step.
+/// The first step to try: what the start's fastest motion ω allows for the tolerance at the estimate's `order` k,
+/// which is the kept solution's order for both pairs (5, 8), so a step's local error is about `(ωh)^(k+1)` and
+/// `h ≈ tol^{1/(k+1)}/ω`; capped at a fifth of a turn per step and at the run's length. Too long a guess costs one
+/// refused step.
 pub(crate) fn first_step<A: Algebra, D: Dynamics<A> + ?Sized>(
     tolerance: &Tolerance,
+    order: u32,
     dynamics: &D,
     states: &[State<A>],
     duration: f64,
@@ -220,11 +228,20 @@ pub(crate) fn first_step<A: Algebra, D: Dynamics<A> + ?Sized>(
             v.l.norm().max(v.t.norm() / body.smallest_gyration_radius())
         })
         .fold(0.0, f64::max);
-    let guess = tolerance.absolute.powf(1.0 / 6.0) / rate;
+    let guess = tolerance.absolute.powf(1.0 / f64::from(order + 1)) / rate;
     let turn = 0.2 / rate;
     // A body at rest: a hundredth of the run, from which the controller grows the step.
     if !(guess.is_finite() && guess > 0.0) {
         return 0.01 * duration;
     }
     guess.min(turn).min(duration)
+}
+
+/// The longest step from `states` that turns no body through more than 0.9 of [`MAX_TURN_PER_STEP`] at its
+/// starting angular speed (the stepper refuses a step that turns one further); infinite when nothing turns.
+pub(crate) fn turn_limit<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, states: &[State<A>]) -> f64 {
+    let fastest = (states.iter().enumerate())
+        .map(|(index, state)| A::screw_coordinates(state.body_velocity(dynamics.body(index))).l.norm())
+        .fold(0.0, f64::max);
+    0.9 * MAX_TURN_PER_STEP / fastest
 }

@@ -42,7 +42,7 @@ pub(crate) enum Family {
     /// RKMK8-body, the same scheme at order 8, in a panel of its own (a third pair of colours would pass the six
     /// an axis may carry with MuJoCo's points).
     EighthOrder,
-    /// DP5(4)-body, the embedded pair of adaptive schedules, stepped at fixed sizes.
+    /// DP5(4)-body and DOP853-body, the embedded pairs of adaptive schedules, stepped at fixed sizes.
     Embedded,
     /// Strang and Yoshida-4 (free bodies only).
     Splitting,
@@ -60,6 +60,7 @@ impl Family {
             Integrator::General(Method::Rkmk6Body) => (Family::BodyMomentum, 1),
             Integrator::General(Method::Rkmk8Body) => (Family::EighthOrder, 0),
             Integrator::General(Method::Dopri5Body) => (Family::Embedded, 0),
+            Integrator::General(Method::Dop853Body) => (Family::Embedded, 1),
             Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
             Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
             Integrator::Joint(method) => (
@@ -74,7 +75,9 @@ impl Family {
             Family::WorldFrame => "RK4 and RKMK4 (momentum in the world frame)",
             Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
             Family::EighthOrder => "RKMK8-body (order 8, momentum in the body frame)",
-            Family::Embedded => "DP5(4)-body (embedded pair, order 5, momentum in the body frame)",
+            Family::Embedded => {
+                "DP5(4)-body and DOP853-body (embedded pairs, orders 5 and 8, momentum in the body frame)"
+            }
             Family::Splitting => "Strang and Yoshida-4 splittings",
             Family::JointCoordinates => "RKMK-joint (joint coordinates)",
         }

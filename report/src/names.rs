@@ -26,6 +26,11 @@ pub enum IntegratorName {
     #[serde(rename = "dp5-body")]
     #[value(name = "dp5-body")]
     Dp5Body,
+    /// Dormand–Prince's pair of order 8 with embedded orders 5 and 3 (DOP853) on the body-momentum RKMK scheme:
+    /// the default integrator of adaptive runs, or an 8th-order method at a fixed step.
+    #[serde(rename = "dop853-body")]
+    #[value(name = "dop853-body")]
+    Dop853Body,
     /// Strang splitting, order 2; a free body only.
     Strang,
     /// Yoshida's triple jump of Strang steps, order 4; a free body only.
@@ -47,6 +52,7 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rkmk6Body => Integrator::General(Method::Rkmk6Body),
             IntegratorName::Rkmk8Body => Integrator::General(Method::Rkmk8Body),
             IntegratorName::Dp5Body => Integrator::General(Method::Dopri5Body),
+            IntegratorName::Dop853Body => Integrator::General(Method::Dop853Body),
             IntegratorName::Strang => Integrator::Splitting(SplittingMethod::Strang),
             IntegratorName::Yoshida4 => Integrator::Splitting(SplittingMethod::Yoshida4),
             IntegratorName::Rkmk4Joint => Integrator::Joint(JointMethod::Rkmk4),

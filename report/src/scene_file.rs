@@ -204,8 +204,8 @@ pub struct SceneFile {
     #[serde(default)]
     pub dt: Option<f64>,
     /// The accuracy an adaptive run chooses its steps by, in place of `dt` (relative and absolute alike, in rad,
-    /// m, rad/s and m/s: `dynamics::step_control`); the integrator then defaults to `"dp5-body"`, the one with an
-    /// error estimate.
+    /// m, rad/s and m/s: `dynamics::step_control`); the integrator then defaults to `"dop853-body"`, the pair of
+    /// order 8 (`"dp5-body"`, of order 5, is the other integrator with an error estimate).
     #[serde(default)]
     pub tolerance: Option<f64>,
     /// Simulated time (s); the last sample interval may be shorter.
@@ -1721,19 +1721,19 @@ impl SceneFile {
             scene.loaded_robot = Some(Arc::new(robot.load(folder)?));
         }
         scene.integrator = scene.integrator_written.unwrap_or(if scene.tolerance.is_some() {
-            IntegratorName::Dp5Body
+            IntegratorName::Dop853Body
         } else if scene.robot.is_some() {
             IntegratorName::Rkmk8Body
         } else {
             IntegratorName::Rk4
         });
         scene.schedule()?;
-        if scene.tolerance.is_some() && scene.integrator != IntegratorName::Dp5Body {
+        if scene.tolerance.is_some() && Integrator::from(scene.integrator).estimate_order().is_none() {
             return Err(invalid(
                 "integrator",
                 format!(
-                    "{} has no error estimate to choose its steps by: with a tolerance, name \"dp5-body\" (or leave \
-                     the integrator out), or give dt in place of the tolerance",
+                    "{} has no error estimate to choose its steps by: with a tolerance, name \"dop853-body\" or \
+                     \"dp5-body\" (or leave the integrator out), or give dt in place of the tolerance",
                     Integrator::from(scene.integrator).name()
                 ),
             ));

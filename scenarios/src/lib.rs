@@ -21,6 +21,7 @@
 
 #![deny(missing_docs)]
 
+pub mod equal_error;
 pub mod mechanism_measures;
 pub mod mechanisms;
 pub mod robots;

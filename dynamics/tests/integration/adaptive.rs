@@ -1,7 +1,7 @@
-//! Adaptive schedules (`dynamics::step_control`, `Schedule::adaptive`) with the embedded pair DP5(4)-body: exact
-//! motions followed to the tolerance, samples and events from the continuous extension (no step shortened, no
-//! evaluation added), mechanisms' samples on their joints, the statistics, and every careless input refused with
-//! its reason.
+//! Adaptive schedules (`dynamics::step_control`, `Schedule::adaptive`) with the embedded pairs DP5(4)-body and
+//! DOP853-body: exact motions followed to the tolerance, samples and events from the continuous extension (no step
+//! shortened; no evaluation added by DP5's, four per step by DOP853's, only in steps that hold a sample or an
+//! event), mechanisms' samples on their joints, the statistics, and every careless input refused with its reason.
 
 use std::sync::Arc;
 
@@ -11,6 +11,25 @@ use dynamics::{
     simulate, Algebra, Body, Force, FreeBody, Method, Schedule, SimulationError, SplittingMethod, State, Tolerance,
 };
 use nalgebra::{UnitQuaternion, Vector3};
+
+/// The embedded pairs.
+const PAIRS: [Method; 2] = [Method::Dopri5Body, Method::Dop853Body];
+
+/// Checks a run's evaluation count: 7 per step tried for DP5(4)-body; 12 per step tried for DOP853-body, and 4 more
+/// for each kept step whose continuous extension was read (at most once per step).
+fn assert_evaluations(method: Method, statistics: &dynamics::StepStatistics) {
+    let tried = statistics.accepted + statistics.rejected;
+    match method {
+        Method::Dopri5Body => assert_eq!(statistics.evaluations, 7 * tried, "{statistics:?}"),
+        _ => {
+            let extensions = statistics.evaluations - 12 * tried;
+            assert!(
+                extensions.is_multiple_of(4) && extensions <= 4 * statistics.accepted,
+                "{statistics:?}"
+            );
+        }
+    }
+}
 
 fn tolerance(value: f64) -> Tolerance {
     Tolerance::new(value, value).expect("a valid tolerance")
@@ -88,7 +107,13 @@ fn integrators_without_an_error_estimate_are_refused() {
         Method::Rkmk8Body.into(),
         SplittingMethod::Strang.into(),
     ];
+    let with_estimates: Vec<Method> = Method::ALL
+        .into_iter()
+        .filter(|m| m.estimate_order().is_some())
+        .collect();
+    assert_eq!(with_estimates, PAIRS);
     for integrator in integrators {
+        assert_eq!(integrator.estimate_order(), None);
         let error = simulate(&FreeBody::new(ball), &[start], integrator, &schedule).expect_err("refused");
         assert!(
             matches!(error, SimulationError::NoErrorEstimate { method } if method == integrator.name()),
@@ -99,8 +124,16 @@ fn integrators_without_an_error_estimate_are_refused() {
 
 /// A body dropped from 1 m spinning at 5 rad/s, to 1e-10: the spin is an exact rotation, the centre's parabola is
 /// stepped in the turning body frame (so not exactly: measured 3.0e-11 m at most); the floor is reached at
-/// `√(2h/g)`, located on the continuous extension (measured 3.0e-12 s early); every sample lies on the 0.01 s grid. Without events or samples inside the steps, evaluations are 7 per step tried.
+/// `√(2h/g)`, located on the continuous extension (measured 3.0e-12 s early with DP5(4)-body, 1.2e-13 s late with
+/// DOP853-body); every sample lies on the 0.01 s grid. Locating the crossing and taking the samples inside the steps
+/// adds no evaluation for DP5(4)-body and four per step at most for DOP853-body.
 fn dropped_spinning_ball<A: Algebra>() {
+    for method in PAIRS {
+        dropped_spinning_ball_with::<A>(method);
+    }
+}
+
+fn dropped_spinning_ball_with<A: Algebra>(method: Method) {
     let ball = Body::sphere(1.0, 0.1).unwrap();
     let system = FreeBody::<A>::new(ball).with_force(Force::gravity());
     let spin = Vector3::new(0.0, 3.0, 4.0); // rad/s
@@ -108,8 +141,14 @@ fn dropped_spinning_ball<A: Algebra>() {
     let schedule = Schedule::adaptive(tolerance(1e-10), 1.0, 0.01).unwrap();
     let height = |_t: f64, states: &[State<A>]| states[0].pose().0.z;
     let plan = Plan::new(&schedule).event(Event::new("floor", height).terminal());
-    let run = simulate(&system, &[start], Method::Dopri5Body, plan).unwrap();
+    let run = simulate(&system, &[start], method, plan).unwrap();
     let landing = (2.0 / dynamics::forces::STANDARD_GRAVITY).sqrt();
+    println!(
+        "{} {}: landing {:.1e} s early",
+        A::NAME,
+        method.name(),
+        landing - run.events[0].t
+    );
     assert_eq!(run.stopped, Some(Stop::Event(0)));
     assert!(
         (run.events[0].t - landing).abs() < 1e-11,
@@ -129,41 +168,45 @@ fn dropped_spinning_ball<A: Algebra>() {
             sample.t
         );
     }
-    // The crossing was located without an evaluation: 7 per step tried.
     let statistics = run.statistics;
-    assert_eq!(
-        statistics.evaluations,
-        7 * (statistics.accepted + statistics.rejected),
-        "{statistics:?}"
-    );
+    assert_evaluations(method, &statistics);
     assert!(statistics.smallest_step <= statistics.largest_step && statistics.smallest_step > 0.0);
     assert_eq!(run.steps, statistics.accepted);
 
     // At 1e-6 the steps are longer than the sample interval, and the samples inside them cost nothing either.
     let loose = Schedule::adaptive(tolerance(1e-6), 0.4, 0.01).unwrap();
-    let run = simulate(&system, &[start], Method::Dopri5Body, &loose).unwrap();
+    let run = simulate(&system, &[start], method, &loose).unwrap();
     let statistics = run.statistics;
     assert!(statistics.largest_step > 0.01, "{statistics:?}");
-    assert_eq!(
-        statistics.evaluations,
-        7 * (statistics.accepted + statistics.rejected),
-        "{statistics:?}"
-    );
+    assert_evaluations(method, &statistics);
     assert_eq!(run.body(0).len(), 41);
     assert_eq!(run.body(0).last().unwrap().t, 0.4);
 }
 
 /// A pendulum (a rod hinged at its top, released at 1 rad) to 1e-10: its period from two turning points against
-/// the elliptic-integral value, and every sample (from the continuous extension, projected) on its hinge.
+/// the elliptic-integral value (measured 1.3e-11 relative with DP5(4)-body, 1.4e-12 with DOP853-body), and every
+/// sample (from the continuous extension, projected) on its hinge.
 fn pendulum_period_and_hinge<A: Algebra>() {
+    for method in PAIRS {
+        pendulum_period_and_hinge_with::<A>(method);
+    }
+}
+
+fn pendulum_period_and_hinge_with<A: Algebra>(method: Method) {
     let (rod, pendulum, start, exact) = crate::events::released_pendulum::<A>(1.0);
     let schedule = Schedule::adaptive(tolerance(1e-10), 4.0, 0.01).unwrap();
     let swing = |_t: f64, states: &[State<A>]| states[0].world_velocity(&rod).angular.x;
     let plan = Plan::new(&schedule).event(Event::new("turning point", swing));
-    let run = simulate(&pendulum, &[start], Method::Dopri5Body, plan).unwrap();
+    let run = simulate(&pendulum, &[start], method, plan).unwrap();
+    println!(
+        "{} {}: period {:.1e} off",
+        A::NAME,
+        method.name(),
+        (2.0 * (run.events[1].t - run.events[0].t) - exact) / exact
+    );
     let half_period = run.events[1].t - run.events[0].t;
     assert!(
-        (2.0 * half_period - exact).abs() < 1e-8 * exact,
+        (2.0 * half_period - exact).abs() < 1e-10 * exact,
         "{} vs {exact}",
         2.0 * half_period
     );
@@ -190,13 +233,15 @@ fn a_singular_force_ends_the_run_with_its_time<A: Algebra>() {
     }));
     let system = FreeBody::<A>::new(ball).with_force(singular);
     let schedule = Schedule::adaptive(tolerance(1e-8), 1.0, 0.01).unwrap();
-    let error = simulate(&system, &[start], Method::Dopri5Body, &schedule).expect_err("the force is singular");
-    match error {
-        SimulationError::StepSizeUnderflow { t, h, ref reason } => {
-            assert!((t - 0.5).abs() < 1e-12 && h < 1e-13, "{error}");
-            assert!(reason.contains("no longer finite"), "{error}");
+    for method in PAIRS {
+        let error = simulate(&system, &[start], method, &schedule).expect_err("the force is singular");
+        match error {
+            SimulationError::StepSizeUnderflow { t, h, ref reason } => {
+                assert!((t - 0.5).abs() < 1e-12 && h < 1e-13, "{error}");
+                assert!(reason.contains("no longer finite"), "{error}");
+            }
+            other => panic!("{other}"),
         }
-        other => panic!("{other}"),
     }
 }
 

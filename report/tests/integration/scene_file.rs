@@ -13,6 +13,7 @@ use dynamics::{Cga, Pga};
 use proptest::prelude::*;
 use reference::SceneId;
 use report::markdown::agreement;
+use report::names::IntegratorName;
 use report::scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, SceneFile};
 use report::scene_job::{run_scene_file, AlgebraRun};
 use scenarios::mechanism_measures::measure;
@@ -85,9 +86,9 @@ fn assert_held_and_conserved(run: &AlgebraRun, samples: usize) {
     );
 }
 
-/// `tolerance` in place of `dt`: the pair DP5(4)-body chooses the steps (without an integrator named), the rod
+/// `tolerance` in place of `dt`: the pair DOP853-body chooses the steps (without an integrator named), the rod
 /// stays on its joint, the samples stay on the 0.01 s grid, and the summary names the tolerance and counts the
-/// steps; `dp5-body` also runs at a fixed step.
+/// steps; `dp5-body` runs with a tolerance when named, and also at a fixed step.
 #[test]
 fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
     let dir = fresh_dir("report-scene-file-tolerance");
@@ -98,7 +99,7 @@ fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
         assert_held_and_conserved(run, 11);
         let steps = run.statistics;
         assert!(
-            steps.accepted > 0 && steps.evaluations >= 7 * steps.accepted,
+            steps.accepted > 0 && steps.evaluations >= 12 * steps.accepted,
             "{steps:?}"
         );
     }
@@ -106,13 +107,15 @@ fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
     assert_mentions(
         &text,
         &[
-            "DP5(4)-body, tolerance = 1e-9 (adaptive steps)",
+            "DOP853-body, tolerance = 1e-9 (adaptive steps)",
             "Steps (PGA): ",
             " kept, ",
         ],
     );
     let fixed = SceneFile::parse(&VALID.replace("dt = 1e-3", "dt = 1e-3\nintegrator = \"dp5-body\"")).unwrap();
     assert_eq!((fixed.dt, fixed.tolerance), (Some(1e-3), None));
+    let fifth = SceneFile::parse(&VALID.replace("dt = 1e-3", "tolerance = 1e-6\nintegrator = \"dp5-body\"")).unwrap();
+    assert_eq!(fifth.integrator, IntegratorName::Dp5Body);
 }
 
 #[test]
@@ -305,7 +308,10 @@ fn bad_files_fail_with_clear_messages() {
         (
             "dt = 1e-3",
             "tolerance = 1e-8\nintegrator = \"rkmk8-body\"",
-            &["integrator: RKMK8-body has no error estimate", "name \"dp5-body\""],
+            &[
+                "integrator: RKMK8-body has no error estimate",
+                "name \"dop853-body\" or \"dp5-body\"",
+            ],
         ),
         (
             "dt = 1e-3",

@@ -84,7 +84,7 @@ fn far_offset(distance: f64) -> Vector3<f64> {
 /// round trip of the momentum each step rounds the world angular momentum c ⨯ p (~1e4) and so loses ~1e-13
 /// per step (RKMK4-body: orientation 1.2e-7 instead of 2.4e-10 at the origin). Measured (orientation rad,
 /// position m, energy): RK4 2.1e-8, 1.3e-9, 9.0e-11; RKMK4 1.3e-7, 5.1e-10, 6.0e-11; RKMK4-body 1.2e-7,
-/// 4.7e-8, 1.8e-10; RKMK6-body 8.2e-8, 1.3e-10, 1.7e-10; RKMK8-body 2.8e-7, 1.5e-10, 2.4e-11; DP5(4)-body 3.3e-7, 1.4e-10, 3.9e-11; Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7,
+/// 4.7e-8, 1.8e-10; RKMK6-body 8.2e-8, 1.3e-10, 1.7e-10; RKMK8-body 2.8e-7, 1.5e-10, 2.4e-11; DP5(4)-body 3.3e-7, 1.4e-10, 3.9e-11; DOP853-body 6.7e-7, 2.5e-10, 3.5e-11; Strang 3.7e-5, 1.8e-10, 1.2e-6; Yoshida4 1.2e-7,
 /// 3.0e-10, 1.3e-10. The orientations (except Strang's), the splittings' positions and the body methods'
 /// energies differ from their values at the origin, so they are round-off: margins of 10 on those, 3 on the
 /// rest.
@@ -96,6 +96,7 @@ fn far_from_the_origin<A: Algebra>(distances: &[f64]) {
         (8.2e-7, 4e-10, 1.7e-9),
         (2.8e-6, 4.5e-10, 2.4e-10),
         (3.3e-6, 4.5e-10, 4e-10),
+        (6.7e-6, 7.5e-10, 3.5e-10),
         (8e-5, 2e-9, 3e-6),
         (1.2e-6, 3e-9, 3e-10),
     ];
@@ -116,7 +117,8 @@ fn pga_far_from_the_origin() {
 /// no `½|x|²` term enters the dynamics and CGA keeps PGA's bounds (above) at 100 m and at 1e4 m. Measured at 1e4 m
 /// (orientation rad, position m, energy): RK4 1.1e-7, 1.3e-9, 8.5e-11; RKMK4 2.9e-7, 4.8e-10, 5.6e-11;
 /// RKMK4-body 1.7e-7, 2.2e-9, 1.9e-11; RKMK6-body 8.6e-8, 2.9e-10, 3.8e-11; RKMK8-body 2.8e-7, 1.5e-10, 2.4e-11;
-/// DP5(4)-body 3.3e-7, 1.4e-10, 3.9e-11 (1.5e-9, 1.4e-12, 2.8e-13 at 100 m); Strang 3.8e-5, 2.0e-10, 1.2e-6; Yoshida4 1.1e-7, 3.3e-10, 1.3e-10. On the diagonal basis (16-number motors,
+/// DP5(4)-body 3.3e-7, 1.4e-10, 3.9e-11 (1.5e-9, 1.4e-12, 2.8e-13 at 100 m); DOP853-body 6.7e-7, 2.5e-10, 3.5e-11
+/// (2.9e-9, 1.4e-12, 2.8e-13 at 100 m); Strang 3.8e-5, 2.0e-10, 1.2e-6; Yoshida4 1.1e-7, 3.3e-10, 1.3e-10. On the diagonal basis (16-number motors,
 /// `tᵢ = eᵢ4 + eᵢ5`, used until 2026-11-26) sandwiches cancelled terms of size c², and at 1e4 m the orientation
 /// degraded to 1.6e-2 rad (RK4) and 1.6e-4 rad (the body methods), so it was not asserted.
 #[test]
@@ -128,6 +130,7 @@ fn cga_far_from_the_origin() {
 /// on a time axis compressed 100× (and the same hω per step) must give scene 1's errors at dt = 1e-3,
 /// as measured: orientation RK4 8.0e-8, RKMK4 8.4e-8, RKMK4-body 2.7e-10 (PGA) / 3.1e-10 (CGA), RKMK6-body
 /// 1.2e-10 (PGA) / 8.3e-11 (CGA), RKMK8-body 9.5e-11 (PGA) / 2.1e-10 (CGA), DP5(4)-body 1.5e-10 (both; position 8.3e-13 m, energy 1.9e-13),
+/// DOP853-body 2.0e-10 (both; position 8.1e-14 m, energy 1.5e-14),
 /// Strang 3.7e-5, Yoshida4 3.6e-8 rad (the body methods' values are round-off:
 /// margin 4–10); the splittings keep the line to 3.4e-13 m, RKMK6-body to 6e-13 m.
 fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
@@ -138,6 +141,7 @@ fn spin_of_a_thousand_radians_per_second<A: Algebra>() {
         (1.2e-9, 2e-12, 5e-13),
         (1.2e-9, 1.2e-12, 3.3e-13),
         (1.6e-9, 2.5e-12, 6e-13),
+        (2e-9, 8e-13, 1.5e-13),
         (8e-5, 1e-12, 3e-6),
         (8e-8, 1e-12, 2.5e-10),
     ];
