@@ -10,6 +10,7 @@ use dynamics::Schedule;
 use reference::SceneId;
 use scenarios::MechanismId;
 
+use crate::adaptive_sweep::{AdaptiveCase, AdaptivePlan, DEFAULT_TOLERANCES};
 use crate::anchors::Anchors;
 use crate::job::run_job_with_robots;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
@@ -75,6 +76,10 @@ pub(crate) struct Options {
     /// 5e-4, 2e-4, 1e-4; for the double pendulum and the four-bar, down to 2e-4; for the robots 4e-2 to 2.5e-4).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub(crate) steps: Vec<f64>,
+    /// Tolerances of the adaptive runs, relative and absolute alike (default: 1e-3 to 1e-13 by decades): every scene
+    /// also runs with the selected embedded pairs (dp5-body, dop853-body; both by default) at each, in PGA.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub(crate) tolerances: Vec<f64>,
     /// Simulated time in seconds for every scene (default: each scene's T from docs/scenes.md; the robots always run
     /// their reference's 1 s).
     #[arg(long, allow_hyphen_values = true)]
@@ -84,7 +89,7 @@ pub(crate) struct Options {
     pub(crate) output: Option<PathBuf>,
     /// Run the scene described in this TOML file (docs/scene-files.md) instead of the sweep: writes its
     /// trajectories (CSV), energy and constraint-violation plots and summary.md.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "duration", "stabilisation"])]
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["scenes", "integrators", "steps", "tolerances", "duration", "stabilisation"])]
     pub(crate) scene_file: Option<PathBuf>,
     /// Worker threads (default: one per core; at most four per core).
     #[arg(long)]
@@ -161,12 +166,17 @@ impl Options {
                 Schedule::new(dt, duration).map_err(|error| format!("--duration {duration}: {error}"))?;
             }
         }
-        let (plan, mechanisms, robots) = self.plan();
+        for &tolerance in &self.tolerances {
+            dynamics::Tolerance::new(tolerance, tolerance)
+                .map_err(|error| format!("--tolerances {tolerance}: {error}"))?;
+        }
+        let (plan, mechanisms, robots, adaptive) = self.plan();
         if plan.configurations().is_empty()
             && mechanisms
                 .configurations(&plan.integrators, plan.duration, plan.stabilisation)
                 .is_empty()
             && robots.configurations(&plan.integrators).is_empty()
+            && adaptive.configurations().is_empty()
         {
             return Err(
                 "--scenes and --integrators make no run: the splittings (strang, yoshida4) run only scene 1, the free \
@@ -189,7 +199,7 @@ impl Options {
     /// The selected scenes that are compared with a reference trajectory, with its length (s): the single bodies and
     /// M1, M2 (the robots always run their reference's 1 s; M3's chain has no reference trajectory).
     fn references(&self) -> Vec<(String, f64)> {
-        let (plan, mechanisms, _) = self.plan();
+        let (plan, mechanisms, _, _) = self.plan();
         let single = plan
             .scenes
             .iter()
@@ -202,8 +212,8 @@ impl Options {
         single.chain(multi.map(|id| (id.label(), id.duration()))).collect()
     }
 
-    /// The sweep these options describe: the single-body scenes, the mechanisms and the robots.
-    pub(crate) fn plan(&self) -> (SweepPlan, MechanismPlan, RobotPlan) {
+    /// The sweep these options describe: the single-body scenes, the mechanisms, the robots and the adaptive runs.
+    pub(crate) fn plan(&self) -> (SweepPlan, MechanismPlan, RobotPlan, AdaptivePlan) {
         let (mut scenes, mut mechanisms, mut robots) = (Vec::new(), Vec::new(), false);
         for name in &self.scenes {
             match name.named() {
@@ -254,7 +264,40 @@ impl Options {
                 Vec::new()
             },
         };
-        (plan, mechanisms, robots)
+        let cases = (plan.scenes.iter().map(|&scene| AdaptiveCase::SingleBody(scene)))
+            .chain(mechanisms.mechanisms.iter().map(|kind| {
+                AdaptiveCase::Mechanism(match kind {
+                    MechanismKind::DoublePendulum => MechanismId::DoublePendulum,
+                    MechanismKind::FourBar => MechanismId::FourBar,
+                    MechanismKind::Chain => MechanismId::Chain(mechanism_sweep::CHAIN_LONG_RUN.0),
+                })
+            }))
+            .chain(robots.robots.iter().map(|&robot| AdaptiveCase::Robot(robot)))
+            .collect();
+        let methods = (plan.integrators.iter())
+            .filter_map(|integrator| match integrator {
+                dynamics::Integrator::General(method) if method.estimate_order().is_some() => Some(*method),
+                _ => None,
+            })
+            .chain(
+                self.integrators
+                    .is_empty()
+                    .then_some([dynamics::Method::Dopri5Body, dynamics::Method::Dop853Body])
+                    .into_iter()
+                    .flatten(),
+            )
+            .collect();
+        let adaptive = AdaptivePlan {
+            cases,
+            methods,
+            tolerances: if self.tolerances.is_empty() {
+                DEFAULT_TOLERANCES.to_vec()
+            } else {
+                self.tolerances.clone()
+            },
+            duration: self.duration,
+        };
+        (plan, mechanisms, robots, adaptive)
     }
 }
 
@@ -286,12 +329,20 @@ pub fn main() -> ExitCode {
     };
     let started = std::time::Instant::now();
     let output = options.output.clone().unwrap_or_else(|| PathBuf::from("out"));
-    let (plan, mechanisms, robots) = options.plan();
-    match run_job_with_robots(&plan, &mechanisms, &robots, &anchors, &output, !options.quiet) {
+    let (plan, mechanisms, robots, adaptive) = options.plan();
+    match run_job_with_robots(
+        &plan,
+        &mechanisms,
+        &robots,
+        &adaptive,
+        &anchors,
+        &output,
+        !options.quiet,
+    ) {
         Ok(summary) => {
             println!(
                 "{} runs in {:.1} s ({} failed); report, plots and trajectories in {}",
-                summary.results.len() + summary.mechanisms.len() + summary.robots.len(),
+                summary.results.len() + summary.mechanisms.len() + summary.robots.len() + summary.adaptive.len(),
                 started.elapsed().as_secs_f64(),
                 summary.failures.len(),
                 summary.output.join("report.md").display()

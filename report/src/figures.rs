@@ -16,6 +16,7 @@ use reference::{SceneConstraint, SceneId};
 use scenarios::Formulation;
 
 use crate::markdown::{formulation_rank, RunResult};
+use crate::measure::Measurements;
 use crate::mujoco;
 use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series, Shape};
 use crate::sweep::{AlgebraKind, Outcome};
@@ -152,10 +153,10 @@ fn short_label(algebra: AlgebraKind, integrator: Integrator) -> String {
 }
 
 /// The work-precision error of a scene: orientation at T, except scene 4, whose anchor is a position.
-fn work_precision_error(scene: SceneId, outcome: &Outcome) -> f64 {
+pub(crate) fn headline_error(scene: SceneId, measurements: &Measurements) -> f64 {
     match scene {
-        SceneId::RodOnSphere | SceneId::RodOnCircle => outcome.measurements.position_end,
-        _ => outcome.measurements.orientation_end,
+        SceneId::RodOnSphere | SceneId::RodOnCircle => measurements.position_end,
+        _ => measurements.orientation_end,
     }
 }
 
@@ -258,7 +259,7 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
                 .map(|(algebra, integrator, runs)| {
                     let mut points: Vec<(f64, f64)> = runs
                         .iter()
-                        .map(|o| (o.cpu_per_simulated_second, work_precision_error(scene, o)))
+                        .map(|o| (o.cpu_per_simulated_second, headline_error(scene, &o.measurements)))
                         .collect();
                     points.sort_by(|a, b| a.0.total_cmp(&b.0));
                     let (_, member) = Family::of(*integrator);

@@ -8,6 +8,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use reference::SceneId;
 
+use crate::adaptive_report::{adaptive_section, FixedRuns};
+use crate::adaptive_sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
 use crate::anchors::Anchors;
 use crate::csv;
 use crate::figures::{self, showcase_step};
@@ -49,6 +51,8 @@ pub struct JobSummary {
     pub mechanisms: Vec<MechanismResult>,
     /// Each robot configuration, in the plan's order, with its outcome or why it failed.
     pub robots: Vec<RobotResult>,
+    /// Each adaptive configuration, in the plan's order, with its outcome or why it failed.
+    pub adaptive: Vec<AdaptiveResult>,
     /// Failed runs, single bodies and mechanisms: each run's label and why it failed.
     pub failures: Vec<String>,
 }
@@ -96,6 +100,7 @@ pub fn run_job(
         plan,
         mechanisms,
         &RobotPlan::default(),
+        &AdaptivePlan::default(),
         &Anchors::none(),
         output,
         show_progress,
@@ -103,11 +108,13 @@ pub fn run_job(
 }
 
 /// [`run_job`], and the reference robots of `robots` with the plan's general integrators (each over the
-/// reference's 1 s); MuJoCo's and Pinocchio's times from `anchors` where it measured them.
+/// reference's 1 s), and the adaptive runs of `adaptive`; MuJoCo's and Pinocchio's times from `anchors` where it
+/// measured them.
 pub fn run_job_with_robots(
     plan: &SweepPlan,
     mechanisms: &MechanismPlan,
     robots: &RobotPlan,
+    adaptive: &AdaptivePlan,
     anchors: &Anchors,
     output: &Path,
     show_progress: bool,
@@ -115,7 +122,8 @@ pub fn run_job_with_robots(
     let configs = plan.configurations();
     let mechanism_configs = mechanisms.configurations(&plan.integrators, plan.duration, plan.stabilisation);
     let robot_configs = robots.configurations(&plan.integrators);
-    if configs.is_empty() && mechanism_configs.is_empty() && robot_configs.is_empty() {
+    let adaptive_configs = adaptive.configurations();
+    if configs.is_empty() && mechanism_configs.is_empty() && robot_configs.is_empty() && adaptive_configs.is_empty() {
         return Err(JobError::Empty);
     }
     std::fs::create_dir_all(output).map_err(io(output))?;
@@ -123,7 +131,9 @@ pub fn run_job_with_robots(
     std::fs::create_dir_all(&trajectories).map_err(io(&trajectories))?;
 
     let progress = if show_progress {
-        ProgressBar::new((configs.len() + mechanism_configs.len() + robot_configs.len()) as u64)
+        ProgressBar::new(
+            (configs.len() + mechanism_configs.len() + robot_configs.len() + adaptive_configs.len()) as u64,
+        )
     } else {
         ProgressBar::hidden()
     };
@@ -152,6 +162,13 @@ pub fn run_job_with_robots(
         |c| c.work(),
         run_robot,
         |c| format!("{} {}", robot_label(c.robot), c.series_label()),
+        &progress,
+    );
+    let adaptive_results: Vec<AdaptiveResult> = run_all(
+        &adaptive_configs,
+        |c| c.work(),
+        run_adaptive,
+        |c| format!("{} {}", c.case.label(), c.series_label()),
         &progress,
     );
     progress.finish_and_clear();
@@ -188,6 +205,12 @@ pub fn run_job_with_robots(
     let mut text = markdown::report(&results, threads, &figure_files);
     text.push_str(&mechanism_section(output, &mechanism_results, anchors)?);
     text.push_str(&robot_section(output, &robot_results, anchors)?);
+    let fixed = FixedRuns {
+        single: &results,
+        mechanisms: &mechanism_results,
+        robots: &robot_results,
+    };
+    text.push_str(&adaptive_section(output, &adaptive_results, &fixed)?);
     text.push_str(&anchors.section());
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
     let single_failures = results.iter().filter_map(|(config, result)| {
@@ -207,15 +230,21 @@ pub fn run_job_with_robots(
             config.dt
         ))
     });
+    let adaptive_failures = adaptive_results.iter().filter_map(|(config, result)| {
+        let error = result.as_ref().err()?;
+        Some(format!("{} {}: {error}", config.case.label(), config.series_label()))
+    });
     let failures = single_failures
         .chain(mechanism_failures)
         .chain(robot_failures)
+        .chain(adaptive_failures)
         .collect();
     Ok(JobSummary {
         output: output.to_path_buf(),
         results,
         mechanisms: mechanism_results,
         robots: robot_results,
+        adaptive: adaptive_results,
         failures,
     })
 }

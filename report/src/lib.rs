@@ -8,6 +8,8 @@
 //! The mechanisms of docs/scenes.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
 //! one; measured by `scenarios::mechanism_measures`) → `mechanism_report` (their section and plots).
 //!
+//! The adaptive runs (the embedded pairs over tolerances) follow them: [`adaptive_sweep`] → `adaptive_report`.
+//!
 //! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
 //!
 //! MuJoCo's and Pinocchio's times come from [`anchors`] where `--anchors FILE` measured them beside the run,
@@ -18,6 +20,8 @@
 
 #![deny(missing_docs)]
 
+mod adaptive_report;
+pub mod adaptive_sweep;
 pub mod anchors;
 pub mod cli;
 pub mod csv;

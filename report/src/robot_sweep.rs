@@ -228,15 +228,7 @@ fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
     let timed =
         Schedule::with_sample_interval(config.dt, duration, config.dt.max(interval)).map_err(simulation_error)?;
     let run = || simulate(mechanism, &scene.initial, config.integrator, &timed).map_err(simulation_error);
-    let first_run = run()?;
-    let mut best = first_run.stepping_time.as_secs_f64();
-    let (mut total, mut repeats) = (best, 1);
-    while repeats < MAX_REPEATS && (total < MIN_TIMING || (repeats < MIN_REPEATS && total < LONG_TIMING)) {
-        let again = run()?.stepping_time.as_secs_f64();
-        best = best.min(again);
-        total += again;
-        repeats += 1;
-    }
+    let (first_run, best, repeats) = fastest_of_repeats(run)?;
     let steps = first_run.steps;
     let sampled = if config.dt > interval * (1.0 + 1e-9) {
         // Every reference time, between the steps by partial steps of the method.
@@ -246,7 +238,7 @@ fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
     } else {
         first_run
     };
-    let measured = measure(&scene, &sampled)?;
+    let measured = measure_robot(&scene, &sampled)?;
     Ok(RobotOutcome {
         config: *config,
         cpu_per_simulated_second: best / duration,
@@ -261,9 +253,27 @@ fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
     })
 }
 
+/// Runs `run` until the timing rule of [`MIN_REPEATS`] is met: the first run, the fastest stepping time (s) and
+/// the number of runs.
+pub(crate) fn fastest_of_repeats<A: Algebra>(
+    mut run: impl FnMut() -> Result<Simulation<A>, RunError>,
+) -> Result<(Simulation<A>, f64, usize), RunError> {
+    let first_run = run()?;
+    let mut best = first_run.stepping_time.as_secs_f64();
+    let (mut total, mut repeats) = (best, 1);
+    while repeats < MAX_REPEATS && (total < MIN_TIMING || (repeats < MIN_REPEATS && total < LONG_TIMING)) {
+        let again = run()?.stepping_time.as_secs_f64();
+        best = best.min(again);
+        total += again;
+        repeats += 1;
+    }
+    Ok((first_run, best, repeats))
+}
+
 /// A run's errors against the reference and its stick figures.
-struct Measured {
-    joint_error: f64,
+pub(crate) struct Measured {
+    /// The largest joint-position error against the reference over every sample (rad).
+    pub(crate) joint_error: f64,
     /// Base origin (m) and orientation (rad) errors.
     base: Option<(f64, f64)>,
     energy_change: f64,
@@ -294,7 +304,8 @@ fn angle_between(reference: &UnitQuaternion<f64>, q: &[f64]) -> f64 {
     reference.rotation_to(&ours).angle()
 }
 
-fn measure<A: Algebra>(scene: &RobotScene<A>, run: &Simulation<A>) -> Result<Measured, RunError> {
+/// A run's errors against the reference: the run must be sampled at the reference's times.
+pub(crate) fn measure_robot<A: Algebra>(scene: &RobotScene<A>, run: &Simulation<A>) -> Result<Measured, RunError> {
     let mechanism = scene.robot.mechanism();
     let reference: &RobotReference = &scene.reference;
     let space = mechanism.joint_space().map_err(metrics_error)?;

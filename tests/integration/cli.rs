@@ -45,6 +45,22 @@ fn nonsensical_flags_are_refused_with_a_message() {
             &["--integrators", "rkmk8-joint", "--scenes", "double-pendulum"],
             &["make no run", "only the robots"],
         ),
+        (&["--tolerances", "0"], &["--tolerances 0", "absolute tolerance"]),
+        (&["--tolerances", "nan"], &["--tolerances NaN", "relative tolerance"]),
+        (
+            &["--tolerances", "-1e-8"],
+            &["--tolerances -0.00000001", "relative tolerance"],
+        ),
+        (&["--tolerances", "1.5"], &["--tolerances 1.5", "relative tolerance"]),
+        (&["--tolerances", "inf"], &["--tolerances inf", "relative tolerance"]),
+        (
+            &["--tolerances", "1e-16"],
+            &["--tolerances 0.0000000000000001", "absolute tolerance"],
+        ),
+        (
+            &["--tolerances", "1e-8", "--scene-file", "scenes/heavy_top.toml"],
+            &["--tolerances", "cannot be used with"],
+        ),
         (&["--threads", "100000"], &["--threads", "four per core"]),
         (&["--threads", "0"], &["--threads", "got 0"]),
     ] {

@@ -213,8 +213,16 @@ fn the_report_says_which_figures_were_measured_in_this_run() {
         mechanisms: vec![MechanismKind::DoublePendulum, MechanismKind::FourBar],
         steps: vec![1e-3],
     };
-    let summary = run_job_with_robots(&plan, &mechanisms, &RobotPlan::default(), &anchors, &output, false)
-        .expect("the job writes its report");
+    let summary = run_job_with_robots(
+        &plan,
+        &mechanisms,
+        &RobotPlan::default(),
+        &report::adaptive_sweep::AdaptivePlan::default(),
+        &anchors,
+        &output,
+        false,
+    )
+    .expect("the job writes its report");
     assert!(summary.failures.is_empty(), "{:?}", summary.failures);
     let text = std::fs::read_to_string(output.join("report.md")).unwrap();
     let row = |label: &str| {

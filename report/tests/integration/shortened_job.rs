@@ -170,23 +170,33 @@ fn check_mechanisms(results: &[report::mechanism_sweep::MechanismResult]) {
     }
 }
 
+/// Plans of scene 1 and M1 with `method` at (the cuboid's steps, M1's steps), for `duration`.
+fn cuboid_and_double_pendulum(
+    method: Method,
+    (steps, m1_steps): (&[f64], &[f64]),
+    duration: f64,
+) -> (SweepPlan, MechanismPlan) {
+    let plan = SweepPlan {
+        scenes: vec![SceneId::Cuboid],
+        integrators: vec![Integrator::General(method)],
+        steps: steps.to_vec(),
+        duration: Some(duration),
+        stabilisation: Stabilisation::PROJECTION,
+    };
+    let mechanisms = MechanismPlan {
+        mechanisms: vec![MechanismKind::DoublePendulum],
+        steps: m1_steps.to_vec(),
+    };
+    (plan, mechanisms)
+}
+
 /// Runs that fail are listed with their configuration and reason (the command line prints them and exits with
 /// an error status): a step that does not divide the sample interval fails every run it is given to.
 #[test]
 fn failed_runs_are_named_with_their_reason() {
     let output = std::env::temp_dir().join("ga-dynamics-failed-runs");
     let _ = std::fs::remove_dir_all(&output);
-    let plan = SweepPlan {
-        scenes: vec![SceneId::Cuboid],
-        integrators: vec![Integrator::General(Method::Rk4)],
-        steps: vec![1e-3, 3e-3],
-        duration: Some(0.02),
-        stabilisation: Stabilisation::PROJECTION,
-    };
-    let mechanisms = MechanismPlan {
-        mechanisms: vec![MechanismKind::DoublePendulum],
-        steps: vec![3e-3],
-    };
+    let (plan, mechanisms) = cuboid_and_double_pendulum(Method::Rk4, (&[1e-3, 3e-3], &[3e-3]), 0.02);
     let summary = run_job(&plan, &mechanisms, &output, false).expect("the job writes its report");
     // The cuboid at dt = 3e-3 in both algebras, the double pendulum in both algebras and formulations.
     assert_eq!(summary.failures.len(), 2 + 4, "{:?}", summary.failures);
@@ -195,4 +205,122 @@ fn failed_runs_are_named_with_their_reason() {
     }
     assert!(summary.failures.iter().any(|f| f.starts_with("1 cuboid")));
     assert!(summary.failures.iter().any(|f| f.starts_with("M1 double pendulum")));
+}
+
+/// The adaptive part of the job: the embedded pair over two tolerances on scene 1 and M1 (2 s), beside the
+/// fixed-step runs of the same scenes. Every run succeeds, the tighter tolerance gives the smaller error, the report
+/// has the section, its three figures and a table row per run.
+#[test]
+fn adaptive_runs_are_reported_beside_the_fixed_steps() {
+    use report::adaptive_sweep::{AdaptiveCase, AdaptivePlan};
+    let output = std::env::temp_dir().join("ga-dynamics-adaptive-job");
+    let _ = std::fs::remove_dir_all(&output);
+    let (plan, mechanisms) = cuboid_and_double_pendulum(Method::Rkmk8Body, (&[1e-2, 5e-3], &[2e-2, 1e-2]), 2.0);
+    let adaptive = AdaptivePlan {
+        cases: vec![
+            AdaptiveCase::SingleBody(SceneId::Cuboid),
+            AdaptiveCase::Mechanism(MechanismId::DoublePendulum),
+        ],
+        methods: vec![Method::Dop853Body, Method::Rk4],
+        tolerances: vec![1e-6, 1e-10],
+        duration: Some(2.0),
+    };
+    let summary = report::job::run_job_with_robots(
+        &plan,
+        &mechanisms,
+        &report::robot_sweep::RobotPlan::default(),
+        &adaptive,
+        &report::anchors::Anchors::none(),
+        &output,
+        false,
+    )
+    .expect("the job writes its report");
+    assert!(summary.failures.is_empty(), "{:?}", summary.failures);
+    // RK4 has no error estimate: left out of the adaptive runs.
+    assert_eq!(summary.adaptive.len(), 2 * 2);
+    for pair in summary.adaptive.chunks(2) {
+        let (loose, tight) = (pair[0].1.as_ref().unwrap(), pair[1].1.as_ref().unwrap());
+        assert!(tight.error < loose.error, "{} vs {}", tight.error, loose.error);
+        assert!(tight.statistics.accepted > loose.statistics.accepted);
+        assert_eq!(loose.steps.len(), loose.statistics.accepted);
+        let last = loose.steps.last().unwrap();
+        assert!((last.0 - 2.0).abs() < 1e-12, "the steps end at {}", last.0);
+        let covered: f64 = loose.steps.iter().map(|s| s.1).sum();
+        assert!((covered - 2.0).abs() < 1e-9, "the steps cover {covered} s");
+    }
+    let text = std::fs::read_to_string(output.join("report.md")).unwrap();
+    for part in [
+        "## Adaptive steps",
+        "![adaptive_single_bodies.png](adaptive_single_bodies.png)",
+        "![adaptive_mechanisms_and_robots.png](adaptive_mechanisms_and_robots.png)",
+        "![adaptive_tolerance.png](adaptive_tolerance.png)",
+        "![adaptive_steps.png](adaptive_steps.png)",
+        "### scene 1 cuboid (Dzhanibekov): adaptive steps",
+        "### M1 double pendulum: adaptive steps",
+        "| DOP853-body | 1e-6 |",
+        "| DOP853-body | 1e-10 |",
+    ] {
+        assert!(text.contains(part), "the report lacks {part:?}");
+    }
+    for name in [
+        "adaptive_single_bodies.png",
+        "adaptive_mechanisms_and_robots.png",
+        "adaptive_tolerance.png",
+        "adaptive_steps.png",
+    ] {
+        assert!(std::fs::metadata(output.join(name)).unwrap().len() > 10_000, "{name}");
+    }
+}
+
+/// Careless adaptive plans through the library (the command line refuses them before running): each tolerance or
+/// duration is a failed run that names its reason, never a panic or a silent result.
+#[test]
+fn careless_adaptive_plans_fail_with_their_reasons() {
+    use report::adaptive_sweep::{AdaptiveCase, AdaptivePlan};
+    let output = std::env::temp_dir().join("ga-dynamics-careless-adaptive-job");
+    let _ = std::fs::remove_dir_all(&output);
+    let empty = SweepPlan {
+        scenes: Vec::new(),
+        integrators: Vec::new(),
+        steps: Vec::new(),
+        duration: None,
+        stabilisation: Stabilisation::PROJECTION,
+    };
+    // (tolerance, duration, words of the failure)
+    let cases = [
+        (f64::NAN, Some(0.1), "relative tolerance"),
+        (0.0, Some(0.1), "absolute tolerance"),
+        (-1e-8, Some(0.1), "relative tolerance"),
+        (1.5, Some(0.1), "relative tolerance"),
+        (f64::INFINITY, Some(0.1), "relative tolerance"),
+        (1e-16, Some(0.1), "absolute tolerance"),
+        (1e-8, Some(0.0), "the duration must be positive"),
+        (1e-8, Some(-1.0), "the duration must be positive"),
+        (1e-8, Some(f64::NAN), "the duration must be positive"),
+        (1e-8, Some(1e300), "more than 10000000 samples"),
+    ];
+    for (tolerance, duration, words) in cases {
+        let adaptive = AdaptivePlan {
+            cases: vec![AdaptiveCase::SingleBody(SceneId::Cuboid)],
+            methods: vec![Method::Dop853Body],
+            tolerances: vec![tolerance],
+            duration,
+        };
+        let summary = report::job::run_job_with_robots(
+            &empty,
+            &MechanismPlan::default(),
+            &report::robot_sweep::RobotPlan::default(),
+            &adaptive,
+            &report::anchors::Anchors::none(),
+            &output,
+            false,
+        )
+        .expect("the job writes its report");
+        assert_eq!(summary.failures.len(), 1, "{tolerance}, {duration:?}");
+        assert!(
+            summary.failures[0].contains(words),
+            "{tolerance}, {duration:?}: {}",
+            summary.failures[0]
+        );
+    }
 }
