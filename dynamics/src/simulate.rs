@@ -66,6 +66,25 @@ pub enum SimulationError {
         1u64 << 53
     )]
     TooLong,
+    /// A step limit that is zero, or given to a fixed schedule (whose steps are known: its step and duration).
+    #[error("a step limit must be at least 1 and is for adaptive schedules only, got {limit} for {schedule} schedule")]
+    StepLimit {
+        /// The refused limit.
+        limit: usize,
+        /// "an adaptive" or "a fixed".
+        schedule: &'static str,
+    },
+    /// An adaptive run tried as many steps as its schedule allows ([`Schedule::with_step_limit`]) before its end.
+    #[error(
+        "at t = {t}: the run has tried {steps} steps, the limit of its schedule; loosen the tolerance, shorten the \
+         run or raise the limit"
+    )]
+    TooManySteps {
+        /// The time the run had reached (s).
+        t: f64,
+        /// The steps tried, kept and refused.
+        steps: usize,
+    },
     /// The system has no bodies: there is nothing to simulate.
     #[error("the system has no bodies")]
     NoBodies,
@@ -131,6 +150,8 @@ pub struct Schedule {
     dt: f64,
     /// The accuracy an adaptive schedule chooses its steps by; `None` for fixed steps.
     tolerance: Option<Tolerance>,
+    /// The most steps (kept and refused) an adaptive run may try.
+    step_limit: usize,
     samples: Samples,
     /// The time the run starts at (s); every time of the schedule is counted from it.
     start: f64,
@@ -228,6 +249,7 @@ impl Schedule {
             // The step actually taken: the interval over the whole number of steps in it.
             dt: interval / steps_per_sample as f64,
             tolerance: None,
+            step_limit: usize::MAX,
             samples: Samples::Grid {
                 sample_interval: interval,
                 steps_per_sample,
@@ -295,6 +317,7 @@ impl Schedule {
         Ok(Schedule {
             dt,
             tolerance: None,
+            step_limit: usize::MAX,
             samples: Samples::Times(times),
             start: 0.0,
         })
@@ -339,9 +362,47 @@ impl Schedule {
         Ok(Schedule {
             dt: duration,
             tolerance: Some(tolerance),
+            step_limit: MAX_ADAPTIVE_STEPS,
             samples: Samples::Times(times),
             start: 0.0,
         })
+    }
+
+    /// The same adaptive schedule with at most `limit` steps tried (kept and refused; [`MAX_ADAPTIVE_STEPS`]
+    /// unless set): a run that needs more ends with [`SimulationError::TooManySteps`] at the time it reached,
+    /// instead of running on for hours at a tolerance too tight for its length.
+    ///
+    /// ```
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, SimulationError, State, Tolerance};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let body = Body::new(1.0, Vector3::new(13.0, 10.0, 5.0) / 12.0)?; // kg, kg m²
+    /// let tumbling = Vector3::new(0.1, 10.0, 0.0); // rad/s, near the middle axis
+    /// let start = State::<Pga>::new(&body, Vector3::zeros(), &UnitQuaternion::identity(), tumbling, Vector3::zeros());
+    /// let schedule = Schedule::adaptive(Tolerance::new(1e-12, 1e-12)?, 100.0, 0.1)?.with_step_limit(1000)?;
+    /// let error = simulate(&FreeBody::new(body), &[start], Method::Dop853Body, &schedule).unwrap_err();
+    /// assert!(matches!(error, SimulationError::TooManySteps { steps: 1000, .. }), "{error}");
+    /// assert!(Schedule::new(1e-3, 1.0)?.with_step_limit(10).is_err()); // a fixed schedule's steps are known
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_step_limit(self, limit: usize) -> Result<Self, SimulationError> {
+        if self.tolerance.is_none() || limit == 0 {
+            let schedule = if self.tolerance.is_some() {
+                "an adaptive"
+            } else {
+                "a fixed"
+            };
+            return Err(SimulationError::StepLimit { limit, schedule });
+        }
+        Ok(Schedule {
+            step_limit: limit,
+            ..self
+        })
+    }
+
+    /// The most steps an adaptive run of this schedule may try (`usize::MAX` for fixed steps).
+    pub fn step_limit(&self) -> usize {
+        self.step_limit
     }
 
     /// The tolerance of an adaptive schedule; `None` for fixed steps.
@@ -486,8 +547,10 @@ type EventFunction<'a, A> = Box<dyn FnMut(f64, &[State<A>]) -> f64 + 'a>;
 
 /// A scalar function of the time and the states whose zero crossings [`simulate`] locates: after every step the
 /// function is evaluated, and a sign change (in the chosen [`Crossing`] direction) is bracketed and closed by
-/// partial steps from the step's start (regula falsi with the Illinois modification) until the bracket is a few
-/// ulps of the time wide. A terminal event ends the run at its crossing.
+/// partial steps from the step's start, or the method's continuous extension (regula falsi with the Illinois
+/// modification), until the bracket is a few ulps of the time wide. With a continuous extension (the embedded
+/// pairs) every step is also scanned at ten equal parts, so two crossings inside one step are both found unless they
+/// are closer than a tenth of it. A terminal event ends the run at its crossing.
 pub struct Event<'a, A: Algebra> {
     name: String,
     function: EventFunction<'a, A>,
@@ -746,16 +809,59 @@ impl Stopwatch {
     }
 }
 
+/// The most steps an adaptive run tries unless its schedule says otherwise ([`Schedule::with_step_limit`]): a
+/// hundred million, the most a scene file's fixed steps may be.
+pub const MAX_ADAPTIVE_STEPS: usize = 100_000_000;
+
 /// Event crossings are closed to a bracket this many ulps of the time wide.
 const EVENT_ULPS: f64 = 4.0;
 /// Regula falsi steps at most per crossing (the Illinois modification converges superlinearly; a bracket of
 /// 1e-3 s closes to round-off in about ten).
 const EVENT_ITERATIONS: usize = 200;
 
-/// The crossing of `event` within the step of length `h` from `(t, start)`, where its value goes from `before`
-/// (not zero) to `after`: regula falsi on the partial step length with the Illinois modification (the retained end's
-/// value halved when the same end is kept twice), bisection where the secant leaves the bracket. Returns the first
-/// time found at or after the crossing, within [`EVENT_ULPS`] of the crossing, and the states there.
+/// Where a method has a continuous extension, each step is scanned for an event's crossings at this many equal
+/// parts (DifferentialEquations.jl's `interp_points` default is also ten): two crossings closer together than a part
+/// cancel at its ends and are not seen.
+const EVENT_SCAN_PARTS: usize = 10;
+
+/// A part of a step where an event crosses: `((a, value), (b, value))`, offsets into the step (s) and the event's
+/// values there.
+type Bracket = ((f64, f64), (f64, f64));
+
+/// The brackets `((a, value), (b, value))` (offsets into the step of length `h` from `t`) of the crossings of `event`
+/// within the step, whose values at its ends are `before` and `after`: with a continuous extension, between the
+/// [`EVENT_SCAN_PARTS`] parts of the step (its states there unprojected: a scan, not a location), else between
+/// the step's ends.
+fn crossing_brackets<A: Algebra, D: Dynamics<A> + ?Sized>(
+    event: &mut Event<'_, A>,
+    stepper: &mut Stepper<'_, A, D>,
+    (t, h): (f64, f64),
+    (before, after): (f64, f64),
+    probe: &mut [State<A>],
+) -> Result<Vec<Bracket>, SimulationError> {
+    let mut points = vec![(0.0, before)];
+    if stepper.integrator().estimate_order().is_some() {
+        for part in 1..EVENT_SCAN_PARTS {
+            let theta = part as f64 / EVENT_SCAN_PARTS as f64;
+            if stepper.dense_output(theta, probe)?.is_none() {
+                break;
+            }
+            points.push((theta * h, event.value(t + theta * h, probe)?));
+        }
+    }
+    points.push((h, after));
+    Ok(points
+        .windows(2)
+        .filter(|pair| event.crosses(pair[0].1, pair[1].1))
+        .map(|pair| (pair[0], pair[1]))
+        .collect())
+}
+
+/// The crossing of `event` within the part `((a, value), (b, value))` of the step of length `h` from `(t, start)`
+/// (offsets into the step), where its value goes from not zero to the other sign or zero: regula falsi on the
+/// partial step length with the Illinois modification (the retained end's value halved when the same end is kept
+/// twice), bisection where the secant leaves the bracket. Returns the first time found at or after the crossing,
+/// within [`EVENT_ULPS`] of the crossing, and the states there.
 #[allow(clippy::too_many_arguments)]
 fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
     event: &mut Event<'_, A>,
@@ -763,12 +869,14 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
     (t, h): (f64, f64),
     start: &[State<A>],
     end: &[State<A>],
-    (before, after): (f64, f64),
+    ((mut a, mut value_a), (mut b, mut value_b)): Bracket,
     probe: &mut [State<A>],
 ) -> Result<(f64, Vec<State<A>>), SimulationError> {
-    let (mut a, mut value_a) = (0.0, before);
-    let (mut b, mut value_b) = (h, after);
+    let before = value_a;
     let mut at_b = end.to_vec();
+    if b < h {
+        state_inside(stepper, (t, h), b, start, &mut at_b)?;
+    }
     let mut kept = 0i8;
     for _ in 0..EVENT_ITERATIONS {
         if value_b == 0.0 || b - a <= EVENT_ULPS * f64::EPSILON * (t + b).abs().max(h) {
@@ -828,11 +936,15 @@ fn adaptive_step<A: Algebra, D: Dynamics<A> + ?Sized>(
     controller: &mut Controller,
     (t, finish): (f64, f64),
     (start, next): (&[State<A>], &mut [State<A>]),
-    statistics: &mut StepStatistics,
+    (statistics, step_limit): (&mut StepStatistics, usize),
 ) -> Result<f64, SimulationError> {
     // A step the turn check would refuse is not tried: at loose tolerances the error allows longer steps.
     let turn_limit = step_control::turn_limit(stepper.dynamics(), start);
     loop {
+        let tried = statistics.accepted + statistics.rejected;
+        if tried >= step_limit {
+            return Err(SimulationError::TooManySteps { t, steps: tried });
+        }
         let h = controller.next.min(turn_limit).min(finish - t);
         next.copy_from_slice(start);
         let refused = match stepper.step(t, next, h) {
@@ -983,7 +1095,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
                     controller,
                     (now, finish),
                     (&state, &mut next),
-                    &mut statistics,
+                    (&mut statistics, schedule.step_limit()),
                 )?;
                 // The last step ends on the run's end exactly.
                 (now, h, if h == finish - now { finish } else { now + h })
@@ -999,16 +1111,9 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             let mut found = Vec::new();
             for (index, event) in events.iter_mut().enumerate() {
                 let after = event.value(end, &next)?;
-                if event.crosses(values[index], after) {
-                    let (time, states) = locate(
-                        event,
-                        &mut stepper,
-                        (t, h),
-                        &state,
-                        &next,
-                        (values[index], after),
-                        &mut probe,
-                    )?;
+                let brackets = crossing_brackets(event, &mut stepper, (t, h), (values[index], after), &mut probe)?;
+                for bracket in brackets {
+                    let (time, states) = locate(event, &mut stepper, (t, h), &state, &next, bracket, &mut probe)?;
                     if event.terminal && terminal.as_ref().is_none_or(|(first, ..)| time < *first) {
                         terminal = Some((time, index, states.clone()));
                     }

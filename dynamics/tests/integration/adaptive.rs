@@ -97,6 +97,41 @@ fn careless_adaptive_schedules_are_refused() {
     assert_eq!((schedule.sample_count(), schedule.sample_time(4)), (5, 1.0));
 }
 
+/// Careless step limits: zero, or any on a fixed schedule, is refused; a limit of one ends a long run after its first
+/// step with the time it reached; the largest is the default's kind of bound and runs.
+#[test]
+fn careless_step_limits_are_refused() {
+    let adaptive = Schedule::adaptive(tolerance(1e-8), 1.0, 0.1).unwrap();
+    assert_eq!(adaptive.step_limit(), dynamics::simulate::MAX_ADAPTIVE_STEPS);
+    let fixed = Schedule::new(1e-3, 1.0).unwrap();
+    for (schedule, limit, words) in [
+        (&adaptive, 0, "got 0 for an adaptive schedule"),
+        (&fixed, 10, "got 10 for a fixed schedule"),
+        (&fixed, 0, "got 0 for a fixed schedule"),
+        (&fixed, usize::MAX, "for a fixed schedule"),
+    ] {
+        let error = schedule.clone().with_step_limit(limit).expect_err("refused");
+        assert!(error.to_string().contains(words), "{limit}: {error}");
+    }
+    let (ball, _) = ball_at_rest::<dynamics::Pga>();
+    let spinning = State::<dynamics::Pga>::new(
+        &ball,
+        Vector3::zeros(),
+        &UnitQuaternion::identity(),
+        Vector3::new(0.0, 0.0, 30.0),
+        Vector3::zeros(),
+    );
+    for method in PAIRS {
+        let one = adaptive.clone().with_step_limit(1).unwrap();
+        match simulate(&FreeBody::new(ball), &[spinning], method, &one).expect_err("one step is not enough") {
+            SimulationError::TooManySteps { t, steps } => assert!(steps == 1 && t > 0.0 && t < 1.0, "{t}, {steps}"),
+            other => panic!("{other}"),
+        }
+        let unbounded = adaptive.clone().with_step_limit(usize::MAX).unwrap();
+        assert!(simulate(&FreeBody::new(ball), &[spinning], method, &unbounded).is_ok());
+    }
+}
+
 /// Only an embedded pair estimates its error: the others are refused by name before any step.
 #[test]
 fn integrators_without_an_error_estimate_are_refused() {
@@ -245,7 +280,39 @@ fn a_singular_force_ends_the_run_with_its_time<A: Algebra>() {
     }
 }
 
+/// Two crossings inside one step: a ball coasting at 1 m/s crosses x = 0.6 m and x = 0.75 m, where the event
+/// `(x − 0.6)(x − 0.75)` changes sign twice and is positive at both ends of the long steps a free coast allows (the
+/// values at a step's ends alone would miss both). The scan of each step's continuous extension finds both, located
+/// to 1e-12 s.
+fn two_crossings_in_one_step<A: Algebra>() {
+    let (ball, _) = ball_at_rest::<A>();
+    let start = State::<A>::new(
+        &ball,
+        Vector3::zeros(),
+        &UnitQuaternion::identity(),
+        Vector3::zeros(),
+        Vector3::x(),
+    );
+    let schedule = Schedule::adaptive(tolerance(1e-8), 1.0, 1.0).unwrap();
+    let band = |_t: f64, states: &[State<A>]| {
+        let x = states[0].pose().0.x;
+        (x - 0.6) * (x - 0.75)
+    };
+    for method in PAIRS {
+        let plan = Plan::new(&schedule).event(Event::new("band", band));
+        let run = simulate(&FreeBody::new(ball), &[start], method, plan).unwrap();
+        let times: Vec<f64> = run.events.iter().map(|hit| hit.t).collect();
+        assert!(run.statistics.largest_step > 0.15, "{:?}", run.statistics);
+        assert_eq!(times.len(), 2, "{}: {times:?}", method.name());
+        assert!(
+            (times[0] - 0.6).abs() < 1e-12 && (times[1] - 0.75).abs() < 1e-12,
+            "{times:?}"
+        );
+    }
+}
+
 for_both_algebras!(
+    two_crossings_in_one_step,
     dropped_spinning_ball,
     pendulum_period_and_hinge,
     a_singular_force_ends_the_run_with_its_time
