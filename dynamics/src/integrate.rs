@@ -15,8 +15,8 @@
 //! buffers made once (a step allocates nothing).
 //!
 //! A step's length is the caller's: [`crate::simulate()`] takes it from a fixed schedule, or from the step-size
-//! controller of an adaptive one ([`crate::step_control`]), which reads the error estimate of the embedded pair
-//! [`Method::Dopri5Body`] and takes samples and events from its continuous extension.
+//! controller of an adaptive one ([`crate::step_control`]), which reads the error estimate of an embedded pair
+//! ([`Method::Dopri5Body`], [`Method::Dop853Body`]) and takes samples and events from its continuous extension.
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
