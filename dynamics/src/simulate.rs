@@ -655,7 +655,7 @@ impl<'a, A: Algebra> Plan<'a, A> {
     ///     if states[0].pose().0.x > 0.05 - 1e-9 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
     /// };
     /// let run = simulate(&FreeBody::new(ball), &[start], Method::Rk4, Plan::new(&schedule).observer(far_enough))?;
-    /// assert_eq!((run.steps, run.stopped), (50, Some(Stop::Observer))); // 1 m/s for 50 ms
+    /// assert_eq!((run.statistics.accepted, run.stopped), (50, Some(Stop::Observer))); // 1 m/s for 50 ms
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn new(schedule: &'a Schedule) -> Self {
@@ -738,8 +738,6 @@ pub struct Simulation<A: Algebra> {
     pub bodies: Vec<Vec<Sample>>,
     /// The state of every body where the run ended: after the last step, or at a terminal event's crossing.
     pub final_state: Vec<State<A>>,
-    /// Whole steps taken (partial steps for samples and events not counted): `statistics.accepted`.
-    pub steps: usize,
     /// The steps kept and refused, the evaluations of the equations of motion, the shortest and longest step.
     pub statistics: StepStatistics,
     /// CPU (wall) time spent stepping, excluding the recording of samples.
@@ -763,7 +761,7 @@ impl<A: Algebra> Simulation<A> {
 
     /// Stepping time per step.
     pub fn time_per_step(&self) -> Duration {
-        Duration::from_secs_f64(self.stepping_time.as_secs_f64() / self.steps.max(1) as f64)
+        Duration::from_secs_f64(self.stepping_time.as_secs_f64() / self.statistics.accepted.max(1) as f64)
     }
 }
 
@@ -1181,7 +1179,6 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     Ok(Simulation {
         bodies,
         final_state: state,
-        steps: statistics.accepted,
         statistics,
         stepping_time: clock.total,
         events: hits,

@@ -196,7 +196,7 @@ fn run_in<A: SceneAlgebra>(config: &MechanismConfig) -> Result<MechanismOutcome,
     Ok(MechanismOutcome {
         config: *config,
         cpu_per_simulated_second: stepping / schedule.duration(),
-        time_per_step: stepping / run.steps.max(1) as f64,
+        time_per_step: stepping / run.statistics.accepted.max(1) as f64,
         measures,
     })
 }

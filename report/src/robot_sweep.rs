@@ -229,7 +229,7 @@ fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
         Schedule::with_sample_interval(config.dt, duration, config.dt.max(interval)).map_err(simulation_error)?;
     let run = || simulate(mechanism, &scene.initial, config.integrator, &timed).map_err(simulation_error);
     let (first_run, best, repeats) = fastest_of_repeats(run)?;
-    let steps = first_run.steps;
+    let steps = first_run.statistics.accepted;
     let sampled = if config.dt > interval * (1.0 + 1e-9) {
         // Every reference time, between the steps by partial steps of the method.
         let times = reference.samples[1..].iter().map(|s| s.t);

@@ -166,7 +166,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
     Ok(AlgebraRun {
         algebra,
         cpu_per_simulated_second: stepping / duration,
-        time_per_step: stepping / simulation.steps.max(1) as f64,
+        time_per_step: stepping / simulation.statistics.accepted.max(1) as f64,
         energy_change,
         violation,
         work,

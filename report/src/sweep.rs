@@ -206,7 +206,7 @@ fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
     Ok(Outcome {
         config: *config,
         cpu_per_simulated_second: stepping / schedule.duration(),
-        time_per_step: stepping / simulation.steps.max(1) as f64,
+        time_per_step: stepping / simulation.statistics.accepted.max(1) as f64,
         measurements,
         samples: simulation.bodies.swap_remove(0),
     })

@@ -206,7 +206,6 @@ fn dropped_spinning_ball_with<A: Algebra>(method: Method) {
     let statistics = run.statistics;
     assert_evaluations(method, &statistics);
     assert!(statistics.smallest_step <= statistics.largest_step && statistics.smallest_step > 0.0);
-    assert_eq!(run.steps, statistics.accepted);
 
     // At 1e-6 the steps are longer than the sample interval, and the samples inside them cost nothing either.
     let loose = Schedule::adaptive(tolerance(1e-6), 0.4, 0.01).unwrap();

@@ -122,7 +122,11 @@ fn a_terminal_event_ends_the_run_at_the_crossing() {
     let last = run.body(0).last().unwrap();
     assert_eq!(last.t, run.events[0].t);
     assert!(last.position.z.abs() < 1e-14, "{}", last.position.z);
-    assert!(run.steps < 700, "the run went on: {} steps", run.steps);
+    assert!(
+        run.statistics.accepted < 700,
+        "the run went on: {} steps",
+        run.statistics.accepted
+    );
 }
 
 /// An observer sees every step and stops the run; the run ends with a sample at that step.
@@ -149,7 +153,7 @@ fn an_observer_sees_every_step_and_can_stop_the_run() {
     });
     let run = simulate(&system, &[start], Method::Rkmk4, plan).unwrap();
     assert_eq!(run.stopped, Some(Stop::Observer));
-    assert_eq!(run.steps, 235);
+    assert_eq!(run.statistics.accepted, 235);
     assert_eq!(seen.len(), 235);
     for (k, (t, x)) in seen.iter().enumerate() {
         // Both sums of 1e-3 steps, rounded differently (at most ~1e-16 per step).
@@ -191,7 +195,7 @@ fn samples_between_steps<A: Algebra>() {
         assert!(sample.orientation.angle_to(&turned) < 1e-14, "{}", A::NAME);
     }
     // 1.0 / 0.003 = 333.3 steps: 333 whole and a shortened last one.
-    assert_eq!(run.steps, 334);
+    assert_eq!(run.statistics.accepted, 334);
     assert_eq!(schedule.steps_per_sample(), None);
 }
 

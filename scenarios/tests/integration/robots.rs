@@ -136,7 +136,7 @@ fn observe<A: Algebra>(scene: &RobotScene<A>, integrator: impl Into<Integrator>)
         Plan::new(&schedule).observer(observer),
     )
     .unwrap();
-    assert_eq!((run.steps, run.stopped), (200, None));
+    assert_eq!((run.statistics.accepted, run.stopped), (200, None));
     let samples = samples.into_inner();
     assert_eq!(samples.len(), scene.reference.samples.len());
     samples

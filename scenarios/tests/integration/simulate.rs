@@ -68,7 +68,7 @@ fn the_record_matches_the_state<A: Algebra>() {
     let schedule = Schedule::new(1e-3, 0.5).expect("1e-3 divides 0.01");
     let run = simulate(&scene.system, &[scene.initial], Method::Rk4, &schedule).expect("scene 1 runs");
     assert_eq!(run.body(0).len(), 51);
-    assert_eq!(run.steps, 500);
+    assert_eq!(run.statistics.accepted, 500);
     let first = &run.body(0)[0];
     let start = scene.scene.initial_state();
     assert_eq!(first.t, 0.0);
@@ -209,7 +209,7 @@ fn tiny_steps_and_tiny_sample_times_run() {
     let schedule = Schedule::new(1e-6, 10.0).unwrap();
     let run = simulate(&free, &[start], Method::Rk4, &schedule).unwrap();
     let samples = run.body(0);
-    assert_eq!((run.steps, samples.len()), (10_000_000, 1001));
+    assert_eq!((run.statistics.accepted, samples.len()), (10_000_000, 1001));
     for (k, sample) in samples.iter().enumerate() {
         assert_eq!(sample.t, k as f64 * SAMPLE_INTERVAL);
         assert!(
