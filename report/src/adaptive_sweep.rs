@@ -14,8 +14,7 @@ use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Method;
 use dynamics::simulate::{simulate, Plan, Schedule, Simulation};
 use dynamics::step_control::Tolerance;
-use dynamics::{Algebra, Body, Dynamics, Force, FreeBody, Pga, State, StepStatistics};
-use nalgebra::Vector3;
+use dynamics::{Algebra, Dynamics, Pga, State, StepStatistics};
 use reference::robots::RobotId;
 use reference::{SceneConstraint, SceneId};
 use scenarios::mechanism_measures::{measure as measure_mechanism, MechanismMeasures};
@@ -24,7 +23,7 @@ use scenarios::{build_mechanism, Formulation, MechanismId};
 use crate::figures::headline_error;
 use crate::measure::measure;
 use crate::robot_sweep::{fastest_of_repeats, measure_robot, robot_label};
-use crate::sweep::RunError;
+use crate::sweep::{free_body, RunError};
 
 /// The tolerances without `--tolerances`: 1e-3 to 1e-13, a decade apart.
 pub const DEFAULT_TOLERANCES: [f64; 11] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13];
@@ -228,17 +227,12 @@ pub(crate) fn run_adaptive(config: &AdaptiveConfig) -> Result<AdaptiveOutcome, R
                 steps,
             } = match config.case.formulation() {
                 // The free body runs as a `FreeBody`, as in the fixed-step sweep.
-                None => {
-                    let parameters = &built.parameters;
-                    let body = Body::new(parameters.mass, parameters.principal_moments).map_err(simulation_error)?;
-                    let mut system = FreeBody::<Pga>::new(body);
-                    if parameters.gravity != 0.0 {
-                        system = system.with_force(Force::Gravity {
-                            acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
-                        });
-                    }
-                    timed_run(&system, &[built.initial], config, duration)?
-                }
+                None => timed_run(
+                    &free_body::<Pga>(&built.parameters)?,
+                    &[built.initial],
+                    config,
+                    duration,
+                )?,
                 Some(_) => timed_run(&built.system, &[built.initial], config, duration)?,
             };
             let trajectory = scenarios::trajectory(run.body(0)).map_err(|e| RunError::Metrics(e.to_string()))?;

@@ -3,9 +3,9 @@
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method};
 use dynamics::simulate::{simulate, Sample, Schedule};
-use dynamics::{Body, Cga, Force, FreeBody, Pga};
+use dynamics::{Algebra, Body, Cga, Force, FreeBody, Pga};
 use nalgebra::Vector3;
-use reference::{SceneConstraint, SceneId};
+use reference::{SceneConstraint, SceneId, SceneParameters};
 use scenarios::{Formulation, SceneAlgebra};
 
 use crate::measure::{measure, Measurements};
@@ -176,21 +176,27 @@ pub(crate) fn run(config: &Config) -> Result<Outcome, RunError> {
     }
 }
 
+/// A free scene's body as a [`FreeBody`] with its gravity, where every integrator (splittings included) applies.
+pub(crate) fn free_body<A: Algebra>(parameters: &SceneParameters) -> Result<FreeBody<A>, RunError> {
+    let body =
+        Body::new(parameters.mass, parameters.principal_moments).map_err(|e| RunError::Simulation(e.to_string()))?;
+    let system = FreeBody::<A>::new(body);
+    Ok(if parameters.gravity != 0.0 {
+        system.with_force(Force::Gravity {
+            acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
+        })
+    } else {
+        system
+    })
+}
+
 fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
     let schedule = Schedule::new(config.dt, config.duration).map_err(|e| RunError::Simulation(e.to_string()))?;
     let mut simulation = match config.formulation {
         None => {
             // The free body runs as a `FreeBody`, where every integrator (splittings included) applies.
             let scene = scenarios::build::<A>(config.scene, Formulation::Pinning, config.stabilisation)?;
-            let parameters = &scene.parameters;
-            let body = Body::new(parameters.mass, parameters.principal_moments)
-                .map_err(|e| RunError::Simulation(e.to_string()))?;
-            let mut system = FreeBody::<A>::new(body);
-            if parameters.gravity != 0.0 {
-                system = system.with_force(Force::Gravity {
-                    acceleration: Vector3::new(0.0, 0.0, -parameters.gravity),
-                });
-            }
+            let system = free_body(&scene.parameters)?;
             simulate(&system, &[scene.initial], config.integrator, &schedule)
                 .map_err(|e| RunError::Simulation(e.to_string()))?
         }
