@@ -20,6 +20,7 @@ use crate::constraints::paths::{MotorPoint, Path};
 use crate::constraints::virtual_power::normals_to;
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, VirtualPower};
 use crate::convert::direction_and_length;
+use crate::limits::JointLimit;
 use crate::motor;
 
 /// What a joint lets the child do relative to its parent. Axes and normals are in the joint frame; they need not
@@ -151,6 +152,7 @@ pub struct JointModel {
     parent_frame: Isometry3<f64>,
     child_frame: Isometry3<f64>,
     drive: Option<Arc<dyn Path<f64>>>,
+    limit: Option<JointLimit>,
     axes: ArrayVec<JointAxis, 6>,
     /// `child_frame⁻¹`, kept for forward kinematics.
     child_inverse: Isometry3<f64>,
@@ -164,6 +166,7 @@ impl fmt::Debug for JointModel {
             .field("parent_frame", &self.parent_frame)
             .field("child_frame", &self.child_frame)
             .field("driven", &self.drive.is_some())
+            .field("limit", &self.limit)
             .finish()
     }
 }
@@ -321,6 +324,7 @@ impl JointModel {
             parent_frame,
             child_frame,
             drive: None,
+            limit: None,
             axes: ArrayVec::new(),
             child_inverse: child_frame.inverse(),
         };
@@ -346,17 +350,61 @@ impl JointModel {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn driven(mut self, position: impl Path<f64> + 'static) -> Result<Self, ConstraintError> {
-        if !matches!(self.kind, JointKind::Revolute { .. } | JointKind::Prismatic { .. }) {
+        self.one_coordinate("driven")?;
+        if self.limit.is_some() {
             return Err(invalid(
                 &self.name,
-                format!(
-                    "only revolute and prismatic joints can be driven, this one is {}",
-                    self.kind.name()
-                ),
+                "a limited joint cannot be driven: its drive decides where it is".to_owned(),
             ));
         }
         self.drive = Some(Arc::new(position));
         Ok(self)
+    }
+
+    /// The joint with its coordinate kept in `limit`'s range: a revolute or prismatic joint, not driven. A mechanism
+    /// enforces it exactly ([`crate::limits`]): impacts at the bounds, held there while the bound pushes.
+    ///
+    /// ```
+    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::limits::JointLimit;
+    /// use nalgebra::{Isometry3, Vector3};
+    ///
+    /// let knee = JointModel::new("knee", JointKind::Revolute { axis: Vector3::y() }, Isometry3::identity(),
+    ///     Isometry3::identity())?.with_limit(JointLimit::new(0.0, 2.6)?)?; // rad
+    /// assert_eq!(knee.limit().map(|l| l.upper()), Some(2.6));
+    /// let ball = JointModel::new("ball", JointKind::Spherical, Isometry3::identity(), Isometry3::identity())?;
+    /// assert!(ball.with_limit(JointLimit::new(-1.0, 1.0)?).is_err()); // one coordinate only
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_limit(mut self, limit: JointLimit) -> Result<Self, ConstraintError> {
+        self.one_coordinate("limited")?;
+        if self.drive.is_some() {
+            return Err(invalid(
+                &self.name,
+                "a driven joint cannot be limited: its drive decides where it is".to_owned(),
+            ));
+        }
+        self.limit = Some(limit);
+        Ok(self)
+    }
+
+    /// The joint's limit, if it has one.
+    pub fn limit(&self) -> Option<&JointLimit> {
+        self.limit.as_ref()
+    }
+
+    /// An error unless the joint is revolute or prismatic (what it would be: "driven", "limited").
+    fn one_coordinate(&self, what: &str) -> Result<(), ConstraintError> {
+        if matches!(self.kind, JointKind::Revolute { .. } | JointKind::Prismatic { .. }) {
+            return Ok(());
+        }
+        Err(invalid(
+            &self.name,
+            format!(
+                "only revolute and prismatic joints can be {what}, this one is {}",
+                self.kind.name()
+            ),
+        ))
     }
 
     /// The joint's name.

@@ -26,8 +26,9 @@
 //! (`docs/mechanisms.md`). The pipeline, one module per stage:
 //! [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`) → [`motor`] and
 //! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →
-//! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows) and [`mechanism`]
-//! (bodies, joints and the reaction solve) → [`integrate`] → [`simulate`](mod@simulate).
+//! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows), [`mechanism`]
+//! (bodies, joints and the reaction solve) and [`limits`] (joint limits, `docs/limits.md`) → [`integrate`] →
+//! [`simulate`](mod@simulate).
 
 #![deny(missing_docs)]
 
@@ -44,6 +45,7 @@ pub mod inertia;
 pub mod integrate;
 pub mod joint_integration;
 pub mod joints;
+pub mod limits;
 pub mod mechanism;
 pub mod motion;
 pub mod motor;

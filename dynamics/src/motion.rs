@@ -150,6 +150,40 @@ pub trait Dynamics<A: Algebra> {
         Err(no_joint_coordinates())
     }
 
+    /// The number of joint limits the system enforces ([`crate::limits`]); zero (the default) without them.
+    fn limit_count(&self) -> usize {
+        0
+    }
+
+    /// The name of the joint of limit `index`.
+    fn limit_name(&self, _index: usize) -> &str {
+        ""
+    }
+
+    /// Per limit, the value whose fall to zero or below is its next transition, at `(t, states)`: while the joint is
+    /// free the gap to its nearer bound (rad or m), while it is held the reaction pushing it onto the bound (N m or N).
+    fn limit_values(
+        &self,
+        _t: f64,
+        _states: &[State<A>],
+        _workspace: &mut Self::Workspace,
+        _values: &mut [f64],
+    ) -> Result<(), ConstraintError> {
+        Ok(())
+    }
+
+    /// Limit `index`'s transition at `(t, states)`, where its value has fallen to zero: an impact at its bound (the
+    /// velocities in `states` change), a hold, or a release. Returns what changed, in order.
+    fn limit_transition(
+        &self,
+        _index: usize,
+        _t: f64,
+        _states: &mut [State<A>],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<Vec<crate::limits::LimitChange>, ConstraintError> {
+        Ok(Vec::new())
+    }
+
     /// The power (W) the system's non-conservative forces put in at the last evaluation in `workspace`, which the
     /// integrators integrate into the work done ([`crate::integrate::Stepper::last_work`]); zero by default.
     fn power(&self, _workspace: &Self::Workspace) -> f64 {

@@ -22,6 +22,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::algebra::Algebra;
 use crate::integrate::{Integrator, StepError, Stepper};
+use crate::limits::LimitTransition;
 use crate::motion::Dynamics;
 use crate::state::State;
 use crate::step_control::{self, Controller, StepStatistics, Tolerance};
@@ -129,6 +130,14 @@ pub enum SimulationError {
     NoErrorEstimate {
         /// The integrator's name.
         method: &'static str,
+    },
+    /// A limited joint starts beyond its limit by more than [`AT_BOUND`].
+    #[error("joint {joint}: starts {depth:e} (rad or m) beyond its limit")]
+    BeyondLimit {
+        /// The limited joint's name.
+        joint: String,
+        /// How far beyond its nearer bound it starts (rad or m).
+        depth: f64,
     },
     /// An adaptive run needed a step too short for the clock to advance by: the motion is singular there (a
     /// collision of the bodies' paths, a force without bound) or the tolerance is below what round-off allows.
@@ -744,6 +753,9 @@ pub struct Simulation<A: Algebra> {
     pub stepping_time: Duration,
     /// The located event crossings, in time order.
     pub events: Vec<EventHit<A>>,
+    /// The joint limits' impacts, holds and releases, in time order ([`crate::limits`]); at the start, those of
+    /// joints that start on a bound.
+    pub transitions: Vec<LimitTransition>,
     /// Why the run ended early, if it did; it then ends with a sample at that time.
     pub stopped: Option<Stop>,
 }
@@ -822,48 +834,60 @@ const EVENT_ITERATIONS: usize = 200;
 /// cancel at its ends and are not seen.
 const EVENT_SCAN_PARTS: usize = 10;
 
+/// A located crossing: its time (s), the index of the event or limit, and the states there.
+type Located<A> = (f64, usize, Vec<State<A>>);
+
 /// A part of a step where an event crosses: `((a, value), (b, value))`, offsets into the step (s) and the event's
 /// values there.
 type Bracket = ((f64, f64), (f64, f64));
 
-/// The brackets `((a, value), (b, value))` (offsets into the step of length `h` from `t`) of the crossings of `event`
-/// within the step, whose values at its ends are `before` and `after`: with a continuous extension, between the
-/// [`EVENT_SCAN_PARTS`] parts of the step (its states there unprojected: a scan, not a location), else between
-/// the step's ends.
-fn crossing_brackets<A: Algebra, D: Dynamics<A> + ?Sized>(
-    event: &mut Event<'_, A>,
+/// The states inside a step at which its crossings are looked for: with a continuous extension, the
+/// [`EVENT_SCAN_PARTS`] parts of the step of length `h` (offsets into it, the states unprojected: a scan, not a
+/// location); none without one. `scan` keeps its allocations from step to step.
+fn scan_states<A: Algebra, D: Dynamics<A> + ?Sized>(
     stepper: &mut Stepper<'_, A, D>,
-    (t, h): (f64, f64),
-    (before, after): (f64, f64),
+    h: f64,
+    scan: &mut Vec<(f64, Vec<State<A>>)>,
     probe: &mut [State<A>],
-) -> Result<Vec<Bracket>, SimulationError> {
-    let mut points = vec![(0.0, before)];
+) -> Result<usize, SimulationError> {
+    let mut count = 0;
     if stepper.integrator().estimate_order().is_some() {
         for part in 1..EVENT_SCAN_PARTS {
             let theta = part as f64 / EVENT_SCAN_PARTS as f64;
             if stepper.dense_output(theta, probe)?.is_none() {
                 break;
             }
-            points.push((theta * h, event.value(t + theta * h, probe)?));
+            match scan.get_mut(count) {
+                Some((offset, states)) => {
+                    *offset = theta * h;
+                    states.copy_from_slice(probe);
+                }
+                None => scan.push((theta * h, probe.to_vec())),
+            }
+            count += 1;
         }
     }
-    points.push((h, after));
-    Ok(points
-        .windows(2)
-        .filter(|pair| event.crosses(pair[0].1, pair[1].1))
-        .map(|pair| (pair[0], pair[1]))
-        .collect())
+    Ok(count)
 }
 
-/// The crossing of `event` within the part `((a, value), (b, value))` of the step of length `h` from `(t, start)`
-/// (offsets into the step), where its value goes from not zero to the other sign or zero: regula falsi on the
+/// The brackets of the crossings (by `crosses`) in the values `points`, `(offset into the step, value)` in order.
+fn brackets(points: &[(f64, f64)], crosses: impl Fn(f64, f64) -> bool) -> Vec<Bracket> {
+    points
+        .windows(2)
+        .filter(|pair| crosses(pair[0].1, pair[1].1))
+        .map(|pair| (pair[0], pair[1]))
+        .collect()
+}
+
+/// The crossing of the watched `value` within the part `((a, value), (b, value))` of the step of length `h` from
+/// `(t, start)` (offsets into the step), where it goes from not zero to the other sign or zero: regula falsi on the
 /// partial step length with the Illinois modification (the retained end's value halved when the same end is kept
 /// twice), bisection where the secant leaves the bracket. Returns the first time found at or after the crossing,
 /// within [`EVENT_ULPS`] of the crossing, and the states there.
 #[allow(clippy::too_many_arguments)]
-fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
-    event: &mut Event<'_, A>,
-    stepper: &mut Stepper<'_, A, D>,
+fn locate<'d, A: Algebra, D: Dynamics<A> + ?Sized>(
+    value: &mut impl FnMut(&mut Stepper<'d, A, D>, f64, &[State<A>]) -> Result<f64, SimulationError>,
+    stepper: &mut Stepper<'d, A, D>,
     (t, h): (f64, f64),
     start: &[State<A>],
     end: &[State<A>],
@@ -885,7 +909,7 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
             m = 0.5 * (a + b);
         }
         state_inside(stepper, (t, h), m, start, probe)?;
-        let value = event.value(t + m, probe)?;
+        let value = value(stepper, t + m, probe)?;
         if value == 0.0 || value.signum() != before.signum() {
             (b, value_b) = (m, value);
             at_b.copy_from_slice(probe);
@@ -902,6 +926,68 @@ fn locate<A: Algebra, D: Dynamics<A> + ?Sized>(
         }
     }
     Ok((t + b, at_b))
+}
+
+/// The system's limit values at `(t, states)` into `values` ([`Dynamics::limit_values`]).
+fn limit_values<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    t: f64,
+    states: &[State<A>],
+    values: &mut [f64],
+) -> Result<(), SimulationError> {
+    let dynamics = stepper.dynamics();
+    dynamics
+        .limit_values(t, states, stepper.workspace(), values)
+        .map_err(|error| StepError::Constraint { t, error }.into())
+}
+
+/// The earliest limit transition in the step of length `h` from `(t, start)` to `end`, the limits' values at the
+/// step's start being `before`: the crossings of every limit's value to zero or below, scanned at the step's ends and
+/// at `scan` inside it, the earliest part's located ([`locate`]). Returns its time, the limit's index and the states
+/// there.
+#[allow(clippy::too_many_arguments)]
+fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    (t, h): (f64, f64),
+    (start, end): (&[State<A>], &[State<A>]),
+    before: &[f64],
+    scan: &[(f64, Vec<State<A>>)],
+    probe: &mut [State<A>],
+) -> Result<Option<Located<A>>, SimulationError> {
+    let count = before.len();
+    let mut values = vec![0.0; count];
+    // points[i]: (offset, value) of limit i along the step.
+    let mut points: Vec<Vec<(f64, f64)>> = before.iter().map(|&value| vec![(0.0, value)]).collect();
+    for (offset, states) in scan
+        .iter()
+        .map(|(offset, states)| (*offset, states.as_slice()))
+        .chain([(h, end)])
+    {
+        limit_values(stepper, t + offset, states, &mut values)?;
+        points
+            .iter_mut()
+            .zip(&values)
+            .for_each(|(p, &value)| p.push((offset, value)));
+    }
+    let falls = |before: f64, after: f64| before > 0.0 && after <= 0.0;
+    let mut earliest: Option<Located<A>> = None;
+    for (index, points) in points.iter().enumerate() {
+        let Some(&bracket) = brackets(points, falls).first() else {
+            continue;
+        };
+        if earliest.as_ref().is_some_and(|(time, ..)| t + bracket.0 .0 >= *time) {
+            continue;
+        }
+        let mut watched = |stepper: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| {
+            limit_values(stepper, time, states, &mut values)?;
+            Ok(values[index])
+        };
+        let (time, states) = locate(&mut watched, stepper, (t, h), start, end, bracket, probe)?;
+        if earliest.as_ref().is_none_or(|(first, ..)| time < *first) {
+            earliest = Some((time, index, states));
+        }
+    }
+    Ok(earliest)
 }
 
 /// The state `offset` into the step of length `h` from `(t, start)`, into `probe`, and the work done from the step's
@@ -1055,20 +1141,39 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         }
     };
     let mut statistics = StepStatistics::default();
+    let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
+    // Joint limits: refused beyond their bounds, and those that start on one make their transition first.
+    let mut limits = vec![0.0; dynamics.limit_count()];
+    let mut transitions = Vec::new();
+    if !limits.is_empty() {
+        limit_values(&mut stepper, start, &state, &mut limits)?;
+        for (index, gap) in limits.clone().into_iter().enumerate() {
+            if gap < -AT_BOUND {
+                return Err(SimulationError::BeyondLimit {
+                    joint: dynamics.limit_name(index).to_owned(),
+                    depth: -gap,
+                });
+            }
+            if gap <= AT_BOUND {
+                transition(&mut stepper, (index, start), &mut state, &mut transitions)?;
+            }
+        }
+        limit_values(&mut stepper, start, &state, &mut limits)?;
+    }
     let sample_count = schedule.sample_count();
     // Reserved up to a bound, grown as the samples come: a long run of many bodies must not ask for its whole
     // record before its first step (10⁷ samples of 64 bodies would be 77 GB).
     let reserved = sample_count.min(RESERVED_SAMPLES);
     let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
-    record(dynamics, (start, 0.0), initial, &mut bodies);
+    record(dynamics, (start, 0.0), &state, &mut bodies);
     // The work done up to `state`'s time.
     let mut work = 0.0;
-    let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     let mut values = events
         .iter_mut()
-        .map(|event| event.value(start, initial))
+        .map(|event| event.value(start, &state))
         .collect::<Result<Vec<f64>, _>>()?;
     let (mut hits, mut stopped) = (Vec::new(), None);
+    let mut scan = Vec::new();
     let mut sample = 1;
     let mut last_recorded = start;
     let mut clock = Stopwatch {
@@ -1076,15 +1181,20 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         total: Duration::ZERO,
     };
     let mut now = start;
+    // The fixed step being taken (its index), and where it ends when a limit's transition cut it.
+    let (mut k, mut resume) = (0, None);
     clock.start();
-    for k in 0.. {
+    loop {
         let (t, h, end) = match controller.as_mut() {
-            None if k == schedule.step_count() => break,
             None => {
-                let (t, h) = schedule.step(k);
+                let (t, h) = match resume {
+                    Some(end) => (now, end - now),
+                    None if k == schedule.step_count() => break,
+                    None => schedule.step(k),
+                };
                 next.copy_from_slice(&state);
                 stepper.step(t, &mut next, h)?;
-                (t, h, t + h)
+                (t, h, resume.unwrap_or(t + h))
             }
             Some(_) if now >= finish => break,
             Some(controller) => {
@@ -1099,19 +1209,50 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
                 (now, h, if h == finish - now { finish } else { now + h })
             }
         };
-        now = end;
-        statistics.record_accepted(h);
         let step_work = stepper.last_work();
-        // Events in (t, end]: the earliest terminal one ends the run.
-        let mut terminal: Option<(f64, usize, Vec<State<A>>)> = None;
+        let scanned = if events.is_empty() && limits.is_empty() {
+            0
+        } else {
+            clock.stop();
+            let count = scan_states(&mut stepper, h, &mut scan, &mut probe)?;
+            clock.start();
+            count
+        };
+        // A joint limit's transition ends the step where it happens (the motion after it is another).
+        let cut = if limits.is_empty() {
+            None
+        } else {
+            limit_crossing(
+                &mut stepper,
+                (t, h),
+                (&state, &next),
+                &limits,
+                &scan[..scanned],
+                &mut probe,
+            )?
+        };
+        let reached = cut.as_ref().map_or(end, |(time, ..)| *time);
+        statistics.record_accepted(reached - t);
+        // Events in (t, reached]: the earliest terminal one ends the run.
+        let mut terminal: Option<Located<A>> = None;
         if !events.is_empty() {
             clock.stop();
             let mut found = Vec::new();
             for (index, event) in events.iter_mut().enumerate() {
                 let after = event.value(end, &next)?;
-                let brackets = crossing_brackets(event, &mut stepper, (t, h), (values[index], after), &mut probe)?;
-                for bracket in brackets {
-                    let (time, states) = locate(event, &mut stepper, (t, h), &state, &next, bracket, &mut probe)?;
+                let mut points = vec![(0.0, values[index])];
+                for (offset, states) in &scan[..scanned] {
+                    points.push((*offset, event.value(t + offset, states)?));
+                }
+                points.push((h, after));
+                for bracket in brackets(&points, |before, after| event.crosses(before, after)) {
+                    let mut watched =
+                        |_: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| event.value(time, states);
+                    let (time, states) =
+                        locate(&mut watched, &mut stepper, (t, h), &state, &next, bracket, &mut probe)?;
+                    if time > reached {
+                        continue;
+                    }
                     if event.terminal && terminal.as_ref().is_none_or(|(first, ..)| time < *first) {
                         terminal = Some((time, index, states.clone()));
                     }
@@ -1124,21 +1265,22 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
                 }
                 values[index] = after;
             }
-            let limit = terminal.as_ref().map_or(end, |(time, ..)| *time);
+            let limit = terminal.as_ref().map_or(reached, |(time, ..)| *time);
             found.retain(|hit| hit.t <= limit);
             found.sort_by(|x, y| x.t.total_cmp(&y.t));
             hits.extend(found);
             clock.start();
         }
-        let limit = terminal.as_ref().map_or(end, |(time, ..)| *time);
+        let limit = terminal.as_ref().map_or(reached, |(time, ..)| *time);
+        let whole = cut.is_none() && terminal.is_none();
         // Samples in (t, limit]: at the step's end from its states, inside it by a partial step.
         while sample < sample_count {
             let time = schedule.sample_time(sample);
             let at_end = schedule.sample_ends_step(k, sample, (time, end, h));
-            if at_end && terminal.is_none() {
+            if at_end && whole {
                 clock.stop();
                 record(dynamics, (time, work + step_work), &next, &mut bodies);
-            } else if !at_end && time < limit {
+            } else if !at_end && (time < limit || (cut.is_some() && time == limit)) {
                 let work_inside = state_inside(&mut stepper, (t, h), time - t, &state, &mut probe)?;
                 clock.stop();
                 record(dynamics, (time, work + work_inside), &probe, &mut bodies);
@@ -1160,13 +1302,34 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             stopped = Some(Stop::Event(index));
             break;
         }
-        std::mem::swap(&mut state, &mut next);
-        work += step_work;
+        if let Some((time, index, states)) = cut {
+            // The step's work up to the transition, then the transition, from the states there.
+            work += state_inside(&mut stepper, (t, h), time - t, &state, &mut probe)?;
+            state = states;
+            transition(&mut stepper, (index, time), &mut state, &mut transitions)?;
+            limit_values(&mut stepper, time, &state, &mut limits)?;
+            for (event, value) in events.iter_mut().zip(values.iter_mut()) {
+                *value = event.value(time, &state)?;
+            }
+            now = time;
+            resume = (controller.is_none() && time < end).then_some(end);
+        } else {
+            std::mem::swap(&mut state, &mut next);
+            work += step_work;
+            now = end;
+            resume = None;
+            if !limits.is_empty() {
+                limit_values(&mut stepper, end, &state, &mut limits)?;
+            }
+        }
+        if controller.is_none() && resume.is_none() {
+            k += 1;
+        }
         if let Some(observer) = observer.as_mut() {
             clock.stop();
-            if observer(end, &state).is_break() {
-                if last_recorded != end {
-                    record(dynamics, (end, work), &state, &mut bodies);
+            if observer(now, &state).is_break() {
+                if last_recorded != now {
+                    record(dynamics, (now, work), &state, &mut bodies);
                 }
                 stopped = Some(Stop::Observer);
                 break;
@@ -1182,6 +1345,33 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         statistics,
         stepping_time: clock.total,
         events: hits,
+        transitions,
         stopped,
     })
+}
+
+/// A limited joint this close to a bound (rad or m) at the start is on it; further beyond it is an error.
+pub const AT_BOUND: f64 = 1e-12;
+
+/// Limit `index`'s transition at `time` ([`Dynamics::limit_transition`]) on `state`, recorded in `transitions`.
+fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    (index, time): (usize, f64),
+    state: &mut [State<A>],
+    transitions: &mut Vec<LimitTransition>,
+) -> Result<(), SimulationError> {
+    let dynamics = stepper.dynamics();
+    let before = dynamics.energy(state);
+    let changes = dynamics
+        .limit_transition(index, time, state, stepper.workspace())
+        .map_err(|error| StepError::Constraint { t: time, error })?;
+    let energy_change = dynamics.energy(state) - before;
+    // A hold and its release at once share the impact's energy change: it is the hold's.
+    transitions.extend(changes.into_iter().enumerate().map(|(k, change)| LimitTransition {
+        t: time,
+        joint: dynamics.limit_name(index).to_owned(),
+        change,
+        energy_change: if k == 0 { energy_change } else { 0.0 },
+    }));
+    Ok(())
 }

@@ -114,8 +114,9 @@ impl Default for JointTerms {
     }
 }
 
-/// A linear relation `q̈_follower = multiplier · q̈_leader` between two one-coordinate joints (the acceleration
-/// level of a coupling `q_f = m q_l + offset`, a URDF mimic), with the indices of the two joints.
+/// A joint-space row `q̈_follower = multiplier · q̈_leader` on one-coordinate joints, by their indices: the
+/// acceleration level of a coupling `q_f = m q_l + offset` (a URDF mimic), or with multiplier 0 of a joint held at a
+/// limit's bound (`q̈ = 0`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct CouplingRow {
     pub follower: usize,
@@ -138,10 +139,13 @@ pub(crate) struct ArticulatedScratch {
     /// A response pass's bias forces and joint force terms.
     response_bias: Vec<Vector6<f64>>,
     response_force: Vec<f64>,
+    /// The rows' multipliers of the last solve: the generalised force (N m or N) each row put on its follower.
+    multipliers: Vec<f64>,
 }
 
 impl ArticulatedScratch {
-    pub(crate) fn new(bodies: usize, joints: usize, couplings: usize) -> Self {
+    /// Scratch for `bodies` bodies, `joints` joints and up to `rows` joint-space rows.
+    pub(crate) fn new(bodies: usize, joints: usize, rows: usize) -> Self {
         let body = BodyTerms {
             inertia: Inertia6::ZERO,
             bias: Vector6::zeros(),
@@ -154,10 +158,11 @@ impl ArticulatedScratch {
             coupled: false,
             bodies: vec![body; bodies],
             joints: vec![JointTerms::default(); joints],
-            responses: vec![vec![Vector6::zeros(); bodies]; couplings],
-            response_rates: vec![vec![0.0; joints]; couplings],
+            responses: vec![vec![Vector6::zeros(); bodies]; rows],
+            response_rates: vec![vec![0.0; joints]; rows],
             response_bias: vec![Vector6::zeros(); bodies],
             response_force: vec![0.0; joints],
+            multipliers: Vec::with_capacity(rows),
         }
     }
 }
@@ -246,6 +251,11 @@ fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
 }
 
 impl ArticulatedScratch {
+    /// The joint-space rows' multipliers of the last solve, in the rows' order.
+    pub fn multipliers(&self) -> &[f64] {
+        &self.multipliers
+    }
+
     /// The reference point o of the last solve.
     pub fn origin(&self) -> Vector3<f64> {
         self.origin
@@ -427,7 +437,9 @@ impl Articulation {
             }
         }
         let lambda = gram.cholesky().ok_or(())?.solve(&rhs);
-        for (k, response) in scratch.responses.iter().enumerate() {
+        scratch.multipliers.clear();
+        scratch.multipliers.extend(lambda.iter());
+        for (k, response) in scratch.responses.iter().take(r).enumerate() {
             for (body, terms) in scratch.bodies.iter_mut().enumerate() {
                 terms.acceleration += response[body] * lambda[k];
             }
@@ -565,6 +577,7 @@ impl Articulation {
             scratch.bodies[body].acceleration = acceleration;
         }
         scratch.coupled = !couplings.is_empty();
+        scratch.multipliers.clear();
         if scratch.coupled {
             self.couple(couplings, scratch).map_err(|_| self.order[0])?;
         }

@@ -14,6 +14,7 @@ use nalgebra::{DMatrix, DVector, Isometry3, Matrix3, Vector3, Vector6};
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
 use crate::joints::{JointKind, JointModel, Side};
+use crate::limits::Bound;
 use crate::mechanism::articulated::{axis_column, axis_rate};
 use crate::mechanism::spatial::{force_cross, motion_cross, spatial_body, Inertia6, SpatialBody};
 use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError, MechanismWorkspace};
@@ -176,6 +177,15 @@ impl JointSpace {
         &self.groups
     }
 
+    /// The coordinate group of joint index `joint`, if it is a joint model.
+    pub(super) fn group_of_joint(&self, joint: usize) -> Option<&CoordinateGroup> {
+        self.group_of_joint
+            .get(joint)
+            .copied()
+            .flatten()
+            .map(|g| &self.groups[g])
+    }
+
     /// The group of this name (a joint's, or a free root body's).
     pub fn group(&self, name: &str) -> Option<&CoordinateGroup> {
         self.groups.iter().find(|g| g.name == name)
@@ -299,7 +309,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
-    fn world_body(&self, index: usize, state: &State<A>) -> WorldBody {
+    pub(super) fn world_body(&self, index: usize, state: &State<A>) -> WorldBody {
         let (position, rotation) = state.pose();
         let velocity = state.world_velocity(&self.bodies[index].body);
         WorldBody {
@@ -358,7 +368,13 @@ impl<A: Algebra> Mechanism<A> {
         Ok(q)
     }
 
-    fn read_positions(&self, group: &CoordinateGroup, bodies: &[WorldBody], previous: Option<&[f64]>, out: &mut [f64]) {
+    pub(super) fn read_positions(
+        &self,
+        group: &CoordinateGroup,
+        bodies: &[WorldBody],
+        previous: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
         let parent = self.parent_of(group, bodies);
         let child = &bodies[group.body];
         let relative = parent.pose.inverse() * child.pose;
@@ -380,7 +396,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(v)
     }
 
-    fn read_velocities(&self, group: &CoordinateGroup, bodies: &[WorldBody], out: &mut [f64]) {
+    pub(super) fn read_velocities(&self, group: &CoordinateGroup, bodies: &[WorldBody], out: &mut [f64]) {
         let parent = self.parent_of(group, bodies);
         let child = &bodies[group.body];
         let x = child
@@ -505,12 +521,14 @@ impl<A: Algebra> Mechanism<A> {
     /// Projects states onto the joint models by their coordinates (docs/mechanisms.md §M7): the roots keep their
     /// states; every other body is placed by its joint's positions and velocities read from the states (taken
     /// nearest `previous` positions, if any, which it updates), a driven joint's its drive's at `t`, the couplings
-    /// imposed on them, from its parent as placed. Exact on the joints to round-off, in O(N).
+    /// imposed on them and the held limits at their bounds (per limit, `held`), from its parent as placed. Exact on
+    /// the joints to round-off, in O(N).
     pub(crate) fn project_coordinates(
         &self,
         t: f64,
         states: &mut [State<A>],
         previous: &mut Vec<f64>,
+        held: &[Option<Bound>],
     ) -> Result<(), ConstraintError> {
         let Some(space) = self.coordinates() else {
             return Ok(());
@@ -534,6 +552,13 @@ impl<A: Algebra> Mechanism<A> {
             let (follower, leader) = (at(coupling.follower), at(coupling.leader));
             q[follower.position_offset] = coupling.multiplier * q[leader.position_offset] + coupling.offset;
             v[follower.velocity_offset] = coupling.multiplier * v[leader.velocity_offset];
+        }
+        for (limit, bound) in self.limits.iter().zip(held) {
+            if let Some(bound) = bound {
+                let group = &space.groups[space.group_of_joint[limit.joint].expect("limited joints are joint models")];
+                q[group.position_offset] = limit.range.at(*bound);
+                v[group.velocity_offset] = 0.0;
+            }
         }
         let mut placed = read;
         for &g in &space.order {

@@ -18,6 +18,7 @@ mod articulated;
 mod elements;
 mod joint;
 mod joint_space;
+mod limits;
 mod reduce;
 mod solve;
 mod spatial;
@@ -36,6 +37,7 @@ use crate::exponential::exp;
 use crate::force_elements::ForceElement;
 use crate::forces::Force;
 use crate::joints::{JointKind, JointModel, Unconstrained};
+use crate::limits::{Bound, JointLimit, LimitChange};
 use crate::motion::{BodyRates, Dynamics, Rates};
 use crate::motor;
 use crate::state::State;
@@ -224,6 +226,15 @@ pub struct Mechanism<A: Algebra> {
     coupling_rows: Vec<CouplingRow>,
     /// Forces between bodies (docs/mechanisms.md §M8).
     elements: Vec<ForceElement<A>>,
+    /// The joint models' limits, in the order of their joints.
+    limits: Vec<Limit>,
+}
+
+/// A limited joint model: its joint index and range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Limit {
+    joint: usize,
+    range: JointLimit,
 }
 
 /// `q_follower = multiplier · q_leader + offset` between two one-coordinate joint models (joint indices).
@@ -320,6 +331,10 @@ pub struct MechanismWorkspace<A: Algebra> {
     element_wrenches: Vec<ScrewCoordinates>,
     /// The bodies placed by forward kinematics (stepping in joint coordinates).
     placed: Vec<joint_space::WorldBody>,
+    /// Per limit, the bound it is held at, if it is (docs/limits.md).
+    held: Vec<Option<Bound>>,
+    /// The articulated solve's joint-space rows: the couplings', then one per held limit.
+    rows: Vec<CouplingRow>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -402,6 +417,7 @@ impl<A: Algebra> Mechanism<A> {
             joint_space: std::sync::OnceLock::new(),
             couplings: Vec::new(),
             coupling_rows: Vec::new(),
+            limits: Vec::new(),
             elements: Vec::new(),
         }
     }
@@ -521,10 +537,21 @@ impl<A: Algebra> Mechanism<A> {
         reference: impl Into<Reference>,
         constraint: impl Constraint<A> + 'static,
     ) -> Result<JointId, MechanismError> {
+        self.keep_joint_space_rows(constraint.name())?;
+        self.push_joint(body, reference.into(), constraint)
+    }
+
+    /// [`Mechanism::add_joint`] without the check that couplings and limits keep the articulated solve (a joint model
+    /// keeps it).
+    fn push_joint(
+        &mut self,
+        body: BodyId,
+        reference: Reference,
+        constraint: impl Constraint<A> + 'static,
+    ) -> Result<JointId, MechanismError> {
         let index = self.check_body(body)?;
-        let reference = self.reference_index(index, reference.into(), constraint.name())?;
+        let reference = self.reference_index(index, reference, constraint.name())?;
         let name = constraint.name().to_owned();
-        self.keep_couplings(&name)?;
         let (rank, rows) = (constraint.rank(), constraint.row_count());
         if rank == 0 || rank > rows.min(6) {
             return Err(ConstraintError::InvalidRank { name, rank, rows }.into());
@@ -635,10 +662,7 @@ impl<A: Algebra> Mechanism<A> {
             });
             JointId(self.joints.len() - 1)
         } else {
-            let couplings = std::mem::take(&mut self.couplings);
-            let added = self.add_joint(child, parent, rows);
-            self.couplings = couplings;
-            added?
+            self.push_joint(child, parent, rows)?
         };
         self.joints[id.0].model = Some(model);
         self.rebuild();
@@ -717,6 +741,9 @@ impl<A: Algebra> Mechanism<A> {
         if self.joints[follower.0].model.as_ref().is_some_and(|m| m.is_driven()) {
             return refuse("a driven joint cannot follow another".to_owned());
         }
+        if self.limits.iter().any(|limit| limit.joint == follower.0) {
+            return refuse("a limited joint cannot follow another: limit its leader".to_owned());
+        }
         if !(multiplier.is_finite() && offset.is_finite()) {
             return refuse(format!("multiplier {multiplier} and offset {offset} must be finite"));
         }
@@ -755,17 +782,21 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
-    /// An error if `change` would leave couplings without the articulated solve they need.
-    fn keep_couplings(&self, change: &str) -> Result<(), ConstraintError> {
-        match self.couplings.first() {
-            Some(c) => Err(ConstraintError::InvalidParameter {
-                name: self.joints[c.follower].name().to_owned(),
-                reason: format!(
-                    "{change}: this mechanism couples joint coordinates, which needs every joint a joint model in a tree and no Baumgarte stabilisation"
-                ),
-            }),
-            None => Ok(()),
-        }
+    /// An error if `change` would leave couplings or limits without the articulated solve their joint-space rows
+    /// need.
+    fn keep_joint_space_rows(&self, change: &str) -> Result<(), ConstraintError> {
+        let (joint, what) = match (self.couplings.first(), self.limits.first()) {
+            (Some(c), _) => (c.follower, "couples joint coordinates"),
+            (None, Some(limit)) => (limit.joint, "limits joint coordinates"),
+            (None, None) => return Ok(()),
+        };
+        Err(ConstraintError::InvalidParameter {
+            name: self.joints[joint].name().to_owned(),
+            reason: format!(
+                "{change}: this mechanism {what}, which needs every joint a joint model in a tree and no Baumgarte \
+                 stabilisation"
+            ),
+        })
     }
 
     fn reference_index(&self, index: usize, reference: Reference, name: &str) -> Result<Option<usize>, MechanismError> {
@@ -790,7 +821,7 @@ impl<A: Algebra> Mechanism<A> {
     /// Restricts a joint's reaction to the span of `wrenches` (in its reference's frame; theory §7.1 method 2)
     /// instead of the span of its rows. Rows the basis cannot express are reported as inconsistent.
     pub fn set_reaction_basis(&mut self, joint: JointId, wrenches: Vec<A::Screw>) -> Result<(), MechanismError> {
-        self.keep_couplings("reaction basis")?;
+        self.keep_joint_space_rows("reaction basis")?;
         let entry = self
             .joints
             .get_mut(joint.0)
@@ -821,7 +852,7 @@ impl<A: Algebra> Mechanism<A> {
             .into());
         }
         if matches!(stabilisation, Stabilisation::Baumgarte { .. }) {
-            self.keep_couplings("Baumgarte stabilisation")?;
+            self.keep_joint_space_rows("Baumgarte stabilisation")?;
         }
         if matches!(stabilisation, Stabilisation::Projection { .. }) {
             if let Some(joint) = self.joints.iter().find(|j| !j.constraint.has_position_residual()) {
@@ -924,6 +955,12 @@ impl<A: Algebra> Mechanism<A> {
         let articulated = !matches!(self.stabilisation, Stabilisation::Baumgarte { .. });
         self.articulation = Articulation::new(self.bodies.len(), &tree).filter(|_| articulated);
         self.joint_space = std::sync::OnceLock::new();
+        self.limits = (self.joints.iter().enumerate())
+            .filter_map(|(joint, j)| {
+                let range = *j.model.as_ref()?.limit()?;
+                Some(Limit { joint, range })
+            })
+            .collect();
     }
 
     /// The stabilisation in use.
@@ -1101,11 +1138,17 @@ impl<A: Algebra> Mechanism<A> {
             motors: vec![zero_motor; self.bodies.len()],
             momenta: vec![zero_screw; self.bodies.len()],
             stage_factors: false,
-            articulated: ArticulatedScratch::new(self.bodies.len(), self.joints.len(), self.couplings.len()),
+            articulated: ArticulatedScratch::new(
+                self.bodies.len(),
+                self.joints.len(),
+                self.couplings.len() + self.limits.len(),
+            ),
             previous_positions: Vec::new(),
             power: 0.0,
             element_wrenches: vec![ScrewCoordinates::default(); self.bodies.len()],
             placed: Vec::new(),
+            held: vec![None; self.limits.len()],
+            rows: self.coupling_rows.clone(),
         }
     }
 
@@ -1287,8 +1330,8 @@ impl<A: Algebra> Mechanism<A> {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
         }
-        if self.articulation.is_none() && !self.couplings.is_empty() {
-            self.keep_couplings("the general solve")?;
+        if self.articulation.is_none() {
+            self.keep_joint_space_rows("the general solve")?;
         }
         if let Some(articulation) = &self.articulation {
             self.solve_articulated(articulation, t, workspace, true)
@@ -1315,6 +1358,29 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
+    /// [`Mechanism::evaluate`] at the bodies' states.
+    fn evaluate_states(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        let (mut motors, mut momenta) = (
+            std::mem::take(&mut workspace.motors),
+            std::mem::take(&mut workspace.momenta),
+        );
+        for (i, state) in states.iter().enumerate() {
+            motors[i] = state.motor;
+            // The sandwich `~RΩR`, as the paper's RK4 has it: its stage motors are not unit, and the sandwich
+            // scales by ⟨R~R⟩₀ (the frame map would divide it out and change the method).
+            momenta[i] = state.body_momentum();
+        }
+        let result = self.evaluate(t, &motors, &momenta, workspace);
+        workspace.motors = motors;
+        workspace.momenta = momenta;
+        result
+    }
+
     /// The articulated solve (docs/mechanisms.md §M7) on the workspace's body kinematics and external wrenches,
     /// with the joints' reactions when `reactions` is set; fails with the body whose articulated inertia is not
     /// positive definite.
@@ -1330,6 +1396,7 @@ impl<A: Algebra> Mechanism<A> {
             external,
             reactions: reaction_wrenches,
             articulated,
+            rows,
             ..
         } = workspace;
         articulation.solve(
@@ -1338,7 +1405,7 @@ impl<A: Algebra> Mechanism<A> {
             &self.bodies,
             bodies,
             external,
-            &self.coupling_rows,
+            rows,
             articulated,
             reactions.then_some(reaction_wrenches.as_mut_slice()),
         )
@@ -1542,7 +1609,7 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         if self.articulation.is_some() {
-            return self.project_coordinates(t, states, &mut workspace.previous_positions);
+            return self.project_coordinates(t, states, &mut workspace.previous_positions, &workspace.held);
         }
         for state in states.iter_mut() {
             state.motor = motor::normalise::<A>(state.motor);
@@ -1791,20 +1858,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     ) -> Result<(), ConstraintError> {
         self.check_count("states", states.len())?;
         self.check_count("rates", rates.len())?;
-        let (mut motors, mut momenta) = (
-            std::mem::take(&mut workspace.motors),
-            std::mem::take(&mut workspace.momenta),
-        );
-        for (i, state) in states.iter().enumerate() {
-            motors[i] = state.motor;
-            // The sandwich `~RΩR`, as the paper's RK4 has it: its stage motors are not unit, and the sandwich
-            // scales by ⟨R~R⟩₀ (the frame map would divide it out and change the method).
-            momenta[i] = state.body_momentum();
-        }
-        let result = self.evaluate(t, &motors, &momenta, workspace);
-        workspace.motors = motors;
-        workspace.momenta = momenta;
-        result?;
+        self.evaluate_states(t, states, workspace)?;
         for (i, (rate, state)) in rates.iter_mut().zip(states).enumerate() {
             let kinematics = &workspace.bodies[i].kinematics;
             // The reactions and the force elements' wrenches, body frame, moved to the world together.
@@ -1914,5 +1968,33 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         self.joint_rates_at(t, positions, velocities, accelerations, workspace)
+    }
+
+    fn limit_count(&self) -> usize {
+        Mechanism::limit_count(self)
+    }
+
+    fn limit_name(&self, index: usize) -> &str {
+        Mechanism::limit_name(self, index)
+    }
+
+    fn limit_values(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+        values: &mut [f64],
+    ) -> Result<(), ConstraintError> {
+        Mechanism::limit_values(self, t, states, workspace, values)
+    }
+
+    fn limit_transition(
+        &self,
+        index: usize,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<LimitChange>, ConstraintError> {
+        Mechanism::limit_transition(self, index, t, states, workspace)
     }
 }

@@ -17,6 +17,7 @@ mod force_line;
 mod joint_integration;
 mod joint_space_errors;
 mod joints;
+mod limits;
 mod long_run;
 mod mechanism_solve;
 mod newton_euler;
