@@ -956,8 +956,13 @@ fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
 ) -> Result<Option<Located<A>>, SimulationError> {
     let count = before.len();
     let mut values = vec![0.0; count];
-    // points[i]: (offset, value) of limit i along the step.
-    let mut points: Vec<Vec<(f64, f64)>> = before.iter().map(|&value| vec![(0.0, value)]).collect();
+    // points[i]: (offset, value) of limit i along the step. A value within AT_BOUND of zero at the start is a joint
+    // that has just left its bound (bounced or released) or the reaction of one just held: it starts at +0, and falls
+    // only below -AT_BOUND, so that round-off about zero is no transition while a bounce too short for the scan to
+    // see between two points (it is then past the bound) is one.
+    let mut points: Vec<Vec<(f64, f64)>> = (before.iter())
+        .map(|&value| vec![(0.0, if value.abs() <= AT_BOUND { 0.0 } else { value })])
+        .collect();
     for (offset, states) in scan
         .iter()
         .map(|(offset, states)| (*offset, states.as_slice()))
@@ -969,7 +974,7 @@ fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
             .zip(&values)
             .for_each(|(p, &value)| p.push((offset, value)));
     }
-    let falls = |before: f64, after: f64| before > 0.0 && after <= 0.0;
+    let falls = |before: f64, after: f64| (before > 0.0 && after <= 0.0) || (before == 0.0 && after < -AT_BOUND);
     let mut earliest: Option<Located<A>> = None;
     for (index, points) in points.iter().enumerate() {
         let Some(&bracket) = brackets(points, falls).first() else {

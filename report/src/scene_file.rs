@@ -31,6 +31,7 @@ use dynamics::constraints::{
 };
 use dynamics::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::integrate::Integrator;
+use dynamics::limits::JointLimit;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::step_control::Tolerance;
 use dynamics::{
@@ -47,6 +48,7 @@ use elements::{
     bounded, element_name, non_negative, CoupleSpec, DriveSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec,
     TimeValue,
 };
+use joint_models::LimitSpec;
 use robot::{JointDynamicsName, LoadedRobot, RobotColumns, RobotJoint, RobotSpec};
 
 /// Where an end of a joint or force element is: the mechanism's reference (a body or the world) and the end's frame in
@@ -322,6 +324,9 @@ pub(crate) struct JointSpec {
     /// The prescribed coordinate of a hinge or prismatic joint.
     #[serde(default)]
     pub(crate) drive: Option<DriveSpec>,
+    /// The range of a hinge's or prismatic joint's coordinate, enforced exactly.
+    #[serde(default)]
+    pub(crate) limit: Option<LimitSpec>,
     #[serde(flatten)]
     pub(crate) geometry: Geometry,
 }
@@ -359,6 +364,7 @@ pub(crate) struct LayoutJoint {
     /// A `[[joint]]` entry (a joint model where it can be), not a `[[constraints]]` one.
     pub(crate) entry: bool,
     pub(crate) drive: Option<DriveSpec>,
+    pub(crate) limit: Option<LimitSpec>,
 }
 
 /// The scene's bodies and joints.
@@ -1896,6 +1902,7 @@ impl SceneFile {
                         geometry: c.geometry.clone(),
                         entry: false,
                         drive: None,
+                        limit: None,
                     })
                     .collect();
                 Ok(Layout {
@@ -2015,6 +2022,7 @@ impl SceneFile {
                 geometry: spec.geometry.clone(),
                 entry: true,
                 drive: spec.drive,
+                limit: spec.limit,
             });
         }
         Ok(Layout {
@@ -2095,6 +2103,7 @@ impl SceneFile {
         let mut geometries = Vec::with_capacity(layout.joints.len());
         let mut file_joints: Vec<(String, JointId, Option<JointKind>, bool)> = Vec::new();
         let mut driven: Vec<(JointId, DriveSpec)> = Vec::new();
+        let mut limited: Vec<(String, JointLimit)> = Vec::new();
         for joint in &layout.joints {
             let name = &joint.name;
             let child = offset + joint.body;
@@ -2107,6 +2116,10 @@ impl SceneFile {
             let drive = joint
                 .drive
                 .map(|d| d.checked(&format!("joint {name}: drive"), self.duration))
+                .transpose()?;
+            let limit = joint
+                .limit
+                .map(|l| l.limit(&format!("joint {name}: limit")))
                 .transpose()?;
             let pinned = joint.formulation == FormulationName::Pinning;
             let parent = index_of(reference);
@@ -2127,7 +2140,16 @@ impl SceneFile {
             let frame_pose = (frame.translation.vector, frame.rotation);
             let in_body = checked.in_world(&frame_pose);
             match model {
-                Some(model) => {
+                Some(mut model) => {
+                    if let Some(limit) = limit {
+                        model = model.with_limit(limit).map_err(|error| match error {
+                            ConstraintError::InvalidParameter { reason, .. } => {
+                                invalid(format!("joint {name}: limit"), reason)
+                            }
+                            other => other.into(),
+                        })?;
+                        limited.push((name.clone(), limit));
+                    }
                     let kind = *model.kind();
                     let rows = joint_models::rows::<A>(&model, pinned, drive)?;
                     let id = system.connect_with_rows(ids[joint.body], reference, model, rows)?;
@@ -2138,15 +2160,22 @@ impl SceneFile {
                     }
                 }
                 None => {
-                    if drive.is_some() {
-                        return Err(invalid(
-                            format!("joint {name}: drive"),
-                            if joint_models::has_model(&checked) {
-                                "only a body's first joint, its joint model, is driven; this one closes a loop"
-                            } else {
-                                "only hinge and prismatic joints are driven"
-                            },
-                        ));
+                    for (key, given, verb) in [
+                        ("limit", limit.is_some(), "limited"),
+                        ("drive", drive.is_some(), "driven"),
+                    ] {
+                        if given {
+                            return Err(invalid(
+                                format!("joint {name}: {key}"),
+                                if joint_models::has_model(&checked) {
+                                    format!(
+                                        "only a body's first joint, its joint model, is {verb}; this one closes a loop"
+                                    )
+                                } else {
+                                    format!("only hinge and prismatic joints are {verb}")
+                                },
+                            ));
+                        }
                     }
                     let constraint = constraint_of::<A>(name.clone(), in_body, pinned)?;
                     let id = system.add_joint(ids[joint.body], reference, constraint)?;
@@ -2190,6 +2219,25 @@ impl SceneFile {
             }
             initial = system.states_from_joints(&q, &v)?;
             system.project(0.0, &mut initial)?;
+        }
+        if !limited.is_empty() {
+            // A start outside a limit, by the joint's coordinate as the start gives it.
+            let q = system.joint_positions(&initial, None)?;
+            let space = system.joint_space()?;
+            for (name, limit) in &limited {
+                let group = space.group(name).expect("a limited joint is a joint model");
+                let at = q[group.position_offset()];
+                if limit.gap(at) < -dynamics::simulate::AT_BOUND {
+                    return Err(invalid(
+                        format!("joint {name}: limit"),
+                        format!(
+                            "the start puts the joint at {at:?}, outside [{:?}, {:?}]",
+                            limit.lower(),
+                            limit.upper()
+                        ),
+                    ));
+                }
+            }
         }
         // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.
         system.rates_at(0.0, &initial)?;

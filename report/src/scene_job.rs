@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
+use dynamics::limits::{LimitChange, LimitTransition};
 use dynamics::simulate::Sample;
 use dynamics::{Cga, Correction, Dynamics, Pga, State, StepStatistics};
 
@@ -56,9 +57,11 @@ pub struct AlgebraRun {
     pub(crate) cpu_per_simulated_second: f64,
     /// Stepping time per step (s).
     pub(crate) time_per_step: f64,
-    /// The energy change per sample, |E(t) − E₀| relative to |E₀| (absolute, in J, if |E₀| is below
-    /// [`ABSOLUTE_ENERGY_BELOW`]).
+    /// The energy change per sample, |E(t) − E₀ − L(t)| relative to |E₀| (absolute, in J, if |E₀| is below
+    /// [`ABSOLUTE_ENERGY_BELOW`]), L(t) what the joint limits' impacts changed it by up to t (zero without limits).
     pub energy_change: Vec<f64>,
+    /// The joint limits' impacts, holds and releases.
+    pub transitions: Vec<LimitTransition>,
     /// The largest joint violation per sample (m).
     pub(crate) violation: Vec<f64>,
     /// The work done by the force elements from the start to each sample (J; `Sample::work`).
@@ -118,9 +121,16 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
     } else {
         initial_energy.abs()
     };
+    let transitions = simulation.transitions;
+    let impacts = |t: f64| -> f64 {
+        (transitions.iter())
+            .filter(|transition| transition.t <= t)
+            .map(|transition| transition.energy_change)
+            .sum()
+    };
     let energy_change = samples
         .iter()
-        .map(|s| (s.energy - initial_energy).abs() / scale)
+        .map(|s| (s.energy - initial_energy - impacts(s.t)).abs() / scale)
         .collect();
     let mechanism = system.mechanism();
     let robot = system.joint_columns().is_some();
@@ -175,6 +185,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         bodies,
         start_correction: system.start_correction.clone(),
         statistics: simulation.statistics,
+        transitions,
     })
 }
 
@@ -490,13 +501,37 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             corrections.join("; ")
         );
     }
+    let limited = runs.iter().any(|run| !run.transitions.is_empty());
+    for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
+        let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
+        let taken: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+        let _ = writeln!(
+            out,
+            "Joint limits ({}): {} bounces, {} holds, {} releases, the first at t = {:.6} s; the impacts changed the \
+             energy by {} J.",
+            run.algebra.name(),
+            count(|c| matches!(c, LimitChange::Bounced { .. })),
+            count(|c| matches!(c, LimitChange::Held { .. })),
+            count(|c| matches!(c, LimitChange::Released { .. })),
+            run.transitions[0].t,
+            scientific(taken),
+        );
+    }
+    if limited {
+        let _ = writeln!(out);
+    }
     let _ = writeln!(
         out,
-        "Energy change: {}.",
+        "Energy change: {}{}.",
         if setup.relative_energy {
             "|E(t) − E₀| / |E₀|"
         } else {
             "|E(t) − E₀| in J (|E₀| < 1e-6 J, where a relative change means nothing)"
+        },
+        if limited {
+            ", less what the limits' impacts changed it by up to t (recorded at each impact)"
+        } else {
+            ""
         }
     );
     if setup.conservative {

@@ -39,6 +39,8 @@ pub fn build_robot<A: Algebra>(id: RobotId) -> Result<RobotScene<A>, RobotSceneE
     let options = BuildOptions {
         root: if reference.free_base { Root::Free } else { Root::Fixed },
         gravity: reference.gravity,
+        // Pinocchio's reference motions (ABA) do not enforce the limits.
+        limits: urdf_import::Limits::Ignore,
     };
     let robot = Robot::<A>::build(model, &options)?;
     let base = reference.base.map_or_else(BaseStart::default, |b| BaseStart {

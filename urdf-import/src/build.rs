@@ -1,7 +1,8 @@
 //! Stage 5: a merged [`RobotModel`] built into a `dynamics` [`Mechanism`] — one body per rigid body (its inertia
 //! diagonalised, the reference link's frame kept as the body's frame), one joint model per moving joint in file
-//! order, gravity on every body, a coupling per mimic (in [`MimicMode::Constraint`]), and projection onto the
-//! joints after every step. The root is fixed to the world (its body is the world) or free (a floating base).
+//! order (with its `<limit>` if [`Limits::Enforce`]), gravity on every body, a coupling per mimic (in
+//! [`MimicMode::Constraint`]), and projection onto the joints after every step. The root is fixed to the world (its
+//! body is the world) or free (a floating base).
 
 use dynamics::constraints::Stabilisation;
 use dynamics::{
@@ -9,6 +10,8 @@ use dynamics::{
     State,
 };
 use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
+
+use dynamics::limits::JointLimit;
 
 use crate::merge::{RigidBody, RobotModel};
 use crate::parse::JointKind as UrdfJoint;
@@ -24,6 +27,21 @@ pub enum Root {
     Free,
 }
 
+/// Whether the URDF's `<limit lower upper>` of revolute and prismatic joints are enforced.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Limits {
+    /// Not enforced: the joints move freely, as in Pinocchio's and most URDF simulators' dynamics without contacts.
+    #[default]
+    Ignore,
+    /// Enforced exactly (`dynamics::limits`): impacts at the bounds with this restitution coefficient in [0, 1],
+    /// held there while the bound pushes. A missing `lower` or `upper` is no bound on that side; a continuous joint
+    /// is never limited; a mimic follower (coupled to its leader) has its leader's limit only.
+    Enforce {
+        /// Newton's restitution coefficient of every bound (0: the joint stops there).
+        restitution: f64,
+    },
+}
+
 /// How a model is built into a mechanism.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BuildOptions {
@@ -31,14 +49,17 @@ pub struct BuildOptions {
     pub root: Root,
     /// The gravitational acceleration (m/s², world axes), on every body.
     pub gravity: Vector3<f64>,
+    /// Whether the joints' position limits are enforced.
+    pub limits: Limits,
 }
 
 impl Default for BuildOptions {
-    /// A fixed root and 9.81 m/s² along −z.
+    /// A fixed root, 9.81 m/s² along −z, limits ignored.
     fn default() -> Self {
         BuildOptions {
             root: Root::Fixed,
             gravity: Vector3::new(0.0, 0.0, -dynamics::forces::STANDARD_GRAVITY),
+            limits: Limits::Ignore,
         }
     }
 }
@@ -107,6 +128,15 @@ pub enum BuildError {
         what: String,
         /// The value.
         value: Vec<f64>,
+    },
+    /// A joint's `<limit>` cannot be enforced: its range is empty (`lower = upper`: the joint cannot move; make it
+    /// fixed), or the restitution is outside [0, 1].
+    #[error("joint `{joint}`: {reason}")]
+    Limit {
+        /// The joint's name.
+        joint: String,
+        /// Why.
+        reason: String,
     },
     /// The mechanism refused a body, joint or coupling, or the start state (named in the message).
     #[error(transparent)]
@@ -248,8 +278,25 @@ impl<A: Algebra> Robot<A> {
             // identity in the child's.
             let parent_frame = frames[joint.parent] * joint.origin;
             let child_frame = frames[joint.child];
-            let model_joint =
+            let mut model_joint =
                 JointModel::new(joint.name.clone(), kind, parent_frame, child_frame).map_err(MechanismError::from)?;
+            let follows =
+                model.mimic == MimicMode::Constraint && joint.mimic.as_ref().is_some_and(|m| m.index.is_some());
+            if let (Limits::Enforce { restitution }, Some(range), false) =
+                (options.limits, joint.position_range(), follows)
+            {
+                let refused = |error: dynamics::ConstraintError| BuildError::Limit {
+                    joint: joint.name.clone(),
+                    reason: match error {
+                        dynamics::ConstraintError::InvalidParameter { reason, .. } => reason,
+                        other => other.to_string(),
+                    },
+                };
+                let limit = JointLimit::new(range.0, range.1)
+                    .and_then(|limit| limit.with_restitution(restitution))
+                    .map_err(refused)?;
+                model_joint = model_joint.with_limit(limit).map_err(refused)?;
+            }
             let child = bodies[joint.child].expect("a joint's child is a moving body");
             let parent = bodies[joint.parent].map_or(Reference::World, Reference::Body);
             joints.push(mechanism.connect(child, parent, model_joint)?);

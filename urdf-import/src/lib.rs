@@ -60,7 +60,7 @@ pub mod validate;
 
 use std::path::Path;
 
-pub use build::{BaseStart, BuildError, BuildOptions, Robot, RobotStart, Root};
+pub use build::{BaseStart, BuildError, BuildOptions, Limits, Robot, RobotStart, Root};
 pub use error::ImportError;
 pub use merge::{FrozenJoint, LinkPlacement, Mimic, MovingJoint, RigidBody, RobotModel};
 pub use parse::{JointKind, Limit};

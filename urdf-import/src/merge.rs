@@ -91,6 +91,23 @@ pub struct MovingJoint {
     pub line: u32,
 }
 
+impl MovingJoint {
+    /// The `<limit>`'s position range of a revolute or prismatic joint, a missing side infinite; `None` without a
+    /// bound, and for the other kinds (the URDF specification ignores a continuous joint's limits).
+    pub fn position_range(&self) -> Option<(f64, f64)> {
+        let limit = self.limit?;
+        if !matches!(self.kind, JointKind::Revolute | JointKind::Prismatic)
+            || (limit.lower.is_none() && limit.upper.is_none())
+        {
+            return None;
+        }
+        Some((
+            limit.lower.unwrap_or(f64::NEG_INFINITY),
+            limit.upper.unwrap_or(f64::INFINITY),
+        ))
+    }
+}
+
 /// A moving joint frozen by [`crate::MasslessSubtrees::Freeze`]: treated as fixed, its subtree merged into the
 /// parent body.
 #[derive(Clone, Debug, PartialEq)]

@@ -12,7 +12,7 @@ use dynamics::{Algebra, CoordinateGroup, JointId, JointModel, JointSpace, Mechan
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::Deserialize;
 use urdf_import::{
-    BaseStart, BuildOptions, ImportOptions, MasslessSubtrees, MimicMode, Robot, RobotModel, RobotStart, Root,
+    BaseStart, BuildOptions, ImportOptions, Limits, MasslessSubtrees, MimicMode, Robot, RobotModel, RobotStart, Root,
 };
 
 use super::{finite, invalid, standard_gravity, OrientationSpec, SceneFileError};
@@ -47,7 +47,7 @@ pub(crate) enum JointDynamicsName {
     Ignore,
 }
 
-/// `limits = "ignore"`; `"enforce"` parses, to be refused with the reason.
+/// `limits = "ignore" | "enforce"`: the URDF's position limits of revolute and prismatic joints.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub(crate) enum LimitsName {
@@ -93,6 +93,9 @@ pub(crate) struct RobotSpec {
     pub(crate) joint_dynamics: JointDynamicsName,
     #[serde(default)]
     pub(crate) limits: LimitsName,
+    /// The restitution of every enforced bound, in [0, 1] (default 0: a joint stops at its bound).
+    #[serde(default)]
+    pub(crate) limit_restitution: Option<f64>,
     /// m/s², world.
     #[serde(default = "standard_gravity")]
     #[serde(deserialize_with = "super::exactly")]
@@ -151,6 +154,27 @@ impl RobotSpec {
         }
     }
 
+    /// The importer's limit option: a restitution only with `limits = "enforce"`, and in [0, 1].
+    pub(crate) fn limits(&self) -> Result<Limits, SceneFileError> {
+        match (self.limits, self.limit_restitution) {
+            (LimitsName::Ignore, None) => Ok(Limits::Ignore),
+            (LimitsName::Ignore, Some(_)) => Err(invalid(
+                "robot.limit_restitution",
+                "applies to enforced limits only: write limits = \"enforce\" or leave it out",
+            )),
+            (LimitsName::Enforce, restitution) => {
+                let restitution = restitution.unwrap_or(0.0);
+                if !(0.0..=1.0).contains(&restitution) {
+                    return Err(invalid(
+                        "robot.limit_restitution",
+                        format!("{restitution:?} must be in [0, 1]"),
+                    ));
+                }
+                Ok(Limits::Enforce { restitution })
+            }
+        }
+    }
+
     pub(crate) fn root(&self) -> Root {
         match self.root {
             RootName::Fixed => Root::Fixed,
@@ -159,15 +183,9 @@ impl RobotSpec {
     }
 
     /// Reads the URDF at `urdf` relative to `dir` and imports it: an error naming the path when the file cannot be
-    /// read, the importer's error verbatim otherwise. `limits = "enforce"` is refused here.
+    /// read, the importer's error verbatim otherwise.
     pub(crate) fn load(&self, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
-        if self.limits == LimitsName::Enforce {
-            return Err(invalid(
-                "robot.limits",
-                "\"enforce\": joint limits are not enforced yet; write limits = \"ignore\" (the URDF's limits are then \
-                 listed in the summary and not applied)",
-            ));
-        }
+        self.limits()?;
         let repairs = self.repairs.unwrap_or_default();
         for (key, value) in [
             ("bound_mass", repairs.bound_mass),
@@ -284,6 +302,24 @@ impl LoadedRobot {
                 target.push((name.clone(), *value));
             }
         }
+        if spec.limits == LimitsName::Enforce {
+            // A start outside a limit is refused here by the joint's name and value (the states alone read an angle
+            // only modulo 2π); a coupled follower has its leader's limit only.
+            let coupled =
+                |joint: &urdf_import::MovingJoint| joint.mimic.is_some() && spec.mimic == MimicName::Constraint;
+            for joint in self.model.joints.iter().filter(|joint| !coupled(joint)) {
+                let Some((lower, upper)) = joint.position_range() else {
+                    continue;
+                };
+                let q = (start.positions.iter().find(|(name, _)| *name == joint.name)).map_or(0.0, |(_, q)| *q);
+                if q < lower - dynamics::simulate::AT_BOUND || q > upper + dynamics::simulate::AT_BOUND {
+                    return Err(invalid(
+                        format!("robot.q.{}", joint.name),
+                        format!("{q:?} is outside the joint's limits [{lower:?}, {upper:?}] (limits = \"enforce\")"),
+                    ));
+                }
+            }
+        }
         let given = [
             ("robot.base_position", spec.base_position.is_some()),
             ("robot.base_orientation", spec.base_orientation.is_some()),
@@ -329,6 +365,7 @@ impl LoadedRobot {
         let options = BuildOptions {
             root: spec.root(),
             gravity,
+            limits: spec.limits()?,
         };
         let robot = Robot::<A>::build(self.model.clone(), &options).map_err(|e| invalid("robot", e.to_string()))?;
         let states = robot
@@ -435,10 +472,17 @@ impl LoadedRobot {
             .iter()
             .filter(|j| j.limit.is_some_and(|l| l.lower.is_some() || l.upper.is_some()))
             .count();
-        let _ = writeln!(
-            out,
-            "- Joint limits: not enforced (limits = \"ignore\"); {limited} joints have position limits in the URDF"
-        );
+        let _ = match spec.limits {
+            LimitsName::Ignore => writeln!(
+                out,
+                "- Joint limits: not enforced (limits = \"ignore\"); {limited} joints have position limits in the URDF"
+            ),
+            LimitsName::Enforce => writeln!(
+                out,
+                "- Joint limits: enforced on the {limited} joints with position limits in the URDF (restitution {})",
+                spec.limit_restitution.unwrap_or(0.0)
+            ),
+        };
         let mimics: Vec<String> = model
             .joints
             .iter()

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Method;
 use dynamics::simulate::Schedule;
-use dynamics::{Cga, Pga};
+use dynamics::{Cga, Dynamics, Pga, State};
 use proptest::prelude::*;
 use reference::SceneId;
 use report::markdown::agreement;
@@ -116,6 +116,69 @@ fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
     assert_eq!((fixed.dt, fixed.tolerance), (Some(1e-3), None));
     let fifth = SceneFile::parse(&VALID.replace("dt = 1e-3", "tolerance = 1e-6\nintegrator = \"dp5-body\"")).unwrap();
     assert_eq!(fifth.integrator, IntegratorName::Dp5Body);
+}
+
+/// The shipped double pendulum with a limited elbow (docs/limits.md): the elbow bounces off its bounds at
+/// restitution 0.5, never passes them, each bounce leaves at half the speed it came with, both algebras find the same
+/// transitions, and the energy less what the impacts took holds to the tolerance.
+#[test]
+fn the_shipped_limited_double_pendulum_bounces_within_its_limits() {
+    let dir = fresh_dir("report-scene-file-limits");
+    let summary = run_scene_file(&scene_path("limited_double_pendulum.toml"), &dir).expect("the scene runs");
+    let [pga, cga] = &summary.runs[..] else {
+        panic!("two runs")
+    };
+    assert!(pga.transitions.len() >= 5, "{:?}", pga.transitions);
+    for (a, b) in pga.transitions.iter().zip(&cga.transitions) {
+        assert_eq!(a.change, b.change);
+        assert!((a.t - b.t).abs() < 1e-12, "{} vs {} s", a.t, b.t);
+    }
+    for transition in &pga.transitions {
+        if let dynamics::limits::LimitChange::Bounced {
+            speed_before,
+            speed_after,
+            ..
+        } = transition.change
+        {
+            assert!((speed_after - 0.5 * speed_before).abs() < 1e-12 * speed_before);
+            assert!(transition.energy_change < 0.0);
+        }
+    }
+    assert!(pga.max_energy_change() < 1e-9, "{}", pga.max_energy_change());
+    assert!(pga.max_violation() < 1e-12, "{}", pga.max_violation());
+    let scene = SceneFile::load(&scene_path("limited_double_pendulum.toml")).unwrap();
+    let system = scene.system::<Pga>().unwrap();
+    let mechanism = system.mechanism();
+    let elbow: Vec<f64> = (pga.bodies[0].iter().zip(&pga.bodies[1]))
+        .map(|(upper, lower)| {
+            let state = |s: &dynamics::simulate::Sample, i: usize| {
+                State::<Pga>::from_world_twist(
+                    mechanism.body(i),
+                    s.position,
+                    &s.orientation,
+                    s.angular_velocity,
+                    s.velocity,
+                )
+            };
+            mechanism
+                .joint_positions(&[state(upper, 0), state(lower, 1)], None)
+                .unwrap()[1]
+        })
+        .collect();
+    let widest = elbow.iter().map(|q| q.abs()).fold(0.0, f64::max);
+    assert!(
+        widest <= 0.3 + 1e-12 && widest > 0.3 - 1e-3,
+        "the elbow reaches {widest} rad"
+    );
+    let text = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert_mentions(
+        &text,
+        &[
+            "Joint limits (PGA): ",
+            " bounces, ",
+            "the impacts changed the energy by",
+        ],
+    );
 }
 
 #[test]

@@ -14,8 +14,12 @@ use report::scene_file::{joint_violations, FileAlgebra, JointGeometry, Pose, Sce
 use report::sweep::AlgebraKind;
 
 /// The shipped scene files, read when the test is compiled.
-const SCENES: [(&str, &str); 4] = [
+const SCENES: [(&str, &str); 5] = [
     ("heavy_top.toml", include_str!("../../../scenes/heavy_top.toml")),
+    (
+        "limited_double_pendulum.toml",
+        include_str!("../../../scenes/limited_double_pendulum.toml"),
+    ),
     (
         "double_pendulum.toml",
         include_str!("../../../scenes/double_pendulum.toml"),

@@ -773,7 +773,8 @@ q = { FL_KFE = -0.5 }
 
 #[test]
 fn the_careless_input_bases_parse() {
-    for base in [FIXED, FREE] {
+    let enforced = FIXED.replace("limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = 0.5");
+    for base in [FIXED, FREE, &enforced] {
         let scene = SceneFile::parse_in(base, &robots()).unwrap_or_else(|e| panic!("{e}"));
         scene.simulate::<Pga>().expect("runs");
         scene.simulate::<Cga>().expect("runs");
@@ -808,7 +809,15 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "root = \"fixed\"", "root = 1", &["line 6", "root = 1", "wanted string or table"]),
         (FIXED, "mimic = \"constraint\"", "mimic = \"ignore\"", &["unknown variant `ignore`", "`independent`"]),
         (FIXED, "joint_dynamics = \"urdf\"", "joint_dynamics = \"friction\"", &["unknown variant `friction`", "`ignore`"]),
-        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"", &["robot.limits", "\"enforce\"", "not enforced yet"]),
+        // limit_restitution: NaN, negative, above 1, infinite, wrong type, without enforced limits; a start outside an
+        // enforced limit (the UR5's elbow is limited to ±π).
+        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = nan", &["robot.limit_restitution", "NaN", "[0, 1]"]),
+        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = -0.5", &["robot.limit_restitution", "-0.5", "[0, 1]"]),
+        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = 1.5", &["robot.limit_restitution", "1.5", "[0, 1]"]),
+        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = inf", &["robot.limit_restitution", "inf", "[0, 1]"]),
+        (FIXED, "limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = [0.5]", &["invalid type: sequence", "expected f64"]),
+        (FIXED, "limits = \"ignore\"", "limits = \"ignore\"\nlimit_restitution = 0.5", &["robot.limit_restitution", "enforced limits only"]),
+        (FIXED, "limits = \"ignore\"\ngravity = [0.0, 0.0, -9.81]\nq = { shoulder_lift_joint = -1.2, elbow_joint = 1.0 }", "limits = \"enforce\"\ngravity = [0.0, 0.0, -9.81]\nq = { shoulder_lift_joint = -1.2, elbow_joint = 4.0 }", &["robot.q.elbow_joint", "4.0", "outside the joint's limits", "3.14159265359"]),
         (FIXED, "limits = \"ignore\"", "limits = \"clip\"", &["unknown variant `clip`"]),
         // gravity: NaN, huge, wrong length, wrong type.
         (FIXED, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, nan, -9.81]", &["robot.gravity", "NaN", "not finite"]),
@@ -871,6 +880,19 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "drive = { kind = \"constant_rate\", start = 1e50, rate = 1e49 }", &["joint hinge: drive", "reaches", "beyond 1e50"]),
         (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "drive = 0.6", &["invalid type: floating point `0.6`"]),
         (FIXED, "kind = \"universal\"", "kind = \"universal\"\ndrive = { kind = \"constant_rate\", rate = 1.0 }", &["joint cardan: drive", "universal joint"]),
+        // The limit: NaN, inverted, no bound, restitution out of [0, 1], unknown key, wrong type, on a universal and a
+        // fixed joint, on a driven joint, and a start outside it.
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = nan, upper = 1.0 }", &["joint hinge: limit", "NaN"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = 1.0, upper = -1.0 }", &["joint hinge: limit", "lower < upper", "[1, -1]"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { restitution = 0.5 }", &["joint hinge: limit", "needs a lower or an upper bound"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = -1.0, restitution = 2.0 }", &["joint hinge: limit", "restitution", "2"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = -1.0, restitution = -inf }", &["joint hinge: limit", "restitution", "-inf"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = -1.0, upper = 1.0, stiffness = 1.0 }", &["unknown field `stiffness`"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = [-1.0, 1.0]", &["invalid type: sequence", "expected a map"]),
+        (FIXED, "kind = \"universal\"", "kind = \"universal\"\nlimit = { lower = -1.0 }", &["joint cardan: limit", "only revolute and prismatic joints can be limited", "universal"]),
+        (FIXED, "kind = \"fixed\"", "kind = \"fixed\"\nlimit = { upper = 1.0 }", &["joint weld: limit", "only revolute and prismatic joints can be limited"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }\nlimit = { lower = -1.0, upper = 1.0 }", &["joint hinge: limit", "driven joint cannot be limited"]),
+        (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = 0.5, upper = 1.0 }", &["joint hinge: limit", "the start puts the joint at", "outside [0.5, 1.0]"]),
         // The spring: names, points, stiffness, damping, rest length.
         (FIXED, "between = [\"bob\", \"world\"]", "between = [\"bob\", \"moon\"]", &["spring spring 1: between", "no body named \"moon\""]),
         (FIXED, "between = [\"bob\", \"world\"]", "between = [\"world\", \"base_link\"]", &["spring spring 1: between", "same body"]),

@@ -6,6 +6,7 @@ mod common;
 
 mod bodies;
 mod inertia;
+mod limits;
 mod merge;
 mod mimic;
 mod parse;
