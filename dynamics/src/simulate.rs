@@ -740,6 +740,33 @@ pub struct Sample {
     pub work: f64,
 }
 
+impl Sample {
+    /// The body's state at this sample (its mass properties `body`): to evaluate anything of a recorded run, such as
+    /// a mechanism's joint positions.
+    ///
+    /// ```
+    /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let brick = Body::cuboid(1.0, Vector3::new(0.1, 0.2, 0.3))?;
+    /// let spin = Vector3::new(0.0, 3.0, 0.1); // rad/s, world
+    /// let start = State::<Pga>::from_world_twist(&brick, Vector3::zeros(), &UnitQuaternion::identity(), spin, Vector3::x());
+    /// let run = simulate(&FreeBody::new(brick), &[start], Method::Rkmk4Body, &Schedule::new(1e-3, 0.1)?)?;
+    /// let end = run.body(0).last().unwrap().state::<Pga>(&brick);
+    /// assert!((end.world_velocity(&brick).linear - Vector3::x()).norm() < 1e-12); // m/s: nothing pushes it
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn state<A: Algebra>(&self, body: &crate::Body) -> State<A> {
+        State::from_world_twist(
+            body,
+            self.position,
+            &self.orientation,
+            self.angular_velocity,
+            self.velocity,
+        )
+    }
+}
+
 /// A finished run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Simulation<A: Algebra> {

@@ -54,7 +54,9 @@ pub mod trajectory;
 pub use analytic::{
     AnalyticError, DzhanibekovSolution, HeavyTop, Nutation, Pendulum, PendulumSolution, SteadyPrecessionRates,
 };
-pub use elliptic::{complete_elliptic_k, jacobi_elliptic, EllipticError, EllipticParameter, JacobiElliptic};
+pub use elliptic::{
+    complete_elliptic_k, incomplete_elliptic_f, jacobi_elliptic, EllipticError, EllipticParameter, JacobiElliptic,
+};
 pub use metrics::{
     constraint_violations, energy_drift, flip_time_error, flip_times, nutation_features, orientation_error,
     pendulum_angle, pendulum_period, position_error, steady_precession_features, top_axis_angles, trajectory_errors,

@@ -13,6 +13,7 @@ use crate::adaptive_sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
 use crate::anchors::Anchors;
 use crate::csv;
 use crate::figures::{self, showcase_step};
+use crate::limits_report::limits_section;
 use crate::markdown::{self, RunResult};
 use crate::mechanism_report::mechanism_section;
 use crate::mechanism_sweep::{run_mechanism, MechanismPlan, MechanismResult};
@@ -211,6 +212,7 @@ pub fn run_job_with_robots(
         robots: &robot_results,
     };
     text.push_str(&adaptive_section(output, &adaptive_results, &fixed)?);
+    text.push_str(&limits_section(output)?);
     text.push_str(&anchors.section());
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
     let single_failures = results.iter().filter_map(|(config, result)| {

@@ -27,6 +27,7 @@ pub mod cli;
 pub mod csv;
 mod figures;
 pub mod job;
+mod limits_report;
 pub mod markdown;
 pub mod measure;
 mod mechanism_report;

@@ -141,19 +141,8 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
         let q = if robot {
             // The joint positions from the sampled poses, angles nearest the previous sample's.
-            let states: Vec<State<A>> = bodies
-                .iter()
-                .enumerate()
-                .map(|(i, b)| {
-                    let s = &b[k];
-                    State::from_world_twist(
-                        mechanism.body(i),
-                        s.position,
-                        &s.orientation,
-                        s.angular_velocity,
-                        s.velocity,
-                    )
-                })
+            let states: Vec<State<A>> = (bodies.iter().enumerate())
+                .map(|(i, b)| b[k].state(mechanism.body(i)))
                 .collect();
             let q = mechanism
                 .joint_positions(&states, previous.as_deref())

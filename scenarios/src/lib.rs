@@ -1,6 +1,6 @@
 //! The project's reference scenes as `dynamics` systems: the single-body scenes of the reference set
-//! ([`single_body`]) and the mechanisms ([`mechanisms`]: the double pendulum, the four-bar linkage and the
-//! N-link chain), each in either algebra and either constraint formulation.
+//! ([`single_body`]), the mechanisms ([`mechanisms`]: the double pendulum, the four-bar linkage and the
+//! N-link chain), each in either algebra and either constraint formulation, and the joint-limit scenes ([`limits`]).
 //!
 //! This crate exists so that `dynamics` carries no scene catalogue and no reference data: tests, benchmarks,
 //! examples and the main job build their systems here, from the GA-independent parameters and reference
@@ -22,6 +22,7 @@
 #![deny(missing_docs)]
 
 pub mod equal_error;
+pub mod limits;
 pub mod mechanism_measures;
 pub mod mechanisms;
 pub mod robots;

@@ -7,7 +7,7 @@
 use dynamics::limits::{Bound, JointLimit, LimitChange};
 use dynamics::{
     simulate, Algebra, Body, Force, JointKind, JointMethod, JointModel, Mechanism, Method, Reference, Schedule,
-    Simulation, SimulationError, State, Tolerance,
+    Simulation, SimulationError, Tolerance,
 };
 use nalgebra::{Isometry3, Vector3};
 
@@ -44,25 +44,9 @@ fn frequency() -> f64 {
     (body.mass() * 9.81 * 0.5 / pivot_moment).sqrt()
 }
 
-/// Carlson's symmetric integral R_F(x, y, z) by the duplication theorem (Carlson 1995, Numer. Algorithms 10).
-fn carlson_rf(mut x: f64, mut y: f64, mut z: f64) -> f64 {
-    for _ in 0..60 {
-        let root = (x * y).sqrt() + (y * z).sqrt() + (z * x).sqrt();
-        (x, y, z) = ((x + root) / 4.0, (y + root) / 4.0, (z + root) / 4.0);
-        let mean = (x + y + z) / 3.0;
-        if [x, y, z].iter().all(|v| ((v - mean) / mean).abs() < 1e-4) {
-            let (dx, dy, dz) = (1.0 - x / mean, 1.0 - y / mean, 1.0 - z / mean);
-            let (e2, e3) = (dx * dy - dz * dz, dx * dy * dz);
-            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / mean.sqrt();
-        }
-    }
-    panic!("R_F did not converge");
-}
-
-/// The incomplete elliptic integral of the first kind F(φ | k²) = sin φ R_F(cos²φ, 1 − k² sin²φ, 1).
+/// F(φ | k²) from the `reference` crate (Carlson's symmetric form, checked there against quadrature).
 fn elliptic_f(phi: f64, k: f64) -> f64 {
-    let (s, c) = phi.sin_cos();
-    s * carlson_rf(c * c, 1.0 - k * k * s * s, 1.0)
+    reference::incomplete_elliptic_f(phi, reference::EllipticParameter::new(k * k).unwrap()).unwrap()
 }
 
 /// The time a pendulum released at rest from `start` (rad from hanging) takes to swing down through the bottom and
@@ -79,16 +63,7 @@ fn swing_time(start: f64, reach: f64) -> f64 {
 fn angles<A: Algebra>(system: &Mechanism<A>, run: &Simulation<A>) -> Vec<f64> {
     run.body(0)
         .iter()
-        .map(|sample| {
-            let state = State::<A>::new(
-                &rod(),
-                sample.position,
-                &sample.orientation,
-                sample.orientation.inverse() * sample.angular_velocity,
-                sample.orientation.inverse() * sample.velocity,
-            );
-            system.joint_positions(&[state], None).unwrap()[0]
-        })
+        .map(|sample| system.joint_positions(&[sample.state(&rod())], None).unwrap()[0])
         .collect()
 }
 
@@ -267,16 +242,7 @@ fn the_elbow_is_held_and_released_alike_by_every_method<A: Algebra>() {
         }
     }
     // Held, the elbow is on its bound to round-off and the energy holds (the hold does no work); it never passes one.
-    let state = |sample: &dynamics::simulate::Sample| {
-        let turn = sample.orientation.inverse();
-        State::<A>::new(
-            &rod(),
-            sample.position,
-            &sample.orientation,
-            turn * sample.angular_velocity,
-            turn * sample.velocity,
-        )
-    };
+    let state = |sample: &dynamics::simulate::Sample| sample.state::<A>(&rod());
     let samples: Vec<(f64, f64, f64)> = (runs[0].body(0).iter().zip(runs[0].body(1)))
         .map(|(upper, lower)| {
             let q = system.joint_positions(&[state(upper), state(lower)], None).unwrap()[1];

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Method;
 use dynamics::simulate::Schedule;
-use dynamics::{Cga, Dynamics, Pga, State};
+use dynamics::{Cga, Dynamics, Pga};
 use proptest::prelude::*;
 use reference::SceneId;
 use report::markdown::agreement;
@@ -151,18 +151,8 @@ fn the_shipped_limited_double_pendulum_bounces_within_its_limits() {
     let mechanism = system.mechanism();
     let elbow: Vec<f64> = (pga.bodies[0].iter().zip(&pga.bodies[1]))
         .map(|(upper, lower)| {
-            let state = |s: &dynamics::simulate::Sample, i: usize| {
-                State::<Pga>::from_world_twist(
-                    mechanism.body(i),
-                    s.position,
-                    &s.orientation,
-                    s.angular_velocity,
-                    s.velocity,
-                )
-            };
-            mechanism
-                .joint_positions(&[state(upper, 0), state(lower, 1)], None)
-                .unwrap()[1]
+            let states = [upper.state::<Pga>(mechanism.body(0)), lower.state(mechanism.body(1))];
+            mechanism.joint_positions(&states, None).unwrap()[1]
         })
         .collect();
     let widest = elbow.iter().map(|q| q.abs()).fold(0.0, f64::max);

@@ -259,14 +259,22 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
         "### M1 double pendulum: adaptive steps",
         "| DOP853-body | 1e-6 |",
         "| DOP853-body | 1e-10 |",
+        "## Joint limits",
+        "![limits.png](limits.png)",
+        "![limits_energy.png](limits_energy.png)",
+        "| pendulum stopping at a limit | PGA | 0 | 1 | 0 |",
+        "| double pendulum bouncing off a limit | CGA |",
     ] {
         assert!(text.contains(part), "the report lacks {part:?}");
     }
+    assert!(!text.contains("failed:"), "a limit scene failed");
     for name in [
         "adaptive_single_bodies.png",
         "adaptive_mechanisms_and_robots.png",
         "adaptive_tolerance.png",
         "adaptive_steps.png",
+        "limits.png",
+        "limits_energy.png",
     ] {
         assert!(std::fs::metadata(output.join(name)).unwrap().len() > 10_000, "{name}");
     }

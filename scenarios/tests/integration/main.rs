@@ -11,6 +11,7 @@ mod constraint_scenes;
 mod errors;
 mod hard_cases;
 mod joint_space;
+mod limits;
 mod mechanisms;
 mod robots;
 mod scene1_free_body;

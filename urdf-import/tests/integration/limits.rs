@@ -42,16 +42,7 @@ fn swing(robot: &Robot<Pga>) -> (Vec<f64>, Vec<LimitChange>) {
     let mechanism = robot.mechanism();
     let angles = (0..run.body(0).len())
         .map(|k| {
-            let sample = &run.body(0)[k];
-            let turn = sample.orientation.inverse();
-            let body = *dynamics::Dynamics::body(mechanism, 0);
-            let state = dynamics::State::<Pga>::new(
-                &body,
-                sample.position,
-                &sample.orientation,
-                turn * sample.angular_velocity,
-                turn * sample.velocity,
-            );
+            let state = run.body(0)[k].state(dynamics::Dynamics::body(mechanism, 0));
             mechanism.joint_positions(&[state], None).unwrap()[0]
         })
         .collect();
