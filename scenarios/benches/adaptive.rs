@@ -1,5 +1,6 @@
 //! CPU time of whole runs with adaptive steps against the best fixed step at equal error
-//! ([`scenarios::equal_error::EQUAL_ERROR`]: scene 1, M1 and the 64-link chain M3, in PGA): DOP853-body at a
+//! ([`scenarios::equal_error::EQUAL_ERROR`]: scene 1, M1, the 64-link chain M3 and the near-toggle four-bar, in
+//! PGA): DOP853-body at a
 //! tolerance beside RKMK8-body at the fixed step whose error is at least as large, so their ratio, measured in one
 //! run, is a ratio at equal or better error for the adaptive run. Only the stepping is timed
 //! (`Simulation::stepping_time`): building the scene and recording samples are left out of both.

@@ -1,16 +1,17 @@
 //! Adaptive steps against fixed steps at equal error: for scene 1 (the free Dzhanibekov cuboid), M1 (the double
-//! pendulum) and M3 (the 64-link chain released from horizontal, whose tip whips), a tolerance for
+//! pendulum), M3 (the 64-link chain released from horizontal, whose tip whips) and the four-bar carried through
+//! near-toggle configurations ([`crate::toggle_four_bar`]), a tolerance for
 //! [`Method::Dop853Body`] and the fixed step at which the best fixed-step method ([`Method::Rkmk8Body`], the
 //! cheapest per simulated second at these accuracies) makes an error at least as large and less than 10× as large.
 //! The tests assert both; the `adaptive` benchmark times both runs, so the ratio of their CPU times, measured in
 //! one run, is a ratio at equal error that favours the fixed step.
 //!
 //! The error is each scene's own: scene 1's largest orientation error against its reference trajectory (rad),
-//! M1's end orientation error against its reference (rad), and, as M3 is chaotic and has no reference, its
-//! largest energy drift (J; the energy is a constant of the motion).
+//! M1's end orientation error against its reference (rad), and, for M3 (chaotic, without a reference) and the
+//! near-toggle four-bar, the largest energy drift (J; the energy is a constant of the motion).
 
 use dynamics::constraints::{PinningAlgebra, Stabilisation};
-use dynamics::{simulate, Body, FreeBody, Method, Schedule, Simulation, SimulationError, State, Tolerance};
+use dynamics::{simulate, Body, FreeBody, Mechanism, Method, Schedule, Simulation, SimulationError, State, Tolerance};
 use reference::SceneId;
 
 use crate::mechanism_measures::{measure, MeasureError};
@@ -25,6 +26,8 @@ pub enum ComparedScene {
     DoublePendulum,
     /// M3 with 64 links, by virtual power with projection, sampled every 0.1 s.
     Chain64,
+    /// The near-toggle four-bar, sampled every 0.1 s.
+    NearToggleFourBar,
 }
 
 /// A tolerance and the fixed step that matches its error on one scene.
@@ -44,8 +47,9 @@ pub struct EqualError {
 /// The pairs, measured on PGA (`cargo test --release -p scenarios --test integration adaptive:: -- --nocapture`),
 /// each fixed step the longest of those tried (dt dividing the sample interval: 1e-2, 5e-3, … for scene 1; 5e-2,
 /// 2.5e-2, 2e-2, 1e-2 for M1, where 5e-2 is 470× less accurate; 2e-3, 1e-3, 5e-4, 2.5e-4 for M3, where 5e-4 is
-/// 3400× less accurate) whose error is at least the adaptive run's and less than 10× it.
-pub const EQUAL_ERROR: [EqualError; 3] = [
+/// 3400× less accurate; 2e-3, 1/600, 1.25e-3, 1/900, 1e-3 for the near-toggle four-bar, where 1.25e-3 is 20× less
+/// accurate and 1e-3 more accurate) whose error is at least the adaptive run's and less than 10× it.
+pub const EQUAL_ERROR: [EqualError; 4] = [
     EqualError {
         scene: ComparedScene::Cuboid,
         tolerance: 1e-11,
@@ -63,6 +67,12 @@ pub const EQUAL_ERROR: [EqualError; 3] = [
         tolerance: 1e-10,
         fixed: Method::Rkmk8Body,
         dt: 2.5e-4,
+    },
+    EqualError {
+        scene: ComparedScene::NearToggleFourBar,
+        tolerance: 1e-12,
+        fixed: Method::Rkmk8Body,
+        dt: 1.0 / 900.0,
     },
 ];
 
@@ -96,14 +106,17 @@ pub enum Prepared<A: PinningAlgebra> {
     FreeBody(FreeBody<A>, State<A>),
     /// A mechanism (boxed: it is far larger than a free body).
     Mechanism(Box<crate::MechanismScene<A>>),
+    /// The near-toggle four-bar and its start.
+    FourBar(Box<(Mechanism<A>, Vec<State<A>>)>),
 }
 
 impl ComparedScene {
     /// Every compared scene.
-    pub const ALL: [ComparedScene; 3] = [
+    pub const ALL: [ComparedScene; 4] = [
         ComparedScene::Cuboid,
         ComparedScene::DoublePendulum,
         ComparedScene::Chain64,
+        ComparedScene::NearToggleFourBar,
     ];
 
     /// The scene's name in tables and benchmark ids.
@@ -112,6 +125,7 @@ impl ComparedScene {
             ComparedScene::Cuboid => "scene 1",
             ComparedScene::DoublePendulum => "M1",
             ComparedScene::Chain64 => "M3 (64 links)",
+            ComparedScene::NearToggleFourBar => "near-toggle four-bar",
         }
     }
 
@@ -119,7 +133,7 @@ impl ComparedScene {
     pub fn error_unit(self) -> &'static str {
         match self {
             ComparedScene::Cuboid | ComparedScene::DoublePendulum => "rad",
-            ComparedScene::Chain64 => "J",
+            ComparedScene::Chain64 | ComparedScene::NearToggleFourBar => "J",
         }
     }
 
@@ -128,13 +142,14 @@ impl ComparedScene {
             ComparedScene::Cuboid => SceneId::Cuboid.parameters().duration,
             ComparedScene::DoublePendulum => MechanismId::DoublePendulum.duration(),
             ComparedScene::Chain64 => MechanismId::Chain(64).duration(),
+            ComparedScene::NearToggleFourBar => crate::toggle_four_bar::NEAR_TOGGLE.duration,
         }
     }
 
     fn sample_interval(self) -> f64 {
         match self {
             ComparedScene::Cuboid => 0.01,
-            ComparedScene::DoublePendulum | ComparedScene::Chain64 => 0.1,
+            ComparedScene::DoublePendulum | ComparedScene::Chain64 | ComparedScene::NearToggleFourBar => 0.1,
         }
     }
 
@@ -171,6 +186,7 @@ impl ComparedScene {
             }
             ComparedScene::DoublePendulum => Prepared::Mechanism(Box::new(mechanism(MechanismId::DoublePendulum)?)),
             ComparedScene::Chain64 => Prepared::Mechanism(Box::new(mechanism(MechanismId::Chain(64))?)),
+            ComparedScene::NearToggleFourBar => Prepared::FourBar(Box::new(crate::toggle_four_bar::build()?)),
         })
     }
 }
@@ -181,6 +197,7 @@ impl<A: PinningAlgebra> Prepared<A> {
         match self {
             Prepared::FreeBody(system, initial) => simulate(system, &[*initial], method, schedule),
             Prepared::Mechanism(scene) => simulate(&scene.system, &scene.initial, method, schedule),
+            Prepared::FourBar(scene) => simulate(&scene.0, &scene.1, method, schedule),
         }
     }
 
@@ -194,6 +211,10 @@ impl<A: PinningAlgebra> Prepared<A> {
             Prepared::Mechanism(scene) => {
                 let measures = measure(scene.id, &run.bodies)?;
                 Ok(measures.orientation_end.unwrap_or(measures.energy_drift))
+            }
+            Prepared::FourBar(_) => {
+                let energies: Vec<f64> = run.energies().collect();
+                Ok(energies.iter().map(|e| (e - energies[0]).abs()).fold(0.0, f64::max))
             }
         }
     }

@@ -27,6 +27,7 @@ pub mod mechanism_measures;
 pub mod mechanisms;
 pub mod robots;
 pub mod single_body;
+pub mod toggle_four_bar;
 
 pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
 pub use robots::{build_robot, RobotScene, RobotSceneError};

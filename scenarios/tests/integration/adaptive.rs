@@ -201,7 +201,8 @@ fn pga_dop853_follows_the_tolerance_on_the_chain() {
 /// and within a factor 10 of it, so the `adaptive` benchmark compares CPU at equal error. Measured (PGA; error,
 /// evaluations): scene 1, tolerance 1e-11: 3.0e-11 rad, 7580, against RKMK8-body at 1e-2: 9.4e-11 rad, 11 000;
 /// M1, 3e-10: 6.2e-11 rad, 3072, against RKMK8-body at 2.5e-2: 1.5e-10 rad, 4400; M3, 1e-10: energy 2.1e-8 J,
-/// 55 008, against RKMK8-body at 2.5e-4: 1.8e-7 J, 440 000.
+/// 55 008, against RKMK8-body at 2.5e-4: 1.8e-7 J, 440 000; the near-toggle four-bar, 1e-12: energy 6.0e-12 J, 4324,
+/// against RKMK8-body at 1/900 s: 3.3e-11 J, 19 800.
 #[test]
 fn pga_adaptive_runs_match_the_fixed_steps_they_are_timed_against() {
     for pair in EQUAL_ERROR {
@@ -377,3 +378,43 @@ for_both_algebras!(
     flips_next_to_the_separatrix,
     fast_top_keeps_its_invariants
 );
+
+/// The near-toggle four-bar (`scenarios::toggle_four_bar`): its coupler and rocker come within 6.5° of collinear
+/// once per revolution (the closed-form loop at φ = π), the crank keeps turning through it, and DOP853-body's steps
+/// at 1e-12 shorten there: they range over more than 20-fold (measured: 4.3e-4 to 2.7e-2 s), with the energy held to
+/// 1e-11 J.
+#[test]
+fn the_near_toggle_four_bar_passes_close_to_toggle_on_short_steps() {
+    use scenarios::toggle_four_bar::{build, NEAR_TOGGLE};
+    let at_pi = NEAR_TOGGLE.configuration(std::f64::consts::PI).angles;
+    let supplement = std::f64::consts::PI
+        - (at_pi[1] - at_pi[2])
+            .rem_euclid(std::f64::consts::TAU)
+            .min(std::f64::consts::TAU - (at_pi[1] - at_pi[2]).rem_euclid(std::f64::consts::TAU));
+    assert!(
+        supplement.to_degrees() < 6.5,
+        "{}° from toggle",
+        supplement.to_degrees()
+    );
+    let (system, start) = build::<Pga>().unwrap();
+    let schedule = dynamics::Schedule::adaptive(dynamics::Tolerance::new(1e-12, 1e-12).unwrap(), 2.0, 0.01).unwrap();
+    let run = dynamics::simulate(&system, &start, Method::Dop853Body, &schedule).unwrap();
+    let steps = run.statistics;
+    println!(
+        "near-toggle four-bar at 1e-12: {} steps from {:.1e} to {:.1e} s, {:.1}° from toggle",
+        steps.accepted,
+        steps.smallest_step,
+        steps.largest_step,
+        supplement.to_degrees()
+    );
+    assert!(steps.largest_step > 20.0 * steps.smallest_step, "{steps:?}");
+    let energies: Vec<f64> = run.energies().collect();
+    assert!(energies.iter().all(|e| (e - energies[0]).abs() < 1e-11));
+    // The crank turns through φ = π and 3π: past the near-toggle configuration twice (measured: 11.2 rad in 2 s).
+    let crank = run.body(0);
+    let turned = crank
+        .windows(2)
+        .map(|w| w[0].orientation.angle_to(&w[1].orientation))
+        .sum::<f64>();
+    assert!(turned > 3.0 * std::f64::consts::PI, "the crank turned {turned} rad");
+}
