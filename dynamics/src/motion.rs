@@ -155,9 +155,9 @@ pub trait Dynamics<A: Algebra> {
         0
     }
 
-    /// The name of the joint of limit `index`.
-    fn limit_name(&self, _index: usize) -> &str {
-        ""
+    /// The name of the joint of limit `index`, if there is that limit.
+    fn limit_name(&self, _index: usize) -> Option<&str> {
+        None
     }
 
     /// Per limit, the value whose fall to zero or below is its next transition, at `(t, states)`: while the joint is

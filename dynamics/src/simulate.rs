@@ -1182,7 +1182,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         for (index, gap) in limits.clone().into_iter().enumerate() {
             if gap < -AT_BOUND {
                 return Err(SimulationError::BeyondLimit {
-                    joint: dynamics.limit_name(index).to_owned(),
+                    joint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
                     depth: -gap,
                 });
             }
@@ -1401,7 +1401,7 @@ fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(
     // A hold and its release at once share the impact's energy change: it is the hold's.
     transitions.extend(changes.into_iter().enumerate().map(|(k, change)| LimitTransition {
         t: time,
-        joint: dynamics.limit_name(index).to_owned(),
+        joint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
         change,
         energy_change: if k == 0 { energy_change } else { 0.0 },
     }));

@@ -21,9 +21,9 @@ impl<A: Algebra> Mechanism<A> {
         self.limits.len()
     }
 
-    /// The name of limit `index`'s joint.
-    pub(crate) fn limit_name(&self, index: usize) -> &str {
-        self.joints[self.limits[index].joint].name()
+    /// The name of limit `index`'s joint, if there is that limit.
+    pub(crate) fn limit_name(&self, index: usize) -> Option<&str> {
+        self.limits.get(index).map(|limit| self.joints[limit.joint].name())
     }
 
     /// An error naming the limited joints unless the mechanism has joint coordinates (its joint models form a
@@ -46,6 +46,13 @@ impl<A: Algebra> Mechanism<A> {
         values: &mut [f64],
     ) -> Result<(), ConstraintError> {
         self.check_count("states", states.len())?;
+        if values.len() != self.limits.len() {
+            return Err(ConstraintError::Count {
+                what: "limit values",
+                expected: self.limits.len(),
+                got: values.len(),
+            });
+        }
         let space = self.limited_space()?;
         if workspace.held.iter().any(Option::is_some) {
             self.evaluate_states(t, states, workspace)?;
@@ -88,6 +95,12 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<Vec<LimitChange>, ConstraintError> {
         self.check_count("states", states.len())?;
+        if index >= self.limits.len() {
+            return Err(ConstraintError::InvalidParameter {
+                name: "joint limits".to_owned(),
+                reason: format!("there is no limit {index}: the mechanism has {}", self.limits.len()),
+            });
+        }
         if let Some(bound) = workspace.held[index].take() {
             self.hold_rows(workspace);
             return Ok(vec![LimitChange::Released { bound }]);

@@ -1974,7 +1974,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         Mechanism::limit_count(self)
     }
 
-    fn limit_name(&self, index: usize) -> &str {
+    fn limit_name(&self, index: usize) -> Option<&str> {
         Mechanism::limit_name(self, index)
     }
 

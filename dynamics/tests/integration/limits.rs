@@ -389,6 +389,44 @@ fn careless_limits_are_refused() {
             "{q}: {error}"
         );
     }
+    // The limits' interface to simulate: a limit that is not there, the wrong number of states or of values.
+    use dynamics::Dynamics;
+    let start = system.states_from_joints(&[0.0], &[0.0]).unwrap();
+    let mut workspace = system.workspace();
+    assert_eq!(
+        (system.limit_count(), system.limit_name(0), system.limit_name(1)),
+        (1, Some("pivot"), None)
+    );
+    let mut states = start.clone();
+    let error = system
+        .limit_transition(1, 0.0, &mut states, &mut workspace)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("no limit 1"), "{error}");
+    let error = system
+        .limit_transition(0, 0.0, &mut [], &mut workspace)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("states: 0 given"), "{error}");
+    for values in [&mut [][..], &mut [0.0, 0.0][..]] {
+        let error = system
+            .limit_values(0.0, &start, &mut workspace, values)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("limit values"), "{error}");
+    }
+    let mut values = [f64::NAN];
+    system.limit_values(0.0, &start, &mut workspace, &mut values).unwrap();
+    assert!(
+        (values[0] - 0.5).abs() < 1e-15,
+        "the gap at the bottom is 0.5 rad, got {}",
+        values[0]
+    );
+    // A sample that is not finite gives a state the run refuses before its first step.
+    let mut sample = simulate(&system, &start, Method::Rkmk4Body, &schedule).unwrap().body(0)[0];
+    sample.position.x = f64::NAN;
+    let error = simulate(&system, &[sample.state(&rod())], Method::Rkmk4Body, &schedule).unwrap_err();
+    assert!(error.to_string().contains("not finite"), "{error}");
     for q in [0.5, 0.5 + 5e-13, -0.5] {
         let start = system.states_from_joints(&[q], &[0.0]).unwrap();
         let run = simulate(&system, &start, Method::Rkmk4Body, &schedule).unwrap();
