@@ -11,6 +11,10 @@
 //! scalar functions of the state whose zero crossings are located to round-off by partial steps (a pendulum's
 //! turning points, a body point reaching a plane), with a direction filter, and optionally terminal.
 //!
+//! A system with joint limits ([`crate::limits`], `docs/limits.md`) has each limit watched like an event: a step is
+//! cut where a limit's gap closes or its reaction stops pushing, located to round-off, the impact, hold or release
+//! made there ([`Simulation::transitions`]), and the run continues from it.
+//!
 //! [`simulate`] is the one entry point, for free bodies, constrained bodies and mechanisms, with any
 //! [`Integrator`]; it allocates once (the samples) and measures the CPU time of the stepping alone, for
 //! work-precision comparisons.
