@@ -1,7 +1,7 @@
 //! Joint limits: one-sided constraints on a joint coordinate (docs/limits.md). A revolute or prismatic joint model
 //! may carry a [`JointLimit`] ([`crate::JointModel::with_limit`]); a mechanism enforces it exactly:
 //!
-//! * while the coordinate is inside its range the joint is free, and [`crate::simulate`] watches the gap to the
+//! * while the coordinate is inside its range the joint is free, and [`crate::simulate()`] watches the gap to the
 //!   nearer bound as an event;
 //! * where the gap closes (located to round-off) the joint meets its bound in an **impact**: an impulse through the
 //!   kinetic metric (the joint-space mass matrix) reverses the joint's rate times the restitution, Newton's law,

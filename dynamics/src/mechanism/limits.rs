@@ -1,4 +1,4 @@
-//! A mechanism's joint limits (docs/limits.md): the values [`crate::simulate`] watches, and the transitions it
+//! A mechanism's joint limits (docs/limits.md): the values [`crate::simulate()`] watches, and the transitions it
 //! makes at their crossings — the impact through the kinetic metric, the hold by a joint-space row, the release.
 
 use nalgebra::{DMatrix, DVector};
@@ -35,7 +35,7 @@ impl<A: Algebra> Mechanism<A> {
         })
     }
 
-    /// Per limit, what [`crate::simulate`] watches (docs/limits.md "Transitions"): while free the gap to its nearer
+    /// Per limit, what [`crate::simulate()`] watches (docs/limits.md "The three states of a limit"): while free the gap to its nearer
     /// bound (rad or m; angles unwrapped from the last positions read), while held the reaction pushing the joint onto
     /// the bound (N m or N; an evaluation of the equations of motion at `(t, states)`).
     pub(crate) fn limit_values(
