@@ -151,6 +151,16 @@ pub enum LimitChange {
     },
 }
 
+/// What `transitions` changed the energy by up to and including time `t` (J): the sum of their
+/// [`LimitTransition::energy_change`]s, so that `E(t) − E₀` less it is the energy change of the motion between them
+/// (zero for a conservative system, up to the integration error).
+pub fn energy_changed_by(transitions: &[LimitTransition], t: f64) -> f64 {
+    (transitions.iter())
+        .filter(|transition| transition.t <= t)
+        .map(|transition| transition.energy_change)
+        .sum()
+}
+
 /// A located change of a joint limit's state, in [`crate::Simulation::transitions`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitTransition {

@@ -973,20 +973,19 @@ fn limit_values<A: Algebra, D: Dynamics<A> + ?Sized>(
 }
 
 /// The earliest limit transition in the step of length `h` from `(t, start)` to `end`, the limits' values at the
-/// step's start being `before`: the crossings of every limit's value to zero or below, scanned at the step's ends and
-/// at `scan` inside it, the earliest part's located ([`locate`]). Returns its time, the limit's index and the states
-/// there.
+/// step's start being `before` and, on return, at its end `after`: the crossings of every limit's value to zero or
+/// below, scanned at the step's ends and at `scan` inside it, the earliest part's located ([`locate`]). Returns its
+/// time, the limit's index and the states there.
 #[allow(clippy::too_many_arguments)]
 fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
     stepper: &mut Stepper<'_, A, D>,
     (t, h): (f64, f64),
     (start, end): (&[State<A>], &[State<A>]),
-    before: &[f64],
+    (before, after): (&[f64], &mut [f64]),
     scan: &[(f64, Vec<State<A>>)],
     probe: &mut [State<A>],
 ) -> Result<Option<Located<A>>, SimulationError> {
-    let count = before.len();
-    let mut values = vec![0.0; count];
+    let mut values = vec![0.0; before.len()];
     // points[i]: (offset, value) of limit i along the step. A value within AT_BOUND of zero at the start is a joint
     // that has just left its bound (bounced or released) or the reaction of one just held: it starts at +0, and falls
     // only below -AT_BOUND, so that round-off about zero is no transition while a bounce too short for the scan to
@@ -1005,6 +1004,7 @@ fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
             .zip(&values)
             .for_each(|(p, &value)| p.push((offset, value)));
     }
+    after.copy_from_slice(&values);
     let falls = |before: f64, after: f64| (before > 0.0 && after <= 0.0) || (before == 0.0 && after < -AT_BOUND);
     let mut earliest: Option<Located<A>> = None;
     for (index, points) in points.iter().enumerate() {
@@ -1180,6 +1180,8 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     // Joint limits: refused beyond their bounds, and those that start on one make their transition first.
     let mut limits = vec![0.0; dynamics.limit_count()];
+    // The limits' values at the end of the step taken, which are the next step's start values unless it is cut.
+    let mut limits_after = limits.clone();
     let mut transitions = Vec::new();
     if !limits.is_empty() {
         limit_values(&mut stepper, start, &state, &mut limits)?;
@@ -1262,7 +1264,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
                 &mut stepper,
                 (t, h),
                 (&state, &next),
-                &limits,
+                (&limits, &mut limits_after),
                 &scan[..scanned],
                 &mut probe,
             )?
@@ -1354,9 +1356,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             work += step_work;
             now = end;
             resume = None;
-            if !limits.is_empty() {
-                limit_values(&mut stepper, end, &state, &mut limits)?;
-            }
+            std::mem::swap(&mut limits, &mut limits_after);
         }
         if controller.is_none() && resume.is_none() {
             k += 1;

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
-use dynamics::limits::{LimitChange, LimitTransition};
+use dynamics::limits::{energy_changed_by, LimitChange, LimitTransition};
 use dynamics::{simulate, Algebra, Cga, Dynamics, Method, Pga, Schedule, State, Tolerance};
 use scenarios::limits::LimitScene;
 
@@ -70,13 +70,7 @@ impl LimitRun {
     fn drift(&self) -> f64 {
         let start = self.samples.first().map_or(0.0, |s| s.2);
         (self.samples.iter())
-            .map(|&(t, _, energy)| {
-                let taken: f64 = (self.transitions.iter())
-                    .filter(|transition| transition.t <= t)
-                    .map(|transition| transition.energy_change)
-                    .sum();
-                (energy - start - taken).abs()
-            })
+            .map(|&(t, _, energy)| (energy - start - energy_changed_by(&self.transitions, t)).abs())
             .fold(0.0, f64::max)
     }
 

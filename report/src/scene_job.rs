@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
-use dynamics::limits::{LimitChange, LimitTransition};
+use dynamics::limits::{energy_changed_by, LimitChange, LimitTransition};
 use dynamics::simulate::Sample;
 use dynamics::{Cga, Correction, Dynamics, Pga, State, StepStatistics};
 
@@ -122,15 +122,9 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         initial_energy.abs()
     };
     let transitions = simulation.transitions;
-    let impacts = |t: f64| -> f64 {
-        (transitions.iter())
-            .filter(|transition| transition.t <= t)
-            .map(|transition| transition.energy_change)
-            .sum()
-    };
     let energy_change = samples
         .iter()
-        .map(|s| (s.energy - initial_energy - impacts(s.t)).abs() / scale)
+        .map(|s| (s.energy - initial_energy - energy_changed_by(&transitions, s.t)).abs() / scale)
         .collect();
     let mechanism = system.mechanism();
     let robot = system.joint_columns().is_some();

@@ -181,6 +181,22 @@ fn an_inelastic_bound_holds_the_pendulum<A: Algebra>() {
         );
         assert!(sample.angular_velocity.norm() < 1e-12);
     }
+    // What the transitions took, up to a time: nothing before the impact, all of it after; NaN and -inf times are
+    // before every transition.
+    use dynamics::limits::energy_changed_by;
+    let taken = run.transitions[0].energy_change;
+    assert!(taken < 0.0);
+    for (t, expected) in [
+        (0.0, 0.0),
+        (exact - 1e-3, 0.0),
+        (exact + 1e-3, taken),
+        (f64::INFINITY, taken),
+    ] {
+        assert_eq!(energy_changed_by(&run.transitions, t), expected, "t = {t}");
+    }
+    assert_eq!(energy_changed_by(&run.transitions, f64::NAN), 0.0);
+    assert_eq!(energy_changed_by(&run.transitions, f64::NEG_INFINITY), 0.0);
+    assert_eq!(energy_changed_by(&[], 1.0), 0.0);
     // The impact took the kinetic energy: the pendulum rests at the potential energy of -0.3 rad.
     let body = rod();
     let resting = -body.mass() * 9.81 * 0.5 * REACH.cos();
