@@ -130,6 +130,24 @@ fn vector_at(v: &[f64], at: usize) -> Vector3<f64> {
     Vector3::new(v[at], v[at + 1], v[at + 2])
 }
 
+/// The positions `q` moved by the small velocity-coordinate displacement `delta` (a Newton step): `q + δ` on the
+/// vector coordinates, `p + R(r) δ` on free translations (R before the turn), `r exp(δ)` on the rotations.
+pub(crate) fn retract(layout: &JointLayout, q: &mut [f64], delta: &[f64]) {
+    for &(p, v) in &layout.vectors {
+        q[p] += delta[v];
+    }
+    for &(p, v, rotation) in &layout.translations {
+        let moved = quaternion_at(q, rotation) * vector_at(delta, v);
+        for axis in 0..3 {
+            q[p + axis] += moved[axis];
+        }
+    }
+    for &(p, v) in &layout.rotations {
+        let turned = quaternion_at(q, p) * UnitQuaternion::from_scaled_axis(vector_at(delta, v));
+        write_quaternion(q, p, &turned);
+    }
+}
+
 /// `dexp⁻¹_{−σ}(k) = k + ½ σ×k + ¹⁄₁₂ σ×(σ×k) − ¹⁄₇₂₀ ad⁴ + ¹⁄₃₀₂₄₀ ad⁶` on so(3) (`[a, b] = a × b`), truncated after the
 /// term the method's order needs (as `integrate::dexp_inverse` on screws).
 fn dexp_inverse(sigma: &Vector3<f64>, k: &Vector3<f64>, order: u32) -> Vector3<f64> {

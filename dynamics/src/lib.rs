@@ -27,7 +27,8 @@
 //! [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`) → [`motor`] and
 //! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →
 //! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows), [`mechanism`]
-//! (bodies, joints and the reaction solve) and [`limits`] (joint limits, `docs/limits.md`) → [`integrate`] →
+//! (bodies, joints and the reaction solve), [`limits`] (joint limits, `docs/limits.md`) and [`contacts`]
+//! (body points above planes, `docs/contacts.md`) → [`integrate`] →
 //! [`simulate`](mod@simulate).
 
 #![deny(missing_docs)]
@@ -36,6 +37,7 @@ pub mod algebra;
 pub mod body;
 pub mod cga;
 pub mod constraints;
+pub mod contacts;
 pub mod convert;
 pub mod equivalence;
 pub mod exponential;

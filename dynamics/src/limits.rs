@@ -161,13 +161,13 @@ pub fn energy_changed_by(transitions: &[LimitTransition], t: f64) -> f64 {
         .sum()
 }
 
-/// A located change of a joint limit's state, in [`crate::Simulation::transitions`].
+/// A located change of a joint limit's or a contact's state, in [`crate::Simulation::transitions`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitTransition {
     /// The time (s): the first time found at or after the crossing, within a few ulps.
     pub t: f64,
-    /// The limited joint's name.
-    pub joint: String,
+    /// The name of the limited joint or of the contact ([`crate::contacts`]).
+    pub constraint: String,
     /// What happened.
     pub change: LimitChange,
     /// The system's energy after the transition less before it (J): what an impact took (zero for restitution 1, up to

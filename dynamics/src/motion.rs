@@ -150,18 +150,20 @@ pub trait Dynamics<A: Algebra> {
         Err(no_joint_coordinates())
     }
 
-    /// The number of joint limits the system enforces ([`crate::limits`]); zero (the default) without them.
+    /// The number of one-sided constraints the system enforces: joint limits ([`crate::limits`]), then contacts
+    /// ([`crate::contacts`]); zero (the default) without them.
     fn limit_count(&self) -> usize {
         0
     }
 
-    /// The name of the joint of limit `index`, if there is that limit.
+    /// The name of one-sided constraint `index` (a limit's joint, or the contact), if there is that constraint.
     fn limit_name(&self, _index: usize) -> Option<&str> {
         None
     }
 
-    /// Per limit, the value whose fall to zero or below is its next transition, at `(t, states)`: while the joint is
-    /// free the gap to its nearer bound (rad or m), while it is held the reaction pushing it onto the bound (N m or N).
+    /// Per one-sided constraint, the value whose fall to zero or below is its next transition, at `(t, states)`:
+    /// while free a limited joint's gap to its nearer bound (rad or m) or a contact point's height above its plane
+    /// (m), while held the reaction pushing it onto the bound or plane (N m or N).
     fn limit_values(
         &self,
         _t: f64,
@@ -172,15 +174,16 @@ pub trait Dynamics<A: Algebra> {
         Ok(())
     }
 
-    /// Limit `index`'s transition at `(t, states)`, where its value has fallen to zero: an impact at its bound (the
-    /// velocities in `states` change), a hold, or a release. Returns what changed, in order.
+    /// One-sided constraint `index`'s transition at `(t, states)`, where its value has fallen to zero: an impact at
+    /// its bound or plane (the velocities in `states` change), a hold, or a release. Returns what changed, in order,
+    /// with the index of the constraint each change is of (a contact's impact changes every contact it touches).
     fn limit_transition(
         &self,
         _index: usize,
         _t: f64,
         _states: &mut [State<A>],
         _workspace: &mut Self::Workspace,
-    ) -> Result<Vec<crate::limits::LimitChange>, ConstraintError> {
+    ) -> Result<Vec<(usize, crate::limits::LimitChange)>, ConstraintError> {
         Ok(Vec::new())
     }
 

@@ -135,12 +135,12 @@ pub enum SimulationError {
         /// The integrator's name.
         method: &'static str,
     },
-    /// A limited joint starts beyond its limit by more than [`AT_BOUND`].
-    #[error("joint {joint}: starts {depth:e} (rad or m) beyond its limit")]
+    /// A limited joint starts beyond its limit, or a contact point below its plane, by more than [`AT_BOUND`].
+    #[error("{constraint}: starts {depth:e} (rad or m) beyond its limit or below its plane")]
     BeyondLimit {
-        /// The limited joint's name.
-        joint: String,
-        /// How far beyond its nearer bound it starts (rad or m).
+        /// The limited joint's or the contact's name.
+        constraint: String,
+        /// How far beyond its nearer bound or below its plane it starts (rad or m).
         depth: f64,
     },
     /// An adaptive run needed a step too short for the clock to advance by: the motion is singular there (a
@@ -1178,21 +1178,23 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     };
     let mut statistics = StepStatistics::default();
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
-    // Joint limits: refused beyond their bounds, and those that start on one make their transition first.
+    // Joint limits and contacts: refused beyond their bounds, and those that start on one make their transition
+    // first (each may change others: a contact's impact holds every contact touching, so the values are read anew).
     let mut limits = vec![0.0; dynamics.limit_count()];
     // The limits' values at the end of the step taken, which are the next step's start values unless it is cut.
     let mut limits_after = limits.clone();
     let mut transitions = Vec::new();
     if !limits.is_empty() {
         limit_values(&mut stepper, start, &state, &mut limits)?;
-        for (index, gap) in limits.clone().into_iter().enumerate() {
-            if gap < -AT_BOUND {
-                return Err(SimulationError::BeyondLimit {
-                    joint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
-                    depth: -gap,
-                });
-            }
-            if gap <= AT_BOUND {
+        if let Some((index, gap)) = (limits.iter().enumerate()).find(|(_, &gap)| gap < -AT_BOUND) {
+            return Err(SimulationError::BeyondLimit {
+                constraint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
+                depth: -gap,
+            });
+        }
+        for index in 0..limits.len() {
+            limit_values(&mut stepper, start, &state, &mut limits)?;
+            if limits[index] <= AT_BOUND {
                 transition(&mut stepper, (index, start), &mut state, &mut transitions)?;
             }
         }
@@ -1403,11 +1405,16 @@ fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(
         .map_err(|error| StepError::Constraint { t: time, error })?;
     let energy_change = dynamics.energy(state) - before;
     // A hold and its release at once share the impact's energy change: it is the hold's.
-    transitions.extend(changes.into_iter().enumerate().map(|(k, change)| LimitTransition {
-        t: time,
-        joint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
-        change,
-        energy_change: if k == 0 { energy_change } else { 0.0 },
-    }));
+    transitions.extend(
+        changes
+            .into_iter()
+            .enumerate()
+            .map(|(k, (changed, change))| LimitTransition {
+                t: time,
+                constraint: dynamics.limit_name(changed).unwrap_or_default().to_owned(),
+                change,
+                energy_change: if k == 0 { energy_change } else { 0.0 },
+            }),
+    );
     Ok(())
 }

@@ -114,14 +114,54 @@ impl Default for JointTerms {
     }
 }
 
-/// A joint-space row `q̈_follower = multiplier · q̈_leader` on one-coordinate joints, by their indices: the
-/// acceleration level of a coupling `q_f = m q_l + offset` (a URDF mimic), or with multiplier 0 of a joint held at a
-/// limit's bound (`q̈ = 0`).
+/// A row of the articulated solve: an acceleration held at zero by a multiplier (docs/limits.md "Hold").
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct CouplingRow {
-    pub follower: usize,
-    pub leader: usize,
-    pub multiplier: f64,
+pub(crate) enum Row {
+    /// `q̈_follower = multiplier · q̈_leader` on one-coordinate joints, by their indices: the acceleration level of a
+    /// coupling `q_f = m q_l + offset` (a URDF mimic), or with multiplier 0 of a joint held at a limit's bound
+    /// (`q̈ = 0`). Its unit multiplier is a generalised force, +1 on the follower and −m on the leader.
+    Joints {
+        follower: usize,
+        leader: usize,
+        multiplier: f64,
+    },
+    /// `n · a_p = 0`: the acceleration along the world direction `normal` of the point `point` of `body` (body
+    /// coordinates, from its centre of mass): a contact held on its plane (docs/contacts.md). Its unit multiplier is
+    /// a unit force along n through the point.
+    Point {
+        body: usize,
+        point: Vector3<f64>,
+        normal: Vector3<f64>,
+    },
+}
+
+/// Singular values of a gram matrix with point rows below this, relative to its largest diagonal entry, belong to
+/// contacts that repeat others: the least-norm multipliers share the load among them.
+pub(super) const REPEATED_ROW: f64 = 1e-12;
+
+/// A point row at one evaluation: its unit wrench `(r × n; n)` about o, and the point's offset r from o.
+#[derive(Clone, Copy, Debug)]
+struct PointRow {
+    body: usize,
+    offset: Vector3<f64>,
+    normal: Vector3<f64>,
+}
+
+impl PointRow {
+    fn wrench(&self) -> Vector6<f64> {
+        join(self.offset.cross(&self.normal), self.normal)
+    }
+
+    /// `n · a_p` from the body's spatial acceleration `a` (about o), with the velocity product `ω × v_p` if the
+    /// body's spatial velocity is given (a response to a unit force has none).
+    fn rate(&self, a: &Vector6<f64>, velocity: Option<&Vector6<f64>>) -> f64 {
+        let mut point = linear(a) + angular(a).cross(&self.offset);
+        if let Some(v) = velocity {
+            let omega = angular(v);
+            point += omega.cross(&(linear(v) + omega.cross(&self.offset)));
+        }
+        self.normal.dot(&point)
+    }
 }
 
 /// The articulated solve's scratch, sized once per run.
@@ -133,14 +173,17 @@ pub(crate) struct ArticulatedScratch {
     coupled: bool,
     bodies: Vec<BodyTerms>,
     joints: Vec<JointTerms>,
-    /// Per coupling: every body's acceleration under a unit coupling force, and every joint's first rate.
+    /// Per row: every body's acceleration under its unit multiplier, and every joint's first rate.
     responses: Vec<Vec<Vector6<f64>>>,
     response_rates: Vec<Vec<f64>>,
     /// A response pass's bias forces and joint force terms.
     response_bias: Vec<Vector6<f64>>,
     response_force: Vec<f64>,
-    /// The rows' multipliers of the last solve: the generalised force (N m or N) each row put on its follower.
+    /// The rows' multipliers of the last solve: the generalised force (N m or N) each joint row put on its follower,
+    /// the force (N) each point row put through its point.
     multipliers: Vec<f64>,
+    /// Per row of the last solve: a point row's wrench and offset, resolved at that evaluation.
+    points: Vec<Option<PointRow>>,
 }
 
 impl ArticulatedScratch {
@@ -163,6 +206,7 @@ impl ArticulatedScratch {
             response_bias: vec![Vector6::zeros(); bodies],
             response_force: vec![0.0; joints],
             multipliers: Vec::with_capacity(rows),
+            points: Vec::with_capacity(rows),
         }
     }
 }
@@ -370,17 +414,48 @@ fn joint_acceleration(terms: &mut JointTerms, mut a: Vector6<f64>, force: &[f64;
 }
 
 impl Articulation {
-    /// Adds the couplings' forces: each coupling's unit generalised force (+1 on the follower, −m on the leader)
-    /// moves every body by a response, found by the articulated passes with that force alone (no velocity terms,
-    /// the same articulated inertias); the multipliers λ solve `G λ = −(q̈_f − m q̈_l)` with G the responses'
-    /// coupling rates (`C M⁻¹ Cᵀ`, symmetric positive definite), and each body's acceleration gains `Σ λ a⁽ᵏ⁾`.
-    fn couple(&self, couplings: &[CouplingRow], scratch: &mut ArticulatedScratch) -> Result<(), ()> {
-        let r = couplings.len();
-        for (k, coupling) in couplings.iter().enumerate() {
+    /// Adds the rows' forces: each row's unit multiplier (a generalised force on its joints, or a unit force through
+    /// its point) moves every body by a response, found by the articulated passes with that force alone (no velocity
+    /// terms, the same articulated inertias); the multipliers λ solve `G λ = −ρ` with ρ the rows' accelerations of the
+    /// solve so far and G the responses' (`C M⁻¹ Cᵀ`, symmetric), and each body's acceleration gains `Σ λ a⁽ᵏ⁾`.
+    /// Joint rows are independent (G positive definite, Cholesky); contacts may repeat each other (a block resting
+    /// on four corners: four rows of rank 3), so with point rows λ is G's least-squares, least-norm solution.
+    fn couple<A: Algebra>(
+        &self,
+        rows: &[Row],
+        bodies: &[BodyKinematics<A>],
+        scratch: &mut ArticulatedScratch,
+    ) -> Result<(), ()> {
+        let r = rows.len();
+        let origin = scratch.origin;
+        scratch.points.clear();
+        scratch.points.extend(rows.iter().map(|row| match *row {
+            Row::Joints { .. } => None,
+            Row::Point { body, point, normal } => {
+                let frame = &bodies[body].kinematics.frame;
+                let offset = frame.position + frame.rotation * point - origin;
+                Some(PointRow { body, offset, normal })
+            }
+        }));
+        for (k, row) in rows.iter().enumerate() {
             scratch.response_force.iter_mut().for_each(|f| *f = 0.0);
-            scratch.response_force[coupling.follower] = 1.0;
-            scratch.response_force[coupling.leader] -= coupling.multiplier;
             scratch.response_bias.iter_mut().for_each(|b| *b = Vector6::zeros());
+            match (*row, scratch.points[k]) {
+                (
+                    Row::Joints {
+                        follower,
+                        leader,
+                        multiplier,
+                    },
+                    _,
+                ) => {
+                    scratch.response_force[follower] = 1.0;
+                    scratch.response_force[leader] -= multiplier;
+                }
+                // The bias is the velocity terms less the applied wrench.
+                (Row::Point { .. }, Some(point)) => scratch.response_bias[point.body] = -point.wrench(),
+                (Row::Point { .. }, None) => unreachable!("every point row was resolved above"),
+            }
             for &body in self.order.iter().rev() {
                 let Some(j) = self.parent_joint[body] else {
                     continue;
@@ -422,21 +497,48 @@ impl Articulation {
         }
         let mut gram = nalgebra::DMatrix::zeros(r, r);
         let mut rhs = nalgebra::DVector::zeros(r);
-        for (i, row) in couplings.iter().enumerate() {
-            let rate = |rates: &dyn Fn(usize) -> f64| rates(row.follower) - row.multiplier * rates(row.leader);
-            rhs[i] = -rate(&|j| {
-                let terms = &scratch.joints[j];
-                if terms.free > 0 {
-                    terms.rates[0]
-                } else {
-                    terms.prescribed
+        for (i, (row, point)) in rows.iter().zip(&scratch.points).enumerate() {
+            // Row i's acceleration from joint accelerations `rates` or, for a point, a body's spatial acceleration.
+            let joint_rate = |rates: &dyn Fn(usize) -> f64| match *row {
+                Row::Joints {
+                    follower,
+                    leader,
+                    multiplier,
+                } => rates(follower) - multiplier * rates(leader),
+                Row::Point { .. } => 0.0,
+            };
+            rhs[i] = -match point {
+                None => joint_rate(&|j| {
+                    let terms = &scratch.joints[j];
+                    if terms.free > 0 {
+                        terms.rates[0]
+                    } else {
+                        terms.prescribed
+                    }
+                }),
+                Some(point) => {
+                    let body = &scratch.bodies[point.body];
+                    point.rate(&body.acceleration, Some(&body.velocity))
                 }
-            });
+            };
             for k in 0..r {
-                gram[(i, k)] = rate(&|j| scratch.response_rates[k][j]);
+                gram[(i, k)] = match point {
+                    None => joint_rate(&|j| scratch.response_rates[k][j]),
+                    Some(point) => point.rate(&scratch.responses[k][point.body], None),
+                };
             }
         }
-        let lambda = gram.cholesky().ok_or(())?.solve(&rhs);
+        let lambda = if scratch.points.iter().all(Option::is_none) {
+            gram.cholesky().ok_or(())?.solve(&rhs)
+        } else {
+            let largest = gram.diagonal().amax();
+            gram.svd(true, true)
+                .solve(&rhs, REPEATED_ROW * largest)
+                .map_err(|_| ())?
+        };
+        if !lambda.iter().all(|x| x.is_finite()) {
+            return Err(());
+        }
         scratch.multipliers.clear();
         scratch.multipliers.extend(lambda.iter());
         for (k, response) in scratch.responses.iter().take(r).enumerate() {
@@ -466,7 +568,7 @@ impl Articulation {
         masses: &[MechanismBody<A>],
         bodies: &[BodyKinematics<A>],
         external: &[ScrewCoordinates],
-        couplings: &[CouplingRow],
+        rows: &[Row],
         scratch: &mut ArticulatedScratch,
         reactions: Option<&mut [[f64; 6]]>,
     ) -> Result<(), usize> {
@@ -576,10 +678,10 @@ impl Articulation {
             };
             scratch.bodies[body].acceleration = acceleration;
         }
-        scratch.coupled = !couplings.is_empty();
+        scratch.coupled = !rows.is_empty();
         scratch.multipliers.clear();
         if scratch.coupled {
-            self.couple(couplings, scratch).map_err(|_| self.order[0])?;
+            self.couple(rows, bodies, scratch).map_err(|_| self.order[0])?;
         }
         let Some(reactions) = reactions else {
             return Ok(());

@@ -651,6 +651,31 @@ impl<A: Algebra> Mechanism<A> {
         Ok(mass)
     }
 
+    /// Per `(body, world point, world direction n)`: the joint-space row c with `c · v = n · v_p` at joint velocities
+    /// v, the point's velocity along n: each column S on the way from the body to its root paired with the unit
+    /// force along n through the point, `c_k = S_k · (r × n; n)` (docs/contacts.md "Rows").
+    pub(crate) fn point_jacobian(
+        &self,
+        states: &[State<A>],
+        points: &[(usize, Vector3<f64>, Vector3<f64>)],
+    ) -> Result<DMatrix<f64>, MechanismError> {
+        let space = self.joint_space()?;
+        self.check_states(states)?;
+        let WorldTerms { columns, origin, .. } = self.world_terms(space, 0.0, states);
+        let mut rows = DMatrix::zeros(points.len(), space.velocities);
+        for (r, (body, point, normal)) in points.iter().enumerate() {
+            let wrench = join((point - origin).cross(normal), *normal);
+            let mut group = Some(&space.groups[space.group_of_body[*body]]);
+            while let Some(g) = group {
+                for (k, column) in columns[g.velocities()].iter().enumerate() {
+                    rows[(r, g.velocity_offset + k)] = column.dot(&wrench);
+                }
+                group = g.parent.map(|p| &space.groups[space.group_of_body[p]]);
+            }
+        }
+        Ok(rows)
+    }
+
     /// The bodies' kinematics at `states` and their screws in world axes about one point, the first body's position.
     fn world_terms(&self, space: &JointSpace, t: f64, states: &[State<A>]) -> WorldTerms<A> {
         let kinematics = self.kinematics_of(t, states);

@@ -15,14 +15,15 @@
 //! for constrained bodies.
 
 mod articulated;
+mod contacts;
 mod elements;
 mod joint;
 mod joint_space;
-mod limits;
 mod reduce;
 mod solve;
 mod spatial;
 mod topology;
+mod unilateral;
 
 use std::collections::HashSet;
 use std::fmt;
@@ -42,7 +43,7 @@ use crate::motion::{BodyRates, Dynamics, Rates};
 use crate::motor;
 use crate::state::State;
 
-use articulated::{ArticulatedScratch, Articulation, CouplingRow};
+use articulated::{ArticulatedScratch, Articulation, Row};
 use joint::{velocity_screw, wrench_coordinates, wrench_screw, BodyKinematics, Joint, JointContext, JointRows};
 pub use joint_space::{CoordinateGroup, JointSpace};
 pub(crate) use solve::symmetric_eigen;
@@ -94,6 +95,9 @@ pub enum MechanismError {
     /// A body was added with the name of one already there (the name is held).
     #[error("two bodies are named {0:?}; names identify bodies in errors and output")]
     DuplicateBody(String),
+    /// A contact was added with the name of a joint or contact already there (the name is held).
+    #[error("a joint or contact is already named {0:?}; names identify contacts in transitions and errors")]
+    DuplicateContact(String),
     /// A body, joint or force element was added with an empty name (what it was is held).
     #[error("a {0} needs a non-empty name")]
     EmptyName(&'static str),
@@ -223,11 +227,13 @@ pub struct Mechanism<A: Algebra> {
     /// Linear relations between joint coordinates (URDF mimics).
     couplings: Vec<Coupling>,
     /// The couplings' acceleration rows for the articulated solve.
-    coupling_rows: Vec<CouplingRow>,
+    coupling_rows: Vec<Row>,
     /// Forces between bodies (docs/mechanisms.md §M8).
     elements: Vec<ForceElement<A>>,
     /// The joint models' limits, in the order of their joints.
     limits: Vec<Limit>,
+    /// Body points kept above world planes (docs/contacts.md).
+    contacts: Vec<contacts::Contact>,
 }
 
 /// A limited joint model: its joint index and range.
@@ -331,10 +337,11 @@ pub struct MechanismWorkspace<A: Algebra> {
     element_wrenches: Vec<ScrewCoordinates>,
     /// The bodies placed by forward kinematics (stepping in joint coordinates).
     placed: Vec<joint_space::WorldBody>,
-    /// Per limit, the bound it is held at, if it is (docs/limits.md).
+    /// Per one-sided constraint (limits, then contacts), the bound it is held at, if it is (docs/limits.md; a
+    /// contact's plane is its lower bound).
     held: Vec<Option<Bound>>,
-    /// The articulated solve's joint-space rows: the couplings', then one per held limit.
-    rows: Vec<CouplingRow>,
+    /// The articulated solve's rows: the couplings', then one per held limit and per held contact.
+    rows: Vec<Row>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -418,6 +425,7 @@ impl<A: Algebra> Mechanism<A> {
             couplings: Vec::new(),
             coupling_rows: Vec::new(),
             limits: Vec::new(),
+            contacts: Vec::new(),
             elements: Vec::new(),
         }
     }
@@ -773,7 +781,7 @@ impl<A: Algebra> Mechanism<A> {
         self.coupling_rows = self
             .couplings
             .iter()
-            .map(|c| CouplingRow {
+            .map(|c| Row::Joints {
                 follower: c.follower,
                 leader: c.leader,
                 multiplier: c.multiplier,
@@ -785,13 +793,14 @@ impl<A: Algebra> Mechanism<A> {
     /// An error if `change` would leave couplings or limits without the articulated solve their joint-space rows
     /// need.
     fn keep_joint_space_rows(&self, change: &str) -> Result<(), ConstraintError> {
-        let (joint, what) = match (self.couplings.first(), self.limits.first()) {
-            (Some(c), _) => (c.follower, "couples joint coordinates"),
-            (None, Some(limit)) => (limit.joint, "limits joint coordinates"),
-            (None, None) => return Ok(()),
+        let (name, what) = match (self.couplings.first(), self.limits.first(), self.contacts.first()) {
+            (Some(c), _, _) => (self.joints[c.follower].name(), "couples joint coordinates"),
+            (None, Some(limit), _) => (self.joints[limit.joint].name(), "limits joint coordinates"),
+            (None, None, Some(contact)) => (contact.name.as_str(), "has contacts"),
+            (None, None, None) => return Ok(()),
         };
         Err(ConstraintError::InvalidParameter {
-            name: self.joints[joint].name().to_owned(),
+            name: name.to_owned(),
             reason: format!(
                 "{change}: this mechanism {what}, which needs every joint a joint model in a tree and no Baumgarte \
                  stabilisation"
@@ -1141,13 +1150,13 @@ impl<A: Algebra> Mechanism<A> {
             articulated: ArticulatedScratch::new(
                 self.bodies.len(),
                 self.joints.len(),
-                self.couplings.len() + self.limits.len(),
+                self.couplings.len() + self.limit_count(),
             ),
             previous_positions: Vec::new(),
             power: 0.0,
             element_wrenches: vec![ScrewCoordinates::default(); self.bodies.len()],
             placed: Vec::new(),
-            held: vec![None; self.limits.len()],
+            held: vec![None; self.limit_count()],
             rows: self.coupling_rows.clone(),
         }
     }
@@ -1326,7 +1335,7 @@ impl<A: Algebra> Mechanism<A> {
             BodyTerms::FreeAccelerations
         };
         self.body_kinematics(t, motors, body_momenta, workspace, terms)?;
-        if self.joints.is_empty() {
+        if self.joints.is_empty() && workspace.rows.is_empty() {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
         }
@@ -1609,7 +1618,8 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         if self.articulation.is_some() {
-            return self.project_coordinates(t, states, &mut workspace.previous_positions, &workspace.held);
+            self.project_coordinates(t, states, &mut workspace.previous_positions, &workspace.held)?;
+            return self.place_held_contacts(t, states, workspace);
         }
         for state in states.iter_mut() {
             state.motor = motor::normalise::<A>(state.motor);
@@ -1928,7 +1938,10 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
     }
 
     fn conserves_world_momenta(&self) -> bool {
-        self.joints.is_empty() && self.elements.is_empty() && self.bodies.iter().all(|body| body.forces.is_empty())
+        self.joints.is_empty()
+            && self.contacts.is_empty()
+            && self.elements.is_empty()
+            && self.bodies.iter().all(|body| body.forces.is_empty())
     }
 
     fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
@@ -1994,7 +2007,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         t: f64,
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
-    ) -> Result<Vec<LimitChange>, ConstraintError> {
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
         Mechanism::limit_transition(self, index, t, states, workspace)
     }
 }

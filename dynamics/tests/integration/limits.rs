@@ -401,7 +401,7 @@ fn careless_limits_are_refused() {
         let start = system.states_from_joints(&[q], &[0.0]).unwrap();
         let error = simulate(&system, &start, Method::Rkmk4Body, &schedule).unwrap_err();
         assert!(
-            matches!(&error, SimulationError::BeyondLimit { joint, .. } if joint == "pivot"),
+            matches!(&error, SimulationError::BeyondLimit { constraint, .. } if constraint == "pivot"),
             "{q}: {error}"
         );
     }
@@ -418,7 +418,7 @@ fn careless_limits_are_refused() {
         .limit_transition(1, 0.0, &mut states, &mut workspace)
         .unwrap_err()
         .to_string();
-    assert!(error.contains("no limit 1"), "{error}");
+    assert!(error.contains("no one-sided constraint 1"), "{error}");
     let error = system
         .limit_transition(0, 0.0, &mut [], &mut workspace)
         .unwrap_err()

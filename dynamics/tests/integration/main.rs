@@ -9,6 +9,7 @@ mod adaptive;
 mod algebra_layer;
 mod bodies_and_states;
 mod constraint_machinery;
+mod contacts;
 mod convert;
 mod errors;
 pub(crate) mod events;
