@@ -143,6 +143,20 @@ pub enum SimulationError {
         /// How far beyond its nearer bound or below its plane it starts (rad or m).
         depth: f64,
     },
+    /// Impacts came ever closer together ([`TRANSITIONS_IN_A_ROW`] with no whole step between them) without coming
+    /// to rest: a restitution near 1 on a contact that cannot settle, or bounds that trap a joint.
+    #[error(
+        "{constraint}: {count} transitions in a row up to t = {t} s, with no whole step between them: the impacts do \
+         not come to rest"
+    )]
+    Zeno {
+        /// The limited joint's or the contact's name, at the last transition.
+        constraint: String,
+        /// The time of the last transition (s).
+        t: f64,
+        /// The transitions in a row.
+        count: usize,
+    },
     /// An adaptive run needed a step too short for the clock to advance by: the motion is singular there (a
     /// collision of the bodies' paths, a force without bound) or the tolerance is below what round-off allows.
     #[error("at t = {t}: the step the tolerance needs fell to {h:e} s, which the clock cannot resolve ({reason})")]
@@ -913,8 +927,10 @@ fn brackets(points: &[(f64, f64)], crosses: impl Fn(f64, f64) -> bool) -> Vec<Br
 /// The crossing of the watched `value` within the part `((a, value), (b, value))` of the step of length `h` from
 /// `(t, start)` (offsets into the step), where it goes from not zero to the other sign or zero: regula falsi on the
 /// partial step length with the Illinois modification (the retained end's value halved when the same end is kept
-/// twice), bisection where the secant leaves the bracket. Returns the first time found at or after the crossing,
-/// within [`EVENT_ULPS`] of the crossing, and the states there.
+/// twice), bisection where the secant leaves the bracket. With `from_bound`, a bracket starting at +0 (a one-sided
+/// constraint that has just left its bound) is the value's return below `−AT_BOUND`, found by bisection until the
+/// value has risen above zero. Returns the first time found at or after the crossing, within [`EVENT_ULPS`] of the
+/// crossing, and the states there.
 #[allow(clippy::too_many_arguments)]
 fn locate<'d, A: Algebra, D: Dynamics<A> + ?Sized>(
     value: &mut impl FnMut(&mut Stepper<'d, A, D>, f64, &[State<A>]) -> Result<f64, SimulationError>,
@@ -924,6 +940,7 @@ fn locate<'d, A: Algebra, D: Dynamics<A> + ?Sized>(
     end: &[State<A>],
     ((mut a, mut value_a), (mut b, mut value_b)): Bracket,
     probe: &mut [State<A>],
+    from_bound: bool,
 ) -> Result<(f64, Vec<State<A>>), SimulationError> {
     let before = value_a;
     let mut at_b = end.to_vec();
@@ -935,13 +952,27 @@ fn locate<'d, A: Algebra, D: Dynamics<A> + ?Sized>(
         if value_b == 0.0 || b - a <= EVENT_ULPS * f64::EPSILON * (t + b).abs().max(h) {
             break;
         }
-        let mut m = b - value_b * (b - a) / (value_b - value_a);
+        // From +0 (a limit or contact that has just left its bound: `limit_crossing`) the crossing is where the value
+        // comes back below −AT_BOUND, after it has risen: bisection, with values within AT_BOUND of zero counted as
+        // still at the bound, until a value above zero gives the secant a bracket (the secant from a zero end would
+        // stay at the start, where the constraint is leaving).
+        let leaving = from_bound && value_a == 0.0;
+        let mut m = if leaving {
+            0.5 * (a + b)
+        } else {
+            b - value_b * (b - a) / (value_b - value_a)
+        };
         if !(m > a && m < b) {
             m = 0.5 * (a + b);
         }
         state_inside(stepper, (t, h), m, start, probe)?;
         let value = value(stepper, t + m, probe)?;
-        if value == 0.0 || value.signum() != before.signum() {
+        let crossed = if leaving {
+            value < -AT_BOUND
+        } else {
+            value == 0.0 || value.signum() != before.signum()
+        };
+        if crossed {
             (b, value_b) = (m, value);
             at_b.copy_from_slice(probe);
             if kept == -1 {
@@ -949,7 +980,7 @@ fn locate<'d, A: Algebra, D: Dynamics<A> + ?Sized>(
             }
             kept = -1;
         } else {
-            (a, value_a) = (m, value);
+            (a, value_a) = (m, if leaving { value.max(0.0) } else { value });
             if kept == 1 {
                 value_b *= 0.5;
             }
@@ -1018,7 +1049,7 @@ fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
             limit_values(stepper, time, states, &mut values)?;
             Ok(values[index])
         };
-        let (time, states) = locate(&mut watched, stepper, (t, h), start, end, bracket, probe)?;
+        let (time, states) = locate(&mut watched, stepper, (t, h), start, end, bracket, probe, true)?;
         if earliest.as_ref().is_none_or(|(first, ..)| time < *first) {
             earliest = Some((time, index, states));
         }
@@ -1184,6 +1215,8 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     // The limits' values at the end of the step taken, which are the next step's start values unless it is cut.
     let mut limits_after = limits.clone();
     let mut transitions = Vec::new();
+    // Transitions since the last step that none cut short.
+    let mut in_a_row = 0;
     if !limits.is_empty() {
         limit_values(&mut stepper, start, &state, &mut limits)?;
         if let Some((index, gap)) = (limits.iter().enumerate()).find(|(_, &gap)| gap < -AT_BOUND) {
@@ -1288,8 +1321,16 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
                 for bracket in brackets(&points, |before, after| event.crosses(before, after)) {
                     let mut watched =
                         |_: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| event.value(time, states);
-                    let (time, states) =
-                        locate(&mut watched, &mut stepper, (t, h), &state, &next, bracket, &mut probe)?;
+                    let (time, states) = locate(
+                        &mut watched,
+                        &mut stepper,
+                        (t, h),
+                        &state,
+                        &next,
+                        bracket,
+                        &mut probe,
+                        false,
+                    )?;
                     if time > reached {
                         continue;
                     }
@@ -1346,6 +1387,14 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             // The step's work up to the transition, then the transition, from the states there.
             work += state_inside(&mut stepper, (t, h), time - t, &state, &mut probe)?;
             state = states;
+            in_a_row += 1;
+            if in_a_row > TRANSITIONS_IN_A_ROW {
+                return Err(SimulationError::Zeno {
+                    constraint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
+                    t: time,
+                    count: in_a_row,
+                });
+            }
             transition(&mut stepper, (index, time), &mut state, &mut transitions)?;
             limit_values(&mut stepper, time, &state, &mut limits)?;
             for (event, value) in events.iter_mut().zip(values.iter_mut()) {
@@ -1359,6 +1408,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             now = end;
             resume = None;
             std::mem::swap(&mut limits, &mut limits_after);
+            in_a_row = 0;
         }
         if controller.is_none() && resume.is_none() {
             k += 1;
@@ -1390,6 +1440,10 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
 
 /// A limited joint this close to a bound (rad or m) at the start is on it; further beyond it is an error.
 pub const AT_BOUND: f64 = 1e-12;
+
+/// More transitions than this with no whole step between them end the run ([`SimulationError::Zeno`]): impacts that
+/// come ever closer together without coming to rest.
+pub const TRANSITIONS_IN_A_ROW: usize = 10_000;
 
 /// Limit `index`'s transition at `time` ([`Dynamics::limit_transition`]) on `state`, recorded in `transitions`.
 fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(

@@ -19,6 +19,7 @@
 //! format is derived from the structs below (serde), so toml reports unknown keys, missing fields and wrong
 //! types with their line and column.
 
+mod contacts;
 mod elements;
 mod joint_models;
 mod robot;
@@ -257,6 +258,9 @@ pub struct SceneFile {
     /// PD controllers on joints by name.
     #[serde(default)]
     pub(crate) pd: Vec<PdSpec>,
+    /// Body points kept above world planes.
+    #[serde(default)]
+    pub(crate) contact: Vec<contacts::ContactSpec>,
     /// The robot's URDF, read by [`SceneFile::parse`].
     #[serde(skip)]
     pub(crate) loaded_robot: Option<Arc<LoadedRobot>>,
@@ -1784,6 +1788,7 @@ impl SceneFile {
             && self.joint_torque.is_empty()
             && self.joint_damping.is_empty()
             && self.pd.is_empty()
+            && self.contact.is_empty()
     }
 
     /// The robot's URDF as read, with its `[robot]` table; an error if the table was not read by
@@ -2192,6 +2197,7 @@ impl SceneFile {
             built.as_ref().map(|(r, _)| r),
             &file_joints,
         )?;
+        self.add_contacts(&layout, &mut system, &place)?;
         // Onto the joints (theory §10); joints that cannot hold together are an error naming them, and a start that
         // breaks them by more than the file allows is refused.
         let mut initial = states;
@@ -2239,6 +2245,7 @@ impl SceneFile {
                 }
             }
         }
+        self.check_contact_start(&system, &initial)?;
         // A rank-deficient or inconsistent reaction solve fails here, with the joints' names.
         system.rates_at(0.0, &initial)?;
         let (robot_columns, robot_joints) = match (&built, robot) {

@@ -62,6 +62,8 @@ pub struct AlgebraRun {
     pub energy_change: Vec<f64>,
     /// The joint limits' impacts, holds and releases.
     pub transitions: Vec<LimitTransition>,
+    /// The deepest any contact point went below its plane over the samples (m); 0 without contacts.
+    pub deepest: f64,
     /// The largest joint violation per sample (m).
     pub(crate) violation: Vec<f64>,
     /// The work done by the force elements from the start to each sample (J; `Sample::work`).
@@ -129,6 +131,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
     let mechanism = system.mechanism();
     let robot = system.joint_columns().is_some();
     let mut violation = Vec::with_capacity(samples.len());
+    let mut deepest = 0.0f64;
     let mut rows = Vec::new();
     let mut previous: Option<Vec<f64>> = None;
     for k in 0..samples.len() {
@@ -149,6 +152,16 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
             None
         };
         violation.push(system.joint_violation(&poses, q.as_deref()));
+        if !scene.contact.is_empty() {
+            let states: Vec<State<A>> = (bodies.iter().enumerate())
+                .map(|(i, b)| b[k].state(mechanism.body(i)))
+                .collect();
+            let heights = mechanism.contact_heights(&states).map_err(|e| SceneFileError::Run {
+                algebra: A::NAME,
+                message: format!("the contact heights at t = {}: {e}", samples[k].t),
+            })?;
+            deepest = heights.into_iter().fold(deepest, |d, h| d.max(-h));
+        }
         if let Some(q) = q {
             rows.extend(system.joint_row(&q));
             previous = Some(q);
@@ -169,6 +182,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         start_correction: system.start_correction.clone(),
         statistics: simulation.statistics,
         transitions,
+        deepest,
     })
 }
 
@@ -419,6 +433,25 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     if let Some(robot) = setup.robot {
         let _ = writeln!(out, "{robot}");
     }
+    if !scene.contact.is_empty() {
+        let _ = writeln!(
+            out,
+            "Contacts, each a body point kept above the world plane n · x = d (docs/contacts.md):\n"
+        );
+        for (k, contact) in scene.contact.iter().enumerate() {
+            let _ = writeln!(
+                out,
+                "- {}: the point {:?} m of {}, n = {:?}, d = {} m, restitution {}",
+                escape(&contact.name(k)),
+                contact.point,
+                escape(contact.body.as_deref().unwrap_or("the body")),
+                contact.normal,
+                contact.offset,
+                contact.restitution
+            );
+        }
+        let _ = writeln!(out);
+    }
     if !setup.elements.is_empty() {
         let _ = writeln!(out, "Force elements and drives:\n");
         for element in &setup.elements {
@@ -488,16 +521,34 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
         let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
         let taken: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
-        let _ = writeln!(
+        let _ =
+            writeln!(
             out,
-            "Joint limits ({}): {} bounces, {} holds, {} releases, the first at t = {:.6} s; the impacts changed the \
-             energy by {} J.",
+            "{} ({}): {} bounces, {} holds, {} releases, the first at t = {:.6} s; the impacts changed the energy by \
+             {} J{}.",
+            {
+                let contacts: Vec<String> = (scene.contact.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
+                let on_contact = |t: &LimitTransition| contacts.contains(&t.constraint);
+                match (run.transitions.iter().any(on_contact), run.transitions.iter().all(on_contact)) {
+                    (false, _) => "Joint limits",
+                    (true, true) => "Contacts",
+                    (true, false) => "Joint limits and contacts",
+                }
+            },
             run.algebra.name(),
             count(|c| matches!(c, LimitChange::Bounced { .. })),
             count(|c| matches!(c, LimitChange::Held { .. })),
             count(|c| matches!(c, LimitChange::Released { .. })),
             run.transitions[0].t,
             scientific(taken),
+            if scene.contact.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; the deepest a contact point went below its plane at the samples: {} m",
+                    scientific(run.deepest)
+                )
+            },
         );
     }
     if limited {
@@ -512,7 +563,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             "|E(t) − E₀| in J (|E₀| < 1e-6 J, where a relative change means nothing)"
         },
         if limited {
-            ", less what the limits' impacts changed it by up to t (recorded at each impact)"
+            ", less what the impacts at limits and contacts changed it by up to t (recorded at each impact)"
         } else {
             ""
         }

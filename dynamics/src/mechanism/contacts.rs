@@ -76,6 +76,28 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
+    /// Every contact's height above its plane (m, negative below it) at `states`, in the order they were added; an
+    /// error unless there is one state per body.
+    ///
+    /// ```
+    /// use dynamics::{contacts::PlaneContact, Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ball = Body::new(1.0, Vector3::repeat(0.004))?;
+    /// let mut scene = Mechanism::<Pga>::new();
+    /// let id = scene.add_body("ball", ball)?;
+    /// scene.add_contact("bottom", id, PlaneContact::new(Vector3::new(0.0, 0.0, -0.1), Vector3::z(), 0.0)?)?;
+    /// let at = State::<Pga>::from_world_twist(&ball, Vector3::z() * 0.5, &UnitQuaternion::identity(), Vector3::zeros(), Vector3::zeros());
+    /// assert!((scene.contact_heights(&[at])?[0] - 0.4).abs() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn contact_heights(&self, states: &[State<A>]) -> Result<Vec<f64>, ConstraintError> {
+        self.check_count("states", states.len())?;
+        Ok((0..self.contacts.len())
+            .map(|c| self.contact_motion(c, states).0)
+            .collect())
+    }
+
     /// The contacts' names, in the order they were added.
     pub fn contact_names(&self) -> impl Iterator<Item = &str> {
         self.contacts.iter().map(|c| c.name.as_str())
@@ -126,15 +148,15 @@ impl<A: Algebra> Mechanism<A> {
             })
     }
 
-    /// Contacts `indices` placed on their planes and stopped there, the `equalities` rows (joint space) kept
-    /// (docs/contacts.md "Projection"): Newton steps `δ = M⁻¹Cᵀ(CM⁻¹Cᵀ)⁺(−h)` on the joint positions (retracted
-    /// onto the quaternions) until the heights h are within [`ON_PLANE`], then the normal speeds removed by the same
-    /// map.
+    /// Contacts `indices` placed on their planes and, with `stop`, stopped there, the `equalities` rows (joint space)
+    /// kept (docs/contacts.md "Projection"): Newton steps `δ = M⁻¹Cᵀ(CM⁻¹Cᵀ)⁺(−h)` on the joint positions
+    /// (retracted onto the quaternions) until the heights h are within [`ON_PLANE`], then the normal speeds removed
+    /// by the same map.
     pub(super) fn place_contacts(
         &self,
         t: f64,
         states: &mut [State<A>],
-        indices: &[usize],
+        (indices, stop): (&[usize], bool),
         equalities: &DMatrix<f64>,
         previous: &mut Vec<f64>,
     ) -> Result<(), ConstraintError> {
@@ -154,6 +176,10 @@ impl<A: Algebra> Mechanism<A> {
             let step = self.metric_correction(t, states, &rows, equalities, &residual)?;
             crate::joint_integration::retract(&layout, &mut q, step.as_slice());
             self.write_joints_into(t, &q, &v, states, &mut Vec::new())?;
+        }
+        if !stop {
+            previous.clone_from(&q);
+            return Ok(());
         }
         let rows = self.contact_rows(states, indices)?;
         let speeds = &rows * DVector::from_column_slice(&v);

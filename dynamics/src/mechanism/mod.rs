@@ -1489,12 +1489,16 @@ impl<A: Algebra> Mechanism<A> {
             .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum))
     }
 
-    /// The largest position and velocity residuals over the joints at this state.
+    /// The largest position and velocity residuals over the joints at this state; a contact's depth below its plane
+    /// counts as a position residual (m).
     pub fn violation(&self, t: f64, states: &[State<A>]) -> Result<Violation, ConstraintError> {
         self.check_count("states", states.len())?;
         let mut workspace = self.new_workspace();
         self.position_rows(t, states, &mut workspace, Rows::Residuals)?;
-        let (position, velocity) = self.coupling_violation(states);
+        let (mut position, velocity) = self.coupling_violation(states);
+        for contact in 0..self.contacts.len() {
+            position = position.max(-self.contact_motion(contact, states).0);
+        }
         Ok(workspace
             .joints
             .iter()

@@ -205,10 +205,19 @@ impl<A: Algebra> Mechanism<A> {
                 involved.push((c, held));
             }
         }
+        let indices: Vec<usize> = involved.iter().map(|&(c, _)| c).collect();
+        // On their planes first, as a limited joint is put on its bound: the crossing was located a round-off past it.
+        let equalities = self.equality_rows(&workspace.held);
+        self.place_contacts(
+            t,
+            states,
+            (&indices, false),
+            &equalities,
+            &mut workspace.previous_positions,
+        )?;
         let space = self.limited_space()?;
         let (mut q, mut v) = (vec![0.0; space.position_count()], vec![0.0; space.velocity_count()]);
         self.read_joints_into(states, &mut q, &mut v, &mut workspace.previous_positions)?;
-        let indices: Vec<usize> = involved.iter().map(|&(c, _)| c).collect();
         let rows = self.contact_rows(states, &indices)?;
         let before = &rows * DVector::from_column_slice(&v);
         // Each contact's target speed after the impact: e times its speed before, or 0 below REST_SPEED.
@@ -222,7 +231,6 @@ impl<A: Algebra> Mechanism<A> {
                 }
             })
             .collect();
-        let equalities = self.equality_rows(&workspace.held);
         let change = self.complementary_impulse(t, states, (&rows, &before), &targets, &equalities)?;
         v.iter_mut().zip(change.iter()).for_each(|(v, dv)| *v += dv);
         self.write_joints_into(t, &q, &v, states, &mut workspace.placed)?;
@@ -363,7 +371,7 @@ impl<A: Algebra> Mechanism<A> {
             return Ok(());
         }
         let equalities = self.equality_rows(&workspace.held);
-        self.place_contacts(t, states, &held, &equalities, &mut workspace.previous_positions)
+        self.place_contacts(t, states, (&held, true), &equalities, &mut workspace.previous_positions)
     }
 
     /// The joint-space rows that an impact or a projection keeps at their values: the couplings `v_f − m v_l`, the

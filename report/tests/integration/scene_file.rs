@@ -118,6 +118,133 @@ fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
     assert_eq!(fifth.integrator, IntegratorName::Dp5Body);
 }
 
+/// The shipped cube bouncing on a floor (docs/contacts.md): its corners bounce at half the speed they came with, never
+/// go below the floor at a sample by more than 1e-12 m, both algebras find the same transitions, the cube comes to
+/// rest on a face (its centre 0.1 m up, not moving vertically or tipping) and slides on at its start's 0.5 m/s, and
+/// the energy less what the impacts took holds to the tolerance.
+#[test]
+fn the_shipped_bouncing_block_comes_to_rest_on_the_floor() {
+    let dir = fresh_dir("report-scene-file-contacts");
+    let summary = run_scene_file(&scene_path("bouncing_block.toml"), &dir).expect("the scene runs");
+    let [pga, cga] = &summary.runs[..] else {
+        panic!("two runs")
+    };
+    assert!(pga.transitions.len() >= 10, "{:?}", pga.transitions);
+    assert_eq!(pga.transitions.len(), cga.transitions.len());
+    for (a, b) in pga.transitions.iter().zip(&cga.transitions) {
+        assert_eq!((&a.constraint, a.change), (&b.constraint, b.change));
+        assert!((a.t - b.t).abs() < 1e-12, "{} vs {} s", a.t, b.t);
+    }
+    for transition in &pga.transitions {
+        if let dynamics::limits::LimitChange::Bounced {
+            speed_before,
+            speed_after,
+            ..
+        } = transition.change
+        {
+            // Several corners at once share the impulses: each leaves at least half as fast as it came.
+            assert!(speed_after >= 0.5 * speed_before * (1.0 - 1e-12), "{transition:?}");
+        }
+    }
+    for run in [pga, cga] {
+        assert!(run.deepest < 1e-12, "{:e} m below the floor", run.deepest);
+        assert!(run.max_energy_change() < 1e-9, "{}", run.max_energy_change());
+        let end = run.bodies[0].last().unwrap();
+        assert!((end.position.z - 0.1).abs() < 1e-12, "{} m", end.position.z);
+        // Frictionless: it slides on at the start's 0.5 m/s (to the tolerance) and spins on about the vertical.
+        assert!(end.velocity.z.abs() < 1e-12 && end.angular_velocity.xy().norm() < 1e-12);
+        assert!((end.velocity.x - 0.5).abs() < 1e-9, "{} m/s", end.velocity.x);
+    }
+    let text = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert_mentions(
+        &text,
+        &[
+            "Contacts (PGA): ",
+            " bounces, ",
+            "- contact 8: the point",
+            "the deepest a contact point went below",
+        ],
+    );
+}
+
+/// Careless contacts in a scene file, each refused naming the contact and the value: points, normals, offsets and
+/// restitutions NaN, infinite, huge or out of range, wrong lengths and types, unknown keys, an unknown body, the world,
+/// an empty or repeated name, a start below the floor, Baumgarte stabilisation, a layout of named bodies with no body
+/// named. A floor far from the origin runs.
+#[test]
+fn careless_contacts_in_a_scene_file_are_refused() {
+    let base = std::fs::read_to_string(scene_path("bouncing_block.toml")).unwrap();
+    let first = "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 0.5";
+    #[rustfmt::skip]
+    let cases: &[(&str, &str, &[&str])] = &[
+        (first, "[[contact]]\npoint = [nan, -0.1, -0.1]", &["contact contact 1", "must be finite"]),
+        (first, "[[contact]]\npoint = [2e6, -0.1, -0.1]", &["contact contact 1", "within 1e6"]),
+        (first, "[[contact]]\npoint = [-0.1, -0.1]", &["invalid length 2"]),
+        (first, "[[contact]]\npoint = -0.1", &["invalid type: floating point"]),
+        (first, &format!("{first}\nnormal = [0.0, 0.0, 0.0]"), &["contact contact 1", "the normal"]),
+        (first, &format!("{first}\nnormal = [0.0, inf, 1.0]"), &["contact contact 1", "the normal"]),
+        (first, &format!("{first}\noffset = nan"), &["contact contact 1", "must be finite"]),
+        (first, &format!("{first}\noffset = -1e7"), &["contact contact 1", "within 1e6"]),
+        (first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 1.5", &["contact contact 1", "restitution", "1.5"]),
+        (first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = -0.1", &["contact contact 1", "restitution", "-0.1"]),
+        (first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = nan", &["contact contact 1", "restitution", "NaN"]),
+        (first, &format!("{first}\nfriction = 0.3"), &["unknown field `friction`"]),
+        (first, &format!("{first}\nbody = \"moon\""), &["contact contact 1: body", "no body named \"moon\""]),
+        (first, &format!("{first}\nbody = \"world\""), &["contact contact 1: body", "the world has no point"]),
+        (first, &format!("{first}\nname = \"\""), &["contact : ", "non-empty name"]),
+        (first, &format!("{first}\nname = \"contact 2\""), &["contact contact 2", "already named"]),
+        ("position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 0.05]", &["contact contact", "below its plane"]),
+        ("stabilisation = \"projection\"", "stabilisation = \"baumgarte\"", &["contact contact 1", "need the articulated solve"]),
+    ];
+    let mut failures = Vec::new();
+    for (from, to, parts) in cases {
+        assert!(base.contains(from), "{from:?} is not in the base");
+        match SceneFile::parse(&base.replacen(from, to, 1)) {
+            Ok(_) => failures.push(format!("{from:?} → {to:?} parsed")),
+            Err(error) => {
+                let message = error.to_string();
+                if let Some(part) = parts.iter().find(|p| !message.contains(**p)) {
+                    failures.push(format!("{from:?} → {to:?}: {message:?} does not mention {part:?}"));
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} rows:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
+    // Two named bodies: a contact must name its body.
+    let named = base
+        .replacen("[body]\n", "[[body]]\nname = \"cube\"\n", 1)
+        .replacen("[initial]\n", "", 1);
+    let named = named
+        .replace("position = [", "initial.position = [")
+        .replace("orientation = {", "initial.orientation = {");
+    let named = named
+        .replace("body_angular_velocity = [", "initial.body_angular_velocity = [")
+        .replace("\nvelocity = [", "\ninitial.velocity = [");
+    let named = named.replace("[[forces]]\nkind = \"gravity\"", "forces = [{ kind = \"gravity\" }]")
+        + "\n[[body]]\nname = \"ball\"\nmass = 1.0\nshape = { kind = \"sphere\", radius = 0.1 }\ninitial.position = [2.0, 0.0, 1.0]\n";
+    let error = SceneFile::parse(&named).unwrap_err().to_string();
+    assert!(
+        error.contains("contact contact 1: body") && error.contains("name the body"),
+        "{error}"
+    );
+    let with_body = named.replace("[[contact]]\n", "[[contact]]\nbody = \"cube\"\n");
+    SceneFile::parse(&with_body).unwrap();
+    // A floor 1e5 m up, the cube above it: it runs and lands on it.
+    let far = base
+        .replace("position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 100000.5]")
+        .replace("restitution = 0.5", "restitution = 0.5\noffset = 1e5")
+        .replace("duration = 3.0", "duration = 0.5");
+    let scene = SceneFile::parse(&far).unwrap();
+    let run = scene.simulate::<Pga>().unwrap();
+    assert!(!run.transitions.is_empty());
+}
+
 /// The shipped double pendulum with a limited elbow (docs/limits.md): the elbow bounces off its bounds at
 /// restitution 0.5, never passes them, each bounce leaves at half the speed it came with, both algebras find the same
 /// transitions, and the energy less what the impacts took holds to the tolerance.
