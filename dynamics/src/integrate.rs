@@ -837,9 +837,10 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 }
             }
         }
-        // Stepping in joint coordinates ends on the joints (forward kinematics): no projection.
+        // Stepping in joint coordinates ends on the joints (forward kinematics): no projection but the held
+        // contacts'.
         .and_then(|()| match self.integrator {
-            Integrator::Joint(_) => Ok(()),
+            Integrator::Joint(_) => dynamics.after_joint_step(t + dt, &mut next, workspace),
             _ => dynamics.after_step(t + dt, &mut next, workspace),
         });
         let result = result

@@ -92,6 +92,18 @@ pub trait Dynamics<A: Algebra> {
         Ok(())
     }
 
+    /// Called after every step in joint coordinates, which ends on the joints (forward kinematics): by default
+    /// nothing. A mechanism stabilised by projection puts its held contacts back on their planes here
+    /// (docs/contacts.md "Projection").
+    fn after_joint_step(
+        &self,
+        _t: f64,
+        _states: &mut [State<A>],
+        _workspace: &mut Self::Workspace,
+    ) -> Result<(), ConstraintError> {
+        Ok(())
+    }
+
     /// Total energy (kinetic + potential), for diagnostics.
     fn energy(&self, states: &[State<A>]) -> f64;
 

@@ -1913,6 +1913,19 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         Ok(())
     }
 
+    fn after_joint_step(
+        &self,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        self.check_count("states", states.len())?;
+        match self.stabilisation {
+            Stabilisation::Projection { .. } => self.place_held_contacts(t, states, workspace),
+            _ => Ok(()),
+        }
+    }
+
     fn after_step(
         &self,
         t: f64,
