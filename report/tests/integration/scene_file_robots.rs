@@ -794,6 +794,8 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
     let empty = dir.join("empty.urdf").display().to_string();
     let massless = dir.join("massless.urdf").display().to_string();
     let urdf = "urdf = \"ur5_robot.urdf\"";
+    let block = std::fs::read_to_string(scenes().join("bouncing_block.toml")).unwrap();
+    let first = "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 0.5";
     #[rustfmt::skip]
     let cases: &[(&str, &str, &str, &[&str])] = &[
         // robot.urdf: missing, a folder, empty, a massless moving link, wrong type, wrong value.
@@ -933,6 +935,27 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"strang\"", &["integrator", "splitting method"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"rkmk8-joint\"\nstabilisation = \"baumgarte\"", &["integrator", "joint coordinates", "Baumgarte"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"euler\"", &["unknown variant `euler`", "`rkmk8-joint`"]),
+        // [[contact]]: points, normals, offsets and restitutions NaN, infinite, huge or out of range, wrong lengths
+        // and types, unknown keys, an unknown body, the world, an empty or repeated name, a start below the floor,
+        // Baumgarte stabilisation.
+        (&block, first, "[[contact]]\npoint = [nan, -0.1, -0.1]", &["contact contact 1", "must be finite"]),
+        (&block, first, "[[contact]]\npoint = [2e6, -0.1, -0.1]", &["contact contact 1", "within 1e6"]),
+        (&block, first, "[[contact]]\npoint = [-0.1, -0.1]", &["invalid length 2"]),
+        (&block, first, "[[contact]]\npoint = -0.1", &["invalid type: floating point"]),
+        (&block, first, &format!("{first}\nnormal = [0.0, 0.0, 0.0]"), &["contact contact 1", "the normal"]),
+        (&block, first, &format!("{first}\nnormal = [0.0, inf, 1.0]"), &["contact contact 1", "the normal"]),
+        (&block, first, &format!("{first}\noffset = nan"), &["contact contact 1", "must be finite"]),
+        (&block, first, &format!("{first}\noffset = -1e7"), &["contact contact 1", "within 1e6"]),
+        (&block, first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 1.5", &["contact contact 1", "restitution", "1.5"]),
+        (&block, first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = -0.1", &["contact contact 1", "restitution", "-0.1"]),
+        (&block, first, "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = nan", &["contact contact 1", "restitution", "NaN"]),
+        (&block, first, &format!("{first}\nfriction = 0.3"), &["unknown field `friction`"]),
+        (&block, first, &format!("{first}\nbody = \"moon\""), &["contact contact 1: body", "no body named \"moon\""]),
+        (&block, first, &format!("{first}\nbody = \"world\""), &["contact contact 1: body", "the world has no point"]),
+        (&block, first, &format!("{first}\nname = \"\""), &["contact : ", "non-empty name"]),
+        (&block, first, &format!("{first}\nname = \"contact 2\""), &["contact contact 2", "already named"]),
+        (&block, "position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 0.05]", &["contact contact", "below its plane"]),
+        (&block, "stabilisation = \"projection\"", "stabilisation = \"baumgarte\"", &["contact contact 1", "need the articulated solve"]),
     ];
     let mut failures = Vec::new();
     for (base, from, to, parts) in cases {
