@@ -11,6 +11,7 @@ use reference::SceneId;
 use crate::adaptive_report::{adaptive_section, FixedRuns};
 use crate::adaptive_sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
 use crate::anchors::Anchors;
+use crate::contacts_report::contacts_section;
 use crate::csv;
 use crate::figures::{self, showcase_step};
 use crate::limits_report::limits_section;
@@ -213,6 +214,7 @@ pub fn run_job_with_robots(
     };
     text.push_str(&adaptive_section(output, &adaptive_results, &fixed)?);
     text.push_str(&limits_section(output)?);
+    text.push_str(&contacts_section(output)?);
     text.push_str(&anchors.section());
     std::fs::write(&report_path, text).map_err(io(&report_path))?;
     let single_failures = results.iter().filter_map(|(config, result)| {

@@ -24,6 +24,7 @@ mod adaptive_report;
 pub mod adaptive_sweep;
 pub mod anchors;
 pub mod cli;
+mod contacts_report;
 pub mod csv;
 mod figures;
 pub mod job;

@@ -21,6 +21,7 @@
 
 #![deny(missing_docs)]
 
+pub mod contacts;
 pub mod equal_error;
 pub mod limits;
 pub mod mechanism_measures;

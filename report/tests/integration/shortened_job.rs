@@ -264,10 +264,14 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
         "![limits_energy.png](limits_energy.png)",
         "| pendulum stopping at a limit | PGA | 0 | 1 | 0 |",
         "| double pendulum bouncing off a limit | CGA |",
+        "## Contacts",
+        "![contacts.png](contacts.png)",
+        "| cube dropped flat | PGA |",
+        "| cube dropped tumbling | CGA |",
     ] {
         assert!(text.contains(part), "the report lacks {part:?}");
     }
-    assert!(!text.contains("failed:"), "a limit scene failed");
+    assert!(!text.contains("failed:"), "a limit or contact scene failed");
     for name in [
         "adaptive_single_bodies.png",
         "adaptive_mechanisms_and_robots.png",
@@ -275,6 +279,7 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
         "adaptive_steps.png",
         "limits.png",
         "limits_energy.png",
+        "contacts.png",
     ] {
         assert!(std::fs::metadata(output.join(name)).unwrap().len() > 10_000, "{name}");
     }

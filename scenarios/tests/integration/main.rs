@@ -8,6 +8,7 @@ mod common;
 mod adaptive;
 
 mod constraint_scenes;
+mod contacts;
 mod errors;
 mod hard_cases;
 mod joint_space;
