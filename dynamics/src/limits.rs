@@ -125,7 +125,8 @@ impl Bound {
     }
 }
 
-/// What happened to a limited joint at a transition.
+/// What happened to a limited joint, or a contact point ([`crate::contacts`], whose plane is its lower bound), at a
+/// transition.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LimitChange {
     /// The joint met `bound` at `speed_before` (rad/s or m/s, toward the bound) and left it at `speed_after` (away
