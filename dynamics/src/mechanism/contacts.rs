@@ -167,7 +167,13 @@ impl<A: Algebra> Mechanism<A> {
         let mut residual = DVector::zeros(indices.len() + equalities.nrows());
         for _ in 0..NEWTON_STEPS {
             let heights: Vec<f64> = indices.iter().map(|&i| self.contact_motion(i, states).0).collect();
-            if heights.iter().all(|h| h.abs() <= ON_PLANE) {
+            // Far from the origin a height cannot be closer to zero than a few ulps of the point's coordinates.
+            let within = |(&i, h): (&usize, &f64)| {
+                let contact = &self.contacts[i];
+                let reach = self.contact_point(contact, &states[contact.body]).amax().abs();
+                h.abs() <= ON_PLANE.max(4.0 * f64::EPSILON * reach)
+            };
+            if indices.iter().zip(&heights).all(within) {
                 break;
             }
             residual.fill(0.0);
@@ -197,5 +203,5 @@ impl<A: Algebra> Mechanism<A> {
 /// height).
 const NEWTON_STEPS: usize = 4;
 
-/// Heights (m) within this of the plane count as on it.
+/// Heights (m) within this of the plane count as on it (or within a few ulps of the point's coordinates, if more).
 const ON_PLANE: f64 = 1e-14;
