@@ -7,10 +7,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Duration;
 
-use dynamics::limits::{energy_changed_by, LimitChange, LimitTransition};
+use dynamics::limits::LimitTransition;
 use dynamics::{simulate, Algebra, Cga, Method, Pga, Schedule, Tolerance};
 use scenarios::contacts::ContactScene;
 
+use crate::limits_report::{drift_net_of_impacts, in_both_algebras, transition_cells};
 use crate::markdown::scientific;
 use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series};
 use crate::sweep::AlgebraKind;
@@ -60,14 +61,10 @@ impl ContactRun {
 
     /// The largest |E(t) − E₀ − L(t)| (J), L(t) what the impacts took up to t.
     fn drift(&self) -> f64 {
-        let start = self.samples.first().map_or(0.0, |s| s.3);
-        (self.samples.iter())
-            .map(|&(t, _, _, energy)| (energy - start - energy_changed_by(&self.transitions, t)).abs())
-            .fold(0.0, f64::max)
-    }
-
-    fn count(&self, kind: fn(&LimitChange) -> bool) -> usize {
-        self.transitions.iter().filter(|t| kind(&t.change)).count()
+        drift_net_of_impacts(
+            self.samples.iter().map(|&(t, _, _, energy)| (t, energy)),
+            &self.transitions,
+        )
     }
 }
 
@@ -82,21 +79,11 @@ pub(crate) fn contacts_section(dir: &Path) -> Result<String, PlotError> {
          pushes. A 0.2 m cube's eight corners are kept above the floor, restitution 0.5; the scenes of \
          `scenarios::contacts` run with DOP853-body at a tolerance of {TOLERANCE:e}, PGA and CGA.\n"
     );
-    let mut runs = Vec::new();
-    for scene in ContactScene::ALL {
-        for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
-            let run = match algebra {
-                AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
-                AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
-            };
-            match run {
-                Ok(run) => runs.push(run),
-                Err(error) => {
-                    let _ = writeln!(out, "{} in {}: failed: {error}\n", scene.label(), algebra.name());
-                }
-            }
-        }
-    }
+    let run = |scene, algebra| match algebra {
+        AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
+        AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
+    };
+    let runs = in_both_algebras(&ContactScene::ALL, ContactScene::label, run, &mut out);
     let mut panels = Vec::new();
     for scene in ContactScene::ALL {
         let of_scene: Vec<&ContactRun> = runs.iter().filter(|run| run.scene == scene).collect();
@@ -157,22 +144,13 @@ pub(crate) fn contacts_section(dir: &Path) -> Result<String, PlotError> {
          (m) | energy drift net of impacts (J) | steps | CPU (s) |\n|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for run in &runs {
-        let first = run
-            .transitions
-            .first()
-            .map_or("–".to_owned(), |t| format!("{:.15}", t.t));
-        let exact = run
-            .scene
-            .exact_first_impact()
-            .map_or("–".to_owned(), |t| format!("{t:.15}"));
+        let exact = (run.scene.exact_first_impact()).map_or("–".to_owned(), |t| format!("{t:.15}"));
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {first} | {exact} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {exact} | {} | {} | {} | {} |",
             run.scene.label(),
             run.algebra.name(),
-            run.count(|c| matches!(c, LimitChange::Bounced { .. })),
-            run.count(|c| matches!(c, LimitChange::Held { .. })),
-            run.count(|c| matches!(c, LimitChange::Released { .. })),
+            transition_cells(&run.transitions),
             scientific(run.deepest()),
             scientific(run.drift()),
             run.steps,

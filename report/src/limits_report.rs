@@ -68,15 +68,55 @@ impl LimitRun {
 
     /// The largest |E(t) − E₀ − L(t)| (J), L(t) what the impacts took up to t.
     fn drift(&self) -> f64 {
-        let start = self.samples.first().map_or(0.0, |s| s.2);
-        (self.samples.iter())
-            .map(|&(t, _, energy)| (energy - start - energy_changed_by(&self.transitions, t)).abs())
-            .fold(0.0, f64::max)
+        drift_net_of_impacts(
+            self.samples.iter().map(|&(t, _, energy)| (t, energy)),
+            &self.transitions,
+        )
     }
+}
 
-    fn count(&self, kind: fn(&LimitChange) -> bool) -> usize {
-        self.transitions.iter().filter(|t| kind(&t.change)).count()
+/// The largest |E(t) − E₀ − L(t)| (J) over `(t, E)` samples, L(t) what the `transitions` changed the energy by up to t.
+pub(crate) fn drift_net_of_impacts(samples: impl Iterator<Item = (f64, f64)>, transitions: &[LimitTransition]) -> f64 {
+    let mut start = None;
+    samples
+        .map(|(t, energy)| {
+            let start = *start.get_or_insert(energy);
+            (energy - start - energy_changed_by(transitions, t)).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The table cells of a run's transitions: bounces, holds, releases and the first transition's time (s).
+pub(crate) fn transition_cells(transitions: &[LimitTransition]) -> String {
+    let count = |kind: fn(&LimitChange) -> bool| transitions.iter().filter(|t| kind(&t.change)).count();
+    let first = transitions.first().map_or("–".to_owned(), |t| format!("{:.15}", t.t));
+    format!(
+        "{} | {} | {} | {first}",
+        count(|c| matches!(c, LimitChange::Bounced { .. })),
+        count(|c| matches!(c, LimitChange::Held { .. })),
+        count(|c| matches!(c, LimitChange::Released { .. })),
+    )
+}
+
+/// Every scene run by `run` in PGA and in CGA; a failed run is a line of `out` naming the scene, the algebra and why.
+pub(crate) fn in_both_algebras<S: Copy, R>(
+    scenes: &[S],
+    label: fn(S) -> &'static str,
+    run: impl Fn(S, AlgebraKind) -> Result<R, String>,
+    out: &mut String,
+) -> Vec<R> {
+    let mut runs = Vec::new();
+    for &scene in scenes {
+        for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
+            match run(scene, algebra) {
+                Ok(result) => runs.push(result),
+                Err(error) => {
+                    let _ = writeln!(out, "{} in {}: failed: {error}\n", label(scene), algebra.name());
+                }
+            }
+        }
     }
+    runs
 }
 
 /// The section: every limit scene in both algebras, a figure and a table.
@@ -89,21 +129,11 @@ pub(crate) fn limits_section(dir: &Path) -> Result<String, PlotError> {
          the joint is held on it by a joint-space row while the bound pushes, and released where the bound would \
          pull. The scenes of `scenarios::limits` run with DOP853-body at a tolerance of {TOLERANCE:e}, PGA and CGA.\n"
     );
-    let mut runs = Vec::new();
-    for scene in LimitScene::ALL {
-        for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
-            let run = match algebra {
-                AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
-                AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
-            };
-            match run {
-                Ok(run) => runs.push(run),
-                Err(error) => {
-                    let _ = writeln!(out, "{} in {}: failed: {error}\n", scene.label(), algebra.name());
-                }
-            }
-        }
-    }
+    let run = |scene, algebra| match algebra {
+        AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
+        AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
+    };
+    let runs = in_both_algebras(&LimitScene::ALL, LimitScene::label, run, &mut out);
     let (mut angles, mut energies) = (Vec::new(), Vec::new());
     for scene in LimitScene::ALL {
         let of_scene: Vec<&LimitRun> = runs.iter().filter(|run| run.scene == scene).collect();
@@ -183,10 +213,6 @@ pub(crate) fn limits_section(dir: &Path) -> Result<String, PlotError> {
          energy drift net of impacts (J) | steps | CPU (s) |\n|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for run in &runs {
-        let first = run
-            .transitions
-            .first()
-            .map_or("–".to_owned(), |t| format!("{:.15}", t.t));
         let exact = match run.scene.exact_first_impact() {
             Some(Ok(exact)) => format!("{exact:.15}"),
             Some(Err(error)) => error.to_string(),
@@ -194,12 +220,10 @@ pub(crate) fn limits_section(dir: &Path) -> Result<String, PlotError> {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {first} | {exact} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {exact} | {} | {} | {} | {} |",
             run.scene.label(),
             run.algebra.name(),
-            run.count(|c| matches!(c, LimitChange::Bounced { .. })),
-            run.count(|c| matches!(c, LimitChange::Held { .. })),
-            run.count(|c| matches!(c, LimitChange::Released { .. })),
+            transition_cells(&run.transitions),
             scientific(run.passed()),
             scientific(run.drift()),
             run.steps,
