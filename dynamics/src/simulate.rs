@@ -1226,12 +1226,11 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
             });
         }
         for index in 0..limits.len() {
-            limit_values(&mut stepper, start, &state, &mut limits)?;
             if limits[index] <= AT_BOUND {
                 transition(&mut stepper, (index, start), &mut state, &mut transitions)?;
+                limit_values(&mut stepper, start, &state, &mut limits)?;
             }
         }
-        limit_values(&mut stepper, start, &state, &mut limits)?;
     }
     let sample_count = schedule.sample_count();
     // Reserved up to a bound, grown as the samples come: a long run of many bodies must not ask for its whole

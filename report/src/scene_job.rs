@@ -136,30 +136,33 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
     let mut previous: Option<Vec<f64>> = None;
     for k in 0..samples.len() {
         let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
+        // The sampled states, for the joint positions of a robot and the heights of contacts.
+        let states: Vec<State<A>> = if robot || !scene.contact.is_empty() {
+            (bodies.iter().enumerate())
+                .map(|(i, b)| b[k].state(mechanism.body(i)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let failed = |what: &str, e: &dyn std::fmt::Display| SceneFileError::Run {
+            algebra: A::NAME,
+            message: format!("{what} at t = {}: {e}", samples[k].t),
+        };
         let q = if robot {
             // The joint positions from the sampled poses, angles nearest the previous sample's.
-            let states: Vec<State<A>> = (bodies.iter().enumerate())
-                .map(|(i, b)| b[k].state(mechanism.body(i)))
-                .collect();
-            let q = mechanism
-                .joint_positions(&states, previous.as_deref())
-                .map_err(|e| SceneFileError::Run {
-                    algebra: A::NAME,
-                    message: format!("the joint positions at t = {}: {e}", samples[k].t),
-                })?;
-            Some(q)
+            Some(
+                mechanism
+                    .joint_positions(&states, previous.as_deref())
+                    .map_err(|e| failed("the joint positions", &e))?,
+            )
         } else {
             None
         };
         violation.push(system.joint_violation(&poses, q.as_deref()));
         if !scene.contact.is_empty() {
-            let states: Vec<State<A>> = (bodies.iter().enumerate())
-                .map(|(i, b)| b[k].state(mechanism.body(i)))
-                .collect();
-            let heights = mechanism.contact_heights(&states).map_err(|e| SceneFileError::Run {
-                algebra: A::NAME,
-                message: format!("the contact heights at t = {}: {e}", samples[k].t),
-            })?;
+            let heights = mechanism
+                .contact_heights(&states)
+                .map_err(|e| failed("the contact heights", &e))?;
             deepest = heights.into_iter().fold(deepest, |d, h| d.max(-h));
         }
         if let Some(q) = q {

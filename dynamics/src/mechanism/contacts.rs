@@ -113,10 +113,11 @@ impl<A: Algebra> Mechanism<A> {
     pub(super) fn contact_motion(&self, index: usize, states: &[State<A>]) -> (f64, f64) {
         let contact = &self.contacts[index];
         let state = &states[contact.body];
-        let point = self.contact_point(contact, state);
+        let (position, rotation) = state.pose();
+        let offset = rotation * contact.point;
+        let point = position + offset;
         let velocity = state.world_velocity(&self.bodies[contact.body].body);
-        let (position, _) = state.pose();
-        let speed = velocity.linear + velocity.angular.cross(&(point - position));
+        let speed = velocity.linear + velocity.angular.cross(&offset);
         (contact.contact.height(&point), contact.contact.normal().dot(&speed))
     }
 

@@ -278,16 +278,21 @@ impl<A: Algebra> Mechanism<A> {
     ) -> Result<DVector<f64>, ConstraintError> {
         let count = targets.len();
         let scale = before.amax().max(targets.iter().fold(0.0, |m: f64, x| m.max(x.abs())));
+        // The responses of every contact and equality row, once: an active set takes its block of them.
+        let (response, gram) = self.responses(t, states, &stack(rows, equalities))?;
+        let equality_rows = count..count + equalities.nrows();
         let mut active = vec![true; count];
         for _ in 0..4 * count + 1 {
             let chosen: Vec<usize> = (0..count).filter(|&k| active[k]).collect();
-            let mut chosen_rows = DMatrix::zeros(chosen.len(), rows.ncols());
-            let mut residual = DVector::zeros(chosen.len() + equalities.nrows());
+            let block: Vec<usize> = chosen.iter().copied().chain(equality_rows.clone()).collect();
+            let mut residual = DVector::zeros(block.len());
             for (r, &k) in chosen.iter().enumerate() {
-                chosen_rows.set_row(r, &rows.row(k));
                 residual[r] = targets[k] - before[k];
             }
-            let (change, pushes) = self.impulses(t, states, &chosen_rows, equalities, &residual)?;
+            let sub_gram = gram.select_rows(&block).select_columns(&block);
+            let all = self.least_norm(t, &sub_gram, &residual)?;
+            let change = response.select_columns(&block) * &all;
+            let pushes = all.rows(0, chosen.len());
             let after = before + rows * &change;
             let pulling = (chosen.iter().zip(pushes.iter()))
                 .filter(|(_, &p)| p < -COMPLEMENTARITY * pushes.amax().max(f64::MIN_POSITIVE))
@@ -364,12 +369,13 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
         let first = self.limits.len();
+        // After every step: nothing to do, and nothing allocated, unless a contact is held.
+        if workspace.held[first..].iter().all(Option::is_none) {
+            return Ok(());
+        }
         let held: Vec<usize> = (0..self.contacts.len())
             .filter(|&c| workspace.held[first + c].is_some())
             .collect();
-        if held.is_empty() {
-            return Ok(());
-        }
         let equalities = self.equality_rows(&workspace.held);
         self.place_contacts(t, states, (&held, true), &equalities, &mut workspace.previous_positions)
     }
@@ -429,8 +435,7 @@ impl<A: Algebra> Mechanism<A> {
         self.impulses(t, states, rows, equalities, r).map(|(change, _)| change)
     }
 
-    /// [`Mechanism::metric_correction`] with the impulses `p = (CM⁻¹Cᵀ)⁺ r` on the rows. Repeated rows (a held limit
-    /// on a coupled pair, a fourth corner on a plane) share by the least-norm solution.
+    /// [`Mechanism::metric_correction`] with the impulses `p = (CM⁻¹Cᵀ)⁺ r` on the rows.
     fn impulses(
         &self,
         t: f64,
@@ -439,30 +444,56 @@ impl<A: Algebra> Mechanism<A> {
         equalities: &DMatrix<f64>,
         r: &DVector<f64>,
     ) -> Result<(DVector<f64>, DVector<f64>), ConstraintError> {
-        let failed = |reason: String| ConstraintError::InvalidParameter {
-            name: self.unilateral_names(),
-            reason: format!("the impact at t = {t}: {reason}"),
-        };
-        let mut stacked = DMatrix::zeros(rows.nrows() + equalities.nrows(), rows.ncols());
-        stacked.rows_mut(0, rows.nrows()).copy_from(rows);
-        if equalities.nrows() > 0 {
-            stacked.rows_mut(rows.nrows(), equalities.nrows()).copy_from(equalities);
-        }
-        let mass = self.mass_matrix(states).map_err(|error| failed(error.to_string()))?;
-        let factors = mass
-            .cholesky()
-            .ok_or_else(|| failed("the joint-space mass matrix is not positive definite".to_owned()))?;
-        let response = factors.solve(&stacked.transpose());
-        let gram = &stacked * &response;
-        let largest = gram.diagonal().amax();
-        let p = gram
-            .svd(true, true)
-            .solve(r, super::articulated::REPEATED_ROW * largest)
-            .map_err(|error| failed(error.to_owned()))?;
+        let (response, gram) = self.responses(t, states, &stack(rows, equalities))?;
+        let p = self.least_norm(t, &gram, r)?;
         let change = &response * &p;
-        if !change.iter().chain(p.iter()).all(|x| x.is_finite()) {
-            return Err(failed("the impulse is not finite".to_owned()));
-        }
         Ok((change, p.rows(0, rows.nrows()).into_owned()))
     }
+
+    /// For joint-space rows C at `states`: `M⁻¹Cᵀ` and the Gram matrix `C M⁻¹ Cᵀ`, M the joint-space mass matrix.
+    fn responses(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        stacked: &DMatrix<f64>,
+    ) -> Result<(DMatrix<f64>, DMatrix<f64>), ConstraintError> {
+        let mass = (self.mass_matrix(states)).map_err(|error| self.impact_failed(t, error.to_string()))?;
+        let factors = mass
+            .cholesky()
+            .ok_or_else(|| self.impact_failed(t, "the joint-space mass matrix is not positive definite".to_owned()))?;
+        let response = factors.solve(&stacked.transpose());
+        let gram = stacked * &response;
+        Ok((response, gram))
+    }
+
+    /// The impulses `G⁺ r` of a Gram matrix G: rows that repeat others (a held limit on a coupled pair, a fourth corner
+    /// on a plane) share by the least-norm solution.
+    fn least_norm(&self, t: f64, gram: &DMatrix<f64>, r: &DVector<f64>) -> Result<DVector<f64>, ConstraintError> {
+        let largest = gram.diagonal().amax();
+        let p = (gram.clone().svd(true, true))
+            .solve(r, super::articulated::REPEATED_ROW * largest)
+            .map_err(|error| self.impact_failed(t, error.to_owned()))?;
+        if !p.iter().all(|x| x.is_finite()) {
+            return Err(self.impact_failed(t, "the impulse is not finite".to_owned()));
+        }
+        Ok(p)
+    }
+
+    /// An impact at `t` that could not be solved, naming the one-sided constraints.
+    fn impact_failed(&self, t: f64, reason: String) -> ConstraintError {
+        ConstraintError::InvalidParameter {
+            name: self.unilateral_names(),
+            reason: format!("the impact at t = {t}: {reason}"),
+        }
+    }
+}
+
+/// `rows` above `equalities`, one matrix.
+fn stack(rows: &DMatrix<f64>, equalities: &DMatrix<f64>) -> DMatrix<f64> {
+    let mut stacked = DMatrix::zeros(rows.nrows() + equalities.nrows(), rows.ncols());
+    stacked.rows_mut(0, rows.nrows()).copy_from(rows);
+    if equalities.nrows() > 0 {
+        stacked.rows_mut(rows.nrows(), equalities.nrows()).copy_from(equalities);
+    }
+    stacked
 }
