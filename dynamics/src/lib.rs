@@ -28,7 +28,9 @@
 //! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →
 //! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows), [`mechanism`]
 //! (bodies, joints and the reaction solve), [`limits`] (joint limits, `docs/limits.md`) and [`contacts`]
-//! (body points above planes, `docs/contacts.md`) → [`integrate`] →
+//! (body points above planes, `docs/contacts.md`), with [`surfaces`] (quadrics in QCGA and tori in DCGA, held by
+//! [`constraints::SurfacePin`] and [`VirtualPower::point_on_surface`](constraints::VirtualPower::point_on_surface),
+//! `docs/surfaces.md`) → [`integrate`] →
 //! [`simulate`](mod@simulate).
 
 #![deny(missing_docs)]
@@ -55,6 +57,7 @@ pub mod pga;
 pub mod simulate;
 pub mod state;
 pub mod step_control;
+pub mod surfaces;
 #[cfg(test)]
 mod test_random;
 

@@ -22,6 +22,7 @@
 mod kinematics;
 pub mod linear;
 pub mod objects;
+mod on_surfaces;
 pub mod paths;
 pub mod pinning;
 mod rows;
@@ -32,6 +33,7 @@ use std::sync::Arc;
 
 pub use kinematics::Kinematics;
 pub use objects::{Coefficients, Pinnable, PinningAlgebra};
+pub use on_surfaces::{SurfacePin, TANGENT};
 pub use paths::{CarriedPath, MotorPath, MotorPoint, Path, PathPoint, ScrewMotion};
 pub use pinning::{LinearFunction, Pin};
 pub use rows::{ConstraintRow, RowBuffer, MAX_ROWS};
@@ -125,6 +127,15 @@ pub enum ConstraintError {
         /// The name of the constraint (or "stabilisation" for a bad [`Stabilisation`]).
         name: String,
         /// What is wrong with the parameter.
+        reason: String,
+    },
+    /// A point held on a surface reached a singular point of it (a cone's apex: no normal), or the two surfaces of
+    /// a curve are tangent there (their rows have lost rank).
+    #[error("constraint {name}: {reason}")]
+    Singular {
+        /// The name of the constraint.
+        name: String,
+        /// Where and what: no normal, or tangent surfaces.
         reason: String,
     },
     /// A slice given to a system does not hold one entry per body (states, motors, momenta, rates) or per joint

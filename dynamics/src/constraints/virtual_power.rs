@@ -28,12 +28,14 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
+use crate::constraints::on_surfaces::{check_held_point, surfaces_at};
 use crate::constraints::paths::{Fixed, MotorPath, MotorPoint, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
 use crate::convert::direction_and_length;
 use crate::exponential::log;
 use crate::forces::{couple, force_line};
+use crate::surfaces::Surface;
 
 /// One constraint wrench at one state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,6 +149,11 @@ enum Wrenches<A: Algebra> {
         body_point: Vector3<f64>,
         centre: Arc<dyn Path<Vector3<f64>>>,
         radius: f64,
+    },
+    /// Unit forces along the normals of one surface or two (a curve) through the body point; residuals F/|∇F|.
+    Surfaces {
+        body_point: Vector3<f64>,
+        surfaces: ArrayVec<Surface, 2>,
     },
     /// The six unit wrenches of the body frame, with the prescribed relative velocity of a motor path.
     Motor(Arc<dyn MotorPath<A>>),
@@ -678,6 +685,84 @@ impl<A: Algebra> VirtualPower<A> {
         })
     }
 
+    /// The body point `body_point` (body coordinates, m) stays on `surface` (reference frame): a unit force along the
+    /// surface normal, from the same algebra as the pinned form ([`crate::constraints::SurfacePin`]), through the
+    /// point. Its position residual is `F/|∇F|`, the distance from the surface to first order. Rank 1.
+    ///
+    /// A rod's end on an ellipsoid of radii 2, 1, 1 m: at the end of its long axis, sliding across it, the residuals
+    /// vanish; 1 cm further out the residual is 1 cm.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::surfaces::Surface;
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+    ///
+    /// let egg = Surface::ellipsoid(Vector3::new(2.0, 1.0, 1.0), &Isometry3::identity())?;
+    /// let end = Vector3::new(0.0, 0.0, -0.5); // body point, m
+    /// let on_egg = VirtualPower::<Pga>::point_on_surface("end", end, egg)?;
+    /// assert_eq!(on_egg.rank(), 1);
+    /// let rod = Body::rod(1.0, 1.0, 1e-3)?;
+    /// let system = Mechanism::single(rod).with_constraint(on_egg)?;
+    /// let still = UnitQuaternion::identity();
+    /// let at = State::new(&rod, Vector3::new(2.0, 0.0, 0.5), &still, Vector3::zeros(), Vector3::y());
+    /// let on = system.violation(0.0, &[at])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// let out = State::new(&rod, Vector3::new(2.01, 0.0, 0.5), &still, Vector3::zeros(), Vector3::y());
+    /// assert!((system.violation(0.0, &[out])?.position - 0.01).abs() < 1e-4); // m
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn point_on_surface(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        surface: Surface,
+    ) -> Result<Self, ConstraintError> {
+        Self::on_surfaces(name.into(), body_point, &[surface])
+    }
+
+    /// The body point stays on the curve where `surfaces` meet (reference frame): unit forces along both normals.
+    /// Rank 2; where the surfaces are tangent the rows lose rank, an error naming the constraint.
+    ///
+    /// An ellipse as an ellipsoid of radii 2, 1, 1 m cut by the plane z = 0: a bead on it moving along it.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, VirtualPower};
+    /// use dynamics::surfaces::Surface;
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+    ///
+    /// let egg = Surface::ellipsoid(Vector3::new(2.0, 1.0, 1.0), &Isometry3::identity())?;
+    /// let ellipse = VirtualPower::<Pga>::point_on_curve("ellipse", Vector3::zeros(), [egg, Surface::plane(Vector3::z(), 0.0)?])?;
+    /// assert_eq!((ellipse.rank(), ellipse.row_count()), (2, 2));
+    /// let bead = Body::sphere(0.1, 0.01)?;
+    /// let system = Mechanism::single(bead).with_constraint(ellipse)?;
+    /// let phi = 0.7f64;
+    /// let at = Vector3::new(2.0 * phi.cos(), phi.sin(), 0.0); // m
+    /// let along = Vector3::new(-2.0 * phi.sin(), phi.cos(), 0.0); // m/s
+    /// let state = State::new(&bead, at, &UnitQuaternion::identity(), Vector3::zeros(), along);
+    /// let on = system.violation(0.0, &[state])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn point_on_curve(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        surfaces: [Surface; 2],
+    ) -> Result<Self, ConstraintError> {
+        Self::on_surfaces(name.into(), body_point, &surfaces)
+    }
+
+    fn on_surfaces(name: String, body_point: Vector3<f64>, surfaces: &[Surface]) -> Result<Self, ConstraintError> {
+        check_held_point(&name, &body_point, surfaces.len())?;
+        Ok(VirtualPower {
+            name,
+            wrenches: Wrenches::Surfaces {
+                body_point,
+                surfaces: surfaces.iter().copied().collect(),
+            },
+        })
+    }
+
     /// The body point stays on the circle of `radius` about `centre` in the plane with `normal`: a sphere plus
     /// a plane through its centre (theory §6). Rank 2.
     ///
@@ -823,7 +908,11 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     /// The constraint wrenches at this state, in row order.
-    pub fn wrenches(&self, kinematics: &Kinematics<A>, mut emit: impl FnMut(ConstraintWrench<A>)) {
+    pub fn wrenches(
+        &self,
+        kinematics: &Kinematics<A>,
+        mut emit: impl FnMut(ConstraintWrench<A>),
+    ) -> Result<(), ConstraintError> {
         match &self.wrenches {
             Wrenches::Point {
                 body_point,
@@ -884,6 +973,27 @@ impl<A: Algebra> VirtualPower<A> {
                     position_residual: Some(0.5 * (radius * radius - inward.norm_squared())),
                 });
             }
+            Wrenches::Surfaces { body_point, surfaces } => {
+                let a = kinematics.world_point(body_point);
+                let a_rate = kinematics.world_point_velocity(body_point);
+                for (surface, at) in surfaces.iter().zip(surfaces_at(&self.name, surfaces, &a)?) {
+                    // n = ∇F/|∇F| has rate ṅ = (I − n nᵀ) H ȧ / |∇F|; the force line (n; a × n) has rate
+                    // (ṅ; ȧ × n + a × ṅ), and F/|∇F| has rate n · ȧ where F = 0 (docs/surfaces.md §6).
+                    let normal = at.gradient / at.length;
+                    let bending = surface.hessian_times(&a, &a_rate);
+                    let normal_rate = (bending - normal * normal.dot(&bending)) / at.length;
+                    emit(ConstraintWrench {
+                        wrench: force_line::<A>(normal, a),
+                        rate: A::screw(ScrewCoordinates {
+                            l: normal_rate,
+                            t: a_rate.cross(&normal) + a.cross(&normal_rate),
+                        }),
+                        prescribed_power: 0.0,
+                        prescribed_power_rate: 0.0,
+                        position_residual: Some(at.value / at.length),
+                    });
+                }
+            }
             Wrenches::Motor(path) => {
                 let prescribed = path.at(kinematics.t);
                 let error = A::screw_coordinates(log::<A>(A::compose(A::reverse(prescribed.motor), kinematics.motor)));
@@ -925,6 +1035,7 @@ impl<A: Algebra> VirtualPower<A> {
                 }
             }
         }
+        Ok(())
     }
 }
 
@@ -941,6 +1052,7 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
         match &self.wrenches {
             Wrenches::Point { forces, alignments, .. } => forces.len() + alignments.len(),
             Wrenches::Sphere { .. } => 1,
+            Wrenches::Surfaces { surfaces, .. } => surfaces.len(),
             Wrenches::Motor(_) => 6,
             Wrenches::Custom(wrenches) => wrenches.len(),
         }
@@ -972,8 +1084,7 @@ impl<A: Algebra> Constraint<A> for VirtualPower<A> {
             point_rows(kinematics, body_point, &p, (forces, *along_axes), alignments, rows);
             return Ok(());
         }
-        self.wrenches(kinematics, |w| rows.push(wrench_row(kinematics, &w)));
-        Ok(())
+        self.wrenches(kinematics, |w| rows.push(wrench_row(kinematics, &w)))
     }
 }
 
@@ -1102,7 +1213,9 @@ mod tests {
                 let mut fast = RowBuffer::new();
                 joint.rows(&kinematics, &mut fast).unwrap();
                 let mut moved = Vec::new();
-                joint.wrenches(&kinematics, |w| moved.push(wrench_row(&kinematics, &w)));
+                joint
+                    .wrenches(&kinematics, |w| moved.push(wrench_row(&kinematics, &w)))
+                    .unwrap();
                 assert_eq!(fast.rows().len(), moved.len());
                 for (a, b) in fast.rows().iter().zip(&moved) {
                     let difference = a

@@ -23,3 +23,4 @@ mod long_run;
 mod mechanism_solve;
 mod newton_euler;
 mod orders;
+mod surfaces;

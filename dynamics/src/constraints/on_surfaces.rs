@@ -1,0 +1,211 @@
+//! A body point held on a surface (rank 1) or on the curve where two surfaces meet (rank 2), by pinning
+//! (`docs/surfaces.md` §6): the incidence `F(a) = X(a) · Q` of the embedded point with each surface is pinned to
+//! zero, and its rows are its derivatives along the motion. The virtual-power form of the same constraint,
+//! [`crate::constraints::VirtualPower::point_on_surface`], shares the surfaces and the checks made here.
+//!
+//! With a the point in the reference frame, ȧ its velocity and ω the angular velocity (reference frame):
+//!
+//! ```text
+//! e = F(a)
+//! ė = ∇F · ȧ                        body covector (p_b × g_b; g_b), g_b = Rᵀ∇F
+//! ë = ∇F · ä + ȧ · H ȧ              bias ∇F · (ω × ȧ) + ȧ · H ȧ
+//! ```
+
+use arrayvec::ArrayVec;
+use nalgebra::Vector3;
+
+use crate::algebra::Algebra;
+use crate::constraints::kinematics::Kinematics;
+use crate::constraints::rows::{ConstraintRow, RowBuffer};
+use crate::constraints::{Constraint, ConstraintError};
+use crate::surfaces::Surface;
+
+/// The sine of the angle between two surfaces' normals below which they count as tangent: the curve's two rows
+/// have lost rank (`docs/surfaces.md` §5).
+pub const TANGENT: f64 = 1e-6;
+
+/// One surface at the held point: `F`, `∇F` and `|∇F|`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SurfaceAt {
+    pub value: f64,
+    pub gradient: Vector3<f64>,
+    pub length: f64,
+}
+
+/// The surfaces at the reference-frame point `a`, checked: an error naming the constraint at a singular point of a
+/// surface (no normal) or where the two surfaces of a curve are tangent.
+pub(crate) fn surfaces_at(
+    name: &str,
+    surfaces: &[Surface],
+    a: &Vector3<f64>,
+) -> Result<ArrayVec<SurfaceAt, 2>, ConstraintError> {
+    let mut at = ArrayVec::new();
+    for surface in surfaces {
+        let gradient = surface.gradient(a);
+        let length = gradient.norm();
+        if surface.is_singular(length) {
+            return Err(ConstraintError::Singular {
+                name: name.to_owned(),
+                reason: format!("the surface has no normal at {a:?} (a singular point, gradient {length:e})"),
+            });
+        }
+        at.push(SurfaceAt {
+            value: surface.value(a),
+            gradient,
+            length,
+        });
+    }
+    if let [first, second] = at.as_slice() {
+        let sine = first.gradient.cross(&second.gradient).norm() / (first.length * second.length);
+        if sine.is_nan() || sine <= TANGENT {
+            return Err(ConstraintError::Singular {
+                name: name.to_owned(),
+                reason: format!(
+                    "the two surfaces are tangent at {a:?} (normals at sine {sine:e}): the curve's rows have rank 1"
+                ),
+            });
+        }
+    }
+    Ok(at)
+}
+
+/// Checks a body point and the number of surfaces (one or two) of a constraint called `name`.
+pub(crate) fn check_held_point(name: &str, body_point: &Vector3<f64>, surfaces: usize) -> Result<(), ConstraintError> {
+    let largest = crate::contacts::LARGEST_COORDINATE;
+    if !body_point.iter().all(|x| x.is_finite() && x.abs() <= largest) {
+        return Err(ConstraintError::InvalidParameter {
+            name: name.to_owned(),
+            reason: format!("the body point {body_point:?} must be finite and within {largest:e} m"),
+        });
+    }
+    if !(1..=2).contains(&surfaces) {
+        return Err(ConstraintError::InvalidParameter {
+            name: name.to_owned(),
+            reason: format!("{surfaces} surfaces given: a point is held on one surface or on the curve of two"),
+        });
+    }
+    Ok(())
+}
+
+/// A body point pinned to one surface or to the curve of two (see the module docs).
+#[derive(Clone, Debug)]
+pub struct SurfacePin {
+    name: String,
+    body_point: Vector3<f64>,
+    surfaces: ArrayVec<Surface, 2>,
+}
+
+impl SurfacePin {
+    /// The body point `body_point` (body coordinates, m) stays on `surface` (reference frame). Rank 1.
+    ///
+    /// A bead on a torus of radii 1 and 0.25 m: on its outer equator and moving along it, both residuals vanish.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, SurfacePin};
+    /// use dynamics::surfaces::Surface;
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{UnitQuaternion, Vector3};
+    ///
+    /// let ring = Surface::torus(Vector3::zeros(), Vector3::z(), 1.0, 0.25)?;
+    /// let on_ring = SurfacePin::point_on_surface("bead", Vector3::zeros(), ring)?;
+    /// assert_eq!((Constraint::<Pga>::rank(&on_ring), Constraint::<Pga>::row_count(&on_ring)), (1, 1));
+    /// let bead = Body::sphere(0.1, 0.01)?;
+    /// let system = Mechanism::<Pga>::single(bead).with_constraint(on_ring)?;
+    /// let at = Vector3::new(1.25, 0.0, 0.0); // m
+    /// let state = State::new(&bead, at, &UnitQuaternion::identity(), Vector3::zeros(), Vector3::y()); // 1 m/s along y
+    /// let on = system.violation(0.0, &[state])?;
+    /// assert!(on.position < 1e-15 && on.velocity < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn point_on_surface(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        surface: Surface,
+    ) -> Result<Self, ConstraintError> {
+        Self::new(name.into(), body_point, &[surface])
+    }
+
+    /// The body point stays on the curve where `surfaces` meet: an ellipse as an ellipsoid cut by a plane, a circle
+    /// of a torus cut by a plane or a cylinder. Rank 2. Where the surfaces are tangent the rows lose rank, an error
+    /// naming the constraint.
+    ///
+    /// The top circle of a torus of radii 1 and 0.25 m, as the torus cut by the plane z = 0.25 m (where they are
+    /// tangent: the torus's top) is refused; cut by the cylinder of radius 1 m it is the same circle, and holds.
+    ///
+    /// ```
+    /// use dynamics::constraints::{Constraint, SurfacePin};
+    /// use dynamics::surfaces::Surface;
+    /// use dynamics::{Body, Mechanism, Pga, State};
+    /// use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};
+    ///
+    /// let ring = Surface::torus(Vector3::zeros(), Vector3::z(), 1.0, 0.25)?;
+    /// let can = Surface::elliptic_cylinder(Vector2::new(1.0, 1.0), &Isometry3::identity())?;
+    /// let top = SurfacePin::point_on_curve("top circle", Vector3::zeros(), [ring, can])?;
+    /// let bead = Body::sphere(0.1, 0.01)?;
+    /// let system = Mechanism::<Pga>::single(bead).with_constraint(top)?;
+    /// let still = UnitQuaternion::identity();
+    /// let state = State::new(&bead, Vector3::new(0.0, 1.0, 0.25), &still, Vector3::zeros(), Vector3::x());
+    /// assert!(system.violation(0.0, &[state])?.position < 1e-15);
+    /// let lid = Surface::plane(Vector3::z(), 0.25)?;
+    /// let tangent = SurfacePin::point_on_curve("lid", Vector3::zeros(), [ring, lid])?;
+    /// let touching = Mechanism::<Pga>::single(bead).with_constraint(tangent)?;
+    /// assert!(touching.violation(0.0, &[state]).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn point_on_curve(
+        name: impl Into<String>,
+        body_point: Vector3<f64>,
+        surfaces: [Surface; 2],
+    ) -> Result<Self, ConstraintError> {
+        Self::new(name.into(), body_point, &surfaces)
+    }
+
+    fn new(name: String, body_point: Vector3<f64>, surfaces: &[Surface]) -> Result<Self, ConstraintError> {
+        check_held_point(&name, &body_point, surfaces.len())?;
+        Ok(SurfacePin {
+            name,
+            body_point,
+            surfaces: surfaces.iter().copied().collect(),
+        })
+    }
+}
+
+impl<A: Algebra> Constraint<A> for SurfacePin {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn rank(&self) -> usize {
+        self.surfaces.len()
+    }
+
+    fn row_count(&self) -> usize {
+        self.surfaces.len()
+    }
+
+    fn has_position_residual(&self) -> bool {
+        true
+    }
+
+    fn uses_motor(&self) -> bool {
+        false
+    }
+
+    fn rows(&self, kinematics: &Kinematics<A>, rows: &mut RowBuffer) -> Result<(), ConstraintError> {
+        let a = kinematics.world_point(&self.body_point);
+        let a_rate = kinematics.world_point_velocity(&self.body_point);
+        let turning = kinematics.angular_velocity.cross(&a_rate);
+        for (surface, at) in self.surfaces.iter().zip(surfaces_at(&self.name, &self.surfaces, &a)?) {
+            let g_body = kinematics.frame.rotation.inverse_transform_vector(&at.gradient);
+            let moment = self.body_point.cross(&g_body);
+            let curvature = a_rate.dot(&surface.hessian_times(&a, &a_rate));
+            rows.push(ConstraintRow {
+                jacobian: [moment.x, moment.y, moment.z, g_body.x, g_body.y, g_body.z],
+                velocity_residual: at.gradient.dot(&a_rate),
+                bias: at.gradient.dot(&turning) + curvature,
+                position_residual: Some(at.value),
+            });
+        }
+        Ok(())
+    }
+}
