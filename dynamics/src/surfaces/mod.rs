@@ -38,8 +38,13 @@ pub enum Sheets {
 /// The multivector a surface's incidence is read from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Form {
-    /// A quadric in the reference frame, as a QCGA vector.
-    Quadric(qcga::generated::Quadric),
+    /// A quadric as a QCGA vector in coordinates `x − origin` (the reference frame's axes, moved to the surface's
+    /// centre): a surface far from the reference origin keeps its precision, where its coefficients about the origin
+    /// would cancel (a constant of `|c|²` against squares of the same size).
+    Quadric {
+        quadric: qcga::generated::Quadric,
+        origin: Vector3<f64>,
+    },
     /// A torus about z through the origin, as a DCGA bivector, and the pose taking it into the reference frame.
     Torus {
         torus: dcga::generated::Torus,
@@ -192,7 +197,10 @@ impl Surface {
             ));
         }
         Ok(Surface {
-            form: Form::Quadric(qcga::quadric(coefficients)),
+            form: Form::Quadric {
+                quadric: qcga::quadric(coefficients),
+                origin: Vector3::zeros(),
+            },
             // The gradient 2A x + b changes by about 2|A| per metre.
             singular_below: NO_NORMAL * 2.0 * second_order,
         })
@@ -207,10 +215,16 @@ impl Surface {
                 "are too small: a coefficient 1/r² is not finite".to_owned(),
             ));
         }
-        let moved = coefficients_of(&moved_form(&form_of(local), pose));
+        let turned = coefficients_of(&moved_form(
+            &form_of(local),
+            &Isometry3::from_parts(Translation3::identity(), pose.rotation),
+        ));
         let second_order = local[..6].iter().fold(0.0f64, |m, c| m.max(c.abs()));
         Ok(Surface {
-            form: Form::Quadric(qcga::quadric(moved)),
+            form: Form::Quadric {
+                quadric: qcga::quadric(turned),
+                origin: pose.translation.vector,
+            },
             singular_below: NO_NORMAL * 2.0 * second_order,
         })
     }
@@ -418,9 +432,13 @@ impl Surface {
         let (position, rotation) = motor::pose::<A>(motor);
         let motion = Isometry3::from_parts(Translation3::from(position), rotation);
         let form = match self.form {
-            Form::Quadric(q) => {
-                let moved = moved_form(&form_of(qcga::coefficients(q)), &motion);
-                Form::Quadric(qcga::quadric(coefficients_of(&moved)))
+            Form::Quadric { quadric, origin } => {
+                let turn = Isometry3::from_parts(Translation3::identity(), rotation);
+                let turned = moved_form(&form_of(qcga::coefficients(quadric)), &turn);
+                Form::Quadric {
+                    quadric: qcga::quadric(coefficients_of(&turned)),
+                    origin: motion.transform_point(&origin.into()).coords,
+                }
             }
             Form::Torus { torus, pose, radii } => Form::Torus {
                 torus,
@@ -438,7 +456,13 @@ impl Surface {
     /// a torus.
     pub fn coefficients(&self) -> Option<[f64; 10]> {
         match self.form {
-            Form::Quadric(q) => Some(qcga::coefficients(q)),
+            Form::Quadric { quadric, origin } => {
+                let about_origin = moved_form(
+                    &form_of(qcga::coefficients(quadric)),
+                    &Isometry3::translation(origin.x, origin.y, origin.z),
+                );
+                Some(coefficients_of(&about_origin))
+            }
             Form::Torus { .. } => None,
         }
     }
@@ -447,7 +471,9 @@ impl Surface {
     #[inline]
     pub fn value(&self, x: &Vector3<f64>) -> f64 {
         match &self.form {
-            Form::Quadric(q) => qcga::generated::incidence(qcga::point(x), *q).scalar,
+            Form::Quadric { quadric, origin } => {
+                qcga::generated::incidence(qcga::point(&(x - origin)), *quadric).scalar
+            }
             Form::Torus { torus, pose, .. } => {
                 dcga::value(*torus, &pose.inverse_transform_vector(&(x - pose.translation.vector)))
             }
@@ -458,7 +484,7 @@ impl Surface {
     #[inline]
     pub fn gradient(&self, x: &Vector3<f64>) -> Vector3<f64> {
         match &self.form {
-            Form::Quadric(q) => qcga::slopes(*q, 1.0, x),
+            Form::Quadric { quadric, origin } => qcga::slopes(*quadric, 1.0, &(x - origin)),
             Form::Torus { torus, pose, .. } => {
                 let local = pose.inverse_transform_vector(&(x - pose.translation.vector));
                 pose.rotation * dcga::gradient(*torus, &local)
@@ -470,7 +496,7 @@ impl Surface {
     #[inline]
     pub fn hessian_times(&self, x: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
         match &self.form {
-            Form::Quadric(q) => qcga::slopes(*q, 0.0, v),
+            Form::Quadric { quadric, .. } => qcga::slopes(*quadric, 0.0, v),
             Form::Torus { torus, pose, .. } => {
                 let local = pose.inverse_transform_vector(&(x - pose.translation.vector));
                 pose.rotation * dcga::hessian_times(*torus, &local, &pose.inverse_transform_vector(v))
@@ -498,7 +524,7 @@ impl Surface {
             Form::Torus { pose, radii, .. } => {
                 Some((pose.translation.vector, pose.rotation * Vector3::z(), radii.0, radii.1))
             }
-            Form::Quadric(_) => None,
+            Form::Quadric { .. } => None,
         }
     }
 }

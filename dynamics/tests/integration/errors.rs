@@ -548,3 +548,150 @@ fn a_body_too_far_from_the_origin_is_refused_and_one_within_keeps_its_spin() {
     assert!(relative < 1e-9, "{relative:e}");
     assert!(dynamics::simulate(&system, &[at(within)], Method::Rkmk8Body, &second).is_ok());
 }
+
+/// Careless surfaces and held points are refused naming the parameter (surfaces) or the constraint (held points).
+#[test]
+fn careless_surfaces_and_held_points_are_refused() {
+    use dynamics::constraints::SurfacePin;
+    use dynamics::surfaces::{Sheets, Surface};
+    use nalgebra::{Isometry3, Quaternion, Translation3, Unit, Vector2};
+
+    let at = Isometry3::identity();
+    let not_unit = Isometry3::from_parts(
+        Translation3::identity(),
+        Unit::new_unchecked(Quaternion::new(2.0, 0.0, 0.0, 0.0)),
+    );
+    let nan_turn = Isometry3::from_parts(
+        Translation3::identity(),
+        Unit::new_unchecked(Quaternion::new(f64::NAN, 0.0, 0.0, 0.0)),
+    );
+    let far = Isometry3::translation(2e6, 0.0, 0.0);
+    let unit = Vector3::new(1.0, 1.0, 1.0);
+    let cases: Vec<(&str, Result<Surface, dynamics::surfaces::SurfaceError>, &str)> = vec![
+        (
+            "NaN radius",
+            Surface::ellipsoid(Vector3::new(f64::NAN, 1.0, 1.0), &at),
+            "radii",
+        ),
+        (
+            "zero radius",
+            Surface::ellipsoid(Vector3::new(1.0, 0.0, 1.0), &at),
+            "radii",
+        ),
+        (
+            "negative radius",
+            Surface::elliptic_cylinder(Vector2::new(-1.0, 1.0), &at),
+            "radii",
+        ),
+        ("huge radius", Surface::cone(Vector2::new(1e7, 1.0), &at), "radii"),
+        (
+            "infinite radius",
+            Surface::elliptic_paraboloid(Vector2::new(f64::INFINITY, 1.0), &at),
+            "radii",
+        ),
+        (
+            "radius whose 1/r² overflows",
+            Surface::hyperbolic_paraboloid(Vector2::new(1e-200, 1.0), &at),
+            "radii",
+        ),
+        (
+            "centre beyond 1e6 m",
+            Surface::hyperboloid(unit, Sheets::One, &far),
+            "centre",
+        ),
+        (
+            "orientation not unit",
+            Surface::hyperboloid(unit, Sheets::Two, &not_unit),
+            "orientation",
+        ),
+        ("orientation NaN", Surface::ellipsoid(unit, &nan_turn), "orientation"),
+        ("zero normal", Surface::plane(Vector3::zeros(), 1.0), "normal"),
+        (
+            "NaN normal",
+            Surface::plane(Vector3::new(f64::NAN, 0.0, 1.0), 1.0),
+            "normal",
+        ),
+        ("offset beyond 1e6 m", Surface::plane(Vector3::z(), 1e7), "offset"),
+        ("NaN offset", Surface::plane(Vector3::z(), f64::NAN), "offset"),
+        (
+            "no first- or second-order term",
+            Surface::quadric([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]),
+            "coefficients",
+        ),
+        (
+            "NaN coefficient",
+            Surface::quadric([f64::NAN, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]),
+            "coefficients",
+        ),
+        (
+            "huge coefficient",
+            Surface::quadric([1e13, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0]),
+            "coefficients",
+        ),
+        (
+            "torus axis zero",
+            Surface::torus(Vector3::zeros(), Vector3::zeros(), 1.0, 0.5),
+            "axis",
+        ),
+        (
+            "torus centre NaN",
+            Surface::torus(Vector3::new(f64::NAN, 0.0, 0.0), Vector3::z(), 1.0, 0.5),
+            "centre",
+        ),
+        (
+            "torus centre beyond 1e6 m",
+            Surface::torus(Vector3::new(0.0, -3e6, 0.0), Vector3::z(), 1.0, 0.5),
+            "centre",
+        ),
+        (
+            "torus minor radius zero",
+            Surface::torus(Vector3::zeros(), Vector3::z(), 1.0, 0.0),
+            "minor_radius",
+        ),
+        (
+            "torus major radius negative",
+            Surface::torus(Vector3::zeros(), Vector3::z(), -1.0, 0.5),
+            "major_radius",
+        ),
+        (
+            "horn torus",
+            Surface::torus(Vector3::zeros(), Vector3::z(), 1.0, 1.0),
+            "minor_radius",
+        ),
+        (
+            "spindle torus",
+            Surface::torus(Vector3::zeros(), Vector3::z(), 1.0, 2.0),
+            "minor_radius",
+        ),
+    ];
+    for (label, result, parameter) in cases {
+        match result {
+            Err(error) => {
+                assert_eq!(error.parameter, parameter, "{label}: {error}");
+                assert!(
+                    error.to_string().starts_with(&format!("surface {parameter}: ")),
+                    "{label}: {error}"
+                );
+            }
+            Ok(surface) => panic!("{label}: built {surface:?}"),
+        }
+    }
+    let sphere = Surface::ellipsoid(unit, &at).unwrap();
+    for (label, body_point) in [
+        ("NaN body point", Vector3::new(f64::NAN, 0.0, 0.0)),
+        ("infinite body point", Vector3::new(0.0, f64::INFINITY, 0.0)),
+        ("body point beyond 1e6 m", Vector3::new(0.0, 0.0, 2e6)),
+    ] {
+        for error in [
+            SurfacePin::point_on_surface("bead", body_point, sphere).unwrap_err(),
+            SurfacePin::point_on_curve("bead", body_point, [sphere, sphere]).unwrap_err(),
+            VirtualPower::<Pga>::point_on_surface("bead", body_point, sphere).unwrap_err(),
+            VirtualPower::<Pga>::point_on_curve("bead", body_point, [sphere, sphere]).unwrap_err(),
+        ] {
+            assert!(
+                matches!(&error, ConstraintError::InvalidParameter { name, reason } if name == "bead" && reason.contains("body point")),
+                "{label}: {error}"
+            );
+        }
+    }
+}
