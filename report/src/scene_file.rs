@@ -23,18 +23,20 @@ mod contacts;
 mod elements;
 mod joint_models;
 mod robot;
+mod surfaces;
 
 use std::path::Path;
 use std::sync::Arc;
 
 use dynamics::constraints::{
-    linear, pinning, Constraint, ConstraintError, MotorPoint, PinningAlgebra, Stabilisation, VirtualPower,
+    linear, pinning, Constraint, ConstraintError, MotorPoint, PinningAlgebra, Stabilisation, SurfacePin, VirtualPower,
 };
 use dynamics::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::integrate::Integrator;
 use dynamics::limits::JointLimit;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::step_control::Tolerance;
+use dynamics::surfaces::Surface;
 use dynamics::{
     motor, Algebra, Body, BodyError, Cga, Correction, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism,
     MechanismError, Pga, Reference, ScrewCoordinates, Simulation, State,
@@ -51,6 +53,7 @@ use elements::{
 };
 use joint_models::LimitSpec;
 use robot::{JointDynamicsName, LoadedRobot, RobotColumns, RobotJoint, RobotSpec};
+use surfaces::SurfaceSpec;
 
 /// Where an end of a joint or force element is: the mechanism's reference (a body or the world) and the end's frame in
 /// that reference's frame (a robot link's frame, else the identity).
@@ -716,6 +719,18 @@ pub(crate) enum Geometry {
         centre: [f64; 3],
         radius: f64,
     },
+    /// The body point stays on a surface (rank 1).
+    PointOnSurface {
+        #[serde(deserialize_with = "exactly")]
+        body_point: [f64; 3],
+        surface: SurfaceSpec,
+    },
+    /// The body point stays on the curve where two surfaces meet (rank 2).
+    PointOnCurve {
+        #[serde(deserialize_with = "exactly")]
+        body_point: [f64; 3],
+        surfaces: Vec<SurfaceSpec>,
+    },
     /// The body point stays on the circle of the sphere in the plane through its centre normal to
     /// `normal` (rank 2).
     PointOnCircle {
@@ -1045,6 +1060,15 @@ pub enum CheckedGeometry {
         /// The plane's signed distance from the origin along `normal`.
         offset: f64,
     },
+    /// A body point held on a surface, or on the curve where two meet.
+    Surfaces {
+        /// The held point.
+        body_point: Vector3<f64>,
+        /// The (first) surface.
+        first: Surface,
+        /// The second surface of a curve.
+        second: Option<Surface>,
+    },
     /// A body point held on a sphere, or on a circle of it.
     Round {
         /// The held point.
@@ -1072,6 +1096,8 @@ impl Geometry {
             Geometry::PointOnPlane { .. } => "point on plane",
             Geometry::PointOnSphere { .. } => "point on sphere",
             Geometry::PointOnCircle { .. } => "point on circle",
+            Geometry::PointOnSurface { .. } => "point on surface",
+            Geometry::PointOnCurve { .. } => "point on curve",
         }
     }
 
@@ -1230,6 +1256,24 @@ impl Geometry {
                 radius,
                 normal,
             } => round(*body_point, *centre, *radius, Some(unit("normal", *normal)?))?,
+            Geometry::PointOnSurface { body_point, surface } => CheckedGeometry::Surfaces {
+                body_point: point("body_point", *body_point)?,
+                first: surface.surface(&what("surface"))?,
+                second: None,
+            },
+            Geometry::PointOnCurve { body_point, surfaces } => match surfaces.as_slice() {
+                [first, second] => CheckedGeometry::Surfaces {
+                    body_point: point("body_point", *body_point)?,
+                    first: first.surface(&what("surfaces[0]"))?,
+                    second: Some(second.surface(&what("surfaces[1]"))?),
+                },
+                _ => {
+                    return Err(invalid(
+                        what("surfaces"),
+                        format!("{} given: a curve is where exactly two surfaces meet", surfaces.len()),
+                    ))
+                }
+            },
         })
     }
 }
@@ -1329,6 +1373,16 @@ fn constraint_of<A: FileAlgebra>(
                 Arc::new(VirtualPower::point_on_plane(name, body_point, (normal, offset))?)
             }
         }
+        CheckedGeometry::Surfaces {
+            body_point,
+            first,
+            second,
+        } => match (second, pinned) {
+            (None, true) => Arc::new(SurfacePin::point_on_surface(name, body_point, first)?),
+            (None, false) => Arc::new(VirtualPower::point_on_surface(name, body_point, first)?),
+            (Some(second), true) => Arc::new(SurfacePin::point_on_curve(name, body_point, [first, second])?),
+            (Some(second), false) => Arc::new(VirtualPower::point_on_curve(name, body_point, [first, second])?),
+        },
         CheckedGeometry::Round {
             body_point,
             centre,
@@ -1419,6 +1473,18 @@ impl CheckedGeometry {
                     offset: offset + normal.dot(position),
                 }
             }
+            CheckedGeometry::Surfaces {
+                body_point,
+                first,
+                second,
+            } => {
+                let carried = motor::from_pose::<Pga>(*position, orientation);
+                CheckedGeometry::Surfaces {
+                    body_point,
+                    first: first.moved::<Pga>(carried),
+                    second: second.map(|surface| surface.moved::<Pga>(carried)),
+                }
+            }
             CheckedGeometry::Round {
                 body_point,
                 centre,
@@ -1494,6 +1560,16 @@ impl CheckedGeometry {
                 normal,
                 offset,
             } => (normal.dot(&world(body_point)) - offset).abs(),
+            CheckedGeometry::Surfaces {
+                body_point,
+                first,
+                second,
+            } => {
+                // |F| / |∇F|: the distance from the surface to first order (exact for a plane).
+                let at = world(body_point);
+                let distance = |surface: &Surface| surface.value(&at).abs() / surface.gradient(&at).norm();
+                distance(&first).max(second.as_ref().map_or(0.0, distance))
+            }
             CheckedGeometry::Round {
                 body_point,
                 centre,

@@ -185,9 +185,10 @@ pub(crate) fn joint_model(
             frame * at(position, orientation),
             Isometry3::identity(),
         ),
-        CheckedGeometry::Line { .. } | CheckedGeometry::Plane { .. } | CheckedGeometry::Round { .. } => {
-            return Ok(None)
-        }
+        CheckedGeometry::Line { .. }
+        | CheckedGeometry::Plane { .. }
+        | CheckedGeometry::Round { .. }
+        | CheckedGeometry::Surfaces { .. } => return Ok(None),
     };
     let model = JointModel::new(name, kind, parent, child)?;
     Ok(Some(match drive {

@@ -217,6 +217,75 @@ fn contacts_name_their_body_and_work_far_from_the_origin() {
     assert!(!run.transitions.is_empty());
 }
 
+/// The shipped surface scenes (docs/surfaces.md): each keeps its body point on its surface at every sample, checked
+/// with the surface's classical implicit equation (not the algebra the run used) to 1e-12 m; both algebras give one
+/// path (1e-12 m); the passive bead and rod keep their energy to 1e-10 (relative), and the turntable's energy changes
+/// by the drive's work to 1e-9 J.
+#[test]
+fn the_shipped_surface_scenes_keep_their_body_points_on_their_surfaces() {
+    use nalgebra::{UnitQuaternion, Vector3};
+    // The torus of bead_on_torus.toml: distance from the tube's centre circle, minus the minor radius.
+    let axis = Vector3::new(0.3, 0.0, 1.0).normalize();
+    let off_torus = |x: Vector3<f64>| {
+        let y = x - Vector3::z();
+        let along = axis.dot(&y);
+        let across = (y - axis * along).norm();
+        ((across - 1.0).powi(2) + along * along).sqrt() - 0.3
+    };
+    // The ellipsoid of rod_on_ellipsoid.toml, to first order: F / |∇F| in its own axes.
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 15f64.to_radians());
+    let radii = Vector3::new(1.2, 0.8, 0.5);
+    let off_ellipsoid = |x: Vector3<f64>| {
+        let y = turn.inverse() * x;
+        let value = y.component_div(&radii).norm_squared() - 1.0;
+        value / (2.0 * y.component_div(&radii.component_mul(&radii))).norm()
+    };
+    // The cylinder of turntable_pendulum.toml in the turntable's frame.
+    let off_cylinder = |y: Vector3<f64>| {
+        let value = ((y.x - 0.2) / 0.5).powi(2) + (y.y / 0.3).powi(2) - 1.0;
+        value / (2.0 * Vector3::new((y.x - 0.2) / 0.25, y.y / 0.09, 0.0)).norm()
+    };
+    let cases: [(&str, usize); 3] = [
+        ("bead_on_torus.toml", 0),
+        ("rod_on_ellipsoid.toml", 0),
+        ("turntable_pendulum.toml", 1),
+    ];
+    for (file, body) in cases {
+        let (_, [pga, cga]) = shipped_runs(file, &format!("report-scene-file-{file}"));
+        for run in [&pga, &cga] {
+            assert!(run.max_violation() < 1e-12, "{file}: {:e} m", run.max_violation());
+            for (k, sample) in run.bodies[body].iter().enumerate() {
+                let distance = match file {
+                    "bead_on_torus.toml" => off_torus(sample.position),
+                    "rod_on_ellipsoid.toml" => {
+                        off_ellipsoid(sample.position + sample.orientation * Vector3::new(0.0, 0.0, -0.4))
+                    }
+                    _ => {
+                        let table = &run.bodies[0][k];
+                        let end = sample.position + sample.orientation * Vector3::new(0.0, 0.0, -0.5);
+                        off_cylinder(table.orientation.inverse() * (end - table.position))
+                    }
+                };
+                assert!(distance.abs() < 1e-12, "{file}: {distance:e} m off at t = {}", sample.t);
+            }
+            if body == 0 {
+                assert!(run.max_energy_change() < 1e-10, "{file}: {:e}", run.max_energy_change());
+            } else {
+                let (first, last) = (&run.bodies[0][0], run.bodies[0].last().unwrap());
+                let change = last.energy - first.energy - run.work.last().unwrap();
+                assert!(change.abs() < 1e-9, "{file}: E − E₀ − W = {change:e} J");
+            }
+        }
+        for (a, b) in pga.bodies[body].iter().zip(&cga.bodies[body]) {
+            assert!(
+                (a.position - b.position).norm() < 1e-12,
+                "{file}: PGA and CGA differ at t = {}",
+                a.t
+            );
+        }
+    }
+}
+
 /// The shipped double pendulum with a limited elbow (docs/limits.md): the elbow bounces off its bounds at
 /// restitution 0.5, never passes them, each bounce leaves at half the speed it came with, both algebras find the same
 /// transitions, and the energy less what the impacts took holds to the tolerance.

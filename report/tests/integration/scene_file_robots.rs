@@ -796,6 +796,12 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
     let urdf = "urdf = \"ur5_robot.urdf\"";
     let block = std::fs::read_to_string(scenes().join("bouncing_block.toml")).unwrap();
     let first = "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 0.5";
+    let torus = std::fs::read_to_string(scenes().join("bead_on_torus.toml")).unwrap();
+    let rod = std::fs::read_to_string(scenes().join("rod_on_ellipsoid.toml")).unwrap();
+    let table = std::fs::read_to_string(scenes().join("turntable_pendulum.toml")).unwrap();
+    let ring = "surface = { kind = \"torus\", centre = [0.0, 0.0, 1.0], axis = [0.3, 0.0, 1.0], major_radius = 1.0, minor_radius = 0.3 }";
+    let egg = "radii = [1.2, 0.8, 0.5], orientation = { axis = [0.0, 1.0, 0.0], degrees = 15.0 } }";
+    let curve = "kind = \"point_on_curve\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]";
     #[rustfmt::skip]
     let cases: &[(&str, &str, &str, &[&str])] = &[
         // robot.urdf: missing, a folder, empty, a massless moving link, wrong type, wrong value.
@@ -956,6 +962,45 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (&block, first, &format!("{first}\nname = \"contact 2\""), &["contact contact 2", "already named"]),
         (&block, "position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 0.05]", &["contact contact", "below its plane"]),
         (&block, "stabilisation = \"projection\"", "stabilisation = \"baumgarte\"", &["contact contact 1", "need the articulated solve"]),
+        // point_on_surface and point_on_curve: every surface kind's parameters NaN, zero, negative, huge, of the wrong
+        // length or type, unknown kinds and keys, orientation given twice, a curve of one or three surfaces, a start at
+        // a singular point or where the surfaces are tangent, a drive on a surface joint.
+        (&torus, "kind = \"torus\"", "kind = \"donut\"", &["unknown variant `donut`", "`ellipsoid`", "`torus`"]),
+        (&torus, "minor_radius = 0.3", "minor_radius = nan", &["constraint", "surface.minor_radius", "NaN"]),
+        (&torus, "minor_radius = 0.3", "minor_radius = 1.0", &["surface.minor_radius", "below the major radius", "ring torus"]),
+        (&torus, "major_radius = 1.0", "major_radius = -1.0", &["surface.major_radius", "-1", "positive"]),
+        (&torus, "major_radius = 1.0", "major_radius = 1e7", &["surface.major_radius", "within 1e6"]),
+        (&torus, "axis = [0.3, 0.0, 1.0]", "axis = [0.0, 0.0, 0.0]", &["surface.axis", "no direction"]),
+        (&torus, "axis = [0.3, 0.0, 1.0]", "axis = [0.3, 1.0]", &["invalid length 2"]),
+        (&torus, "centre = [0.0, 0.0, 1.0]", "centre = [0.0, 0.0, 2e6]", &["surface.centre", "within 1e6"]),
+        (&torus, "centre = [0.0, 0.0, 1.0], axis", "centre = [0.0, 0.0, 1.0], colour = 1, axis", &["unknown field `colour`"]),
+        (&torus, ring, "surface = 3", &["invalid type: integer `3`"]),
+        (&torus, ring, "", &["missing field `surface`"]),
+        (&torus, "body_point = [0.0, 0.0, 0.0]", "body_point = [0.0, nan, 0.0]", &["body_point", "NaN"]),
+        (&torus, ring, "surface = { kind = \"plane\", normal = [0.0, 0.0, 0.0], offset = 1.0 }", &["surface.normal", "no direction"]),
+        (&torus, ring, "surface = { kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = nan }", &["surface.offset", "NaN"]),
+        (&torus, ring, "surface = { kind = \"quadric\", coefficients = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0] }", &["invalid length 9"]),
+        (&torus, ring, "surface = { kind = \"quadric\", coefficients = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0] }", &["surface.coefficients", "no first- or second-order term"]),
+        (&torus, ring, "surface = { kind = \"quadric\", coefficients = [1e13, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0] }", &["surface.coefficients", "within 1e12"]),
+        (&torus, ring, "surface = { kind = \"hyperboloid\", radii = [1.0, 1.0, 1.0], sheets = 3 }", &["surface.sheets", "3 is not 1 or 2"]),
+        (&torus, ring, "surface = { kind = \"cone\", radii = [1.0, 1.0], centre = [1.190287161857, 0.368691212106, 0.819765066149] }", &["no normal", "singular point"]),
+        (&rod, egg, "radii = [1.2, 0.0, 0.5] }", &["surface.radii", "positive"]),
+        (&rod, egg, "radii = [1.2, nan, 0.5] }", &["surface.radii", "NaN"]),
+        (&rod, egg, "radii = [1.2, 1e7, 0.5] }", &["surface.radii", "within 1e6"]),
+        (&rod, egg, "radii = [1.2, 0.8] }", &["invalid length 2"]),
+        (&rod, "{ axis = [0.0, 1.0, 0.0], degrees = 15.0 } }", "{ quaternion = [0.0, 0.0, 0.0, 0.0] } }", &["surface.orientation", "zero"]),
+        (&rod, "{ axis = [0.0, 1.0, 0.0], degrees = 15.0 } }", "{ axis = [0.0, 1.0, 0.0], degrees = 15.0 }, axis = [0.0, 0.0, 1.0] }", &["surface", "not both"]),
+        (&rod, "{ axis = [0.0, 1.0, 0.0], degrees = 15.0 } }", "{ axis = [0.0, 1.0, 0.0], degrees = inf } }", &["surface.orientation", "inf", "not finite"]),
+        (&rod, egg, "radii = [1.2, 0.8, 0.5], axis = [0.0, 0.0, 0.0] }", &["surface.axis", "no direction"]),
+        (&rod, egg, "radii = [1.2, 0.8, 0.5], centre = [nan, 0.0, 0.0] }", &["surface.centre", "NaN"]),
+        (&rod, egg, "radii = [1.2, 0.8, 0.5], centre = [-3e6, 0.0, 0.0] }", &["surface.centre", "within 1e6"]),
+        (&rod, "kind = \"ellipsoid\", radii", "kind = \"paraboloid\", hyperbolic = 1, radii", &["invalid type: integer `1`", "expected a boolean"]),
+        (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = [{{ kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = 0.8 }}]"), &["surfaces", "1 given", "exactly two surfaces"]),
+        (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = []"), &["surfaces", "0 given"]),
+        (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = [{{ kind = \"sphere\", radius = 1.0 }}, {{ kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = 0.8 }}]"), &["unknown variant `sphere`"]),
+        (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = [{{ kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = 0.819765066149 }}, {{ kind = \"plane\", normal = [0.0, 0.0, 2.0], offset = 1.639530132298 }}]"), &["tangent", "rank 1"]),
+        (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = [{{ kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = nan }}, {{ kind = \"plane\", normal = [1.0, 0.0, 0.0], offset = 1.19 }}]"), &["surfaces[0].offset", "NaN"]),
+        (&table, "kind = \"point_on_surface\"", "kind = \"point_on_surface\"\ndrive = { kind = \"constant_rate\", rate = 1.0 }", &["joint rider: drive", "only hinge and prismatic"]),
     ];
     let mut failures = Vec::new();
     for (base, from, to, parts) in cases {
