@@ -24,49 +24,69 @@ use crate::surfaces::Surface;
 /// have lost rank (`docs/surfaces.md` §5).
 pub const TANGENT: f64 = 1e-6;
 
-/// One surface at the held point: `F`, `∇F` and `|∇F|`.
+/// One surface at the held point a moving at ȧ: `F`, `∇F`, `|∇F|` and `H ȧ`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SurfaceAt {
     pub value: f64,
     pub gradient: Vector3<f64>,
     pub length: f64,
+    pub bending: Vector3<f64>,
 }
 
-/// The surfaces at the reference-frame point `a`, checked: an error naming the constraint at a singular point of a
-/// surface (no normal) or where the two surfaces of a curve are tangent.
-pub(crate) fn surfaces_at(
+/// Calls `row` with each surface at the reference-frame point `a` moving at `a_rate`, checked: an error naming the
+/// constraint at a singular point of a surface (no normal) or where the two surfaces of a curve are tangent.
+#[inline]
+pub(crate) fn each_surface_at(
     name: &str,
     surfaces: &[Surface],
-    a: &Vector3<f64>,
-) -> Result<ArrayVec<SurfaceAt, 2>, ConstraintError> {
-    let mut at = ArrayVec::new();
+    (a, a_rate): (&Vector3<f64>, &Vector3<f64>),
+    mut row: impl FnMut(SurfaceAt),
+) -> Result<(), ConstraintError> {
+    let mut first_normal: Option<Vector3<f64>> = None;
     for surface in surfaces {
-        let gradient = surface.gradient(a);
+        let (value, gradient, bending) = surface.terms(a, a_rate);
         let length = gradient.norm();
         if surface.is_singular(length) {
-            return Err(ConstraintError::Singular {
-                name: name.to_owned(),
-                reason: format!("the surface has no normal at {a:?} (a singular point, gradient {length:e})"),
-            });
+            return Err(no_normal(name, a, length));
         }
-        at.push(SurfaceAt {
-            value: surface.value(a),
+        if surfaces.len() == 2 {
+            let normal = gradient / length;
+            match first_normal {
+                None => first_normal = Some(normal),
+                Some(first) => {
+                    let sine = normal.cross(&first).norm();
+                    if sine.is_nan() || sine <= TANGENT {
+                        return Err(tangent(name, a, sine));
+                    }
+                }
+            }
+        }
+        row(SurfaceAt {
+            value,
             gradient,
             length,
+            bending,
         });
     }
-    if let [first, second] = at.as_slice() {
-        let sine = first.gradient.cross(&second.gradient).norm() / (first.length * second.length);
-        if sine.is_nan() || sine <= TANGENT {
-            return Err(ConstraintError::Singular {
-                name: name.to_owned(),
-                reason: format!(
-                    "the two surfaces are tangent at {a:?} (normals at sine {sine:e}): the curve's rows have rank 1"
-                ),
-            });
-        }
+    Ok(())
+}
+
+#[cold]
+fn no_normal(name: &str, a: &Vector3<f64>, length: f64) -> ConstraintError {
+    ConstraintError::Singular {
+        name: name.to_owned(),
+        reason: format!("the surface has no normal at {a:?} (a singular point, gradient {length:e})"),
     }
-    Ok(at)
+}
+
+#[cold]
+fn tangent(name: &str, a: &Vector3<f64>, sine: f64) -> ConstraintError {
+    ConstraintError::Singular {
+        name: name.to_owned(),
+        reason: format!(
+            "the two surfaces are tangent at {a:?} (normals at sine {sine:e}): the curve's rows have rank 1"
+        ),
+    }
 }
 
 /// Checks a body point and the number of surfaces (one or two) of a constraint called `name`.
@@ -195,17 +215,15 @@ impl<A: Algebra> Constraint<A> for SurfacePin {
         let a = kinematics.world_point(&self.body_point);
         let a_rate = kinematics.world_point_velocity(&self.body_point);
         let turning = kinematics.angular_velocity.cross(&a_rate);
-        for (surface, at) in self.surfaces.iter().zip(surfaces_at(&self.name, &self.surfaces, &a)?) {
+        each_surface_at(&self.name, &self.surfaces, (&a, &a_rate), |at| {
             let g_body = kinematics.frame.rotation.inverse_transform_vector(&at.gradient);
             let moment = self.body_point.cross(&g_body);
-            let curvature = a_rate.dot(&surface.hessian_times(&a, &a_rate));
             rows.push(ConstraintRow {
                 jacobian: [moment.x, moment.y, moment.z, g_body.x, g_body.y, g_body.z],
                 velocity_residual: at.gradient.dot(&a_rate),
-                bias: at.gradient.dot(&turning) + curvature,
+                bias: at.gradient.dot(&turning) + a_rate.dot(&at.bending),
                 position_residual: Some(at.value),
             });
-        }
-        Ok(())
+        })
     }
 }

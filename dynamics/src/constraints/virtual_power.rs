@@ -28,7 +28,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::kinematics::Kinematics;
-use crate::constraints::on_surfaces::{check_held_point, surfaces_at};
+use crate::constraints::on_surfaces::{check_held_point, each_surface_at};
 use crate::constraints::paths::{Fixed, MotorPath, MotorPoint, Path, PathPoint};
 use crate::constraints::rows::{ConstraintRow, RowBuffer};
 use crate::constraints::{Composite, Constraint, ConstraintError};
@@ -976,12 +976,11 @@ impl<A: Algebra> VirtualPower<A> {
             Wrenches::Surfaces { body_point, surfaces } => {
                 let a = kinematics.world_point(body_point);
                 let a_rate = kinematics.world_point_velocity(body_point);
-                for (surface, at) in surfaces.iter().zip(surfaces_at(&self.name, surfaces, &a)?) {
+                each_surface_at(&self.name, surfaces, (&a, &a_rate), |at| {
                     // n = ∇F/|∇F| has rate ṅ = (I − n nᵀ) H ȧ / |∇F|; the force line (n; a × n) has rate
                     // (ṅ; ȧ × n + a × ṅ), and F/|∇F| has rate n · ȧ where F = 0 (docs/surfaces.md §6).
                     let normal = at.gradient / at.length;
-                    let bending = surface.hessian_times(&a, &a_rate);
-                    let normal_rate = (bending - normal * normal.dot(&bending)) / at.length;
+                    let normal_rate = (at.bending - normal * normal.dot(&at.bending)) / at.length;
                     emit(ConstraintWrench {
                         wrench: force_line::<A>(normal, a),
                         rate: A::screw(ScrewCoordinates {
@@ -992,7 +991,7 @@ impl<A: Algebra> VirtualPower<A> {
                         prescribed_power_rate: 0.0,
                         position_residual: Some(at.value / at.length),
                     });
-                }
+                })?;
             }
             Wrenches::Motor(path) => {
                 let prescribed = path.at(kinematics.t);

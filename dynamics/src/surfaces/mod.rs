@@ -10,7 +10,7 @@
 pub mod dcga;
 pub mod qcga;
 
-use nalgebra::{Isometry3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector3};
+use nalgebra::{Isometry3, Matrix3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector3};
 
 use crate::algebra::Algebra;
 use crate::contacts::LARGEST_COORDINATE;
@@ -49,6 +49,8 @@ enum Form {
     Torus {
         torus: dcga::generated::Torus,
         pose: Isometry3<f64>,
+        /// The pose's rotation as a matrix: three matrix products per row instead of quaternion ones.
+        rotation: Matrix3<f64>,
         radii: (f64, f64),
     },
 }
@@ -407,6 +409,7 @@ impl Surface {
             form: Form::Torus {
                 torus: dcga::torus(major, minor),
                 pose: Isometry3::from_parts(Translation3::from(centre), turn),
+                rotation: turn.to_rotation_matrix().into_inner(),
                 radii: (major, minor),
             },
             // Near the surface the gradient is about 8R²r.
@@ -440,11 +443,15 @@ impl Surface {
                     origin: motion.transform_point(&origin.into()).coords,
                 }
             }
-            Form::Torus { torus, pose, radii } => Form::Torus {
-                torus,
-                pose: motion * pose,
-                radii,
-            },
+            Form::Torus { torus, pose, radii, .. } => {
+                let pose = motion * pose;
+                Form::Torus {
+                    torus,
+                    pose,
+                    rotation: pose.rotation.to_rotation_matrix().into_inner(),
+                    radii,
+                }
+            }
         };
         Surface {
             form,
@@ -485,21 +492,31 @@ impl Surface {
     pub fn gradient(&self, x: &Vector3<f64>) -> Vector3<f64> {
         match &self.form {
             Form::Quadric { quadric, origin } => qcga::slopes(*quadric, 1.0, &(x - origin)),
-            Form::Torus { torus, pose, .. } => {
-                let local = pose.inverse_transform_vector(&(x - pose.translation.vector));
-                pose.rotation * dcga::gradient(*torus, &local)
-            }
+            Form::Torus { .. } => self.terms(x, &Vector3::zeros()).1,
         }
     }
 
     /// The Hessian of F at x times v, from the embedding's second derivatives.
     #[inline]
     pub fn hessian_times(&self, x: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+        self.terms(x, v).2
+    }
+
+    /// `(F(x), ∇F(x), H(x) v)` in one pass, the embedded point built once: what a constraint row reads.
+    #[inline(always)]
+    pub fn terms(&self, x: &Vector3<f64>, v: &Vector3<f64>) -> (f64, Vector3<f64>, Vector3<f64>) {
         match &self.form {
-            Form::Quadric { quadric, .. } => qcga::slopes(*quadric, 0.0, v),
-            Form::Torus { torus, pose, .. } => {
-                let local = pose.inverse_transform_vector(&(x - pose.translation.vector));
-                pose.rotation * dcga::hessian_times(*torus, &local, &pose.inverse_transform_vector(v))
+            Form::Quadric { quadric, origin } => {
+                let d = x - origin;
+                let value = qcga::generated::incidence(qcga::point(&d), *quadric).scalar;
+                (value, qcga::slopes(*quadric, 1.0, &d), qcga::slopes(*quadric, 0.0, v))
+            }
+            Form::Torus {
+                torus, pose, rotation, ..
+            } => {
+                let local = rotation.tr_mul(&(x - pose.translation.vector));
+                let (value, gradient, bending) = dcga::terms(*torus, &local, &rotation.tr_mul(v));
+                (value, rotation * gradient, rotation * bending)
             }
         }
     }
