@@ -3,7 +3,7 @@
 //! ellipsoid, DCGA for a tilted torus; `dynamics::constraints::SurfacePin`), beside the same row from the classical
 //! implicit function written here: `F = dᵀA d + 2bᵀd + j`, `∇F = 2(A d + b)`, `H = 2A` with `d = x − c` for the
 //! quadric, and `F = (|d|² + R² − r²)² − 4R²(|d|² − (n·d)²)` with its gradient and Hessian for the torus
-//! (docs/surfaces.md §8). Each is also timed for the surface terms alone (F, ∇F and H v).
+//! (docs/surfaces.md §7).
 //!
 //! `cargo bench -p dynamics --bench surfaces`
 
@@ -120,13 +120,8 @@ fn surfaces(c: &mut Criterion) {
     let near_ellipsoid =
         Kinematics::<Pga>::new(0.0, motor::from_pose::<Pga>(Vector3::new(1.1, 0.2, 1.9), &turn), twist);
     let near_torus = Kinematics::<Pga>::new(0.0, motor::from_pose::<Pga>(Vector3::new(1.3, 0.1, 1.2), &turn), twist);
-    let (x, v) = (Vector3::new(1.1, 0.2, 1.5), Vector3::new(0.4, -0.2, 0.9));
 
     let mut group = c.benchmark_group("surfaces");
-    let classical_terms = |name: &str, x: &Vector3<f64>, v: &Vector3<f64>| match name {
-        "ellipsoid (QCGA)" => quadric.terms(x, v),
-        _ => torus.terms(x, v),
-    };
     let classical = |name: &str, kinematics: &Kinematics<Pga>| {
         let mut rows = RowBuffer::new();
         match name {
@@ -154,15 +149,6 @@ fn surfaces(c: &mut Criterion) {
         {
             assert!((a - b).abs() < 1e-12 * scale, "{name}: {ours:?} vs {theirs:?}");
         }
-        group.bench_function(format!("{name}: terms, generated"), |b| {
-            b.iter(|| {
-                let (x, v) = (black_box(x), black_box(v));
-                surface.terms(&x, &v)
-            })
-        });
-        group.bench_function(format!("{name}: terms, classical"), |b| {
-            b.iter(|| classical_terms(name, &black_box(x), &black_box(v)))
-        });
         group.bench_function(format!("{name}: row, generated"), |b| {
             b.iter(|| {
                 let mut rows = RowBuffer::new();

@@ -35,7 +35,7 @@ pub(crate) struct SurfaceAt {
 
 /// Calls `row` with each surface at the reference-frame point `a` moving at `a_rate`, checked: an error naming the
 /// constraint at a singular point of a surface (no normal) or where the two surfaces of a curve are tangent.
-#[inline]
+#[inline(always)]
 pub(crate) fn each_surface_at(
     name: &str,
     surfaces: &[Surface],

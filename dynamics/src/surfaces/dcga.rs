@@ -8,10 +8,14 @@
 //! `(|x|² + R² − r²)² − 4R²(x² + y²)`, is the six-blade bivector
 //! `−4 no1∧no2 − 2(R² − r²)(no1∧ni2 + ni1∧no2) − (R² − r²)² ni1∧ni2 + 4R²(e1∧e6 + e2∧e7)`.
 //!
+//! A torus about another axis is this bivector turned by the rotor of the turn applied in both copies,
+//! `(R₁R₂) T (R₁R₂)~` (`turned`, the DCGA motion of Easter and Hitzer; its translation is kept apart, as the point is
+//! taken about the torus's centre): a `Turned` bivector on the four null blades and the nine `eᵢ ∧ eⱼ₊₅`.
+//!
 //! The incidence is a bilinear form of the two copies, `B(u₁, w₂) = (u₁ ∧ w₂) · T`, so it is read through T's
-//! *polar* at the point, the first-copy vector `q = up₂ ⌋ T` (a left contraction, 8 multiplies for the torus):
+//! *polar* at the point, the first-copy vector `q = up₂ ⌋ T` (a left contraction, 13 multiplies):
 //! `B(u₁, up₂) = u₁ · q` for every u₁. The torus's bivector is symmetric in its copies (swapping e1 … ni1 with
-//! e6 … ni2 leaves it), so `B(u, w) = B(w, u)`, and the product rule on `up₁ ∧ up₂` with `∂ᵥup = v + (x·v) ni` and
+//! e6 … ni2 leaves it, and turning both copies alike keeps that), so `B(u, w) = B(w, u)`, and the product rule on `up₁ ∧ up₂` with `∂ᵥup = v + (x·v) ni` and
 //! `∂ᵤ∂ᵥup = (u·v) ni` gives
 //!
 //! ```text
@@ -45,20 +49,30 @@ ga_macros::algebra! {
             First = blades(e1, e2, e3, no1, ni1);
             /// A vector of the second copy.
             Second = blades(e6, e7, e8, no2, ni2);
-            /// A torus about z through the origin (and any surface on these six blades).
+            /// A torus about z through the origin.
             Torus = blades(no1_no2, no1_ni2, ni1_no2, ni1_ni2, e1_e6, e2_e7);
+            /// A torus about any axis through the origin: the null blades and the nine `eᵢ ∧ eⱼ₊₅`.
+            Turned = blades(no1_no2, no1_ni2, ni1_no2, ni1_ni2, e1_e6, e1_e7, e1_e8, e2_e6, e2_e7, e2_e8, e3_e6, e3_e7, e3_e8);
+            /// A rotor of the first copy.
+            Rotor1 = blades(scalar, e1_e2, e1_e3, e2_e3);
+            /// The same rotor in the second copy.
+            Rotor2 = blades(scalar, e6_e7, e6_e8, e7_e8);
         }
         ops = [];
+        /// The torus turned by a rotor applied in both copies, `(r₁r₂) t (r₁r₂)~`.
+        fn turned(r1: Rotor1, r2: Rotor2, t: Torus) -> Turned = (r1 * r2) * t * ~(r1 * r2);
         /// The incidence `(up₁ ∧ up₂) · T` of a point with a surface: the torus's implicit function at the point.
-        fn incidence(p1: First, p2: Second, t: Torus) = (p1 ^ p2).scalar_product(t);
+        fn incidence(p1: First, p2: Second, t: Turned) = (p1 ^ p2).scalar_product(t);
         /// T's polar at a second-copy vector w: `w ⌋ T`, the first-copy vector q with `(u ∧ w) · T = u · q`.
-        fn polar(w: Second, t: Torus) = w | t;
+        fn polar(w: Second, t: Turned) = w | t;
     }
 }
 
 use nalgebra::Vector3;
 
-use generated::{First, Second, Torus};
+use nalgebra::UnitQuaternion;
+
+use generated::{First, Rotor1, Rotor2, Second, Torus, Turned};
 
 /// A vector of the first copy: `x + w ni₁ + s no₁`.
 #[inline]
@@ -84,8 +98,30 @@ fn second(x: &Vector3<f64>, w: f64, s: f64) -> Second {
     }
 }
 
-/// The torus about z through the origin with major radius `major` and minor radius `minor` (see the module docs).
-pub fn torus(major: f64, minor: f64) -> Torus {
+/// The torus about `axis` through the origin with major radius `major` and minor radius `minor`: the torus about z
+/// (see the module docs) turned by the rotor of `turn` (taking z to the axis) in both copies.
+pub fn torus(major: f64, minor: f64, turn: &UnitQuaternion<f64>) -> Turned {
+    // The rotor of the unit quaternion (w, x, y, z) for `R v ~R`: w + x e2∧e3 + y e3∧e1 + z e1∧e2 (a rotor
+    // exp(−θ/2 B) turns by θ in the plane B from its first factor to its second, so the plane of the turn about
+    // n is −n I₃), with e3∧e1 = −e1∧e3.
+    let q = turn.quaternion();
+    let r1 = Rotor1 {
+        scalar: q.w,
+        e1_e2: -q.k,
+        e1_e3: q.j,
+        e2_e3: -q.i,
+    };
+    let r2 = Rotor2 {
+        scalar: q.w,
+        e6_e7: -q.k,
+        e6_e8: q.j,
+        e7_e8: -q.i,
+    };
+    generated::turned(r1, r2, about_z(major, minor))
+}
+
+/// The torus about z through the origin.
+fn about_z(major: f64, minor: f64) -> Torus {
     let k = major * major - minor * minor;
     Torus {
         no1_no2: -4.0,
@@ -99,7 +135,7 @@ pub fn torus(major: f64, minor: f64) -> Torus {
 
 /// The implicit function `(up₁ ∧ up₂) · T` at x.
 #[inline]
-pub fn value(t: Torus, x: &Vector3<f64>) -> f64 {
+pub fn value(t: Turned, x: &Vector3<f64>) -> f64 {
     let w = 0.5 * x.norm_squared();
     generated::incidence(first(x, w, 1.0), second(x, w, 1.0), t).scalar
 }
@@ -107,7 +143,7 @@ pub fn value(t: Torus, x: &Vector3<f64>) -> f64 {
 /// The implicit function, its gradient and its Hessian times v at x, through the polars at `up(x)` and at `∂ᵥup`
 /// (see the module docs).
 #[inline(always)]
-pub fn terms(t: Torus, x: &Vector3<f64>, v: &Vector3<f64>) -> (f64, Vector3<f64>, Vector3<f64>) {
+pub fn terms(t: Turned, x: &Vector3<f64>, v: &Vector3<f64>) -> (f64, Vector3<f64>, Vector3<f64>) {
     let w = 0.5 * x.norm_squared();
     let q = generated::polar(second(x, w, 1.0), t);
     let q_v = generated::polar(second(v, x.dot(v), 0.0), t);

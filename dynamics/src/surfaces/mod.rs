@@ -10,7 +10,7 @@
 pub mod dcga;
 pub mod qcga;
 
-use nalgebra::{Isometry3, Matrix3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector3};
+use nalgebra::{Isometry3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector3};
 
 use crate::algebra::Algebra;
 use crate::contacts::LARGEST_COORDINATE;
@@ -45,12 +45,11 @@ enum Form {
         quadric: qcga::generated::Quadric,
         origin: Vector3<f64>,
     },
-    /// A torus about z through the origin, as a DCGA bivector, and the pose taking it into the reference frame.
+    /// A torus as a DCGA bivector about its centre: the torus about z turned in both copies by the pose's rotation,
+    /// the point taken in `x − centre`.
     Torus {
-        torus: dcga::generated::Torus,
+        torus: dcga::generated::Turned,
         pose: Isometry3<f64>,
-        /// The pose's rotation as a matrix: three matrix products per row instead of quaternion ones.
-        rotation: Matrix3<f64>,
         radii: (f64, f64),
     },
 }
@@ -407,9 +406,8 @@ impl Surface {
             .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
         Ok(Surface {
             form: Form::Torus {
-                torus: dcga::torus(major, minor),
+                torus: dcga::torus(major, minor, &turn),
                 pose: Isometry3::from_parts(Translation3::from(centre), turn),
-                rotation: turn.to_rotation_matrix().into_inner(),
                 radii: (major, minor),
             },
             // Near the surface the gradient is about 8R²r.
@@ -443,12 +441,11 @@ impl Surface {
                     origin: motion.transform_point(&origin.into()).coords,
                 }
             }
-            Form::Torus { torus, pose, radii, .. } => {
+            Form::Torus { pose, radii, .. } => {
                 let pose = motion * pose;
                 Form::Torus {
-                    torus,
+                    torus: dcga::torus(radii.0, radii.1, &pose.rotation),
                     pose,
-                    rotation: pose.rotation.to_rotation_matrix().into_inner(),
                     radii,
                 }
             }
@@ -481,9 +478,7 @@ impl Surface {
             Form::Quadric { quadric, origin } => {
                 qcga::generated::incidence(qcga::point(&(x - origin)), *quadric).scalar
             }
-            Form::Torus { torus, pose, .. } => {
-                dcga::value(*torus, &pose.inverse_transform_vector(&(x - pose.translation.vector)))
-            }
+            Form::Torus { torus, pose, .. } => dcga::value(*torus, &(x - pose.translation.vector)),
         }
     }
 
@@ -503,7 +498,7 @@ impl Surface {
     }
 
     /// `(F(x), ∇F(x), H(x) v)` in one pass, the embedded point built once: what a constraint row reads.
-    #[inline(always)]
+    #[inline]
     pub fn terms(&self, x: &Vector3<f64>, v: &Vector3<f64>) -> (f64, Vector3<f64>, Vector3<f64>) {
         match &self.form {
             Form::Quadric { quadric, origin } => {
@@ -511,13 +506,7 @@ impl Surface {
                 let value = qcga::generated::incidence(qcga::point(&d), *quadric).scalar;
                 (value, qcga::slopes(*quadric, 1.0, &d), qcga::slopes(*quadric, 0.0, v))
             }
-            Form::Torus {
-                torus, pose, rotation, ..
-            } => {
-                let local = rotation.tr_mul(&(x - pose.translation.vector));
-                let (value, gradient, bending) = dcga::terms(*torus, &local, &rotation.tr_mul(v));
-                (value, rotation * gradient, rotation * bending)
-            }
+            Form::Torus { torus, pose, .. } => dcga::terms(*torus, &(x - pose.translation.vector), v),
         }
     }
 
