@@ -18,7 +18,7 @@ use dynamics::joints::{JointKind, JointModel};
 use dynamics::surfaces::{Sheets, Surface};
 use dynamics::{
     motor, simulate, Algebra, Body, ConstraintError, Force, Mechanism, Method, Schedule, ScrewCoordinates, Simulation,
-    State, Tolerance,
+    Stabilisation, State, Tolerance,
 };
 use nalgebra::{Isometry3, Matrix3, SMatrix, SVector, Translation3, UnitQuaternion, Vector2, Vector3};
 
@@ -34,6 +34,7 @@ for_both_algebras!(
     bead_on_an_ellipse_keeps_both_surfaces,
     curve_rows_have_rank_two_except_where_tangent,
     a_surface_far_from_the_origin_keeps_its_precision,
+    baumgarte_keeps_a_bead_near_its_torus,
     singular_points_are_errors_naming_the_constraint,
 );
 
@@ -668,4 +669,59 @@ fn a_surface_far_from_the_origin_keeps_its_precision<A: Algebra>() {
         ends.push(run.body(0).last().unwrap().position);
     }
     assert!((ends[0] - ends[1]).norm() < 1e-9, "{:?} vs {:?}", ends[0], ends[1]);
+}
+
+/// Baumgarte feedback (α = β = 10 1/s) in place of projection, RK4 at dt = 1e-3 s for 2 s: a bead on the torus of
+/// `bead_on_a_tilted_torus_follows_lagrange` stays within 1e-7 m of it (by the classical distance from its tube's
+/// centre circle: RK4's error at this step, about 1e-10 m per step, gathered over the feedback's 0.1 s; measured
+/// 1.8e-8 m), at least ten times closer than without any stabilisation (5e-7 m), in both formulations.
+fn baumgarte_keeps_a_bead_near_its_torus<A: Algebra>() {
+    let (centre, axis) = (
+        Vector3::new(0.2, -0.1, 0.5),
+        Vector3::new(0.4f64.sin(), 0.0, 0.4f64.cos()),
+    );
+    let torus = Surface::torus(centre, axis, 1.0, 0.3).unwrap();
+    let off = |x: Vector3<f64>| {
+        let y = x - centre;
+        let along = axis.dot(&y);
+        (((y - axis * along).norm() - 1.0).powi(2) + along * along).sqrt() - 0.3
+    };
+    let bead = Body::sphere(0.2, 0.02).unwrap();
+    let turn = UnitQuaternion::rotation_between(&Vector3::z(), &axis).unwrap();
+    let (theta, phi) = (0.6f64, 0.3f64);
+    let rho = 1.0 + 0.3 * theta.cos();
+    let x0 = centre + turn * Vector3::new(rho * phi.cos(), rho * phi.sin(), 0.3 * theta.sin());
+    let velocity = turn * Vector3::new(-rho * phi.sin(), rho * phi.cos(), 0.0) * 2.0;
+    let start = [State::new(
+        &bead,
+        x0,
+        &UnitQuaternion::identity(),
+        Vector3::zeros(),
+        velocity,
+    )];
+    for (formulation, constraint) in formulations::<A>(Vector3::zeros(), &[torus]) {
+        let mut farthest = Vec::new();
+        for stabilisation in [
+            Stabilisation::Baumgarte {
+                alpha: 10.0,
+                beta: 10.0,
+            },
+            Stabilisation::None,
+        ] {
+            let system = Mechanism::<A>::single(bead)
+                .with_stabilisation(stabilisation)
+                .unwrap()
+                .with_force(Force::gravity())
+                .unwrap()
+                .with_constraint(constraint.clone())
+                .unwrap();
+            let run = simulate(&system, &start, Method::Rk4, &Schedule::new(1e-3, 2.0).unwrap()).unwrap();
+            farthest.push(run.body(0).iter().map(|s| off(s.position).abs()).fold(0.0, f64::max));
+        }
+        assert!(
+            farthest[0] < 1e-7 && farthest[0] < 0.1 * farthest[1],
+            "{} {formulation}: Baumgarte and none {farthest:?} m off",
+            A::NAME
+        );
+    }
 }
