@@ -36,7 +36,7 @@ use dynamics::integrate::Integrator;
 use dynamics::limits::JointLimit;
 use dynamics::simulate::{simulate, Schedule, SimulationError, SAMPLE_INTERVAL};
 use dynamics::step_control::Tolerance;
-use dynamics::surfaces::Surface;
+use dynamics::surfaces::{Surface, SurfaceError};
 use dynamics::{
     motor, Algebra, Body, BodyError, Cga, Correction, Dynamics, Force, FreeBody, JointId, JointKind, Mechanism,
     MechanismError, Pga, Reference, ScrewCoordinates, Simulation, State,
@@ -1419,10 +1419,10 @@ fn constraint_of<A: FileAlgebra>(
 impl CheckedGeometry {
     /// The geometry with its reference-side points, axes and planes moved from the reference body's frame (at
     /// its pose) into the world.
-    pub fn in_world(&self, (position, orientation): &Pose) -> CheckedGeometry {
+    pub fn in_world(&self, (position, orientation): &Pose) -> Result<CheckedGeometry, SceneFileError> {
         let point = |p: Vector3<f64>| position + orientation * p;
         let axis = |a: Vector3<f64>| orientation * a;
-        match *self {
+        Ok(match *self {
             CheckedGeometry::Ball {
                 body_point,
                 world_point,
@@ -1482,10 +1482,14 @@ impl CheckedGeometry {
                 second,
             } => {
                 let carried = motor::from_pose::<Pga>(*position, orientation);
+                let carried_away = |error: SurfaceError| invalid(format!("surface {}", error.parameter), error.reason);
                 CheckedGeometry::Surfaces {
                     body_point,
-                    first: first.moved::<Pga>(carried),
-                    second: second.map(|surface| surface.moved::<Pga>(carried)),
+                    first: first.moved::<Pga>(carried).map_err(carried_away)?,
+                    second: second
+                        .map(|surface| surface.moved::<Pga>(carried))
+                        .transpose()
+                        .map_err(carried_away)?,
                 }
             }
             CheckedGeometry::Round {
@@ -1499,7 +1503,7 @@ impl CheckedGeometry {
                 radius,
                 normal: normal.map(axis),
             },
-        }
+        })
     }
 
     /// How far a body at `pose` is from satisfying the constraint (m): the body point's distance from where it
@@ -1597,7 +1601,10 @@ pub type JointGeometry = (CheckedGeometry, usize, Option<usize>);
 pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> impl Iterator<Item = f64> + 'a {
     joints.iter().map(|(geometry, body, reference)| match reference {
         None => geometry.violation(&poses[*body]),
-        Some(r) => geometry.in_world(&poses[*r]).violation(&poses[*body]),
+        // A reference pose that is not a rigid motion (never one from a run) has no violation to measure.
+        Some(r) => geometry
+            .in_world(&poses[*r])
+            .map_or(f64::NAN, |g| g.violation(&poses[*body])),
     })
 }
 
@@ -2222,7 +2229,7 @@ impl SceneFile {
                 .transpose()?
                 .flatten();
             let frame_pose = (frame.translation.vector, frame.rotation);
-            let in_body = checked.in_world(&frame_pose);
+            let in_body = checked.in_world(&frame_pose)?;
             match model {
                 Some(mut model) => {
                     if let Some(limit) = limit {

@@ -415,9 +415,10 @@ impl Surface {
         })
     }
 
-    /// The surface moved by a motor of either algebra: its points x become `M x ~M`.
+    /// The surface moved by a motor of either algebra: its points x become `M x ~M`. The motor must be finite and a
+    /// rigid motion (`M ~M = 1` within 1e-9).
     ///
-    /// A unit sphere moved 2 m along x holds (3, 0, 0), as the sphere built there does.
+    /// A unit sphere moved 2 m along x holds (3, 0, 0), as the sphere built there does; a motor scaled by 2 is refused.
     ///
     /// ```
     /// use dynamics::surfaces::Surface;
@@ -425,11 +426,20 @@ impl Surface {
     /// use nalgebra::Vector3;
     ///
     /// let sphere = Surface::quadric([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0])?;
-    /// let moved = sphere.moved::<Pga>(motor::translator::<Pga>(Vector3::x() * 2.0));
+    /// let along = motor::translator::<Pga>(Vector3::x() * 2.0);
+    /// let moved = sphere.moved::<Pga>(along)?;
     /// assert_eq!(moved.value(&Vector3::new(3.0, 0.0, 0.0)), 0.0);
+    /// assert!(sphere.moved::<Pga>(along * 2.0).is_err());
     /// # Ok::<(), dynamics::surfaces::SurfaceError>(())
     /// ```
-    pub fn moved<A: Algebra>(&self, motor: A::Motor) -> Surface {
+    pub fn moved<A: Algebra>(&self, motor: A::Motor) -> Result<Surface, SurfaceError> {
+        let error = motor::norm_error::<A>(motor);
+        if error.is_nan() || error > 1e-9 {
+            return Err(invalid(
+                "motor",
+                format!("{motor:?} is not a rigid motion (|M ~M − 1| = {error:e})"),
+            ));
+        }
         let (position, rotation) = motor::pose::<A>(motor);
         let motion = Isometry3::from_parts(Translation3::from(position), rotation);
         let form = match self.form {
@@ -450,10 +460,10 @@ impl Surface {
                 }
             }
         };
-        Surface {
+        Ok(Surface {
             form,
             singular_below: self.singular_below,
-        }
+        })
     }
 
     /// The implicit coefficients `[a, b, c, d, e, f, g, h, i, j]` of a quadric in the reference frame, or `None` for

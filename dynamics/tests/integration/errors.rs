@@ -677,6 +677,17 @@ fn careless_surfaces_and_held_points_are_refused() {
         }
     }
     let sphere = Surface::ellipsoid(unit, &at).unwrap();
+    // A motor that is not a rigid motion: scaled, NaN, infinite.
+    let along = dynamics::motor::translator::<Pga>(Vector3::x());
+    for (label, motor) in [
+        ("scaled motor", along * 2.0),
+        ("NaN motor", along * f64::NAN),
+        ("infinite motor", along * f64::INFINITY),
+    ] {
+        let error = sphere.moved::<Pga>(motor).unwrap_err();
+        assert_eq!(error.parameter, "motor", "{label}: {error}");
+        assert!(error.reason.contains("not a rigid motion"), "{label}: {error}");
+    }
     for (label, body_point) in [
         ("NaN body point", Vector3::new(f64::NAN, 0.0, 0.0)),
         ("infinite body point", Vector3::new(0.0, f64::INFINITY, 0.0)),

@@ -209,7 +209,7 @@ fn moved_surfaces_equal_surfaces_built_at_the_moved_pose<A: Algebra>() {
         let (pose, motion) = (random_pose(&mut random), random_pose(&mut random));
         let motor = motor::from_pose::<A>(motion.translation.vector, &motion.rotation);
         let radii = Vector3::new(1.5, 0.7, 1.1);
-        let moved = Surface::ellipsoid(radii, &pose).unwrap().moved::<A>(motor);
+        let moved = Surface::ellipsoid(radii, &pose).unwrap().moved::<A>(motor).unwrap();
         let built = Surface::ellipsoid(radii, &(motion * pose)).unwrap();
         let (moved, built) = (moved.coefficients().unwrap(), built.coefficients().unwrap());
         let largest = built.iter().fold(0.0f64, |m, c| m.max(c.abs()));
@@ -219,7 +219,8 @@ fn moved_surfaces_equal_surfaces_built_at_the_moved_pose<A: Algebra>() {
         let axis = pose.rotation * Vector3::z();
         let torus = Surface::torus(pose.translation.vector, axis, 1.2, 0.3)
             .unwrap()
-            .moved::<A>(motor);
+            .moved::<A>(motor)
+            .unwrap();
         let centre = motion.transform_point(&pose.translation.vector.into()).coords;
         let torus_there = Surface::torus(centre, motion.rotation * axis, 1.2, 0.3).unwrap();
         for _ in 0..20 {
