@@ -3,6 +3,7 @@
 //! `cargo test --release -p ga-macros --test integration <module>::` runs one file's tests.
 
 mod large_algebras;
+mod many_operands;
 mod null_basis;
 mod tables;
 mod transcendental;
