@@ -13,8 +13,11 @@
 //! each by pinning and by virtual power, in PGA and CGA, within 1e-9 m, with residuals below 1e-12 and the energy
 //! kept to 1e-10 relative.
 
+use std::sync::Arc;
+
 use dynamics::constraints::{Constraint, Kinematics, RowBuffer, SurfacePin, VirtualPower};
 use dynamics::joints::{JointKind, JointModel};
+use dynamics::simulate::Sample;
 use dynamics::surfaces::{Sheets, Surface};
 use dynamics::{
     motor, simulate, Algebra, Body, ConstraintError, Force, Mechanism, Method, Schedule, ScrewCoordinates, Simulation,
@@ -235,15 +238,15 @@ fn moved_surfaces_equal_surfaces_built_at_the_moved_pose<A: Algebra>() {
 fn formulations<A: Algebra>(
     body_point: Vector3<f64>,
     surfaces: &[Surface],
-) -> Vec<(&'static str, std::sync::Arc<dyn Constraint<A>>)> {
-    let pinned: std::sync::Arc<dyn Constraint<A>> = match surfaces {
-        [one] => std::sync::Arc::new(SurfacePin::point_on_surface("held", body_point, *one).unwrap()),
-        [one, two] => std::sync::Arc::new(SurfacePin::point_on_curve("held", body_point, [*one, *two]).unwrap()),
+) -> Vec<(&'static str, Arc<dyn Constraint<A>>)> {
+    let pinned: Arc<dyn Constraint<A>> = match surfaces {
+        [one] => Arc::new(SurfacePin::point_on_surface("held", body_point, *one).unwrap()),
+        [one, two] => Arc::new(SurfacePin::point_on_curve("held", body_point, [*one, *two]).unwrap()),
         _ => unreachable!(),
     };
-    let power: std::sync::Arc<dyn Constraint<A>> = match surfaces {
-        [one] => std::sync::Arc::new(VirtualPower::<A>::point_on_surface("held", body_point, *one).unwrap()),
-        [one, two] => std::sync::Arc::new(VirtualPower::<A>::point_on_curve("held", body_point, [*one, *two]).unwrap()),
+    let power: Arc<dyn Constraint<A>> = match surfaces {
+        [one] => Arc::new(VirtualPower::<A>::point_on_surface("held", body_point, *one).unwrap()),
+        [one, two] => Arc::new(VirtualPower::<A>::point_on_curve("held", body_point, [*one, *two]).unwrap()),
         _ => unreachable!(),
     };
     vec![("pinning", pinned), ("virtual power", power)]
@@ -275,6 +278,25 @@ fn runge_kutta<const N: usize>(
 fn run<A: Algebra>(system: &Mechanism<A>, start: &[State<A>], duration: f64) -> Simulation<A> {
     let schedule = Schedule::adaptive(Tolerance::new(1e-13, 1e-13).unwrap(), duration, 0.05).unwrap();
     simulate(system, start, Method::Dop853Body, &schedule).unwrap()
+}
+
+/// `body` under gravity, held by `constraint`.
+fn under_gravity<A: Algebra>(body: Body, constraint: Arc<dyn Constraint<A>>) -> Mechanism<A> {
+    Mechanism::<A>::single(body)
+        .with_force(Force::gravity())
+        .unwrap()
+        .with_constraint(constraint)
+        .unwrap()
+}
+
+/// Asserts the samples follow the reference path `(t, x)` sample by sample to 1e-9 m.
+fn assert_follows<A: Algebra>(samples: &[Sample], reference: &[(f64, Vector3<f64>)], what: &str) {
+    assert_eq!(samples.len(), reference.len(), "{what}");
+    for (sample, (t, x)) in samples.iter().zip(reference) {
+        assert!((sample.t - t).abs() < 1e-12);
+        let error = (sample.position - x).norm();
+        assert!(error < 1e-9, "{} {what}: {error:e} m off at t = {t}", A::NAME);
+    }
 }
 
 /// Asserts the run keeps its constraints to 1e-12 and its energy to 1e-10 relative at every sample.
@@ -339,23 +361,9 @@ fn bead_on_a_tilted_torus_follows_lagrange<A: Algebra>() {
         velocity,
     )];
     for (formulation, constraint) in formulations::<A>(Vector3::zeros(), &[torus]) {
-        let system = Mechanism::<A>::single(bead)
-            .with_force(Force::gravity())
-            .unwrap()
-            .with_constraint(constraint)
-            .unwrap();
+        let system = under_gravity(bead, constraint);
         let run = run(&system, &start, 2.0);
-        let samples = run.body(0);
-        assert_eq!(samples.len(), reference.len());
-        for (sample, (t, x)) in samples.iter().zip(&reference) {
-            assert!((sample.t - t).abs() < 1e-12);
-            let error = (sample.position - x).norm();
-            assert!(
-                error < 1e-9,
-                "{} {formulation}: {error:e} m from Lagrange at t = {t}",
-                A::NAME
-            );
-        }
+        assert_follows::<A>(run.body(0), &reference, &format!("{formulation} against Lagrange"));
         assert_kept(&system, &run, &start, formulation);
     }
 }
@@ -436,21 +444,9 @@ fn rod_end_on_an_ellipsoid_follows_newton_euler<A: Algebra>() {
     });
     let start = [State::from_world_twist(&rod, x0, &rotation, omega0, v0)];
     for (formulation, constraint) in formulations::<A>(end_body, &[ellipsoid]) {
-        let system = Mechanism::<A>::single(rod)
-            .with_force(Force::gravity())
-            .unwrap()
-            .with_constraint(constraint)
-            .unwrap();
+        let system = under_gravity(rod, constraint);
         let run = run(&system, &start, 1.5);
-        for (sample, (t, x)) in run.body(0).iter().zip(&reference) {
-            assert!((sample.t - t).abs() < 1e-12);
-            let error = (sample.position - x).norm();
-            assert!(
-                error < 1e-9,
-                "{} {formulation}: {error:e} m from Newton–Euler at t = {t}",
-                A::NAME
-            );
-        }
+        assert_follows::<A>(run.body(0), &reference, &format!("{formulation} against Newton–Euler"));
         assert_kept(&system, &run, &start, formulation);
     }
 }
@@ -555,11 +551,7 @@ fn bead_on_an_ellipse_keeps_both_surfaces<A: Algebra>() {
     )];
     let mut paths = Vec::new();
     for (formulation, constraint) in formulations::<A>(Vector3::zeros(), &[ellipsoid, plane]) {
-        let system = Mechanism::<A>::single(bead)
-            .with_force(Force::gravity())
-            .unwrap()
-            .with_constraint(constraint)
-            .unwrap();
+        let system = under_gravity(bead, constraint);
         let mut placed = start.to_vec();
         system.project(0.0, &mut placed).unwrap();
         let run = run(&system, &placed, 2.0);
@@ -647,11 +639,7 @@ fn a_surface_far_from_the_origin_keeps_its_precision<A: Algebra>() {
     )];
     let mut ends = Vec::new();
     for (formulation, constraint) in formulations::<A>(Vector3::zeros(), &[ellipsoid]) {
-        let system = Mechanism::<A>::single(bead)
-            .with_force(Force::gravity())
-            .unwrap()
-            .with_constraint(constraint)
-            .unwrap();
+        let system = under_gravity(bead, constraint);
         let run = run(&system, &start, 1.0);
         for sample in run.body(0) {
             let local = pose.inverse_transform_point(&sample.position.into()).coords;
