@@ -89,19 +89,13 @@ fn tangent(name: &str, a: &Vector3<f64>, sine: f64) -> ConstraintError {
     }
 }
 
-/// Checks a body point and the number of surfaces (one or two) of a constraint called `name`.
-pub(crate) fn check_held_point(name: &str, body_point: &Vector3<f64>, surfaces: usize) -> Result<(), ConstraintError> {
+/// Checks the body point of a constraint called `name`: finite and within [`crate::contacts::LARGEST_COORDINATE`].
+pub(crate) fn check_held_point(name: &str, body_point: &Vector3<f64>) -> Result<(), ConstraintError> {
     let largest = crate::contacts::LARGEST_COORDINATE;
     if !body_point.iter().all(|x| x.is_finite() && x.abs() <= largest) {
         return Err(ConstraintError::InvalidParameter {
             name: name.to_owned(),
             reason: format!("the body point {body_point:?} must be finite and within {largest:e} m"),
-        });
-    }
-    if !(1..=2).contains(&surfaces) {
-        return Err(ConstraintError::InvalidParameter {
-            name: name.to_owned(),
-            reason: format!("{surfaces} surfaces given: a point is held on one surface or on the curve of two"),
         });
     }
     Ok(())
@@ -181,7 +175,7 @@ impl SurfacePin {
     }
 
     fn new(name: String, body_point: Vector3<f64>, surfaces: &[Surface]) -> Result<Self, ConstraintError> {
-        check_held_point(&name, &body_point, surfaces.len())?;
+        check_held_point(&name, &body_point)?;
         Ok(SurfacePin {
             name,
             body_point,

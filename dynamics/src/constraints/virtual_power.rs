@@ -753,7 +753,7 @@ impl<A: Algebra> VirtualPower<A> {
     }
 
     fn on_surfaces(name: String, body_point: Vector3<f64>, surfaces: &[Surface]) -> Result<Self, ConstraintError> {
-        check_held_point(&name, &body_point, surfaces.len())?;
+        check_held_point(&name, &body_point)?;
         Ok(VirtualPower {
             name,
             wrenches: Wrenches::Surfaces {

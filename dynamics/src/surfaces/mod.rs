@@ -525,22 +525,12 @@ impl Surface {
     pub fn normal(&self, x: &Vector3<f64>) -> Option<Vector3<f64>> {
         let gradient = self.gradient(x);
         let length = gradient.norm();
-        (length > self.singular_below && length.is_finite()).then(|| gradient / length)
+        (!self.is_singular(length) && length.is_finite()).then(|| gradient / length)
     }
 
     /// Whether a gradient of this length is too small to give a direction (see [`Surface::normal`]).
     #[inline]
     pub(crate) fn is_singular(&self, gradient_length: f64) -> bool {
         gradient_length.is_nan() || gradient_length <= self.singular_below
-    }
-
-    /// For a torus, its centre, axis and radii (R, r); `None` for a quadric.
-    pub fn torus_parameters(&self) -> Option<(Vector3<f64>, Vector3<f64>, f64, f64)> {
-        match self.form {
-            Form::Torus { pose, radii, .. } => {
-                Some((pose.translation.vector, pose.rotation * Vector3::z(), radii.0, radii.1))
-            }
-            Form::Quadric { .. } => None,
-        }
     }
 }
