@@ -23,6 +23,18 @@ fn pga_motor_sandwich_point() {
     insta::assert_snapshot!(function_source(&common::pga(), Operation::Sandwich, "Motor", "Point"));
 }
 
+/// DCGA's polar of a torus at a point of the second copy, `w ⌋ T` (`dynamics::surfaces::dcga`): a first-copy
+/// vector, each coefficient a short sum, the null pairs' −1 carried as signs.
+#[test]
+fn dcga_polar_of_a_turned_torus() {
+    insta::assert_snapshot!(function_source(
+        &common::dcga(),
+        Operation::LeftContraction,
+        "Second",
+        "Turned"
+    ));
+}
+
 #[test]
 fn cga_even_times_even() {
     insta::assert_snapshot!(function_source(&common::cga(), Operation::Geometric, "Even", "Even"));

@@ -112,6 +112,36 @@ pub fn null_cga() -> AlgebraDeclaration {
     }
 }
 
+/// DCGA Cl(8,2) on two null bases, as `dynamics::surfaces::dcga` declares it: two CGA copies, a vector of each and
+/// a turned torus (the four null blades and the nine `eᵢ ∧ eⱼ₊₅`).
+pub fn dcga() -> AlgebraDeclaration {
+    let names = ["e1", "e2", "e3", "no1", "ni1", "e6", "e7", "e8", "no2", "ni2"];
+    let entry = |i: usize, j: usize| match (i.min(j), i.max(j)) {
+        (3, 4) | (8, 9) => Rational64::from_integer(-1),
+        (i, j) if i == j && !matches!(i, 3 | 4 | 8 | 9) => Rational64::from_integer(1),
+        _ => Rational64::from_integer(0),
+    };
+    let cross: Vec<String> = ["e1", "e2", "e3"]
+        .iter()
+        .flat_map(|a| ["e6", "e7", "e8"].map(|b| format!("{a}_{b}")))
+        .collect();
+    let mut turned = vec!["no1_no2", "no1_ni2", "ni1_no2", "ni1_ni2"];
+    turned.extend(cross.iter().map(String::as_str));
+    AlgebraDeclaration {
+        scalar: ScalarType::F64,
+        basis: basis(&names.map(|n| (n, 0))),
+        metric: Some((0..10).map(|i| (0..10).map(|j| entry(i, j)).collect()).collect()),
+        types: vec![
+            blades("First", &["e1", "e2", "e3", "no1", "ni1"]),
+            blades("Second", &["e6", "e7", "e8", "no2", "ni2"]),
+            blades("Turned", &turned),
+        ],
+        operations: None,
+        lowering: vec![],
+        expressions: vec![],
+    }
+}
+
 /// Random diagonal signatures, degenerate ones included.
 pub fn signature() -> impl Strategy<Value = Vec<i64>> {
     prop::collection::vec(prop_oneof![Just(1i64), Just(-1), Just(0)], 1..=6)
