@@ -14,6 +14,7 @@ use nalgebra::{Isometry3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector
 
 use crate::algebra::Algebra;
 use crate::contacts::LARGEST_COORDINATE;
+use crate::convert::direction_and_length;
 use crate::motor;
 
 /// Why a surface could not be built.
@@ -107,15 +108,9 @@ fn check_pose(pose: &Isometry3<f64>) -> Result<(), SurfaceError> {
     }
 }
 
-/// The unit direction of `v`, checked.
-fn direction(parameter: &'static str, v: Vector3<f64>) -> Result<Vector3<f64>, SurfaceError> {
-    check_coordinates(parameter, v.as_slice())?;
-    let length = v.norm();
-    if length > 0.0 && length.is_finite() {
-        Ok(v / length)
-    } else {
-        Err(invalid(parameter, format!("{v:?} has no direction")))
-    }
+/// The unit direction and the length of `v`, which may have any finite, non-zero length (1e-300 or 1e300 alike).
+fn direction(parameter: &'static str, v: Vector3<f64>) -> Result<(Vector3<f64>, f64), SurfaceError> {
+    direction_and_length(v).ok_or_else(|| invalid(parameter, format!("{v:?} has no direction (zero or not finite)")))
 }
 
 /// The symmetric 4×4 form `[[A, b/2], [bᵀ/2, j]]` of `[a, b, c, d, e, f, g, h, i, j]`: `F(x) = [x 1] S [x 1]ᵀ`.
@@ -369,8 +364,7 @@ impl Surface {
     /// # Ok::<(), dynamics::surfaces::SurfaceError>(())
     /// ```
     pub fn plane(normal: Vector3<f64>, offset: f64) -> Result<Surface, SurfaceError> {
-        let length = normal.norm();
-        let unit = direction("normal", normal)?;
+        let (unit, length) = direction("normal", normal)?;
         check_coordinates("offset", &[offset / length])?;
         Self::quadric([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, unit.x, unit.y, unit.z, -offset / length])
     }
@@ -393,7 +387,7 @@ impl Surface {
     /// ```
     pub fn torus(centre: Vector3<f64>, axis: Vector3<f64>, major: f64, minor: f64) -> Result<Surface, SurfaceError> {
         check_coordinates("centre", centre.as_slice())?;
-        let axis = direction("axis", axis)?;
+        let (axis, _) = direction("axis", axis)?;
         check_radii("major_radius", &[major])?;
         check_radii("minor_radius", &[minor])?;
         if minor >= major {

@@ -731,3 +731,23 @@ fn baumgarte_keeps_a_bead_near_its_torus<A: Algebra>() {
         );
     }
 }
+
+/// A torus's axis and a plane's normal may have any finite, non-zero length: scaled by 1e-300 or 1e300 they give the
+/// same surface (the scene-file fuzz found an axis of 1e-300 refused as having no direction).
+#[test]
+fn axes_and_normals_of_any_finite_length_are_directions() {
+    let axis = Vector3::new(0.3, 0.0, 1.0);
+    let torus = Surface::torus(Vector3::zeros(), axis, 1.0, 0.3).unwrap();
+    let normal = Vector3::new(0.2, -0.4, 1.0);
+    let plane = Surface::plane(normal, 0.7).unwrap();
+    let mut random = Random::new(0xd1_7ec7);
+    for scale in [1e-300, 1e300] {
+        let scaled_torus = Surface::torus(Vector3::zeros(), axis * scale, 1.0, 0.3).unwrap();
+        let scaled_plane = Surface::plane(normal * scale, 0.7 * scale).unwrap();
+        for _ in 0..20 {
+            let x = random.vector(2.0);
+            assert!((scaled_torus.value(&x) - torus.value(&x)).abs() < 1e-13 * (1.0 + torus.value(&x).abs()));
+            assert!((scaled_plane.value(&x) - plane.value(&x)).abs() < 1e-15);
+        }
+    }
+}

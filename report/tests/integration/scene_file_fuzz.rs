@@ -14,7 +14,7 @@ use report::scene_file::{joint_violations, FileAlgebra, JointGeometry, Pose, Sce
 use report::sweep::AlgebraKind;
 
 /// The shipped scene files, read when the test is compiled.
-const SCENES: [(&str, &str); 5] = [
+const SCENES: [(&str, &str); 8] = [
     ("heavy_top.toml", include_str!("../../../scenes/heavy_top.toml")),
     (
         "limited_double_pendulum.toml",
@@ -26,6 +26,15 @@ const SCENES: [(&str, &str); 5] = [
     ),
     ("four_bar.toml", include_str!("../../../scenes/four_bar.toml")),
     ("chain.toml", include_str!("../../../scenes/chain.toml")),
+    ("bead_on_torus.toml", include_str!("../../../scenes/bead_on_torus.toml")),
+    (
+        "rod_on_ellipsoid.toml",
+        include_str!("../../../scenes/rod_on_ellipsoid.toml"),
+    ),
+    (
+        "turntable_pendulum.toml",
+        include_str!("../../../scenes/turntable_pendulum.toml"),
+    ),
 ];
 
 /// The shipped robot files (their URDF paths relative to the scenes folder).
