@@ -983,6 +983,7 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (&torus, ring, "surface = { kind = \"quadric\", coefficients = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0] }", &["surface.coefficients", "no first- or second-order term"]),
         (&torus, ring, "surface = { kind = \"quadric\", coefficients = [1e13, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0] }", &["surface.coefficients", "within 1e12"]),
         (&torus, ring, "surface = { kind = \"hyperboloid\", radii = [1.0, 1.0, 1.0], sheets = 3 }", &["surface.sheets", "3 is not 1 or 2"]),
+        (&torus, ring, "surface = { kind = \"quadric\", coefficients = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0] }", &["constraint 1 (point on surface)", "cannot hold together"]),
         (&torus, ring, "surface = { kind = \"cone\", radii = [1.0, 1.0], centre = [1.190287161857, 0.368691212106, 0.819765066149] }", &["no normal", "singular point"]),
         (&rod, egg, "radii = [1.2, 0.0, 0.5] }", &["surface.radii", "positive"]),
         (&rod, egg, "radii = [1.2, nan, 0.5] }", &["surface.radii", "NaN"]),
