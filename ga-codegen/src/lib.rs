@@ -52,29 +52,36 @@
 //! [`evaluator`] applies the same rules to dense coefficient vectors at run time: the oracle the
 //! tests compare emitted code against, and a tool for exploring large algebras.
 //!
-//! Each module refers only to modules before it in the pipeline (`tests/integration/module_order.rs` lists the order, checks it).
+//! Each module refers only to modules before it in the order declared below (`tests/integration/module_order.rs`
+//! checks it; docs/architecture.md).
 //!
 //! Most users call it through the `algebra!` macro of `ga-macros`; [`generate`] is the library entry.
 
 #![deny(missing_docs)]
-pub mod algebra;
+// The declaration: blade masks, operations, the syntax tree of declared expressions, the declaration, its errors.
 pub mod blade;
-pub mod declaration;
-pub mod emit;
-pub mod error;
-pub mod evaluator;
-pub mod expand;
+pub mod operation;
 pub mod expression;
-pub mod features;
-pub mod functions;
-pub mod fuse;
+pub mod declaration;
+pub mod error;
+// The validated algebra model: the metric, the names of emitted items, the algebra.
 pub mod metric;
 mod naming;
-pub mod operation;
+pub mod algebra;
+// Product rules per blade pair, and the evaluator applying them to dense multivectors.
 pub mod product;
+pub mod evaluator;
+// Symbolic expansion of a product and its lowering to straight-line code or tables, one function each.
+pub mod expand;
 pub mod program;
 pub mod table;
+pub mod functions;
+// Declared expressions expanded as a whole: fused into one function, or in closed form.
+pub mod fuse;
 pub mod transcendental;
+// Emission: the opt-in trait impls, the Rust tokens.
+pub mod features;
+pub mod emit;
 
 pub use algebra::{Algebra, Field, SparseType};
 pub use declaration::{AlgebraDeclaration, BasisVectorDeclaration, Layout, Lowering, ScalarType, TypeDeclaration};

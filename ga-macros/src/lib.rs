@@ -430,10 +430,13 @@
 
 #![deny(missing_docs)]
 
+// The pipeline, each module referring only to those before it (`tests/integration/module_order.rs`,
+// docs/architecture.md): parse the input → validate it against the compiler's rules → expand it into the
+// module's items.
 mod diagnostics;
-mod expand;
 mod parse;
 mod validate;
+mod expand;
 
 use proc_macro::TokenStream;
 

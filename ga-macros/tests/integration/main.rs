@@ -4,6 +4,7 @@
 
 mod large_algebras;
 mod many_operands;
+mod module_order;
 mod null_basis;
 mod tables;
 mod transcendental;
