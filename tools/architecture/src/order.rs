@@ -34,7 +34,7 @@ pub fn order_violations(manifest_dir: &Path) -> Vec<String> {
                 violations.push(format!(
                     "{} ({}) refers to {} (defined in {}, which comes after it)",
                     display(&module.path),
-                    module.file.display(),
+                    module.file.strip_prefix(manifest_dir).unwrap_or(&module.file).display(),
                     written(&reference),
                     display(&target),
                 ));
@@ -44,7 +44,8 @@ pub fn order_violations(manifest_dir: &Path) -> Vec<String> {
     let files: Vec<&Path> = modules.iter().map(|module| module.file.as_path()).collect();
     for file in tree::source_files(&manifest_dir.join("src")) {
         if !files.contains(&file.as_path()) {
-            violations.push(format!("{} is no module of the crate", file.display()));
+            let name = file.strip_prefix(manifest_dir).unwrap_or(&file).display().to_string();
+            violations.push(format!("{name} is no module of the crate"));
         }
     }
     violations.sort();
