@@ -173,7 +173,7 @@ impl Body {
         let mut eigenvectors = central;
         let mut values = [0.0; 3];
         let mut work = [0.0; 9];
-        crate::mechanism::symmetric_eigen(eigenvectors.as_mut_slice(), &mut values, &mut work, 3);
+        crate::eigen::symmetric_eigen(eigenvectors.as_mut_slice(), &mut values, &mut work, 3);
         let eigenvalues = Vector3::from(values);
         if eigenvectors.determinant() < 0.0 {
             eigenvectors.column_mut(2).neg_mut();

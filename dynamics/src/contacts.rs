@@ -14,6 +14,7 @@
 use nalgebra::{Unit, Vector3};
 
 use crate::constraints::ConstraintError;
+pub use crate::state::LARGEST_COORDINATE;
 
 /// A plane below a body point: the point `p` (body coordinates) is kept where `n · p ≥ offset` (world, m).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,10 +28,6 @@ pub struct PlaneContact {
 /// Contact points within this height (m) of their planes at an impact take part in it: a block landing flat meets
 /// the floor with four corners at once, whose heights differ by round-off at the located time.
 pub const TOUCHING: f64 = 1e-9;
-
-/// Contact points, normals and offsets beyond this magnitude (m) are refused: the heights the simulation watches
-/// would lose every digit below a micrometre.
-pub const LARGEST_COORDINATE: f64 = 1e6;
 
 impl PlaneContact {
     /// The body point `point` (m, the body's frame) kept on the side of the plane `normal · x = offset` (world)

@@ -35,31 +35,40 @@
 
 #![deny(missing_docs)]
 
-pub mod algebra;
-pub mod body;
-pub mod cga;
-pub mod constraints;
-pub mod contacts;
-pub mod convert;
-pub mod equivalence;
-pub mod exponential;
-pub mod force_elements;
-pub mod forces;
-pub mod inertia;
-pub mod integrate;
-pub mod joint_integration;
-pub mod joints;
-pub mod limits;
-pub mod mechanism;
-pub mod motion;
-pub mod motor;
-pub mod pga;
-pub mod simulate;
-pub mod state;
-pub mod step_control;
-pub mod surfaces;
 #[cfg(test)]
 mod test_random;
+// The algebra layer: the trait, its two implementations (each from one `algebra!`), their equivalence.
+pub mod algebra;
+pub mod pga;
+pub mod cga;
+pub mod equivalence;
+// Rigid transforms, interop with nalgebra, and the one dense decomposition the dynamics needs.
+pub mod motor;
+pub mod exponential;
+pub mod convert;
+mod eigen;
+// Bodies and their state.
+pub mod body;
+pub mod inertia;
+pub mod state;
+// Forces.
+pub mod forces;
+// Constraints: the surfaces a point can be held on, one constraint's rows, joint limits, joint models, contacts.
+pub mod surfaces;
+pub mod constraints;
+pub mod limits;
+pub mod joints;
+pub mod contacts;
+// The equations of motion: the interface the integrators step, and the free body.
+pub mod motion;
+// Mechanisms: bodies held by joints, their reactions, joint space and one-sided constraints.
+pub mod mechanism;
+pub use mechanism::force_elements;
+// Time stepping: integrators, step-size control, joint-coordinate stepping, and the run.
+pub mod integrate;
+pub mod joint_integration;
+pub mod step_control;
+pub mod simulate;
 
 pub use algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 pub use body::{Body, BodyError, PrincipalFrame};

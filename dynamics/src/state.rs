@@ -42,6 +42,10 @@ pub struct WorldVelocity {
 /// joint as a "non-finite residual").
 pub const MAX_COORDINATE: f64 = 1e50;
 
+/// Body points, plane normals and offsets and surface parameters beyond this magnitude (m) are refused: the heights
+/// and incidences the simulation watches would lose every digit below a micrometre.
+pub const LARGEST_COORDINATE: f64 = 1e6;
+
 /// How far from the world origin a body's centre of mass may be at the start of a step, in its smallest radius of
 /// gyration r = √(I_min / m) ([`crate::Body::smallest_gyration_radius`]). A state holds the angular momentum about
 /// the origin, `I ω + c × m v`, whose round-off ε |c| m |v| (ε = 2.2e-16) makes a spin error of ε |c| |v| / r² and so

@@ -89,9 +89,9 @@ fn tangent(name: &str, a: &Vector3<f64>, sine: f64) -> ConstraintError {
     }
 }
 
-/// Checks the body point of a constraint called `name`: finite and within [`crate::contacts::LARGEST_COORDINATE`].
+/// Checks the body point of a constraint called `name`: finite and within [`crate::state::LARGEST_COORDINATE`].
 pub(crate) fn check_held_point(name: &str, body_point: &Vector3<f64>) -> Result<(), ConstraintError> {
-    let largest = crate::contacts::LARGEST_COORDINATE;
+    let largest = crate::state::LARGEST_COORDINATE;
     if !body_point.iter().all(|x| x.is_finite() && x.abs() <= largest) {
         return Err(ConstraintError::InvalidParameter {
             name: name.to_owned(),

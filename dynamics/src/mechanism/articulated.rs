@@ -14,9 +14,9 @@ use nalgebra::{Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::joints::{JointAxis, JointModel, Motion, Side};
-use crate::mechanism::joint::{BodyKinematics, Joint};
+use crate::mechanism::joint_rows::{BodyKinematics, Joint};
+use crate::mechanism::parts::MechanismBody;
 use crate::mechanism::spatial::{angular, force_cross, join, linear, motion_cross, spatial_body, Inertia6};
-use crate::mechanism::MechanismBody;
 
 /// The tree of a mechanism whose joints are all joint models: bodies parents first, each with its parent joint.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -3,22 +3,14 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::articulated::Row;
-use super::{BodyId, Mechanism, MechanismError};
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::PlaneContact;
+use crate::mechanism::articulated::Row;
+use crate::mechanism::error::MechanismError;
+use crate::mechanism::model::Mechanism;
+use crate::mechanism::parts::{BodyId, Contact};
 use crate::state::State;
-
-/// A contact of a mechanism: `point` (principal body coordinates: from the centre of mass) of `body` above the
-/// plane of `contact`.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Contact {
-    pub name: String,
-    pub body: usize,
-    pub point: Vector3<f64>,
-    pub contact: PlaneContact,
-}
 
 impl<A: Algebra> Mechanism<A> {
     /// Keeps the point of `contact` (in `body`'s frame: the frame its joint models use, the principal frame unless the

@@ -8,7 +8,8 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
 use crate::force_elements::{ElementKind, ForceElement, JointState};
 use crate::joints::{JointModel, Motion, Side};
-use crate::mechanism::{Mechanism, MechanismError};
+use crate::mechanism::error::MechanismError;
+use crate::mechanism::model::Mechanism;
 use crate::state::State;
 
 /// A wrench in world screw coordinates: `l` the force, `t` its moment about the world origin.

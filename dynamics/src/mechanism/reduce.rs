@@ -19,7 +19,8 @@
 //!   inconsistency.
 
 use crate::constraints::{ConstraintRow, MAX_ROWS};
-use crate::mechanism::solve::{dot6, exceeds, symmetric_eigen};
+use crate::eigen::symmetric_eigen;
+use crate::mechanism::solve::{dot6, exceeds};
 
 /// How many right-hand sides a reduction carries: the acceleration condition, the position residual and the
 /// velocity residual (both for the projection).

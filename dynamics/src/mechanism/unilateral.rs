@@ -4,13 +4,13 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::articulated::Row;
-use super::joint_space::WorldBody;
-use super::{Mechanism, MechanismWorkspace};
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::TOUCHING;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
+use crate::mechanism::articulated::{Row, REPEATED_ROW};
+use crate::mechanism::joint_space::{JointSpace, WorldBody};
+use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::state::State;
 
 /// The relative size below which an impulse counts as zero in the contacts' complementarity (pushes are ≥ 0, speeds
@@ -33,7 +33,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// An error naming the one-sided constraints unless the mechanism has joint coordinates (its joint models form a
     /// forest).
-    pub(super) fn limited_space(&self) -> Result<&super::JointSpace, ConstraintError> {
+    pub(super) fn limited_space(&self) -> Result<&JointSpace, ConstraintError> {
         self.coordinates().ok_or_else(|| ConstraintError::InvalidParameter {
             name: self.unilateral_names(),
             reason: "joint limits and contacts need joint coordinates: joint models forming a tree".to_owned(),
@@ -471,7 +471,7 @@ impl<A: Algebra> Mechanism<A> {
     fn least_norm(&self, t: f64, gram: &DMatrix<f64>, r: &DVector<f64>) -> Result<DVector<f64>, ConstraintError> {
         let largest = gram.diagonal().amax();
         let p = (gram.clone().svd(true, true))
-            .solve(r, super::articulated::REPEATED_ROW * largest)
+            .solve(r, REPEATED_ROW * largest)
             .map_err(|error| self.impact_failed(t, error.to_owned()))?;
         if !p.iter().all(|x| x.is_finite()) {
             return Err(self.impact_failed(t, "the impulse is not finite".to_owned()));

@@ -13,9 +13,9 @@ pub mod qcga;
 use nalgebra::{Isometry3, Matrix4, Translation3, UnitQuaternion, Vector2, Vector3};
 
 use crate::algebra::Algebra;
-use crate::contacts::LARGEST_COORDINATE;
 use crate::convert::direction_and_length;
 use crate::motor;
+use crate::state::LARGEST_COORDINATE;
 
 /// Why a surface could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

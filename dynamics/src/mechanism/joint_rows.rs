@@ -27,8 +27,18 @@ use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Sta
 use crate::joints::JointModel;
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
 use crate::mechanism::solve::{dot6, SolverSettings};
-use crate::mechanism::Rows;
 use crate::motor::ScrewFrame;
+
+/// What the joints' rows are evaluated for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Rows {
+    /// The equations of motion: the acceleration condition, stabilised, reduced.
+    Dynamics,
+    /// The projection onto the joint manifold: position and velocity conditions, reduced.
+    Projection,
+    /// A violation query: the residuals alone, not reduced (they exist where the rows lose rank).
+    Residuals,
+}
 
 /// A joint of a mechanism: its constraint, the body it holds and the reference it holds it to.
 #[derive(Clone)]
