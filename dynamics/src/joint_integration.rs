@@ -11,10 +11,11 @@
 //! quaternion r turned by its angular velocity ω in its own axes, `ṙ = ½ r ⊗ ω`, advanced as `r₀ exp(σ)` with
 //! `σ̇ = dexp⁻¹_{−σ}(ω)`; a free root's position p moves with its velocity v in the rotation's axes, `ṗ = R(r) v`.
 
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
+use crate::joint_layout::{quaternion_at, vector_at, write_quaternion, JointLayout};
 use crate::motion::Dynamics;
 use crate::state::State;
 
@@ -50,23 +51,6 @@ impl JointMethod {
             JointMethod::Rkmk8 => 8,
         }
     }
-}
-
-/// Where a system's joint coordinates are, by kind (see the module docs), in its position and velocity vectors.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct JointLayout {
-    /// The number of positions.
-    pub positions: usize,
-    /// The number of velocities.
-    pub velocities: usize,
-    /// Vector coordinates: (position, velocity) indices with `q̇ = v`.
-    pub vectors: Vec<(usize, usize)>,
-    /// Rotations: the index of a unit quaternion (w, x, y, z) in the positions and of its angular velocity (three,
-    /// in its own axes) in the velocities.
-    pub rotations: Vec<(usize, usize)>,
-    /// Free translations: the index of a position (three) and of its velocity (three, in the axes of the rotation
-    /// at the third index, a quaternion's position index).
-    pub translations: Vec<(usize, usize, usize)>,
 }
 
 /// The buffers of the joint-coordinate steps, sized once for a system.
@@ -116,37 +100,6 @@ type Written<A> = (Vec<State<A>>, Vec<f64>, Vec<f64>);
 
 /// How many written end states are kept: a run's whole steps and the partial steps to its samples alternate.
 const WRITTEN: usize = 2;
-
-fn quaternion_at(q: &[f64], at: usize) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_quaternion(Quaternion::new(q[at], q[at + 1], q[at + 2], q[at + 3]))
-}
-
-fn write_quaternion(q: &mut [f64], at: usize, r: &UnitQuaternion<f64>) {
-    let c = r.quaternion();
-    q[at..at + 4].copy_from_slice(&[c.w, c.i, c.j, c.k]);
-}
-
-fn vector_at(v: &[f64], at: usize) -> Vector3<f64> {
-    Vector3::new(v[at], v[at + 1], v[at + 2])
-}
-
-/// The positions `q` moved by the small velocity-coordinate displacement `delta` (a Newton step): `q + δ` on the
-/// vector coordinates, `p + R(r) δ` on free translations (R before the turn), `r exp(δ)` on the rotations.
-pub(crate) fn retract(layout: &JointLayout, q: &mut [f64], delta: &[f64]) {
-    for &(p, v) in &layout.vectors {
-        q[p] += delta[v];
-    }
-    for &(p, v, rotation) in &layout.translations {
-        let moved = quaternion_at(q, rotation) * vector_at(delta, v);
-        for axis in 0..3 {
-            q[p + axis] += moved[axis];
-        }
-    }
-    for &(p, v) in &layout.rotations {
-        let turned = quaternion_at(q, p) * UnitQuaternion::from_scaled_axis(vector_at(delta, v));
-        write_quaternion(q, p, &turned);
-    }
-}
 
 /// `dexp⁻¹_{−σ}(k) = k + ½ σ×k + ¹⁄₁₂ σ×(σ×k) − ¹⁄₇₂₀ ad⁴ + ¹⁄₃₀₂₄₀ ad⁶` on so(3) (`[a, b] = a × b`), truncated after the
 /// term the method's order needs (as `integrate::dexp_inverse` on screws).

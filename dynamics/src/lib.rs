@@ -60,6 +60,7 @@ pub mod limits;
 pub mod joints;
 pub mod contacts;
 // The equations of motion: the interface the integrators step, and the free body.
+pub mod joint_layout;
 pub mod motion;
 // Mechanisms: bodies held by joints, their reactions, joint space and one-sided constraints.
 pub mod mechanism;

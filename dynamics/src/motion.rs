@@ -12,6 +12,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::body::Body;
 use crate::constraints::ConstraintError;
 use crate::forces::Force;
+use crate::joint_layout::JointLayout;
 use crate::motor;
 use crate::state::State;
 
@@ -122,7 +123,7 @@ pub trait Dynamics<A: Algebra> {
 
     /// Where the system's joint coordinates are, for the methods that step in them
     /// ([`crate::joint_integration::JointMethod`]); `None` (the default) for a system without them.
-    fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
+    fn joint_layout(&self) -> Option<JointLayout> {
         None
     }
 

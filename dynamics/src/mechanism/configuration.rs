@@ -19,7 +19,9 @@ use crate::state::State;
 impl<A: Algebra> Mechanism<A> {
     /// The coordinates, built on first use after a change.
     pub(crate) fn coordinates(&self) -> Option<&JointSpace> {
-        self.joint_space.get_or_init(|| JointSpace::new(self)).as_ref()
+        self.joint_space
+            .get_or_init(|| JointSpace::new(&self.bodies, &self.joints))
+            .as_ref()
     }
 
     /// The joint coordinates' layout, if the joint models form a forest (always, for models added by

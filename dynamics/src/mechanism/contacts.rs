@@ -173,7 +173,7 @@ impl<A: Algebra> Mechanism<A> {
             heights.iter().enumerate().for_each(|(k, h)| residual[k] = -h);
             let rows = self.contact_rows(states, indices)?;
             let step = self.metric_correction(t, states, &rows, equalities, &residual)?;
-            crate::joint_integration::retract(&layout, &mut q, step.as_slice());
+            layout.retract(&mut q, step.as_slice());
             self.write_joints_into(t, &q, &v, states, &mut Vec::new())?;
         }
         if !stop {

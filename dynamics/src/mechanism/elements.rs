@@ -2,13 +2,13 @@
 //! two bodies, moved into their body frames, its non-conservative power, and the potential of the conservative
 //! ones.
 
-use nalgebra::{DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
-use crate::force_elements::{ElementKind, ForceElement, JointState};
 use crate::joints::{JointModel, Motion, Side};
 use crate::mechanism::error::MechanismError;
+use crate::mechanism::force_elements::{ElementKind, ForceElement, JointSpaceQueries, JointState};
 use crate::mechanism::model::Mechanism;
 use crate::state::State;
 
@@ -400,5 +400,15 @@ impl<A: Algebra> Mechanism<A> {
                 _ => 0.0,
             })
             .sum()
+    }
+}
+
+impl<A: Algebra> JointSpaceQueries<A> for Mechanism<A> {
+    fn mass_matrix(&self, states: &[State<A>]) -> Result<DMatrix<f64>, MechanismError> {
+        Mechanism::mass_matrix(self, states)
+    }
+
+    fn bias_forces(&self, t: f64, states: &[State<A>]) -> Result<DVector<f64>, MechanismError> {
+        Mechanism::bias_forces(self, t, states)
     }
 }

@@ -16,7 +16,8 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::mechanism::{BodyId, JointId, Mechanism, MechanismError, Reference};
+use crate::mechanism::error::MechanismError;
+use crate::mechanism::parts::{BodyId, JointId, Reference};
 use crate::state::State;
 
 /// A value that may change with time: a constant, or a function of time.
@@ -60,16 +61,25 @@ pub struct JointState<'a, A: Algebra> {
     pub velocities: &'a [f64],
     /// Every body's state.
     pub states: &'a [State<A>],
-    pub(crate) mechanism: &'a Mechanism<A>,
+    pub(crate) mechanism: &'a dyn JointSpaceQueries<A>,
+}
+
+/// The joint-space quantities a controller may ask of the mechanism it acts in, at a state; the mechanism answers
+/// them (`mechanism::elements`).
+pub(crate) trait JointSpaceQueries<A: Algebra>: Sync {
+    /// M(q).
+    fn mass_matrix(&self, states: &[State<A>]) -> Result<DMatrix<f64>, MechanismError>;
+    /// h(q, v) at time `t`.
+    fn bias_forces(&self, t: f64, states: &[State<A>]) -> Result<DVector<f64>, MechanismError>;
 }
 
 impl<A: Algebra> JointState<'_, A> {
-    /// M(q) at this state ([`Mechanism::mass_matrix`]).
+    /// M(q) at this state ([`crate::Mechanism::mass_matrix`]).
     pub fn mass_matrix(&self) -> Result<DMatrix<f64>, MechanismError> {
         self.mechanism.mass_matrix(self.states)
     }
 
-    /// h(q, v) at this state ([`Mechanism::bias_forces`]: everything but the actuators — joint forces and
+    /// h(q, v) at this state ([`crate::Mechanism::bias_forces`]: everything but the actuators — joint forces and
     /// controllers).
     pub fn bias_forces(&self) -> Result<DVector<f64>, MechanismError> {
         self.mechanism.bias_forces(self.t, self.states)

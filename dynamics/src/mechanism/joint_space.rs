@@ -14,8 +14,8 @@ use nalgebra::{Isometry3, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::joints::{JointKind, JointModel};
-use crate::mechanism::model::Mechanism;
-use crate::mechanism::parts::{BodyId, JointId};
+use crate::mechanism::joint_rows::Joint;
+use crate::mechanism::parts::{BodyId, JointId, MechanismBody};
 
 /// One group of coordinates: a joint model, or a free root.
 #[derive(Clone, Debug)]
@@ -90,17 +90,17 @@ pub struct JointSpace {
 
 impl JointSpace {
     /// The coordinates of `mechanism`, if its joint models form a forest.
-    pub(crate) fn new<A: Algebra>(mechanism: &Mechanism<A>) -> Option<Self> {
-        let bodies = mechanism.bodies.len();
+    pub(super) fn new<A: Algebra>(bodies: &[MechanismBody<A>], joints: &[Joint<A>]) -> Option<Self> {
+        let (entries, bodies) = (bodies, bodies.len());
         let mut parent_joint = vec![None; bodies];
-        for (j, joint) in mechanism.joints.iter().enumerate() {
+        for (j, joint) in joints.iter().enumerate() {
             if joint.model.is_some() {
                 parent_joint[joint.body] = Some(j);
             }
         }
         let mut groups = Vec::new();
         let mut group_of_body = vec![usize::MAX; bodies];
-        for (b, entry) in mechanism.bodies.iter().enumerate() {
+        for (b, entry) in entries.iter().enumerate() {
             if parent_joint[b].is_none() {
                 let model =
                     JointModel::new(entry.name.clone(), JointKind::Free, Isometry3::identity(), entry.frame).ok()?;
@@ -116,7 +116,7 @@ impl JointSpace {
                 });
             }
         }
-        for (j, joint) in mechanism.joints.iter().enumerate() {
+        for (j, joint) in joints.iter().enumerate() {
             if let Some(model) = &joint.model {
                 group_of_body[joint.body] = groups.len();
                 groups.push(CoordinateGroup {
@@ -152,7 +152,7 @@ impl JointSpace {
             order.extend(children[body].iter().copied());
             next += 1;
         }
-        let mut group_of_joint = vec![None; mechanism.joints.len()];
+        let mut group_of_joint = vec![None; joints.len()];
         for (g, group) in groups.iter().enumerate() {
             if let Some(joint) = group.joint {
                 group_of_joint[joint.0] = Some(g);
@@ -214,8 +214,8 @@ impl JointSpace {
     }
 
     /// The coordinates by kind, for the methods that step in them (`joint_integration`).
-    pub(crate) fn layout(&self) -> crate::joint_integration::JointLayout {
-        let mut layout = crate::joint_integration::JointLayout {
+    pub(crate) fn layout(&self) -> crate::joint_layout::JointLayout {
+        let mut layout = crate::joint_layout::JointLayout {
             positions: self.positions,
             velocities: self.velocities,
             ..Default::default()

@@ -135,7 +135,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
             && self.bodies.iter().all(|body| body.forces.is_empty())
     }
 
-    fn joint_layout(&self) -> Option<crate::joint_integration::JointLayout> {
+    fn joint_layout(&self) -> Option<crate::joint_layout::JointLayout> {
         self.articulation.as_ref()?;
         self.coordinates().map(JointSpace::layout)
     }
