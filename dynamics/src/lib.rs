@@ -23,15 +23,21 @@
 //!
 //! Implements Hadfield & Lasenby, *Constrained Dynamics in Conformal and Projective Geometric
 //! Algebra*, as derived and corrected in `docs/theory.md`, and extends it to bodies held to each other
-//! (`docs/mechanisms.md`). The pipeline, one module per stage:
-//! [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`) → [`motor`] and
-//! [`exponential`] (rigid transforms) → [`body`], [`inertia`] and [`state`] → [`forces`] →
-//! [`motion`] (the equations of motion) → [`constraints`] (one constraint's rows), [`mechanism`]
-//! (bodies, joints and the reaction solve), [`limits`] (joint limits, `docs/limits.md`) and [`contacts`]
-//! (body points above planes, `docs/contacts.md`), with [`surfaces`] (quadrics in QCGA and tori in DCGA, held by
-//! [`constraints::SurfacePin`] and [`VirtualPower::point_on_surface`](constraints::VirtualPower::point_on_surface),
-//! `docs/surfaces.md`) → [`integrate`] →
-//! [`simulate`](mod@simulate).
+//! (`docs/mechanisms.md`). The pipeline, in the order the modules are declared below (each refers only to those
+//! before it; `tests/integration/module_order.rs`, docs/architecture.md):
+//! 1. the algebra layer: [`algebra`] (the trait; [`Pga`] and [`Cga`] built with `algebra!`, their
+//!    [`equivalence`] checked at compile time), [`motor`], [`exponential`] and [`convert`] (rigid transforms);
+//! 2. bodies and their state: [`body`], [`inertia`], [`state`];
+//! 3. forces: [`forces`];
+//! 4. constraints: [`surfaces`] (quadrics in QCGA and tori in DCGA, `docs/surfaces.md`), [`constraints`] (one
+//!    constraint's rows), [`limits`] (`docs/limits.md`), [`joint_models`] (joints as robotics describes them) and
+//!    [`contacts`] (body points above planes, `docs/contacts.md`);
+//! 5. the equations of motion: [`joint_layout`] and [`motion`] (the [`Dynamics`] interface the integrators step,
+//!    and the free body);
+//! 6. [`mechanism`]: bodies held by joints, laid out by algorithm (building, evaluation, projection, joint space,
+//!    one-sided constraints, force elements);
+//! 7. time stepping: [`integrate`] (methods, tableaux, steps on the group, splittings, joint-coordinate stepping,
+//!    step-size control) and [`simulate`](mod@simulate) (schedules, events, one-sided transitions, the run).
 
 #![deny(missing_docs)]
 
@@ -57,19 +63,22 @@ pub mod forces;
 pub mod surfaces;
 pub mod constraints;
 pub mod limits;
-pub mod joints;
+pub mod joint_models;
 pub mod contacts;
-// The equations of motion: the interface the integrators step, and the free body.
+// The equations of motion: the interface the integrators step (with where a system's joint coordinates are), and
+// the free body.
 pub mod joint_layout;
 pub mod motion;
 // Mechanisms: bodies held by joints, their reactions, joint space and one-sided constraints.
 pub mod mechanism;
-pub use mechanism::force_elements;
 // Time stepping: integrators, step-size control, joint-coordinate stepping, and the run.
 pub mod integrate;
-pub mod joint_integration;
-pub mod step_control;
 pub mod simulate;
+
+// Root paths of modules that live in the rooms above (`dynamics::step_control::Tolerance` and the like).
+pub use integrate::{joint_coordinates as joint_integration, step_control};
+pub use joint_models as joints;
+pub use mechanism::force_elements;
 
 pub use algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 pub use body::{Body, BodyError, PrincipalFrame};
@@ -77,9 +86,9 @@ pub use cga::Cga;
 pub use constraints::{Constraint, ConstraintError, Stabilisation};
 pub use force_elements::{ForceElement, JointState, OfTime};
 pub use forces::Force;
-pub use integrate::{Integrator, KineticSplitting, Method, SplittingMethod, StepError, Stepper};
-pub use joint_integration::JointMethod;
-pub use joints::{JointKind, JointModel};
+pub use integrate::step_control::{StepStatistics, Tolerance};
+pub use integrate::{Integrator, JointMethod, KineticSplitting, Method, SplittingMethod, StepError, Stepper};
+pub use joint_models::{JointKind, JointModel};
 pub use mechanism::{
     BodyId, CoordinateGroup, Correction, JointId, JointSpace, Mechanism, MechanismError, Reference, SolverSettings,
     Violation,
@@ -88,7 +97,6 @@ pub use motion::{BodyRates, Dynamics, FreeBody, FreeBodyWorkspace, Rates};
 pub use pga::Pga;
 pub use simulate::{simulate, Crossing, Event, EventHit, Plan, Schedule, Simulation, SimulationError, Stop};
 pub use state::{State, WorldMomentum, WorldVelocity};
-pub use step_control::{StepStatistics, Tolerance};
 
 /// Systems, states, results and errors cross threads: a run keeps its failure in its own `Result`,
 /// with no shared slot, so parallel runs never see each other's errors. Checked at compile time.

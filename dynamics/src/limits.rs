@@ -14,9 +14,12 @@
 
 use crate::constraints::ConstraintError;
 
+/// A limited joint this close to a bound (rad or m) at the start is on it; further beyond it is an error.
+pub const AT_BOUND: f64 = 1e-12;
+
 /// Bounces slower than this (rad/s or m/s) end at rest at the bound: a restitution below 1 would otherwise bounce
 /// ever more often (Zeno), each flight shorter than the last, and a flight must rise well above the
-/// [`crate::simulate::AT_BOUND`] to which its return is located (from 1e-3 under 10 rad/s² or m/s², it rises 5e-8).
+/// [`AT_BOUND`] to which its return is located (from 1e-3 under 10 rad/s² or m/s², it rises 5e-8).
 pub const REST_SPEED: f64 = 1e-3;
 
 /// A joint coordinate's range `[lower, upper]` (rad or m) and the restitution of its bounds.

@@ -122,7 +122,7 @@ pub trait Dynamics<A: Algebra> {
     }
 
     /// Where the system's joint coordinates are, for the methods that step in them
-    /// ([`crate::joint_integration::JointMethod`]); `None` (the default) for a system without them.
+    /// ([`crate::JointMethod`]); `None` (the default) for a system without them.
     fn joint_layout(&self) -> Option<JointLayout> {
         None
     }

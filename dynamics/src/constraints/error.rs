@@ -50,14 +50,14 @@ pub enum ConstraintError {
         /// The time of the evaluation (s).
         t: f64,
     },
-    /// More scalar rows than [`MAX_ROWS`].
+    /// More scalar rows than [`MAX_ROWS`](crate::constraints::MAX_ROWS).
     #[error("constraint {name}: the system needs {rows} rows, more than the {capacity} supported")]
     TooManyRows {
         /// The name of the constraint.
         name: String,
         /// How many rows it needs.
         rows: usize,
-        /// How many rows are supported ([`MAX_ROWS`]).
+        /// How many rows are supported ([`MAX_ROWS`](crate::constraints::MAX_ROWS)).
         capacity: usize,
     },
     /// A declared rank that cannot hold: zero, or more than 6 (the body's degrees of freedom) or than the rows.
@@ -83,7 +83,7 @@ pub enum ConstraintError {
     /// A parameter of a constraint is not usable (zero axis, non-positive radius, …).
     #[error("constraint {name}: {reason}")]
     InvalidParameter {
-        /// The name of the constraint (or "stabilisation" for a bad [`Stabilisation`]).
+        /// The name of the constraint (or "stabilisation" for a bad [`Stabilisation`](crate::Stabilisation)).
         name: String,
         /// What is wrong with the parameter.
         reason: String,

@@ -1,5 +1,5 @@
 //! The articulated solve (docs/mechanisms.md §M7): when every joint of a mechanism is a joint model
-//! ([`crate::joints`]) and the joints form a tree, the bodies' accelerations follow from the articulated-body
+//! ([`crate::joint_models`]) and the joints form a tree, the bodies' accelerations follow from the articulated-body
 //! recursion in the joints' motion subspaces — one column per degree of freedom, where the constraint-space solve
 //! of §M4 carries one row per constrained one (a revolute joint: 1 against 5).
 //!
@@ -13,7 +13,7 @@
 use nalgebra::{Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::joints::{JointAxis, JointModel, Motion, Side};
+use crate::joint_models::{JointAxis, JointModel, Motion, Side};
 use crate::mechanism::joint_rows::{BodyKinematics, Joint};
 use crate::mechanism::parts::MechanismBody;
 use crate::mechanism::spatial::{angular, force_cross, join, linear, motion_cross, spatial_body, Inertia6};

@@ -9,7 +9,7 @@ use crate::algebra::Algebra;
 use crate::body::{Body, PrincipalFrame};
 use crate::constraints::{Constraint, ConstraintError, Stabilisation};
 use crate::forces::Force;
-use crate::joints::{JointKind, JointModel, Unconstrained};
+use crate::joint_models::{JointKind, JointModel, Unconstrained};
 use crate::mechanism::articulated::{Articulation, Row};
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::joint_rows::Joint;
@@ -104,7 +104,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Adds a body whose inertia was given in another frame (a CAD part's, a URDF link's): `frame` is where its
     /// principal frame sits there ([`Body::from_inertia_tensor`]). That frame is the body's reference frame: a free
-    /// root's joint coordinates are its pose and twist ([`JointSpace`]).
+    /// root's joint coordinates are its pose and twist ([`JointSpace`](crate::JointSpace)).
     ///
     /// ```
     /// use dynamics::{Body, Mechanism, Pga};
@@ -226,7 +226,7 @@ impl<A: Algebra> Mechanism<A> {
     /// Connects `child` to `parent` by a joint model (docs/mechanisms.md §M7): a joint with coordinates, whose rows
     /// are its virtual-power rows ([`JointModel::virtual_power`]). Mechanisms whose joints are all joint models in a
     /// tree are solved by the articulated recursion, in O(N) with one column per degree of freedom; their joint
-    /// positions, velocities, mass matrix and inverse dynamics are in [`JointSpace`].
+    /// positions, velocities, mass matrix and inverse dynamics are in [`JointSpace`](crate::JointSpace).
     ///
     /// A double pendulum from its joint angles: the elbow hinge sits at the upper link's bottom end and the lower
     /// link's top end, both about y.

@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::joints::Side;
+use crate::joint_models::Side;
 use crate::limits::Bound;
 use crate::mechanism::articulated::{axis_column, axis_rate};
 use crate::mechanism::error::MechanismError;
@@ -241,8 +241,8 @@ impl<A: Algebra> Mechanism<A> {
                 Side::Child => rotation * axis.direction,
             };
             match axis.motion {
-                crate::joints::Motion::Rotation => angular += d * *rate,
-                crate::joints::Motion::Translation => at_joint += d * *rate,
+                crate::joint_models::Motion::Rotation => angular += d * *rate,
+                crate::joint_models::Motion::Translation => at_joint += d * *rate,
             }
         }
         // Every turn is about an axis through the child's joint origin x, so x moves with the slides alone.

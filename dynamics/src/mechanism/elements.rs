@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
-use crate::joints::{JointModel, Motion, Side};
+use crate::joint_models::{JointModel, Motion, Side};
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::force_elements::{ElementKind, ForceElement, JointSpaceQueries, JointState};
 use crate::mechanism::model::Mechanism;

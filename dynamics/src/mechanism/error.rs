@@ -15,11 +15,11 @@ pub enum MechanismError {
     /// A body, joint or force element was added with an empty name (what it was is held).
     #[error("a {0} needs a non-empty name")]
     EmptyName(&'static str),
-    /// A [`BodyId`] (its index held) that is not a body of this mechanism.
+    /// A [`BodyId`](crate::BodyId) (its index held) that is not a body of this mechanism.
     #[error("body index {0} is not a body of this mechanism")]
     UnknownBody(usize),
-    /// A [`JointId`] (its index held) that is not a joint of this mechanism; also index 0 for
-    /// [`Mechanism::with_reaction_basis`] before any joint was added.
+    /// A [`JointId`](crate::JointId) (its index held) that is not a joint of this mechanism; also index 0 for
+    /// [`Mechanism::with_reaction_basis`](crate::Mechanism::with_reaction_basis) before any joint was added.
     #[error("joint index {0} is not a joint of this mechanism")]
     UnknownJoint(usize),
     /// A joint would hold a body to the body itself.
@@ -31,7 +31,7 @@ pub enum MechanismError {
         body: String,
     },
     /// A reaction basis that is empty, has more than 6 wrenches or a non-finite one
-    /// ([`Mechanism::set_reaction_basis`]).
+    /// ([`Mechanism::set_reaction_basis`](crate::Mechanism::set_reaction_basis)).
     #[error("joint {joint}: a reaction basis needs 1 to 6 finite wrenches, got {count}")]
     ReactionBasis {
         /// The name of the joint.

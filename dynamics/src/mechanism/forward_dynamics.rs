@@ -5,7 +5,7 @@ use nalgebra::{Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::{ConstraintError, Kinematics};
-use crate::joints::JointModel;
+use crate::joint_models::JointModel;
 use crate::mechanism::articulated::{axis_column, axis_rate};
 use crate::mechanism::configuration::check_coordinate_counts;
 use crate::mechanism::error::MechanismError;

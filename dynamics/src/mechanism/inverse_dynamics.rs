@@ -5,7 +5,7 @@ use nalgebra::{DVector, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::constraints::Kinematics;
-use crate::joints::Side;
+use crate::joint_models::Side;
 use crate::mechanism::articulated::axis_rate;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::joint_space::CoordinateGroup;

@@ -24,7 +24,7 @@ use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, MotorCoordinates, ScrewCoordinates};
 use crate::constraints::{Constraint, ConstraintError, Kinematics, RowBuffer, Stabilisation, MAX_ROWS};
-use crate::joints::JointModel;
+use crate::joint_models::JointModel;
 use crate::mechanism::reduce::{reduce, Reduced, RIGHT_HAND_SIDES};
 use crate::mechanism::solve::{dot6, SolverSettings};
 use crate::motor::ScrewFrame;

@@ -13,7 +13,7 @@
 use nalgebra::{Isometry3, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
-use crate::joints::{JointKind, JointModel};
+use crate::joint_models::{JointKind, JointModel};
 use crate::mechanism::joint_rows::Joint;
 use crate::mechanism::parts::{BodyId, JointId, MechanismBody};
 

@@ -5,7 +5,7 @@ use nalgebra::{DMatrix, Matrix3, Vector3, Vector6};
 
 use crate::algebra::Algebra;
 use crate::constraints::Kinematics;
-use crate::joints::Side;
+use crate::joint_models::Side;
 use crate::mechanism::articulated::axis_column;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::joint_space::JointSpace;

@@ -1,7 +1,7 @@
 //! Mechanisms: N rigid bodies under forces, held to each other and to the world by joints, in maximal
 //! coordinates (each body its motor and momentum). The derivation is in `docs/mechanisms.md`; in short:
 //!
-//! * a **joint** is any [`Constraint`] of [`crate::constraints`] — pinned multivectors, linear functions of
+//! * a **joint** is any [`Constraint`](crate::Constraint) of [`crate::constraints`] — pinned multivectors, linear functions of
 //!   them, parametric paths, virtual power — between a body and its **reference**: the world, or another body,
 //!   whose frame then plays the world's part (`joint`, §M2). Its rows are reduced to its rank (`reduce`,
 //!   §M3);

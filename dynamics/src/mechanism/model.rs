@@ -96,7 +96,7 @@ impl<A: Algebra> Default for Mechanism<A> {
     }
 }
 
-/// The scratch of a mechanism's evaluations ([`Dynamics::Workspace`]): made once per run, so an evaluation
+/// The scratch of a mechanism's evaluations ([`Dynamics::Workspace`](crate::Dynamics::Workspace)): made once per run, so an evaluation
 /// does not allocate.
 pub struct MechanismWorkspace<A: Algebra> {
     pub(super) bodies: Vec<BodyKinematics<A>>,

@@ -19,40 +19,6 @@ use crate::joint_layout::{quaternion_at, vector_at, write_quaternion, JointLayou
 use crate::motion::Dynamics;
 use crate::state::State;
 
-/// A method that steps in joint coordinates (mechanisms of joint models in a tree; see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum JointMethod {
-    /// The classic RK4 tableau (Munthe-Kaas on the rotations), 4 evaluations per step.
-    Rkmk4,
-    /// Butcher's 7-stage method of order 6, as [`crate::Method::Rkmk6Body`]'s.
-    Rkmk6,
-    /// Cooper and Verner's 11-stage method of order 8, as [`crate::Method::Rkmk8Body`]'s.
-    Rkmk8,
-}
-
-impl JointMethod {
-    /// Every joint-coordinate method.
-    pub const ALL: [JointMethod; 3] = [JointMethod::Rkmk4, JointMethod::Rkmk6, JointMethod::Rkmk8];
-
-    /// "RKMK4-joint", "RKMK6-joint", "RKMK8-joint".
-    pub fn name(self) -> &'static str {
-        match self {
-            JointMethod::Rkmk4 => "RKMK4-joint",
-            JointMethod::Rkmk6 => "RKMK6-joint",
-            JointMethod::Rkmk8 => "RKMK8-joint",
-        }
-    }
-
-    /// The order of the global error.
-    pub fn order(self) -> u32 {
-        match self {
-            JointMethod::Rkmk4 => 4,
-            JointMethod::Rkmk6 => 6,
-            JointMethod::Rkmk8 => 8,
-        }
-    }
-}
-
 /// The buffers of the joint-coordinate steps, sized once for a system.
 pub(crate) struct JointBuffers<A: Algebra> {
     layout: JointLayout,

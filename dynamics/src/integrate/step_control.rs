@@ -11,8 +11,13 @@
 //! orientation, whose tolerance is absolute: an angle has no scale to be relative to); the step's error is the
 //! root mean square over every body's four ratios, and a step is kept when it is at most 1.
 
-use crate::algebra::Algebra;
-use crate::integrate::MAX_TURN_PER_STEP;
+use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::integrate::error::StepError;
+use crate::integrate::error::MAX_TURN_PER_STEP;
+use crate::integrate::lie_group::weighted_slopes;
+use crate::integrate::methods::{Integrator, Method};
+use crate::integrate::stepper::Stepper;
+use crate::integrate::tableaux::{DOP853_ERROR_3, DOP853_ERROR_5, DORMAND_PRINCE_5_ERROR};
 use crate::motion::Dynamics;
 use crate::state::State;
 
@@ -112,6 +117,32 @@ pub(crate) fn error_norm<A: Algebra, D: Dynamics<A> + ?Sized>(
         count += ratios.len();
     }
     (sum / count.max(1) as f64).sqrt()
+}
+
+impl<A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'_, A, D> {
+    /// The error norm (the module docs) of the last successful step from `start` to `end`, for a method with
+    /// an error estimate ([`Integrator::estimate_order`]); `None` for the others, or before a step. An embedded
+    /// difference is the pair's two solutions apart in the Lie algebra, per body: the motor's `Σ eᵢKᵢ` and the body
+    /// momentum's `h Σ eᵢ dΩ_b/dt` (`eᵢ` the difference of the two weights).
+    pub(crate) fn error_norm(&self, tolerance: &Tolerance, start: &[State<A>], end: &[State<A>]) -> Option<f64> {
+        let (_, dt) = self.last_step?;
+        let zero = A::screw(ScrewCoordinates::default());
+        let difference = |weights: &[f64]| {
+            let estimates = (0..start.len()).map(|b| weighted_slopes(&self.buffers, weights, b, (dt, zero)));
+            error_norm(tolerance, self.dynamics, (start, end), estimates)
+        };
+        match self.integrator {
+            Integrator::General(Method::Dopri5Body) => Some(difference(&DORMAND_PRINCE_5_ERROR)),
+            Integrator::General(Method::Dop853Body) => {
+                // Hairer's combination: the 5th-order difference, damped where the 3rd-order one says the
+                // asymptotic regime is not reached; it falls as h⁸. A NaN stays a NaN (the step is refused).
+                let (fifth, third) = (difference(&DOP853_ERROR_5), difference(&DOP853_ERROR_3));
+                let scale = (fifth * fifth + 0.01 * third * third).sqrt();
+                Some(if scale == 0.0 { 0.0 } else { fifth * fifth / scale })
+            }
+            _ => None,
+        }
+    }
 }
 
 /// The controller's safety factor: the next step aims at 0.9 of the step the estimate allows.
@@ -244,4 +275,68 @@ pub(crate) fn turn_limit<A: Algebra, D: Dynamics<A> + ?Sized>(dynamics: &D, stat
         .map(|(index, state)| A::screw_coordinates(state.body_velocity(dynamics.body(index))).l.norm())
         .fold(0.0, f64::max);
     0.9 * MAX_TURN_PER_STEP / fastest
+}
+
+/// Why an adaptive run could not keep a step: its schedule's step limit, a step too short for the clock, or a
+/// failed step that a shorter one does not cure ([`crate::SimulationError`] reports each).
+#[derive(Debug)]
+pub(crate) enum AdaptiveStepError {
+    TooManySteps { t: f64, steps: usize },
+    StepSizeUnderflow { t: f64, h: f64, reason: String },
+    Step(StepError),
+}
+
+/// One kept step of an adaptive run from `(t, start)` into `next`, starting with the controller's proposal cut to
+/// end at `finish`: steps whose error norm is above 1, or that fail for their size, are refused and retried
+/// shorter. Returns the kept step's length.
+pub(crate) fn adaptive_step<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    controller: &mut Controller,
+    (t, finish): (f64, f64),
+    (start, next): (&[State<A>], &mut [State<A>]),
+    (statistics, step_limit): (&mut StepStatistics, usize),
+) -> Result<f64, AdaptiveStepError> {
+    // A step the turn check would refuse is not tried: at loose tolerances the error allows longer steps.
+    let turn_limit = turn_limit(stepper.dynamics(), start);
+    loop {
+        let tried = statistics.accepted + statistics.rejected;
+        if tried >= step_limit {
+            return Err(AdaptiveStepError::TooManySteps { t, steps: tried });
+        }
+        let h = controller.next.min(turn_limit).min(finish - t);
+        next.copy_from_slice(start);
+        let refused = match stepper.step(t, next, h) {
+            Ok(()) => {
+                let error = stepper
+                    .error_norm(&controller.tolerance, start, next)
+                    .unwrap_or(f64::INFINITY);
+                if controller.judge(h, error) {
+                    return Ok(h);
+                }
+                format!("its error is {error:.3e} times the tolerance")
+            }
+            Err(error @ StepError::ConstraintStepTooLarge { works, .. }) => {
+                controller.refuse(h, Some(works));
+                error.to_string()
+            }
+            Err(
+                error @ (StepError::StepTooLarge { .. }
+                | StepError::FeedbackStepTooLarge { .. }
+                | StepError::NonFinite { .. }),
+            ) => {
+                controller.refuse(h, None);
+                error.to_string()
+            }
+            Err(error) => return Err(AdaptiveStepError::Step(error)),
+        };
+        statistics.rejected += 1;
+        // The clock resolves times near t to an ulp: a step of a few ulps no longer advances it.
+        if controller.next <= 16.0 * f64::EPSILON * t.abs().max(finish.abs()).max(f64::MIN_POSITIVE) {
+            return Err(AdaptiveStepError::StepSizeUnderflow {
+                t,
+                h: controller.next,
+                reason: refused,
+            });
+        }
+    }
 }

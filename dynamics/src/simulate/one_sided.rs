@@ -1,0 +1,109 @@
+//! Joint limits and contacts as a run sees them (`docs/limits.md`, `docs/contacts.md`): their values watched like
+//! events, a step cut where one crosses, and the transition made there.
+
+use crate::algebra::Algebra;
+use crate::integrate::{StepError, Stepper};
+use crate::limits::{LimitTransition, AT_BOUND};
+use crate::motion::Dynamics;
+use crate::simulate::error::SimulationError;
+use crate::simulate::events::{brackets, locate, Located};
+use crate::state::State;
+
+/// The system's limit values at `(t, states)` into `values` ([`Dynamics::limit_values`]).
+pub(super) fn limit_values<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    t: f64,
+    states: &[State<A>],
+    values: &mut [f64],
+) -> Result<(), SimulationError> {
+    let dynamics = stepper.dynamics();
+    dynamics
+        .limit_values(t, states, stepper.workspace(), values)
+        .map_err(|error| StepError::Constraint { t, error }.into())
+}
+
+/// The earliest limit transition in the step of length `h` from `(t, start)` to `end`, the limits' values at the
+/// step's start being `before` and, on return, at its end `after`: the crossings of every limit's value to zero or
+/// below, scanned at the step's ends and at `scan` inside it, the earliest part's located ([`locate`]). Returns its
+/// time, the limit's index and the states there.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    (t, h): (f64, f64),
+    (start, end): (&[State<A>], &[State<A>]),
+    (before, after): (&[f64], &mut [f64]),
+    scan: &[(f64, Vec<State<A>>)],
+    probe: &mut [State<A>],
+) -> Result<Option<Located<A>>, SimulationError> {
+    let mut values = vec![0.0; before.len()];
+    // points[i]: (offset, value) of limit i along the step. A value within AT_BOUND of zero at the start is a joint
+    // that has just left its bound (bounced or released) or the reaction of one just held: it starts at +0, and falls
+    // only below -AT_BOUND, so that round-off about zero is no transition while a bounce too short for the scan to
+    // see between two points (it is then past the bound) is one.
+    let mut points: Vec<Vec<(f64, f64)>> = (before.iter())
+        .map(|&value| vec![(0.0, if value.abs() <= AT_BOUND { 0.0 } else { value })])
+        .collect();
+    for (offset, states) in scan
+        .iter()
+        .map(|(offset, states)| (*offset, states.as_slice()))
+        .chain([(h, end)])
+    {
+        limit_values(stepper, t + offset, states, &mut values)?;
+        points
+            .iter_mut()
+            .zip(&values)
+            .for_each(|(p, &value)| p.push((offset, value)));
+    }
+    after.copy_from_slice(&values);
+    let falls = |before: f64, after: f64| (before > 0.0 && after <= 0.0) || (before == 0.0 && after < -AT_BOUND);
+    let mut earliest: Option<Located<A>> = None;
+    for (index, points) in points.iter().enumerate() {
+        let Some(&bracket) = brackets(points, falls).first() else {
+            continue;
+        };
+        if earliest.as_ref().is_some_and(|(time, ..)| t + bracket.0 .0 >= *time) {
+            continue;
+        }
+        let mut watched = |stepper: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| {
+            limit_values(stepper, time, states, &mut values)?;
+            Ok(values[index])
+        };
+        let (time, states) = locate(&mut watched, stepper, (t, h), start, end, bracket, probe, true)?;
+        if earliest.as_ref().is_none_or(|(first, ..)| time < *first) {
+            earliest = Some((time, index, states));
+        }
+    }
+    Ok(earliest)
+}
+
+/// More transitions than this with no whole step between them end the run ([`SimulationError::Zeno`]): impacts that
+/// come ever closer together without coming to rest.
+pub const TRANSITIONS_IN_A_ROW: usize = 10_000;
+
+/// Limit `index`'s transition at `time` ([`Dynamics::limit_transition`]) on `state`, recorded in `transitions`.
+pub(super) fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    (index, time): (usize, f64),
+    state: &mut [State<A>],
+    transitions: &mut Vec<LimitTransition>,
+) -> Result<(), SimulationError> {
+    let dynamics = stepper.dynamics();
+    let before = dynamics.energy(state);
+    let changes = dynamics
+        .limit_transition(index, time, state, stepper.workspace())
+        .map_err(|error| StepError::Constraint { t: time, error })?;
+    let energy_change = dynamics.energy(state) - before;
+    // A hold and its release at once share the impact's energy change: it is the hold's.
+    transitions.extend(
+        changes
+            .into_iter()
+            .enumerate()
+            .map(|(k, (changed, change))| LimitTransition {
+                t: time,
+                constraint: dynamics.limit_name(changed).unwrap_or_default().to_owned(),
+                change,
+                energy_change: if k == 0 { energy_change } else { 0.0 },
+            }),
+    );
+    Ok(())
+}
