@@ -28,6 +28,7 @@ mod constraint;
 pub mod stabilise;
 mod on_surfaces;
 pub mod virtual_power;
+mod virtual_power_joints;
 pub mod pinning;
 pub mod linear;
 

@@ -301,39 +301,7 @@ impl Topology {
             }
         }
 
-        // The tree path between a loop joint's two vertices: climb from both to their common ancestor.
-        let depth = {
-            let mut depth = vec![0usize; bodies + 1];
-            for &v in &order {
-                if let Some(p) = parent_vertex[v] {
-                    depth[v] = depth[p] + 1;
-                }
-            }
-            depth
-        };
-        let cycles = (0..joints.len())
-            .map(|j| {
-                if is_tree[j] {
-                    return Vec::new();
-                }
-                let (body, reference, _) = joints[j];
-                let (mut u, mut w) = (body + 1, reference.map_or(0, |r| r + 1));
-                let mut path = Vec::new();
-                while u != w {
-                    let climb = if depth[u] >= depth[w] { &mut u } else { &mut w };
-                    match (parent_joint[*climb], parent_vertex[*climb]) {
-                        (Some(joint), Some(parent)) => {
-                            path.push(joint);
-                            *climb = parent;
-                        }
-                        // Different components cannot be joined by a loop joint (it would be a tree joint).
-                        _ => break,
-                    }
-                }
-                path.sort_unstable();
-                path
-            })
-            .collect();
+        let cycles = loop_paths(joints, &is_tree, &order, (&parent_joint, &parent_vertex));
 
         let mut tree_owner = vec![0; tree_size];
         let mut loop_owner = vec![0; loop_size];
@@ -357,6 +325,48 @@ impl Topology {
             loop_owner,
         }
     }
+}
+
+/// Per joint, the tree joints on the path between a loop joint's two vertices (empty for a tree joint): the loop
+/// the joint closes, found by climbing from both vertices to their common ancestor.
+fn loop_paths(
+    joints: &[(usize, Option<usize>, usize)],
+    is_tree: &[bool],
+    order: &[usize],
+    (parent_joint, parent_vertex): (&[Option<usize>], &[Option<usize>]),
+) -> Vec<Vec<usize>> {
+    let depth = {
+        let mut depth = vec![0usize; parent_joint.len()];
+        for &v in order {
+            if let Some(p) = parent_vertex[v] {
+                depth[v] = depth[p] + 1;
+            }
+        }
+        depth
+    };
+    (0..joints.len())
+        .map(|j| {
+            if is_tree[j] {
+                return Vec::new();
+            }
+            let (body, reference, _) = joints[j];
+            let (mut u, mut w) = (body + 1, reference.map_or(0, |r| r + 1));
+            let mut path = Vec::new();
+            while u != w {
+                let climb = if depth[u] >= depth[w] { &mut u } else { &mut w };
+                match (parent_joint[*climb], parent_vertex[*climb]) {
+                    (Some(joint), Some(parent)) => {
+                        path.push(joint);
+                        *climb = parent;
+                    }
+                    // Different components cannot be joined by a loop joint (it would be a tree joint).
+                    _ => break,
+                }
+            }
+            path.sort_unstable();
+            path
+        })
+        .collect()
 }
 
 #[cfg(test)]

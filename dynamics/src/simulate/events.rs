@@ -323,3 +323,51 @@ pub(super) fn state_inside<A: Algebra, D: Dynamics<A> + ?Sized>(
     stepper.step(t, probe, offset)?;
     Ok(stepper.last_work())
 }
+
+/// The crossings of `events` in the step of length `h` from `(t, start)` to `(end, next)` that come no later than
+/// `reached` (where a one-sided transition cut the step), appended to `hits` in time order, with each event's value
+/// at the step's end put in `values`. Returns the earliest terminal crossing, after which no hit is kept.
+#[allow(clippy::too_many_arguments)] // the step, its states and its scan, as `locate` takes them
+pub(super) fn events_in_step<A: Algebra, D: Dynamics<A> + ?Sized>(
+    events: &mut [Event<'_, A>],
+    values: &mut [f64],
+    stepper: &mut Stepper<'_, A, D>,
+    (t, h, end, reached): (f64, f64, f64, f64),
+    (start, next): (&[State<A>], &[State<A>]),
+    scan: &[(f64, Vec<State<A>>)],
+    probe: &mut [State<A>],
+    hits: &mut Vec<EventHit<A>>,
+) -> Result<Option<Located<A>>, SimulationError> {
+    let mut terminal: Option<Located<A>> = None;
+    let mut found = Vec::new();
+    for (index, event) in events.iter_mut().enumerate() {
+        let after = event.value(end, next)?;
+        let mut points = vec![(0.0, values[index])];
+        for (offset, states) in scan {
+            points.push((*offset, event.value(t + offset, states)?));
+        }
+        points.push((h, after));
+        for bracket in brackets(&points, |before, after| event.crosses(before, after)) {
+            let mut watched = |_: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| event.value(time, states);
+            let (time, states) = locate(&mut watched, stepper, (t, h), start, next, bracket, probe, false)?;
+            if time > reached {
+                continue;
+            }
+            if event.terminal && terminal.as_ref().is_none_or(|(first, ..)| time < *first) {
+                terminal = Some((time, index, states.clone()));
+            }
+            found.push(EventHit {
+                event: index,
+                name: event.name.clone(),
+                t: time,
+                states,
+            });
+        }
+        values[index] = after;
+    }
+    let limit = terminal.as_ref().map_or(reached, |(time, ..)| *time);
+    found.retain(|hit| hit.t <= limit);
+    found.sort_by(|x, y| x.t.total_cmp(&y.t));
+    hits.extend(found);
+    Ok(terminal)
+}

@@ -107,3 +107,32 @@ pub(super) fn transition<A: Algebra, D: Dynamics<A> + ?Sized>(
     );
     Ok(())
 }
+
+/// The one-sided constraints at the run's start, whose values go into `limits`: an error for one beyond its bound by
+/// more than [`AT_BOUND`], and the transition of each that starts on its bound, in order (each may change others: a
+/// contact's impact holds every contact touching, so the values are read anew).
+pub(super) fn start_on_bounds<A: Algebra, D: Dynamics<A> + ?Sized>(
+    stepper: &mut Stepper<'_, A, D>,
+    start: f64,
+    state: &mut [State<A>],
+    limits: &mut [f64],
+    transitions: &mut Vec<LimitTransition>,
+) -> Result<(), SimulationError> {
+    if limits.is_empty() {
+        return Ok(());
+    }
+    limit_values(stepper, start, state, limits)?;
+    if let Some((index, gap)) = (limits.iter().enumerate()).find(|(_, &gap)| gap < -AT_BOUND) {
+        return Err(SimulationError::BeyondLimit {
+            constraint: stepper.dynamics().limit_name(index).unwrap_or_default().to_owned(),
+            depth: -gap,
+        });
+    }
+    for index in 0..limits.len() {
+        if limits[index] <= AT_BOUND {
+            transition(stepper, (index, start), state, transitions)?;
+            limit_values(stepper, start, state, limits)?;
+        }
+    }
+    Ok(())
+}

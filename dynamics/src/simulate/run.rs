@@ -9,11 +9,11 @@ use crate::algebra::Algebra;
 use crate::integrate::step_control::{self, adaptive_step, Controller, StepStatistics};
 use crate::integrate::{Integrator, Stepper};
 use crate::limits::LimitTransition;
-use crate::limits::AT_BOUND;
 use crate::motion::Dynamics;
 use crate::simulate::error::SimulationError;
-use crate::simulate::events::{brackets, locate, scan_states, state_inside, EventHit, Located, Plan};
-use crate::simulate::one_sided::{limit_crossing, limit_values, transition, TRANSITIONS_IN_A_ROW};
+use crate::simulate::events::{events_in_step, scan_states, state_inside, EventHit, Located, Plan};
+use crate::simulate::one_sided::{limit_crossing, limit_values, start_on_bounds, transition, TRANSITIONS_IN_A_ROW};
+use crate::simulate::schedule::Schedule;
 use crate::state::State;
 
 /// Samples reserved per body before a run; more are allocated as they are recorded.
@@ -139,6 +139,74 @@ fn record<A: Algebra, D: Dynamics<A> + ?Sized>(
     }
 }
 
+/// The samples of a run as they are recorded: each body's, the index of the next sample time, and the time of the
+/// last sample.
+struct Samples {
+    bodies: Vec<Vec<Sample>>,
+    next: usize,
+    count: usize,
+    last: f64,
+}
+
+impl Samples {
+    /// Room for `count` samples of `bodies` bodies, reserved up to a bound and grown as the samples come: a long run of
+    /// many bodies must not ask for its whole record before its first step (10⁷ samples of 64 bodies would be 77 GB).
+    fn new(bodies: usize, count: usize) -> Self {
+        let reserved = count.min(RESERVED_SAMPLES);
+        Samples {
+            bodies: (0..bodies).map(|_| Vec::with_capacity(reserved)).collect(),
+            next: 1,
+            count,
+            last: f64::NAN,
+        }
+    }
+
+    /// Appends the sample of every body at `t` ([`record`]).
+    fn record<A: Algebra, D: Dynamics<A> + ?Sized>(
+        &mut self,
+        dynamics: &D,
+        (t, work): (f64, f64),
+        states: &[State<A>],
+    ) {
+        record(dynamics, (t, work), states, &mut self.bodies);
+        self.last = t;
+    }
+
+    /// The samples in the step `k` of length `h` from `(t, start)` to `(end, next)` that fall in `(t, limit]`: at the
+    /// step's end from `next` when the step is `whole`, inside it by a partial step into `probe`; a step `cut` by a
+    /// one-sided transition at `limit` records the sample there from inside. `work` is the work done up to `t`.
+    #[allow(clippy::too_many_arguments)] // the step, the states and the clock the run holds
+    fn in_step<A: Algebra, D: Dynamics<A> + ?Sized>(
+        &mut self,
+        stepper: &mut Stepper<'_, A, D>,
+        schedule: &Schedule,
+        (k, t, h, end): (usize, f64, f64, f64),
+        (limit, whole, cut): (f64, bool, bool),
+        (start, next): (&[State<A>], &[State<A>]),
+        probe: &mut [State<A>],
+        (work, step_work): (f64, f64),
+        clock: &mut Stopwatch,
+    ) -> Result<(), SimulationError> {
+        while self.next < self.count {
+            let time = schedule.sample_time(self.next);
+            let at_end = schedule.sample_ends_step(k, self.next, (time, end, h));
+            if at_end && whole {
+                clock.stop();
+                self.record(stepper.dynamics(), (time, work + step_work), next);
+            } else if !at_end && (time < limit || (cut && time == limit)) {
+                let work_inside = state_inside(stepper, (t, h), time - t, start, probe)?;
+                clock.stop();
+                self.record(stepper.dynamics(), (time, work + work_inside), probe);
+            } else {
+                break;
+            }
+            self.next += 1;
+            clock.start();
+        }
+        Ok(())
+    }
+}
+
 /// A clock that runs only while it is stepping.
 struct Stopwatch {
     since: Option<Instant>,
@@ -155,6 +223,25 @@ impl Stopwatch {
             self.total += since.elapsed();
         }
     }
+}
+
+/// The step-size controller of an adaptive schedule (`None` for a fixed one), its first step chosen at `initial`.
+fn controller<A: Algebra, D: Dynamics<A> + ?Sized>(
+    schedule: &Schedule,
+    stepper: &Stepper<'_, A, D>,
+    initial: &[State<A>],
+) -> Result<Option<Controller>, SimulationError> {
+    let Some(tolerance) = schedule.tolerance() else {
+        return Ok(None);
+    };
+    let integrator = stepper.integrator();
+    let Some(order) = integrator.estimate_order() else {
+        return Err(SimulationError::NoErrorEstimate {
+            method: integrator.name(),
+        });
+    };
+    let first = step_control::first_step(&tolerance, order, stepper.dynamics(), initial, schedule.duration());
+    Ok(Some(Controller::new(tolerance, order, first)))
 }
 
 /// Runs any system — a [`crate::FreeBody`], or a [`crate::Mechanism`] of one or more bodies with joints — from
@@ -217,19 +304,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     let mut stepper = Stepper::new(dynamics, integrator)?;
     let start = schedule.start();
     let finish = start + schedule.duration();
-    let mut controller = match schedule.tolerance() {
-        None => None,
-        Some(tolerance) => {
-            let integrator = stepper.integrator();
-            let Some(order) = integrator.estimate_order() else {
-                return Err(SimulationError::NoErrorEstimate {
-                    method: integrator.name(),
-                });
-            };
-            let first = step_control::first_step(&tolerance, order, dynamics, initial, schedule.duration());
-            Some(Controller::new(tolerance, order, first))
-        }
-    };
+    let mut controller = controller(schedule, &stepper, initial)?;
     let mut statistics = StepStatistics::default();
     let (mut state, mut next, mut probe) = (initial.to_vec(), initial.to_vec(), initial.to_vec());
     // Joint limits and contacts: refused beyond their bounds, and those that start on one make their transition
@@ -240,27 +315,9 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     let mut transitions = Vec::new();
     // Transitions since the last step that none cut short.
     let mut in_a_row = 0;
-    if !limits.is_empty() {
-        limit_values(&mut stepper, start, &state, &mut limits)?;
-        if let Some((index, gap)) = (limits.iter().enumerate()).find(|(_, &gap)| gap < -AT_BOUND) {
-            return Err(SimulationError::BeyondLimit {
-                constraint: dynamics.limit_name(index).unwrap_or_default().to_owned(),
-                depth: -gap,
-            });
-        }
-        for index in 0..limits.len() {
-            if limits[index] <= AT_BOUND {
-                transition(&mut stepper, (index, start), &mut state, &mut transitions)?;
-                limit_values(&mut stepper, start, &state, &mut limits)?;
-            }
-        }
-    }
-    let sample_count = schedule.sample_count();
-    // Reserved up to a bound, grown as the samples come: a long run of many bodies must not ask for its whole
-    // record before its first step (10⁷ samples of 64 bodies would be 77 GB).
-    let reserved = sample_count.min(RESERVED_SAMPLES);
-    let mut bodies: Vec<Vec<Sample>> = (0..expected).map(|_| Vec::with_capacity(reserved)).collect();
-    record(dynamics, (start, 0.0), &state, &mut bodies);
+    start_on_bounds(&mut stepper, start, &mut state, &mut limits, &mut transitions)?;
+    let mut samples = Samples::new(expected, schedule.sample_count());
+    samples.record(dynamics, (start, 0.0), &state);
     // The work done up to `state`'s time.
     let mut work = 0.0;
     let mut values = events
@@ -269,8 +326,6 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         .collect::<Result<Vec<f64>, _>>()?;
     let (mut hits, mut stopped) = (Vec::new(), None);
     let mut scan = Vec::new();
-    let mut sample = 1;
-    let mut last_recorded = start;
     let mut clock = Stopwatch {
         since: None,
         total: Duration::ZERO,
@@ -332,74 +387,39 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         let mut terminal: Option<Located<A>> = None;
         if !events.is_empty() {
             clock.stop();
-            let mut found = Vec::new();
-            for (index, event) in events.iter_mut().enumerate() {
-                let after = event.value(end, &next)?;
-                let mut points = vec![(0.0, values[index])];
-                for (offset, states) in &scan[..scanned] {
-                    points.push((*offset, event.value(t + offset, states)?));
-                }
-                points.push((h, after));
-                for bracket in brackets(&points, |before, after| event.crosses(before, after)) {
-                    let mut watched =
-                        |_: &mut Stepper<'_, A, D>, time: f64, states: &[State<A>]| event.value(time, states);
-                    let (time, states) = locate(
-                        &mut watched,
-                        &mut stepper,
-                        (t, h),
-                        &state,
-                        &next,
-                        bracket,
-                        &mut probe,
-                        false,
-                    )?;
-                    if time > reached {
-                        continue;
-                    }
-                    if event.terminal && terminal.as_ref().is_none_or(|(first, ..)| time < *first) {
-                        terminal = Some((time, index, states.clone()));
-                    }
-                    found.push(EventHit {
-                        event: index,
-                        name: event.name.clone(),
-                        t: time,
-                        states,
-                    });
-                }
-                values[index] = after;
-            }
-            let limit = terminal.as_ref().map_or(reached, |(time, ..)| *time);
-            found.retain(|hit| hit.t <= limit);
-            found.sort_by(|x, y| x.t.total_cmp(&y.t));
-            hits.extend(found);
+            let step = (t, h, end, reached);
+            terminal = events_in_step(
+                &mut events,
+                &mut values,
+                &mut stepper,
+                step,
+                (&state, &next),
+                &scan[..scanned],
+                &mut probe,
+                &mut hits,
+            )?;
             clock.start();
         }
         let limit = terminal.as_ref().map_or(reached, |(time, ..)| *time);
         let whole = cut.is_none() && terminal.is_none();
-        // Samples in (t, limit]: at the step's end from its states, inside it by a partial step.
-        while sample < sample_count {
-            let time = schedule.sample_time(sample);
-            let at_end = schedule.sample_ends_step(k, sample, (time, end, h));
-            if at_end && whole {
-                clock.stop();
-                record(dynamics, (time, work + step_work), &next, &mut bodies);
-            } else if !at_end && (time < limit || (cut.is_some() && time == limit)) {
-                let work_inside = state_inside(&mut stepper, (t, h), time - t, &state, &mut probe)?;
-                clock.stop();
-                record(dynamics, (time, work + work_inside), &probe, &mut bodies);
-            } else {
-                break;
-            }
-            last_recorded = time;
-            sample += 1;
-            clock.start();
-        }
+        let step = (k, t, h, end);
+        let reach = (limit, whole, cut.is_some());
+        samples.in_step(
+            &mut stepper,
+            schedule,
+            step,
+            reach,
+            (&state, &next),
+            &mut probe,
+            (work, step_work),
+            &mut clock,
+        )?;
         if let Some((time, index, states)) = terminal {
             clock.stop();
-            if last_recorded != time {
+            if samples.last != time {
                 // The work up to the crossing: the state inside the step once more.
                 let work_inside = state_inside(&mut stepper, (t, h), time - t, &state, &mut probe)?;
-                record(dynamics, (time, work + work_inside), &states, &mut bodies);
+                samples.record(dynamics, (time, work + work_inside), &states);
             }
             state = states;
             stopped = Some(Stop::Event(index));
@@ -438,8 +458,8 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
         if let Some(observer) = observer.as_mut() {
             clock.stop();
             if observer(now, &state).is_break() {
-                if last_recorded != now {
-                    record(dynamics, (now, work), &state, &mut bodies);
+                if samples.last != now {
+                    samples.record(dynamics, (now, work), &state);
                 }
                 stopped = Some(Stop::Observer);
                 break;
@@ -450,7 +470,7 @@ pub fn simulate<'a, A: Algebra, D: Dynamics<A> + ?Sized>(
     clock.stop();
     statistics.evaluations = stepper.evaluations();
     Ok(Simulation {
-        bodies,
+        bodies: samples.bodies,
         final_state: state,
         statistics,
         stepping_time: clock.total,

@@ -21,6 +21,7 @@ mod joints;
 mod limits;
 mod long_run;
 mod mechanism_solve;
+mod module_order;
 mod newton_euler;
 mod orders;
 mod surfaces;
