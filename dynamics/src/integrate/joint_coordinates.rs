@@ -15,9 +15,13 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::joint_layout::{quaternion_at, vector_at, write_quaternion, JointLayout};
+use crate::joint_layout::{quaternion_at, vector_at, write_quaternion};
 use crate::motion::Dynamics;
 use crate::state::State;
+
+// The method and layout types, also reachable here where joint-coordinate stepping is described.
+pub use crate::integrate::methods::JointMethod;
+pub use crate::joint_layout::JointLayout;
 
 /// The buffers of the joint-coordinate steps, sized once for a system.
 pub(crate) struct JointBuffers<A: Algebra> {
