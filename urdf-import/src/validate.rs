@@ -1,9 +1,7 @@
 //! Stage 2: the checks that messy real files need, and the opt-in repairs ([`ImportOptions`]).
 //!
 //! [`validate`] runs before merging: names, the tree, joint axes and limits, mimics, and each link's inertia.
-//! [`check_bodies`] runs after [`crate::merge`]: each body a moving joint carries must have a positive mass and
-//! positive principal moments, because the dynamics keeps every body's own mass and inertia invertible (unlike
-//! Pinocchio, which only needs the articulated inertia and returns NaN when a whole subtree is massless).
+//! The bodies' checks run after [`crate::merge`], in [`crate::bodies`], with the same options and round-off.
 //!
 //! By default every check is an error; each repair is opt-in, changes exactly what its doc comment says, and is
 //! listed in [`crate::RobotModel::repairs`].
@@ -13,14 +11,13 @@ use std::fmt;
 
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
-use crate::error::{ImportError, Moments, Names};
-use crate::merge::RobotModel;
+use crate::error::{ImportError, Moments};
 use crate::parse::{JointKind, RawModel};
 
 /// Relative round-off allowed in the inertia checks, measured against [`inertia_scale`]: a principal moment above
-/// `-ROUND_OFF × scale` is not negative, `I₃ ≤ I₁ + I₂ + ROUND_OFF × scale` satisfies the triangle inequality, and
-/// a moment at most `ROUND_OFF × scale` is zero (singular) for [`check_bodies`]. CAD exports round tensors to 6–9
-/// digits, and an eigen-solve of a singular tensor returns ±1e-22 rather than 0.
+/// `-ROUND_OFF × scale` is not negative, `I₃ ≤ I₁ + I₂ + ROUND_OFF × scale` satisfies the triangle inequality, and a
+/// moment at most `ROUND_OFF × scale` is zero (singular) for [`crate::bodies::check_bodies`]. CAD exports round tensors
+/// to 6–9 digits, and an eigen-solve of a singular tensor returns ±1e-22 rather than 0.
 pub const ROUND_OFF: f64 = 1e-9;
 
 /// The scale (kg m²) round-off in an inertia is measured against: the sum of the principal moments' magnitudes
@@ -100,7 +97,7 @@ impl ImportOptions {
         }
     }
 
-    fn check(&self) -> Result<(), ImportError> {
+    pub(crate) fn check(&self) -> Result<(), ImportError> {
         for (option, value) in [("bound_mass", self.bound_mass), ("bound_inertia", self.bound_inertia)] {
             if let Some(value) = value {
                 if !(value.is_finite() && value > 0.0) {
@@ -222,14 +219,8 @@ pub fn principal_axes(inertia: &Matrix3<f64>) -> Option<([f64; 3], Matrix3<f64>)
 }
 
 /// `V diag(λ) Vᵀ`, made exactly symmetric.
-fn rebuild(axes: &Matrix3<f64>, moments: [f64; 3]) -> Matrix3<f64> {
+pub(crate) fn rebuild(axes: &Matrix3<f64>, moments: [f64; 3]) -> Matrix3<f64> {
     (axes * Matrix3::from_diagonal(&Vector3::from(moments)) * axes.transpose()).symmetric_part()
-}
-
-/// Whether a mass and ascending principal moments describe an invertible body: a positive mass, and no moment
-/// zero up to round-off ([`ROUND_OFF`] × [`inertia_scale`]).
-pub fn invertible(mass: f64, moments: &[f64; 3]) -> bool {
-    mass > 0.0 && moments[0] > ROUND_OFF * inertia_scale(moments, mass)
 }
 
 /// Checks a parsed model (stage 2, before merging) and applies the link-level repairs the options ask for.
@@ -554,76 +545,4 @@ fn balance(moments: [f64; 3]) -> [f64; 3] {
     let [a, b, c] = moments.map(|m| m.max(0.0));
     let excess = (c - a - b).max(0.0) / 2.0;
     [a + excess, b + excess, c]
-}
-
-/// Checks the merged bodies (stage 2, after [`crate::merge::merge`]) and applies the body bounds the options ask
-/// for: every body a moving joint carries must have a positive mass and positive principal moments. Also sets
-/// [`RobotModel::root_fixed_only`]. The model is one [`crate::merge::merge`] built (its joints' body indices in
-/// range); a model without bodies has nothing to check.
-pub fn check_bodies(model: &mut RobotModel, options: &ImportOptions) -> Result<(), ImportError> {
-    options.check()?;
-    let Some(root) = model.bodies.first() else {
-        return Ok(());
-    };
-    let root_moments = root.principal_moments().unwrap_or([f64::NAN; 3]);
-    model.root_fixed_only = !invertible(root.mass, &root_moments);
-    if model.root_fixed_only {
-        let names: Vec<String> = root.links.iter().map(|l| l.name.clone()).collect();
-        model.warnings.push(format!(
-            "the root body (links {}) has mass {} kg and principal moments {} kg m²: it can only be fixed to the world",
-            Names(&names),
-            root.mass,
-            Moments(&root_moments)
-        ));
-    }
-
-    // Mass below each body, the body included (children come after their parents in `bodies`).
-    let mut parent_body = vec![None; model.bodies.len()];
-    for joint in &model.joints {
-        parent_body[joint.child] = Some(joint.parent);
-    }
-    let mut subtree_mass: Vec<f64> = model.bodies.iter().map(|b| b.mass).collect();
-    for b in (1..model.bodies.len()).rev() {
-        if let Some(p) = parent_body[b] {
-            subtree_mass[p] += subtree_mass[b];
-        }
-    }
-
-    for joint in &model.joints {
-        let body = &mut model.bodies[joint.child];
-        if let Some(bound) = options.bound_mass {
-            if body.mass < bound {
-                model.repairs.push(Repair::MassRaised {
-                    body: body.name.clone(),
-                    old: body.mass,
-                    new: bound,
-                });
-                body.mass = bound;
-            }
-        }
-        let principal = principal_axes(&body.inertia);
-        if let (Some(bound), Some((moments, axes))) = (options.bound_inertia, principal) {
-            if moments.iter().any(|&m| m < bound) {
-                let new = moments.map(|m| m.max(bound));
-                body.inertia = rebuild(&axes, new);
-                model.repairs.push(Repair::InertiaRaised {
-                    body: body.name.clone(),
-                    old: moments,
-                    new,
-                });
-            }
-        }
-        let moments = body.principal_moments().unwrap_or([f64::NAN; 3]);
-        if !invertible(body.mass, &moments) {
-            return Err(ImportError::SingularBody {
-                joint: joint.name.clone(),
-                line: joint.line,
-                links: body.links.iter().map(|l| l.name.clone()).collect(),
-                mass: body.mass,
-                moments,
-                massless_subtree: subtree_mass[joint.child] == 0.0,
-            });
-        }
-    }
-    Ok(())
 }
