@@ -12,7 +12,7 @@ use std::fmt;
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
 use crate::error::{ImportError, Moments};
-use crate::parse::{JointKind, RawModel};
+use crate::parse::{JointKind, RawLink, RawMimic, RawModel};
 
 /// Relative round-off allowed in the inertia checks, measured against [`inertia_scale`]: a principal moment above
 /// `-ROUND_OFF × scale` is not negative, `I₃ ≤ I₁ + I₂ + ROUND_OFF × scale` satisfies the triangle inequality, and a
@@ -223,14 +223,48 @@ pub(crate) fn rebuild(axes: &Matrix3<f64>, moments: [f64; 3]) -> Matrix3<f64> {
     (axes * Matrix3::from_diagonal(&Vector3::from(moments)) * axes.transpose()).symmetric_part()
 }
 
-/// Checks a parsed model (stage 2, before merging) and applies the link-level repairs the options ask for.
+/// Checks a parsed model (stage 2, before merging) and applies the link-level repairs the options ask for. The
+/// steps run in this order, and the first error found is the one returned: names, the tree, joint axes and limits,
+/// mimics, link inertias, massless subtrees.
 pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated, ImportError> {
     options.check()?;
     let mut warnings = std::mem::take(&mut raw.warnings);
     let mut repairs = Vec::new();
+    let (link_index, joint_index) = name_indices(&raw)?;
+    let tree = tree(&raw, &link_index)?;
+    check_axes_and_limits(&raw)?;
+    let mimic_target = mimic_targets(&raw, &joint_index, options.mimic, &mut warnings)?;
+    check_link_inertias(&mut raw.links, options.balance_inertia, &mut repairs, &mut warnings)?;
+    let frozen = match options.massless_subtrees {
+        MasslessSubtrees::Freeze => freeze_massless_subtrees(&raw, &tree, &mut repairs),
+        MasslessSubtrees::Error => vec![false; raw.joints.len()],
+    };
+    let Tree {
+        root,
+        parent_joint,
+        child_joints,
+        joint_links,
+    } = tree;
+    Ok(Validated {
+        raw,
+        root,
+        parent_joint,
+        child_joints,
+        joint_links,
+        frozen,
+        mimic_target,
+        options: *options,
+        repairs,
+        warnings,
+    })
+}
 
-    // Names.
-    let mut link_index: HashMap<&str, usize> = HashMap::with_capacity(raw.links.len());
+/// Indices of links or joints by name.
+type NameIndex<'a> = HashMap<&'a str, usize>;
+
+/// The index of each link and of each joint by name; an error for a name defined twice.
+fn name_indices(raw: &RawModel) -> Result<(NameIndex<'_>, NameIndex<'_>), ImportError> {
+    let mut link_index: NameIndex = HashMap::with_capacity(raw.links.len());
     for (i, link) in raw.links.iter().enumerate() {
         if let Some(&first) = link_index.get(link.name.as_str()) {
             return Err(ImportError::DuplicateLink {
@@ -241,7 +275,7 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
         link_index.insert(&link.name, i);
     }
-    let mut joint_index: HashMap<&str, usize> = HashMap::with_capacity(raw.joints.len());
+    let mut joint_index: NameIndex = HashMap::with_capacity(raw.joints.len());
     for (i, joint) in raw.joints.iter().enumerate() {
         if let Some(&first) = joint_index.get(joint.name.as_str()) {
             return Err(ImportError::DuplicateJoint {
@@ -252,8 +286,19 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
         joint_index.insert(&joint.name, i);
     }
+    Ok((link_index, joint_index))
+}
 
-    // The tree.
+/// The links and joints as one tree (the fields of [`Validated`] of the same names).
+struct Tree {
+    root: usize,
+    parent_joint: Vec<Option<usize>>,
+    child_joints: Vec<Vec<usize>>,
+    joint_links: Vec<(usize, usize)>,
+}
+
+/// The tree the joints make of the links: every joint's links defined, one parent per link, one root, no loop.
+fn tree(raw: &RawModel, link_index: &NameIndex) -> Result<Tree, ImportError> {
     let mut joint_links = Vec::with_capacity(raw.joints.len());
     for joint in &raw.joints {
         let find = |role: &'static str, link: &str| {
@@ -305,38 +350,63 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
     }
     if count < raw.links.len() {
-        // Every unreached link has a parent (it is no root), so following parents from one must loop.
-        let start = (0..raw.links.len()).find(|&l| !reached[l]).unwrap_or(0);
-        let mut step = vec![usize::MAX; raw.links.len()];
-        let mut path = Vec::new();
-        let mut link = start;
-        while step[link] == usize::MAX {
-            step[link] = path.len();
-            path.push(link);
-            match parent_joint[link] {
-                Some(j) => link = joint_links[j].0,
-                None => break, // unreachable: a root would have been reached
-            }
-        }
-        let mut cycle: Vec<usize> = path[step[link].min(path.len())..].to_vec();
-        cycle.reverse(); // parent to child
-                         // Start the loop at its link that comes first in the file, so the message does not depend on the search.
-        let first_in_file = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
-        cycle.rotate_left(first_in_file);
-        let first = cycle.first().copied().unwrap_or(start);
-        let joint = parent_joint[cycle.get(1).copied().unwrap_or(first)].unwrap_or(0);
-        let mut names: Vec<String> = cycle.iter().map(|&l| raw.links[l].name.clone()).collect();
-        names.push(raw.links[first].name.clone());
-        return Err(ImportError::Cycle {
-            cycle: names,
-            joint: raw.joints[joint].name.clone(),
-            line: raw.joints[joint].line,
-            unreachable: raw.links.len() - count,
-        });
+        return Err(cycle(
+            raw,
+            &reached,
+            &parent_joint,
+            &joint_links,
+            raw.links.len() - count,
+        ));
     }
-    let root = roots[0];
+    Ok(Tree {
+        root: roots[0],
+        parent_joint,
+        child_joints,
+        joint_links,
+    })
+}
 
-    // Joints: axes and limits.
+/// The error for the `unreachable` links the root does not reach (`reached` false): every unreached link has a parent
+/// (it is no root), so following parents from one must loop.
+fn cycle(
+    raw: &RawModel,
+    reached: &[bool],
+    parent_joint: &[Option<usize>],
+    joint_links: &[(usize, usize)],
+    unreachable: usize,
+) -> ImportError {
+    let start = (0..raw.links.len()).find(|&l| !reached[l]).unwrap_or(0);
+    let mut step = vec![usize::MAX; raw.links.len()];
+    let mut path = Vec::new();
+    let mut link = start;
+    while step[link] == usize::MAX {
+        step[link] = path.len();
+        path.push(link);
+        match parent_joint[link] {
+            Some(j) => link = joint_links[j].0,
+            None => break, // unreachable: a root would have been reached
+        }
+    }
+    let mut cycle: Vec<usize> = path[step[link].min(path.len())..].to_vec();
+    cycle.reverse(); // parent to child
+
+    // Start the loop at its link that comes first in the file, so the message does not depend on the search.
+    let first_in_file = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+    cycle.rotate_left(first_in_file);
+    let first = cycle.first().copied().unwrap_or(start);
+    let joint = parent_joint[cycle.get(1).copied().unwrap_or(first)].unwrap_or(0);
+    let mut names: Vec<String> = cycle.iter().map(|&l| raw.links[l].name.clone()).collect();
+    names.push(raw.links[first].name.clone());
+    ImportError::Cycle {
+        cycle: names,
+        joint: raw.joints[joint].name.clone(),
+        line: raw.joints[joint].line,
+        unreachable,
+    }
+}
+
+/// Every moving joint's axis has a direction, and no revolute or prismatic limit has `lower > upper`.
+fn check_axes_and_limits(raw: &RawModel) -> Result<(), ImportError> {
     for joint in &raw.joints {
         if joint.kind.uses_axis() && joint.axis.amax() == 0.0 {
             return Err(ImportError::Axis {
@@ -363,87 +433,121 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
             }
         }
     }
+    Ok(())
+}
 
-    // Mimics.
+/// Per joint, the index of its mimic's target when that joint exists. Each mimic is checked as a constraint, or,
+/// with [`MimicMode::Independent`], its problems are only noted in `warnings`.
+fn mimic_targets(
+    raw: &RawModel,
+    joint_index: &NameIndex,
+    mode: MimicMode,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Option<usize>>, ImportError> {
     let mut mimic_target = vec![None; raw.joints.len()];
     for (j, joint) in raw.joints.iter().enumerate() {
         let Some(mimic) = &joint.mimic else { continue };
         let target = joint_index.get(mimic.joint.as_str()).copied();
         mimic_target[j] = target;
-        match options.mimic {
+        match mode {
             MimicMode::Independent => {
-                let problem = match target {
-                    None => Some("which is not defined".to_owned()),
-                    Some(t) if t == j => Some("itself".to_owned()),
-                    Some(t) => {
-                        let target_joint = &raw.joints[t];
-                        if joint.kind.degrees_of_freedom() != 1 {
-                            Some(format!("but is {} itself", joint.kind))
-                        } else if target_joint.kind.degrees_of_freedom() != 1 {
-                            Some(format!("which is {}", target_joint.kind))
-                        } else {
-                            target_joint
-                                .mimic
-                                .as_ref()
-                                .map(|m| format!("which itself mimics `{}`", m.joint))
-                        }
-                    }
-                };
-                if let Some(problem) = problem {
+                if let Some(problem) = independent_mimic_problem(raw, j, target) {
                     warnings.push(format!(
                         "joint `{}` (line {}) mimics joint `{}`, {problem} (harmless: mimics are independent)",
                         joint.name, mimic.line, mimic.joint
                     ));
                 }
             }
-            MimicMode::Constraint => {
-                let single = |kind: JointKind| kind.degrees_of_freedom() == 1;
-                let Some(t) = target else {
-                    return Err(ImportError::MimicUnknown {
-                        joint: joint.name.clone(),
-                        target: mimic.joint.clone(),
-                        line: mimic.line,
-                    });
-                };
-                if t == j {
-                    return Err(ImportError::MimicSelf {
-                        joint: joint.name.clone(),
-                        line: mimic.line,
-                    });
-                }
-                let target_joint = &raw.joints[t];
-                if !single(joint.kind) {
-                    return Err(ImportError::MimicKind {
-                        joint: joint.name.clone(),
-                        role: "this joint",
-                        other: joint.name.clone(),
-                        kind: joint.kind,
-                        line: mimic.line,
-                    });
-                }
-                if !single(target_joint.kind) {
-                    return Err(ImportError::MimicKind {
-                        joint: joint.name.clone(),
-                        role: "the mimicked joint",
-                        other: target_joint.name.clone(),
-                        kind: target_joint.kind,
-                        line: mimic.line,
-                    });
-                }
-                if let Some(next) = &target_joint.mimic {
-                    return Err(ImportError::MimicChain {
-                        joint: joint.name.clone(),
-                        target: target_joint.name.clone(),
-                        target_target: next.joint.clone(),
-                        line: mimic.line,
-                    });
-                }
+            MimicMode::Constraint => check_mimic_constraint(raw, j, mimic, target)?,
+        }
+    }
+    Ok(mimic_target)
+}
+
+/// What would make joint `j`'s mimic of `target` an error as a constraint, worded to follow "mimics joint `…`, ".
+fn independent_mimic_problem(raw: &RawModel, j: usize, target: Option<usize>) -> Option<String> {
+    let joint = &raw.joints[j];
+    match target {
+        None => Some("which is not defined".to_owned()),
+        Some(t) if t == j => Some("itself".to_owned()),
+        Some(t) => {
+            let target_joint = &raw.joints[t];
+            if joint.kind.degrees_of_freedom() != 1 {
+                Some(format!("but is {} itself", joint.kind))
+            } else if target_joint.kind.degrees_of_freedom() != 1 {
+                Some(format!("which is {}", target_joint.kind))
+            } else {
+                target_joint
+                    .mimic
+                    .as_ref()
+                    .map(|m| format!("which itself mimics `{}`", m.joint))
             }
         }
     }
+}
 
-    // Link inertias.
-    for link in &mut raw.links {
+/// Joint `j`'s `mimic` as a constraint: its `target` exists, is another joint, both have a single coordinate, and
+/// the target mimics no third joint.
+fn check_mimic_constraint(
+    raw: &RawModel,
+    j: usize,
+    mimic: &RawMimic,
+    target: Option<usize>,
+) -> Result<(), ImportError> {
+    let joint = &raw.joints[j];
+    let single = |kind: JointKind| kind.degrees_of_freedom() == 1;
+    let Some(t) = target else {
+        return Err(ImportError::MimicUnknown {
+            joint: joint.name.clone(),
+            target: mimic.joint.clone(),
+            line: mimic.line,
+        });
+    };
+    if t == j {
+        return Err(ImportError::MimicSelf {
+            joint: joint.name.clone(),
+            line: mimic.line,
+        });
+    }
+    let target_joint = &raw.joints[t];
+    if !single(joint.kind) {
+        return Err(ImportError::MimicKind {
+            joint: joint.name.clone(),
+            role: "this joint",
+            other: joint.name.clone(),
+            kind: joint.kind,
+            line: mimic.line,
+        });
+    }
+    if !single(target_joint.kind) {
+        return Err(ImportError::MimicKind {
+            joint: joint.name.clone(),
+            role: "the mimicked joint",
+            other: target_joint.name.clone(),
+            kind: target_joint.kind,
+            line: mimic.line,
+        });
+    }
+    if let Some(next) = &target_joint.mimic {
+        return Err(ImportError::MimicChain {
+            joint: joint.name.clone(),
+            target: target_joint.name.clone(),
+            target_target: next.joint.clone(),
+            line: mimic.line,
+        });
+    }
+    Ok(())
+}
+
+/// Each link's mass is not negative and its inertia is one some mass distribution has, or, with `balance_inertia`, is
+/// replaced by the nearest such inertia ([`ImportOptions::balance_inertia`]).
+fn check_link_inertias(
+    links: &mut [RawLink],
+    balance_inertia: bool,
+    repairs: &mut Vec<Repair>,
+    warnings: &mut Vec<String>,
+) -> Result<(), ImportError> {
+    for link in links {
         let Some(inertial) = &mut link.inertial else { continue };
         if inertial.mass < 0.0 {
             return Err(ImportError::Mass {
@@ -463,7 +567,7 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         let tolerance = ROUND_OFF * inertia_scale(&moments, inertial.mass);
         let negative = moments[0] < -tolerance;
         let triangle = moments[2] > moments[0] + moments[1] + tolerance;
-        if (negative || triangle) && options.balance_inertia {
+        if (negative || triangle) && balance_inertia {
             let new = balance(moments);
             inertial.inertia = rebuild(&axes, new);
             repairs.push(Repair::InertiaBalanced {
@@ -494,50 +598,46 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
             ));
         }
     }
+    Ok(())
+}
 
-    // Massless subtrees: masses summed child before parent (reverse of a pre-order from the root).
-    let mut frozen = vec![false; raw.joints.len()];
-    if options.massless_subtrees == MasslessSubtrees::Freeze {
-        let mut order = Vec::with_capacity(raw.links.len());
-        let mut stack = vec![root];
-        while let Some(l) = stack.pop() {
-            order.push(l);
-            stack.extend(child_joints[l].iter().map(|&j| joint_links[j].1));
-        }
-        let mut subtree_mass: Vec<f64> = raw
-            .links
-            .iter()
-            .map(|l| l.inertial.as_ref().map_or(0.0, |i| i.mass))
-            .collect();
-        for &l in order.iter().rev() {
-            if let Some(j) = parent_joint[l] {
-                subtree_mass[joint_links[j].0] += subtree_mass[l];
-            }
-        }
-        for (j, joint) in raw.joints.iter().enumerate() {
-            if joint.kind != JointKind::Fixed && subtree_mass[joint_links[j].1] == 0.0 {
-                frozen[j] = true;
-                repairs.push(Repair::JointFrozen {
-                    joint: joint.name.clone(),
-                    kind: joint.kind,
-                    line: joint.line,
-                });
-            }
-        }
-    }
-
-    Ok(Validated {
-        raw,
+/// [`MasslessSubtrees::Freeze`]: per joint, whether it moves a massless subtree and is frozen. Masses are summed
+/// child before parent (reverse of a pre-order from the root).
+fn freeze_massless_subtrees(raw: &RawModel, tree: &Tree, repairs: &mut Vec<Repair>) -> Vec<bool> {
+    let Tree {
         root,
         parent_joint,
         child_joints,
         joint_links,
-        frozen,
-        mimic_target,
-        options: *options,
-        repairs,
-        warnings,
-    })
+    } = tree;
+    let mut frozen = vec![false; raw.joints.len()];
+    let mut order = Vec::with_capacity(raw.links.len());
+    let mut stack = vec![*root];
+    while let Some(l) = stack.pop() {
+        order.push(l);
+        stack.extend(child_joints[l].iter().map(|&j| joint_links[j].1));
+    }
+    let mut subtree_mass: Vec<f64> = raw
+        .links
+        .iter()
+        .map(|l| l.inertial.as_ref().map_or(0.0, |i| i.mass))
+        .collect();
+    for &l in order.iter().rev() {
+        if let Some(j) = parent_joint[l] {
+            subtree_mass[joint_links[j].0] += subtree_mass[l];
+        }
+    }
+    for (j, joint) in raw.joints.iter().enumerate() {
+        if joint.kind != JointKind::Fixed && subtree_mass[joint_links[j].1] == 0.0 {
+            frozen[j] = true;
+            repairs.push(Repair::JointFrozen {
+                joint: joint.name.clone(),
+                kind: joint.kind,
+                line: joint.line,
+            });
+        }
+    }
+    frozen
 }
 
 /// The balancing rule of [`ImportOptions::balance_inertia`] on ascending moments.
