@@ -15,7 +15,15 @@ pub(super) struct Emitter<'a> {
     pub(super) scalar: Ident,
 }
 
-impl Emitter<'_> {
+impl<'a> Emitter<'a> {
+    /// An emitter for `algebra`, its scalar type named as in emitted code (`f64`).
+    pub(super) fn new(algebra: &'a Algebra) -> Emitter<'a> {
+        Emitter {
+            algebra,
+            scalar: format_ident!("{}", algebra.scalar.name()),
+        }
+    }
+
     pub(super) fn literal(&self, value: Rational64) -> Literal {
         let value = value.to_f64().unwrap_or(f64::NAN);
         match self.algebra.scalar {

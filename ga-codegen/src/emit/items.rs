@@ -22,10 +22,7 @@ pub fn emit(algebra: &Algebra) -> Result<TokenStream, Error> {
 /// [`emit`] with a limit of `max_build_work` ([`Function::build_work`] summed over the functions), checked as the
 /// functions are made, so a refusal comes before the rest is built.
 pub fn emit_within(algebra: &Algebra, max_build_work: usize) -> Result<TokenStream, Error> {
-    let emitter = Emitter {
-        algebra,
-        scalar: format_ident!("{}", algebra.scalar.name()),
-    };
+    let emitter = Emitter::new(algebra);
     let mut work = 0usize;
     let mut within = |function: &Function| {
         work = work.saturating_add(function.build_work());
@@ -86,10 +83,7 @@ pub fn emit_within(algebra: &Algebra, max_build_work: usize) -> Result<TokenStre
 /// # Errors
 /// Those of [`fuse::fuse`].
 pub fn fused_function(algebra: &Algebra, index: usize) -> Result<TokenStream, Error> {
-    let emitter = Emitter {
-        algebra,
-        scalar: format_ident!("{}", algebra.scalar.name()),
-    };
+    let emitter = Emitter::new(algebra);
     let declared = &algebra.expressions[index];
     if transcendental::called(declared).is_some() {
         return Ok(emitter.closed_form_function(declared, &transcendental::closed_form(algebra, index)?));

@@ -15,11 +15,7 @@ use crate::table::Source;
 
 /// The trait impl (and operator sugar) of one binary function, e.g. to inspect or snapshot it.
 pub fn binary_function(algebra: &Algebra, function: &Function) -> TokenStream {
-    Emitter {
-        algebra,
-        scalar: format_ident!("{}", algebra.scalar.name()),
-    }
-    .binary_impl(function)
+    Emitter::new(algebra).binary_impl(function)
 }
 
 /// The trait of a binary operation.
