@@ -18,7 +18,7 @@ use crate::table::{EncodedStage, Source, Table};
 pub(super) type Inputs<'a> = &'a dyn Fn(Variable) -> TokenStream;
 
 impl Emitter<'_> {
-    pub(super) fn value(&self, input: Inputs, program: &Program, value: Value) -> TokenStream {
+    fn value(&self, input: Inputs, program: &Program, value: Value) -> TokenStream {
         match value {
             Value::Input(variable) => input(variable),
             Value::Local(index) => {
@@ -29,7 +29,7 @@ impl Emitter<'_> {
     }
 
     /// How a product's function reads its operands' fields: `self.e12`, `rhs.e0`.
-    pub(super) fn operand_fields(&self, function: &Function) -> impl Fn(Variable) -> TokenStream + '_ {
+    fn operand_fields(&self, function: &Function) -> impl Fn(Variable) -> TokenStream + '_ {
         let (lhs, rhs) = (function.lhs, function.rhs);
         move |variable: Variable| match variable.operand {
             Operand::Lhs => {
@@ -45,7 +45,7 @@ impl Emitter<'_> {
     }
 
     /// `c · x · y`, without the sign (the sum places it).
-    pub(super) fn magnitude(&self, input: Inputs, program: &Program, term: &Term) -> TokenStream {
+    fn magnitude(&self, input: Inputs, program: &Program, term: &Term) -> TokenStream {
         let mut factors = term.factors.iter().map(|&v| self.value(input, program, v));
         let coefficient = term.coefficient.abs();
         let mut tokens = if coefficient.is_one() {
@@ -164,7 +164,7 @@ impl Emitter<'_> {
     /// index needs it), `n` indexing the stage's distinct coefficients: one token however many entries, where an
     /// array of tuples is ten per entry, which rustc and the macro's token bridge handle entry by entry (a
     /// million-entry product took minutes to build).
-    pub(super) fn table_body(&self, function: &Function, table: &Table) -> TokenStream {
+    fn table_body(&self, function: &Function, table: &Table) -> TokenStream {
         let scalar = &self.scalar;
         let zero = self.literal(Rational64::zero());
         let array = |source: Source| match source {
