@@ -77,6 +77,7 @@ use crate::algebra::Algebra;
 use crate::blade::{grade, BladeMask};
 use crate::error::Error;
 use crate::expression::ExpressionKind;
+use crate::functions::Output;
 use crate::fuse::{
     accumulate, blades_and_signs, lower_parameters, result_type, value_type, Expander, Fused, Polynomial, Symbolic,
 };
@@ -155,6 +156,55 @@ impl ClosedForm {
 /// [`Error::NoExpressionResultType`] if no (declared) type holds the result.
 pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error> {
     let declared = &algebra.expressions[index];
+    let (function, parameter) = called_parameter(algebra, index)?;
+    let kind = value_type(algebra, &declared.parameters[parameter].type_name);
+    let no_closed_form = |reason: String| Error::NoClosedForm {
+        index,
+        function: function.name(),
+        type_name: declared.parameters[parameter].type_name.clone(),
+        reason,
+    };
+
+    // The parameter as a multivector of its fields (program inputs 0..k).
+    let fields = blades_and_signs(algebra, kind);
+    let mut x = Symbolic::new();
+    for (offset, (blade, sign)) in fields.iter().enumerate() {
+        let input = Polynomial([(vec![offset as u32], Rational64::from(*sign))].into());
+        accumulate(&mut x, *blade, &input, Rational64::one());
+    }
+    let expander = Expander {
+        algebra,
+        rules: Rules::new(&algebra.metric),
+        top: index,
+    };
+    let grades: Vec<u32> = fields.iter().map(|(blade, _)| grade(*blade)).collect();
+    let (pieces, result) = match function {
+        Function::Exp => exp_pieces(&expander, &x, &grades, &no_closed_form)?,
+        Function::Log => log_pieces(&expander, &x, &grades, &no_closed_form)?,
+        Function::Sqrt | Function::Normalized => normalized_pieces(&expander, function, x, &grades, &no_closed_form)?,
+    };
+
+    // The result type: declared, or the smallest declared type holding the blades.
+    let mut blades = result;
+    blades.sort_unstable();
+    blades.dedup();
+    let output = result_type(algebra, index, &blades)?;
+    let (fused, pieces) = lower_pieces(algebra, index, (kind, fields.len()), output, &pieces);
+    Ok(ClosedForm {
+        function,
+        fused,
+        pieces,
+        indefinite: {
+            let (positive, negative, _) = algebra.metric.signature();
+            positive.min(negative) >= 2
+        },
+    })
+}
+
+/// The called function of `algebra.expressions[index]`, and the index of the parameter it is applied to: the
+/// whole body is one call of one argument, the expression's only parameter, and the expression is not linear.
+fn called_parameter(algebra: &Algebra, index: usize) -> Result<(Function, usize), Error> {
+    let declared = &algebra.expressions[index];
     let ExpressionKind::Call(name, arguments) = &declared.body.kind else {
         unreachable!("`closed_form` is called on calls of a function only")
     };
@@ -187,162 +237,181 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
     if declared.linear.is_some() {
         return Err(use_error("it is not linear, so it has no `#[linear]` map".to_string()));
     }
-    let kind = value_type(algebra, &declared.parameters[parameter].type_name);
-    let no_closed_form = |reason: String| Error::NoClosedForm {
-        index,
-        function: function.name(),
-        type_name: declared.parameters[parameter].type_name.clone(),
-        reason,
-    };
+    Ok((function, parameter))
+}
 
-    // The parameter as a multivector of its fields (program inputs 0..k).
-    let fields = blades_and_signs(algebra, kind);
-    let mut x = Symbolic::new();
-    for (offset, (blade, sign)) in fields.iter().enumerate() {
-        let input = Polynomial([(vec![offset as u32], Rational64::from(*sign))].into());
-        accumulate(&mut x, *blade, &input, Rational64::one());
+/// A closed form's pieces by name, before lowering.
+type Pieces = Vec<(&'static str, Symbolic)>;
+
+/// Each piece by name, its non-zero blades and their sums ([`ClosedForm::pieces`]).
+type LoweredPieces = BTreeMap<&'static str, Vec<(BladeMask, Vec<Term>)>>;
+
+/// The geometric product.
+fn geometric(expander: &Expander, a: &Symbolic, b: &Symbolic) -> Result<Symbolic, Error> {
+    expander.product(Operation::Geometric, a, b)
+}
+
+/// The grade-`k` part.
+fn part(x: &Symbolic, k: u32) -> Symbolic {
+    x.iter()
+        .filter(|(b, _)| grade(**b) == k)
+        .map(|(b, p)| (*b, p.clone()))
+        .collect()
+}
+
+/// `x` times `factor`.
+fn scaled(x: &Symbolic, factor: Rational64) -> Symbolic {
+    let mut out = Symbolic::new();
+    for (blade, polynomial) in x {
+        accumulate(&mut out, *blade, polynomial, factor);
     }
-    let expander = Expander {
-        algebra,
-        rules: Rules::new(&algebra.metric),
-        top: index,
-    };
-    let geometric = |a: &Symbolic, b: &Symbolic| expander.product(Operation::Geometric, a, b);
-    let part = |x: &Symbolic, k: u32| -> Symbolic {
-        x.iter()
-            .filter(|(b, _)| grade(**b) == k)
-            .map(|(b, p)| (*b, p.clone()))
-            .collect()
-    };
-    let grades: Vec<u32> = fields.iter().map(|(blade, _)| grade(*blade)).collect();
-    let half = Rational64::new(1, 2);
-    let scaled = |x: &Symbolic, factor: Rational64| -> Symbolic {
-        let mut out = Symbolic::new();
-        for (blade, polynomial) in x {
-            accumulate(&mut out, *blade, polynomial, factor);
-        }
-        out
-    };
+    out
+}
 
-    let (pieces, result): (Vec<(&'static str, Symbolic)>, Vec<BladeMask>) = match function {
-        Function::Exp => {
-            if grades.iter().any(|&g| g != 2) {
-                return Err(no_closed_form(
-                    "exp is generated for bivector types (every blade of grade 2)".into(),
-                ));
-            }
-            let square = part(&geometric(&x, &x)?, 0);
-            let wedge = expander.product(Operation::Outer, &x, &x)?;
-            let half_wedge = scaled(&wedge, half);
-            // Two planes of non-zero square: λ₁λ₂ = ¼⟨W²⟩₀, which must be all of W² (n ≤ 5), and ½W B must be
-            // the bivector λ₁B₂ + λ₂B₁.
-            let wedge_square = geometric(&wedge, &wedge)?;
-            let half_wedge_b = geometric(&half_wedge, &x)?;
-            let off_grade = |value: &Symbolic, k: u32| value.keys().any(|&blade| grade(blade) != k);
-            if off_grade(&wedge_square, 0) || off_grade(&half_wedge_b, 2) {
-                return Err(no_closed_form(
-                    "`(b ∧ b)²` is not a scalar or `(b ∧ b) b` not a bivector: it has more than two planes".into(),
-                ));
-            }
-            let product = scaled(&wedge_square, Rational64::new(1, 4));
-            let v = part(&half_wedge_b, 2);
-            let mut blades: Vec<BladeMask> = vec![0];
-            blades.extend(x.keys().chain(half_wedge.keys()).chain(v.keys()));
-            let mut pieces = vec![("square", square), ("half_wedge", half_wedge), ("v", v)];
-            if !product.is_empty() {
-                pieces.push(("product", product));
-            }
-            (pieces, blades)
-        }
-        Function::Log => {
-            if grades.iter().any(|g| ![0, 2, 4].contains(g)) || !grades.contains(&0) {
-                return Err(no_closed_form(
-                    "log is generated for even types of grades 0, 2 and 4 with a scalar".into(),
-                ));
-            }
-            let (scalar, bivector, quadvector) = (part(&x, 0), part(&x, 2), part(&x, 4));
-            let wedge = expander.product(Operation::Outer, &bivector, &bivector)?;
-            let (wedge_square, q_square) = (geometric(&wedge, &wedge)?, geometric(&quadvector, &quadvector)?);
-            let q_bivector = geometric(&quadvector, &bivector)?;
-            // Two planes: for a unit element M = exp(B) (n ≤ 5) ⟨M⟩₄² is a scalar and ⟨M⟩₄⟨M⟩₂ a bivector; in n = 5
-            // a general even element's are not, so their grade-0 and grade-2 parts are taken, exact on the elements
-            // log is defined for.
-            let two_planes_of_it = !wedge_square.is_empty() || !q_square.is_empty();
-            let square = part(&geometric(&bivector, &bivector)?, 0);
-            let q_b = part(&q_bivector, 2);
-            let blades: Vec<BladeMask> = bivector.keys().chain(q_b.keys()).copied().collect();
-            let mut pieces = vec![
-                ("scalar", scalar),
-                ("bivector", bivector),
-                ("square", square),
-                ("q_b", q_b),
-            ];
-            if two_planes_of_it {
-                pieces.push(("q_square", part(&q_square, 0)));
-            }
-            (pieces, blades)
-        }
-        Function::Sqrt | Function::Normalized => {
-            if grades.iter().any(|g| g % 2 == 1) {
-                return Err(no_closed_form(format!(
-                    "{} is generated for even types",
-                    function.name()
-                )));
-            }
-            let mut y = x.clone();
-            if function == Function::Sqrt {
-                // 1 + M.
-                accumulate(
-                    &mut y,
-                    0,
-                    &Polynomial([(vec![], Rational64::one())].into()),
-                    Rational64::one(),
-                );
-            }
-            let norm = geometric(&y, &expander.reverse(&y))?;
-            let (n0, n4) = (part(&norm, 0), part(&norm, 4));
-            let rest: Vec<String> = norm
-                .keys()
-                .filter(|&&b| grade(b) != 0 && grade(b) != 4)
-                .map(|&b| algebra.blade_name(b))
-                .collect();
-            let n4_square = geometric(&n4, &n4)?;
-            let off_scalar = n4_square.keys().any(|&blade| blade != 0);
-            if !rest.is_empty() || off_scalar {
-                return Err(no_closed_form(format!(
-                    "its `m ~m` must be a scalar plus a 4-vector whose square is a scalar (it has {})",
-                    if rest.is_empty() {
-                        "a 4-vector whose square is not a scalar".to_string()
-                    } else {
-                        format!("the blades {}", rest.join(", "))
-                    }
-                )));
-            }
-            let y_n4 = geometric(&y, &n4)?;
-            let n4_y = geometric(&n4, &y)?;
-            if y_n4 != n4_y {
-                return Err(no_closed_form(
-                    "the 4-vector part of its `m ~m` does not commute with it".into(),
-                ));
-            }
-            let blades: Vec<BladeMask> = y.keys().chain(y_n4.keys()).copied().collect();
-            let mut pieces = vec![("value", y), ("n0", n0), ("y_n4", y_n4)];
-            if !n4_square.is_empty() {
-                pieces.push(("n4_square", n4_square));
-            }
-            (pieces, blades)
-        }
-    };
+/// exp's pieces of a bivector `x` (its blades of `grades`), and the blades of the result.
+fn exp_pieces(
+    expander: &Expander,
+    x: &Symbolic,
+    grades: &[u32],
+    no_closed_form: &dyn Fn(String) -> Error,
+) -> Result<(Pieces, Vec<BladeMask>), Error> {
+    if grades.iter().any(|&g| g != 2) {
+        return Err(no_closed_form(
+            "exp is generated for bivector types (every blade of grade 2)".into(),
+        ));
+    }
+    let square = part(&geometric(expander, x, x)?, 0);
+    let wedge = expander.product(Operation::Outer, x, x)?;
+    let half_wedge = scaled(&wedge, Rational64::new(1, 2));
+    // Two planes of non-zero square: λ₁λ₂ = ¼⟨W²⟩₀, which must be all of W² (n ≤ 5), and ½W B must be
+    // the bivector λ₁B₂ + λ₂B₁.
+    let wedge_square = geometric(expander, &wedge, &wedge)?;
+    let half_wedge_b = geometric(expander, &half_wedge, x)?;
+    let off_grade = |value: &Symbolic, k: u32| value.keys().any(|&blade| grade(blade) != k);
+    if off_grade(&wedge_square, 0) || off_grade(&half_wedge_b, 2) {
+        return Err(no_closed_form(
+            "`(b ∧ b)²` is not a scalar or `(b ∧ b) b` not a bivector: it has more than two planes".into(),
+        ));
+    }
+    let product = scaled(&wedge_square, Rational64::new(1, 4));
+    let v = part(&half_wedge_b, 2);
+    let mut blades: Vec<BladeMask> = vec![0];
+    blades.extend(x.keys().chain(half_wedge.keys()).chain(v.keys()));
+    let mut pieces = vec![("square", square), ("half_wedge", half_wedge), ("v", v)];
+    if !product.is_empty() {
+        pieces.push(("product", product));
+    }
+    Ok((pieces, blades))
+}
 
-    // The result type: declared, or the smallest declared type holding the blades.
-    let mut blades = result;
-    blades.sort_unstable();
-    blades.dedup();
-    let output = result_type(algebra, index, &blades)?;
+/// log's pieces of an even element `x` (its blades of `grades`), and the blades of the result.
+fn log_pieces(
+    expander: &Expander,
+    x: &Symbolic,
+    grades: &[u32],
+    no_closed_form: &dyn Fn(String) -> Error,
+) -> Result<(Pieces, Vec<BladeMask>), Error> {
+    if grades.iter().any(|g| ![0, 2, 4].contains(g)) || !grades.contains(&0) {
+        return Err(no_closed_form(
+            "log is generated for even types of grades 0, 2 and 4 with a scalar".into(),
+        ));
+    }
+    let (scalar, bivector, quadvector) = (part(x, 0), part(x, 2), part(x, 4));
+    let wedge = expander.product(Operation::Outer, &bivector, &bivector)?;
+    let (wedge_square, q_square) = (
+        geometric(expander, &wedge, &wedge)?,
+        geometric(expander, &quadvector, &quadvector)?,
+    );
+    let q_bivector = geometric(expander, &quadvector, &bivector)?;
+    // Two planes: for a unit element M = exp(B) (n ≤ 5) ⟨M⟩₄² is a scalar and ⟨M⟩₄⟨M⟩₂ a bivector; in n = 5
+    // a general even element's are not, so their grade-0 and grade-2 parts are taken, exact on the elements
+    // log is defined for.
+    let two_planes_of_it = !wedge_square.is_empty() || !q_square.is_empty();
+    let square = part(&geometric(expander, &bivector, &bivector)?, 0);
+    let q_b = part(&q_bivector, 2);
+    let blades: Vec<BladeMask> = bivector.keys().chain(q_b.keys()).copied().collect();
+    let mut pieces = vec![
+        ("scalar", scalar),
+        ("bivector", bivector),
+        ("square", square),
+        ("q_b", q_b),
+    ];
+    if two_planes_of_it {
+        pieces.push(("q_square", part(&q_square, 0)));
+    }
+    Ok((pieces, blades))
+}
 
-    // Lower every piece's polynomials together, sharing products; one group of inputs, the parameter's fields.
+/// sqrt's or normalized's pieces of an even element `x` (its blades of `grades`), and the blades of the result.
+fn normalized_pieces(
+    expander: &Expander,
+    function: Function,
+    x: Symbolic,
+    grades: &[u32],
+    no_closed_form: &dyn Fn(String) -> Error,
+) -> Result<(Pieces, Vec<BladeMask>), Error> {
+    if grades.iter().any(|g| g % 2 == 1) {
+        return Err(no_closed_form(format!(
+            "{} is generated for even types",
+            function.name()
+        )));
+    }
+    let mut y = x;
+    if function == Function::Sqrt {
+        // 1 + M.
+        accumulate(
+            &mut y,
+            0,
+            &Polynomial([(vec![], Rational64::one())].into()),
+            Rational64::one(),
+        );
+    }
+    let norm = geometric(expander, &y, &expander.reverse(&y))?;
+    let (n0, n4) = (part(&norm, 0), part(&norm, 4));
+    let rest: Vec<String> = norm
+        .keys()
+        .filter(|&&b| grade(b) != 0 && grade(b) != 4)
+        .map(|&b| expander.algebra.blade_name(b))
+        .collect();
+    let n4_square = geometric(expander, &n4, &n4)?;
+    let off_scalar = n4_square.keys().any(|&blade| blade != 0);
+    if !rest.is_empty() || off_scalar {
+        return Err(no_closed_form(format!(
+            "its `m ~m` must be a scalar plus a 4-vector whose square is a scalar (it has {})",
+            if rest.is_empty() {
+                "a 4-vector whose square is not a scalar".to_string()
+            } else {
+                format!("the blades {}", rest.join(", "))
+            }
+        )));
+    }
+    let y_n4 = geometric(expander, &y, &n4)?;
+    let n4_y = geometric(expander, &n4, &y)?;
+    if y_n4 != n4_y {
+        return Err(no_closed_form(
+            "the 4-vector part of its `m ~m` does not commute with it".into(),
+        ));
+    }
+    let blades: Vec<BladeMask> = y.keys().chain(y_n4.keys()).copied().collect();
+    let mut pieces = vec![("value", y), ("n0", n0), ("y_n4", y_n4)];
+    if !n4_square.is_empty() {
+        pieces.push(("n4_square", n4_square));
+    }
+    Ok((pieces, blades))
+}
+
+/// Lowers every piece's polynomials together, sharing products; one group of inputs, the `field_count` fields of
+/// the parameter of type `kind`. Returns the shared program with its cost, and each piece's sums by blade.
+fn lower_pieces(
+    algebra: &Algebra,
+    index: usize,
+    (kind, field_count): (Output, usize),
+    output: Output,
+    pieces: &[(&'static str, Symbolic)],
+) -> (Fused, LoweredPieces) {
+    let declared = &algebra.expressions[index];
     let offsets = vec![0];
-    let inputs = 0..fields.len() as u32;
+    let inputs = 0..field_count as u32;
     let keys: Vec<(&'static str, BladeMask)> = pieces
         .iter()
         .flat_map(|(name, value)| value.keys().map(move |&b| (*name, b)))
@@ -355,8 +424,7 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
         &polynomials,
         std::slice::from_ref(&inputs),
     );
-    let mut lowered: BTreeMap<&'static str, Vec<(BladeMask, Vec<Term>)>> =
-        pieces.iter().map(|(name, _)| (*name, Vec::new())).collect();
+    let mut lowered: LoweredPieces = pieces.iter().map(|(name, _)| (*name, Vec::new())).collect();
     for ((name, blade), sum) in keys.into_iter().zip(sums) {
         lowered.entry(name).or_default().push((blade, sum));
     }
@@ -365,19 +433,12 @@ pub fn closed_form(algebra: &Algebra, index: usize) -> Result<ClosedForm, Error>
         .values()
         .flatten()
         .fold(Cost::default(), |total, (_, terms)| total + sum_cost(terms));
-    Ok(ClosedForm {
-        function,
-        fused: Fused {
-            parameters: vec![kind],
-            offsets,
-            output,
-            cost: program.cost() + pieces_cost,
-            program,
-        },
-        pieces: lowered,
-        indefinite: {
-            let (positive, negative, _) = algebra.metric.signature();
-            positive.min(negative) >= 2
-        },
-    })
+    let fused = Fused {
+        parameters: vec![kind],
+        offsets,
+        output,
+        cost: program.cost() + pieces_cost,
+        program,
+    };
+    (fused, lowered)
 }

@@ -7,7 +7,10 @@
 //! equations. The scenes, values and metrics are those of `docs/scenes.md` (what the tests check:
 //! `docs/theory.md` §11).
 //!
-//! One module per concept:
+//! One module per concept, declared in this order, each referring only to the ones before it (`tests/module_order.rs`
+//! checks it): the data (the trajectory format, the scenes and mechanisms with their reference trajectories, the
+//! joint-space trees, the robots), then the closed forms, then the metrics:
+//! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`scenes`]: the six reference scenes ([`SceneId`]): parameters, embedded reference trajectories, published end
 //!   states and published analytic values;
 //! * [`multibody`]: the mechanisms of `docs/scenes.md` (double pendulum, four-bar linkage, N-link chain): parameters,
@@ -16,7 +19,6 @@
 //!   dynamics by the textbook recursive algorithms (Featherstone's RNEA and CRBA): M(q), h(q, v), inverse and
 //!   forward dynamics, energies and body velocities;
 //! * [`robots`]: two real robots (UR5, Solo-12): their URDFs and Pinocchio's reference motion under gravity;
-//! * [`trajectory`]: [`Sample`], [`Trajectory`] and the CSV format of the reference files;
 //! * [`elliptic`]: K(m) and the Jacobi elliptic functions sn, cn, dn;
 //! * [`analytic`]: the closed forms (Dzhanibekov flips, pendulum, heavy top) that the published values come from;
 //! * [`metrics`]: the error metrics (orientation/position errors, energy drift, flip times, pendulum period,
@@ -42,14 +44,14 @@
 
 #![deny(missing_docs)]
 
-pub mod analytic;
-pub mod elliptic;
-pub mod joint_space;
-pub mod metrics;
-pub mod multibody;
-pub mod robots;
-pub mod scenes;
 pub mod trajectory;
+pub mod scenes;
+pub mod multibody;
+pub mod joint_space;
+pub mod robots;
+pub mod elliptic;
+pub mod analytic;
+pub mod metrics;
 
 pub use analytic::{
     AnalyticError, DzhanibekovSolution, HeavyTop, Nutation, Pendulum, PendulumSolution, SteadyPrecessionRates,

@@ -2,6 +2,13 @@
 //! ([`single_body`]), the mechanisms ([`mechanisms`]: the double pendulum, the four-bar linkage and the
 //! N-link chain), each in either algebra and either constraint formulation, and the joint-limit scenes ([`limits`]).
 //!
+//! The modules, declared in this order, each refer only to the ones before it (`tests/integration/module_order.rs`
+//! checks it): [`single_body`] (the single-body scenes, and a body's samples as a reference [`trajectory`]) →
+//! [`mechanisms`] → [`mechanism_measures`] (what is measured of a mechanism run) → [`toggle_four_bar`] (a four-bar
+//! linkage carried through near-toggle configurations) → [`limits`] and [`contacts`] (the joint-limit and contact
+//! scenes) → [`robots`] (the reference robots built from their URDFs) → [`equal_error`] (adaptive against fixed
+//! steps at equal error, on scenes of the modules before it).
+//!
 //! This crate exists so that `dynamics` carries no scene catalogue and no reference data: tests, benchmarks,
 //! examples and the main job build their systems here, from the GA-independent parameters and reference
 //! trajectories of the `reference` crate.
@@ -21,34 +28,15 @@
 
 #![deny(missing_docs)]
 
-pub mod contacts;
-pub mod equal_error;
-pub mod limits;
-pub mod mechanism_measures;
-pub mod mechanisms;
-pub mod robots;
 pub mod single_body;
+pub mod mechanisms;
+pub mod mechanism_measures;
 pub mod toggle_four_bar;
+pub mod limits;
+pub mod contacts;
+pub mod robots;
+pub mod equal_error;
 
 pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
 pub use robots::{build_robot, RobotScene, RobotSceneError};
-pub use single_body::{build, Formulation, Scene, SceneAlgebra, SceneError};
-
-use dynamics::simulate::Sample;
-use reference::{Trajectory, TrajectoryError};
-
-/// One body's samples as a reference trajectory, for the metrics of the `reference` crate.
-pub fn trajectory(samples: &[Sample]) -> Result<Trajectory, TrajectoryError> {
-    Trajectory::new(
-        samples
-            .iter()
-            .map(|s| reference::Sample {
-                t: s.t,
-                position: s.position,
-                orientation: s.orientation,
-                velocity: s.velocity,
-                angular_velocity: s.angular_velocity,
-            })
-            .collect(),
-    )
-}
+pub use single_body::{build, trajectory, Formulation, Scene, SceneAlgebra, SceneError};

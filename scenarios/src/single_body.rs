@@ -15,11 +15,12 @@
 use std::sync::Arc;
 
 use nalgebra::Vector3;
-use reference::{SceneConstraint, SceneId, SceneParameters};
+use reference::{SceneConstraint, SceneId, SceneParameters, Trajectory, TrajectoryError};
 
 use dynamics::constraints::{
     linear, pinning, Constraint, ConstraintError, PinningAlgebra, Stabilisation, VirtualPower,
 };
+use dynamics::simulate::Sample;
 use dynamics::{Algebra, Body, BodyError, Cga, Force, Mechanism, MechanismError, Pga, State};
 
 /// How a scene's constraint is written.
@@ -257,4 +258,20 @@ pub fn build<A: SceneAlgebra>(
         initial,
         duration: parameters.duration,
     })
+}
+
+/// One body's samples as a reference trajectory, for the metrics of the `reference` crate.
+pub fn trajectory(samples: &[Sample]) -> Result<Trajectory, TrajectoryError> {
+    Trajectory::new(
+        samples
+            .iter()
+            .map(|s| reference::Sample {
+                t: s.t,
+                position: s.position,
+                orientation: s.orientation,
+                velocity: s.velocity,
+                angular_velocity: s.angular_velocity,
+            })
+            .collect(),
+    )
 }

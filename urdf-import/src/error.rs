@@ -4,7 +4,7 @@
 
 use std::fmt;
 
-use crate::parse::JointKind;
+use crate::joint_kind::JointKind;
 
 /// Formats a list of names as `` `a`, `b`, `c` `` for the messages.
 pub(crate) struct Names<'a>(pub &'a [String]);

@@ -43,27 +43,31 @@
 //! # Ok::<(), urdf_import::ImportError>(())
 //! ```
 //!
-//! The pipeline, one module per stage: [`parse`] (XML text → [`parse::RawModel`], with line numbers) →
-//! [`validate`] (names, the tree, axes, mimics, link inertias; the link-level repairs) → [`merge`] (links joined
-//! by fixed joints become one rigid body, mass properties merged exactly) → [`validate::check_bodies`] (every
-//! moving body invertible; the body-level repairs) → [`build`] (the model as a `dynamics` mechanism, in either
-//! algebra, [`Robot`]). [`pose`] holds URDF's `xyz`/`rpy` convention.
+//! The pipeline, one module per stage, declared in this order: [`parse`] (XML text → [`parse::RawModel`], with line
+//! numbers) → [`validate`] (names, the tree, axes, mimics, link inertias; the link-level repairs) → [`merge`] (links
+//! joined by fixed joints become one rigid body, mass properties merged exactly) → [`bodies`] (every moving body
+//! invertible; the body-level repairs) → [`build`] (the model as a `dynamics` mechanism, in either algebra,
+//! [`Robot`]). Before them come what every stage speaks of: [`pose`] (URDF's `xyz`/`rpy` convention), the joint
+//! types ([`JointKind`]) and [`error`] (why an import failed). Each module refers only to modules before it.
 
 #![deny(missing_docs)]
 
-pub mod build;
-pub mod error;
-pub mod merge;
-pub mod parse;
 pub mod pose;
+mod joint_kind;
+pub mod error;
+pub mod parse;
 pub mod validate;
+pub mod merge;
+pub mod bodies;
+pub mod build;
 
 use std::path::Path;
 
 pub use build::{BaseStart, BuildError, BuildOptions, Limits, Robot, RobotStart, Root};
 pub use error::ImportError;
+pub use joint_kind::JointKind;
 pub use merge::{FrozenJoint, LinkPlacement, Mimic, MovingJoint, RigidBody, RobotModel};
-pub use parse::{JointKind, Limit};
+pub use parse::Limit;
 pub use validate::{ImportOptions, MasslessSubtrees, MimicMode, Repair};
 
 /// Imports URDF text: parse, validate, merge fixed joints, check the bodies.
@@ -71,7 +75,7 @@ pub fn read(text: &str, options: &ImportOptions) -> Result<RobotModel, ImportErr
     let raw = parse::parse(text)?;
     let validated = validate::validate(raw, options)?;
     let mut model = merge::merge(validated);
-    validate::check_bodies(&mut model, options)?;
+    bodies::check_bodies(&mut model, options)?;
     Ok(model)
 }
 

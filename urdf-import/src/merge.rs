@@ -214,7 +214,7 @@ impl MassSum {
 }
 
 /// Merges a validated model into rigid bodies (stage 3). The body checks come after, in
-/// [`crate::validate::check_bodies`].
+/// [`crate::bodies::check_bodies`].
 pub fn merge(validated: Validated) -> RobotModel {
     let Validated {
         raw,

@@ -1,9 +1,7 @@
 //! Stage 2: the checks that messy real files need, and the opt-in repairs ([`ImportOptions`]).
 //!
 //! [`validate`] runs before merging: names, the tree, joint axes and limits, mimics, and each link's inertia.
-//! [`check_bodies`] runs after [`crate::merge`]: each body a moving joint carries must have a positive mass and
-//! positive principal moments, because the dynamics keeps every body's own mass and inertia invertible (unlike
-//! Pinocchio, which only needs the articulated inertia and returns NaN when a whole subtree is massless).
+//! The bodies' checks run after [`crate::merge`], in [`crate::bodies`], with the same options and round-off.
 //!
 //! By default every check is an error; each repair is opt-in, changes exactly what its doc comment says, and is
 //! listed in [`crate::RobotModel::repairs`].
@@ -13,14 +11,13 @@ use std::fmt;
 
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
-use crate::error::{ImportError, Moments, Names};
-use crate::merge::RobotModel;
-use crate::parse::{JointKind, RawModel};
+use crate::error::{ImportError, Moments};
+use crate::parse::{JointKind, RawLink, RawMimic, RawModel};
 
 /// Relative round-off allowed in the inertia checks, measured against [`inertia_scale`]: a principal moment above
-/// `-ROUND_OFF × scale` is not negative, `I₃ ≤ I₁ + I₂ + ROUND_OFF × scale` satisfies the triangle inequality, and
-/// a moment at most `ROUND_OFF × scale` is zero (singular) for [`check_bodies`]. CAD exports round tensors to 6–9
-/// digits, and an eigen-solve of a singular tensor returns ±1e-22 rather than 0.
+/// `-ROUND_OFF × scale` is not negative, `I₃ ≤ I₁ + I₂ + ROUND_OFF × scale` satisfies the triangle inequality, and a
+/// moment at most `ROUND_OFF × scale` is zero (singular) for [`crate::bodies::check_bodies`]. CAD exports round tensors
+/// to 6–9 digits, and an eigen-solve of a singular tensor returns ±1e-22 rather than 0.
 pub const ROUND_OFF: f64 = 1e-9;
 
 /// The scale (kg m²) round-off in an inertia is measured against: the sum of the principal moments' magnitudes
@@ -100,7 +97,7 @@ impl ImportOptions {
         }
     }
 
-    fn check(&self) -> Result<(), ImportError> {
+    pub(crate) fn check(&self) -> Result<(), ImportError> {
         for (option, value) in [("bound_mass", self.bound_mass), ("bound_inertia", self.bound_inertia)] {
             if let Some(value) = value {
                 if !(value.is_finite() && value > 0.0) {
@@ -222,24 +219,52 @@ pub fn principal_axes(inertia: &Matrix3<f64>) -> Option<([f64; 3], Matrix3<f64>)
 }
 
 /// `V diag(λ) Vᵀ`, made exactly symmetric.
-fn rebuild(axes: &Matrix3<f64>, moments: [f64; 3]) -> Matrix3<f64> {
+pub(crate) fn rebuild(axes: &Matrix3<f64>, moments: [f64; 3]) -> Matrix3<f64> {
     (axes * Matrix3::from_diagonal(&Vector3::from(moments)) * axes.transpose()).symmetric_part()
 }
 
-/// Whether a mass and ascending principal moments describe an invertible body: a positive mass, and no moment
-/// zero up to round-off ([`ROUND_OFF`] × [`inertia_scale`]).
-pub fn invertible(mass: f64, moments: &[f64; 3]) -> bool {
-    mass > 0.0 && moments[0] > ROUND_OFF * inertia_scale(moments, mass)
-}
-
-/// Checks a parsed model (stage 2, before merging) and applies the link-level repairs the options ask for.
+/// Checks a parsed model (stage 2, before merging) and applies the link-level repairs the options ask for. The
+/// steps run in this order, and the first error found is the one returned: names, the tree, joint axes and limits,
+/// mimics, link inertias, massless subtrees.
 pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated, ImportError> {
     options.check()?;
     let mut warnings = std::mem::take(&mut raw.warnings);
     let mut repairs = Vec::new();
+    let (link_index, joint_index) = name_indices(&raw)?;
+    let tree = tree(&raw, &link_index)?;
+    check_axes_and_limits(&raw)?;
+    let mimic_target = mimic_targets(&raw, &joint_index, options.mimic, &mut warnings)?;
+    check_link_inertias(&mut raw.links, options.balance_inertia, &mut repairs, &mut warnings)?;
+    let frozen = match options.massless_subtrees {
+        MasslessSubtrees::Freeze => freeze_massless_subtrees(&raw, &tree, &mut repairs),
+        MasslessSubtrees::Error => vec![false; raw.joints.len()],
+    };
+    let Tree {
+        root,
+        parent_joint,
+        child_joints,
+        joint_links,
+    } = tree;
+    Ok(Validated {
+        raw,
+        root,
+        parent_joint,
+        child_joints,
+        joint_links,
+        frozen,
+        mimic_target,
+        options: *options,
+        repairs,
+        warnings,
+    })
+}
 
-    // Names.
-    let mut link_index: HashMap<&str, usize> = HashMap::with_capacity(raw.links.len());
+/// Indices of links or joints by name.
+type NameIndex<'a> = HashMap<&'a str, usize>;
+
+/// The index of each link and of each joint by name; an error for a name defined twice.
+fn name_indices(raw: &RawModel) -> Result<(NameIndex<'_>, NameIndex<'_>), ImportError> {
+    let mut link_index: NameIndex = HashMap::with_capacity(raw.links.len());
     for (i, link) in raw.links.iter().enumerate() {
         if let Some(&first) = link_index.get(link.name.as_str()) {
             return Err(ImportError::DuplicateLink {
@@ -250,7 +275,7 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
         link_index.insert(&link.name, i);
     }
-    let mut joint_index: HashMap<&str, usize> = HashMap::with_capacity(raw.joints.len());
+    let mut joint_index: NameIndex = HashMap::with_capacity(raw.joints.len());
     for (i, joint) in raw.joints.iter().enumerate() {
         if let Some(&first) = joint_index.get(joint.name.as_str()) {
             return Err(ImportError::DuplicateJoint {
@@ -261,8 +286,19 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
         joint_index.insert(&joint.name, i);
     }
+    Ok((link_index, joint_index))
+}
 
-    // The tree.
+/// The links and joints as one tree (the fields of [`Validated`] of the same names).
+struct Tree {
+    root: usize,
+    parent_joint: Vec<Option<usize>>,
+    child_joints: Vec<Vec<usize>>,
+    joint_links: Vec<(usize, usize)>,
+}
+
+/// The tree the joints make of the links: every joint's links defined, one parent per link, one root, no loop.
+fn tree(raw: &RawModel, link_index: &NameIndex) -> Result<Tree, ImportError> {
     let mut joint_links = Vec::with_capacity(raw.joints.len());
     for joint in &raw.joints {
         let find = |role: &'static str, link: &str| {
@@ -314,38 +350,63 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         }
     }
     if count < raw.links.len() {
-        // Every unreached link has a parent (it is no root), so following parents from one must loop.
-        let start = (0..raw.links.len()).find(|&l| !reached[l]).unwrap_or(0);
-        let mut step = vec![usize::MAX; raw.links.len()];
-        let mut path = Vec::new();
-        let mut link = start;
-        while step[link] == usize::MAX {
-            step[link] = path.len();
-            path.push(link);
-            match parent_joint[link] {
-                Some(j) => link = joint_links[j].0,
-                None => break, // unreachable: a root would have been reached
-            }
-        }
-        let mut cycle: Vec<usize> = path[step[link].min(path.len())..].to_vec();
-        cycle.reverse(); // parent to child
-                         // Start the loop at its link that comes first in the file, so the message does not depend on the search.
-        let first_in_file = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
-        cycle.rotate_left(first_in_file);
-        let first = cycle.first().copied().unwrap_or(start);
-        let joint = parent_joint[cycle.get(1).copied().unwrap_or(first)].unwrap_or(0);
-        let mut names: Vec<String> = cycle.iter().map(|&l| raw.links[l].name.clone()).collect();
-        names.push(raw.links[first].name.clone());
-        return Err(ImportError::Cycle {
-            cycle: names,
-            joint: raw.joints[joint].name.clone(),
-            line: raw.joints[joint].line,
-            unreachable: raw.links.len() - count,
-        });
+        return Err(cycle(
+            raw,
+            &reached,
+            &parent_joint,
+            &joint_links,
+            raw.links.len() - count,
+        ));
     }
-    let root = roots[0];
+    Ok(Tree {
+        root: roots[0],
+        parent_joint,
+        child_joints,
+        joint_links,
+    })
+}
 
-    // Joints: axes and limits.
+/// The error for the `unreachable` links the root does not reach (`reached` false): every unreached link has a parent
+/// (it is no root), so following parents from one must loop.
+fn cycle(
+    raw: &RawModel,
+    reached: &[bool],
+    parent_joint: &[Option<usize>],
+    joint_links: &[(usize, usize)],
+    unreachable: usize,
+) -> ImportError {
+    let start = (0..raw.links.len()).find(|&l| !reached[l]).unwrap_or(0);
+    let mut step = vec![usize::MAX; raw.links.len()];
+    let mut path = Vec::new();
+    let mut link = start;
+    while step[link] == usize::MAX {
+        step[link] = path.len();
+        path.push(link);
+        match parent_joint[link] {
+            Some(j) => link = joint_links[j].0,
+            None => break, // unreachable: a root would have been reached
+        }
+    }
+    let mut cycle: Vec<usize> = path[step[link].min(path.len())..].to_vec();
+    cycle.reverse(); // parent to child
+
+    // Start the loop at its link that comes first in the file, so the message does not depend on the search.
+    let first_in_file = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+    cycle.rotate_left(first_in_file);
+    let first = cycle.first().copied().unwrap_or(start);
+    let joint = parent_joint[cycle.get(1).copied().unwrap_or(first)].unwrap_or(0);
+    let mut names: Vec<String> = cycle.iter().map(|&l| raw.links[l].name.clone()).collect();
+    names.push(raw.links[first].name.clone());
+    ImportError::Cycle {
+        cycle: names,
+        joint: raw.joints[joint].name.clone(),
+        line: raw.joints[joint].line,
+        unreachable,
+    }
+}
+
+/// Every moving joint's axis has a direction, and no revolute or prismatic limit has `lower > upper`.
+fn check_axes_and_limits(raw: &RawModel) -> Result<(), ImportError> {
     for joint in &raw.joints {
         if joint.kind.uses_axis() && joint.axis.amax() == 0.0 {
             return Err(ImportError::Axis {
@@ -372,87 +433,121 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
             }
         }
     }
+    Ok(())
+}
 
-    // Mimics.
+/// Per joint, the index of its mimic's target when that joint exists. Each mimic is checked as a constraint, or,
+/// with [`MimicMode::Independent`], its problems are only noted in `warnings`.
+fn mimic_targets(
+    raw: &RawModel,
+    joint_index: &NameIndex,
+    mode: MimicMode,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Option<usize>>, ImportError> {
     let mut mimic_target = vec![None; raw.joints.len()];
     for (j, joint) in raw.joints.iter().enumerate() {
         let Some(mimic) = &joint.mimic else { continue };
         let target = joint_index.get(mimic.joint.as_str()).copied();
         mimic_target[j] = target;
-        match options.mimic {
+        match mode {
             MimicMode::Independent => {
-                let problem = match target {
-                    None => Some("which is not defined".to_owned()),
-                    Some(t) if t == j => Some("itself".to_owned()),
-                    Some(t) => {
-                        let target_joint = &raw.joints[t];
-                        if joint.kind.degrees_of_freedom() != 1 {
-                            Some(format!("but is {} itself", joint.kind))
-                        } else if target_joint.kind.degrees_of_freedom() != 1 {
-                            Some(format!("which is {}", target_joint.kind))
-                        } else {
-                            target_joint
-                                .mimic
-                                .as_ref()
-                                .map(|m| format!("which itself mimics `{}`", m.joint))
-                        }
-                    }
-                };
-                if let Some(problem) = problem {
+                if let Some(problem) = independent_mimic_problem(raw, j, target) {
                     warnings.push(format!(
                         "joint `{}` (line {}) mimics joint `{}`, {problem} (harmless: mimics are independent)",
                         joint.name, mimic.line, mimic.joint
                     ));
                 }
             }
-            MimicMode::Constraint => {
-                let single = |kind: JointKind| kind.degrees_of_freedom() == 1;
-                let Some(t) = target else {
-                    return Err(ImportError::MimicUnknown {
-                        joint: joint.name.clone(),
-                        target: mimic.joint.clone(),
-                        line: mimic.line,
-                    });
-                };
-                if t == j {
-                    return Err(ImportError::MimicSelf {
-                        joint: joint.name.clone(),
-                        line: mimic.line,
-                    });
-                }
-                let target_joint = &raw.joints[t];
-                if !single(joint.kind) {
-                    return Err(ImportError::MimicKind {
-                        joint: joint.name.clone(),
-                        role: "this joint",
-                        other: joint.name.clone(),
-                        kind: joint.kind,
-                        line: mimic.line,
-                    });
-                }
-                if !single(target_joint.kind) {
-                    return Err(ImportError::MimicKind {
-                        joint: joint.name.clone(),
-                        role: "the mimicked joint",
-                        other: target_joint.name.clone(),
-                        kind: target_joint.kind,
-                        line: mimic.line,
-                    });
-                }
-                if let Some(next) = &target_joint.mimic {
-                    return Err(ImportError::MimicChain {
-                        joint: joint.name.clone(),
-                        target: target_joint.name.clone(),
-                        target_target: next.joint.clone(),
-                        line: mimic.line,
-                    });
-                }
+            MimicMode::Constraint => check_mimic_constraint(raw, j, mimic, target)?,
+        }
+    }
+    Ok(mimic_target)
+}
+
+/// What would make joint `j`'s mimic of `target` an error as a constraint, worded to follow "mimics joint `…`, ".
+fn independent_mimic_problem(raw: &RawModel, j: usize, target: Option<usize>) -> Option<String> {
+    let joint = &raw.joints[j];
+    match target {
+        None => Some("which is not defined".to_owned()),
+        Some(t) if t == j => Some("itself".to_owned()),
+        Some(t) => {
+            let target_joint = &raw.joints[t];
+            if joint.kind.degrees_of_freedom() != 1 {
+                Some(format!("but is {} itself", joint.kind))
+            } else if target_joint.kind.degrees_of_freedom() != 1 {
+                Some(format!("which is {}", target_joint.kind))
+            } else {
+                target_joint
+                    .mimic
+                    .as_ref()
+                    .map(|m| format!("which itself mimics `{}`", m.joint))
             }
         }
     }
+}
 
-    // Link inertias.
-    for link in &mut raw.links {
+/// Joint `j`'s `mimic` as a constraint: its `target` exists, is another joint, both have a single coordinate, and
+/// the target mimics no third joint.
+fn check_mimic_constraint(
+    raw: &RawModel,
+    j: usize,
+    mimic: &RawMimic,
+    target: Option<usize>,
+) -> Result<(), ImportError> {
+    let joint = &raw.joints[j];
+    let single = |kind: JointKind| kind.degrees_of_freedom() == 1;
+    let Some(t) = target else {
+        return Err(ImportError::MimicUnknown {
+            joint: joint.name.clone(),
+            target: mimic.joint.clone(),
+            line: mimic.line,
+        });
+    };
+    if t == j {
+        return Err(ImportError::MimicSelf {
+            joint: joint.name.clone(),
+            line: mimic.line,
+        });
+    }
+    let target_joint = &raw.joints[t];
+    if !single(joint.kind) {
+        return Err(ImportError::MimicKind {
+            joint: joint.name.clone(),
+            role: "this joint",
+            other: joint.name.clone(),
+            kind: joint.kind,
+            line: mimic.line,
+        });
+    }
+    if !single(target_joint.kind) {
+        return Err(ImportError::MimicKind {
+            joint: joint.name.clone(),
+            role: "the mimicked joint",
+            other: target_joint.name.clone(),
+            kind: target_joint.kind,
+            line: mimic.line,
+        });
+    }
+    if let Some(next) = &target_joint.mimic {
+        return Err(ImportError::MimicChain {
+            joint: joint.name.clone(),
+            target: target_joint.name.clone(),
+            target_target: next.joint.clone(),
+            line: mimic.line,
+        });
+    }
+    Ok(())
+}
+
+/// Each link's mass is not negative and its inertia is one some mass distribution has, or, with `balance_inertia`, is
+/// replaced by the nearest such inertia ([`ImportOptions::balance_inertia`]).
+fn check_link_inertias(
+    links: &mut [RawLink],
+    balance_inertia: bool,
+    repairs: &mut Vec<Repair>,
+    warnings: &mut Vec<String>,
+) -> Result<(), ImportError> {
+    for link in links {
         let Some(inertial) = &mut link.inertial else { continue };
         if inertial.mass < 0.0 {
             return Err(ImportError::Mass {
@@ -472,7 +567,7 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
         let tolerance = ROUND_OFF * inertia_scale(&moments, inertial.mass);
         let negative = moments[0] < -tolerance;
         let triangle = moments[2] > moments[0] + moments[1] + tolerance;
-        if (negative || triangle) && options.balance_inertia {
+        if (negative || triangle) && balance_inertia {
             let new = balance(moments);
             inertial.inertia = rebuild(&axes, new);
             repairs.push(Repair::InertiaBalanced {
@@ -503,50 +598,46 @@ pub fn validate(mut raw: RawModel, options: &ImportOptions) -> Result<Validated,
             ));
         }
     }
+    Ok(())
+}
 
-    // Massless subtrees: masses summed child before parent (reverse of a pre-order from the root).
-    let mut frozen = vec![false; raw.joints.len()];
-    if options.massless_subtrees == MasslessSubtrees::Freeze {
-        let mut order = Vec::with_capacity(raw.links.len());
-        let mut stack = vec![root];
-        while let Some(l) = stack.pop() {
-            order.push(l);
-            stack.extend(child_joints[l].iter().map(|&j| joint_links[j].1));
-        }
-        let mut subtree_mass: Vec<f64> = raw
-            .links
-            .iter()
-            .map(|l| l.inertial.as_ref().map_or(0.0, |i| i.mass))
-            .collect();
-        for &l in order.iter().rev() {
-            if let Some(j) = parent_joint[l] {
-                subtree_mass[joint_links[j].0] += subtree_mass[l];
-            }
-        }
-        for (j, joint) in raw.joints.iter().enumerate() {
-            if joint.kind != JointKind::Fixed && subtree_mass[joint_links[j].1] == 0.0 {
-                frozen[j] = true;
-                repairs.push(Repair::JointFrozen {
-                    joint: joint.name.clone(),
-                    kind: joint.kind,
-                    line: joint.line,
-                });
-            }
-        }
-    }
-
-    Ok(Validated {
-        raw,
+/// [`MasslessSubtrees::Freeze`]: per joint, whether it moves a massless subtree and is frozen. Masses are summed
+/// child before parent (reverse of a pre-order from the root).
+fn freeze_massless_subtrees(raw: &RawModel, tree: &Tree, repairs: &mut Vec<Repair>) -> Vec<bool> {
+    let Tree {
         root,
         parent_joint,
         child_joints,
         joint_links,
-        frozen,
-        mimic_target,
-        options: *options,
-        repairs,
-        warnings,
-    })
+    } = tree;
+    let mut frozen = vec![false; raw.joints.len()];
+    let mut order = Vec::with_capacity(raw.links.len());
+    let mut stack = vec![*root];
+    while let Some(l) = stack.pop() {
+        order.push(l);
+        stack.extend(child_joints[l].iter().map(|&j| joint_links[j].1));
+    }
+    let mut subtree_mass: Vec<f64> = raw
+        .links
+        .iter()
+        .map(|l| l.inertial.as_ref().map_or(0.0, |i| i.mass))
+        .collect();
+    for &l in order.iter().rev() {
+        if let Some(j) = parent_joint[l] {
+            subtree_mass[joint_links[j].0] += subtree_mass[l];
+        }
+    }
+    for (j, joint) in raw.joints.iter().enumerate() {
+        if joint.kind != JointKind::Fixed && subtree_mass[joint_links[j].1] == 0.0 {
+            frozen[j] = true;
+            repairs.push(Repair::JointFrozen {
+                joint: joint.name.clone(),
+                kind: joint.kind,
+                line: joint.line,
+            });
+        }
+    }
+    frozen
 }
 
 /// The balancing rule of [`ImportOptions::balance_inertia`] on ascending moments.
@@ -554,76 +645,4 @@ fn balance(moments: [f64; 3]) -> [f64; 3] {
     let [a, b, c] = moments.map(|m| m.max(0.0));
     let excess = (c - a - b).max(0.0) / 2.0;
     [a + excess, b + excess, c]
-}
-
-/// Checks the merged bodies (stage 2, after [`crate::merge::merge`]) and applies the body bounds the options ask
-/// for: every body a moving joint carries must have a positive mass and positive principal moments. Also sets
-/// [`RobotModel::root_fixed_only`]. The model is one [`crate::merge::merge`] built (its joints' body indices in
-/// range); a model without bodies has nothing to check.
-pub fn check_bodies(model: &mut RobotModel, options: &ImportOptions) -> Result<(), ImportError> {
-    options.check()?;
-    let Some(root) = model.bodies.first() else {
-        return Ok(());
-    };
-    let root_moments = root.principal_moments().unwrap_or([f64::NAN; 3]);
-    model.root_fixed_only = !invertible(root.mass, &root_moments);
-    if model.root_fixed_only {
-        let names: Vec<String> = root.links.iter().map(|l| l.name.clone()).collect();
-        model.warnings.push(format!(
-            "the root body (links {}) has mass {} kg and principal moments {} kg m²: it can only be fixed to the world",
-            Names(&names),
-            root.mass,
-            Moments(&root_moments)
-        ));
-    }
-
-    // Mass below each body, the body included (children come after their parents in `bodies`).
-    let mut parent_body = vec![None; model.bodies.len()];
-    for joint in &model.joints {
-        parent_body[joint.child] = Some(joint.parent);
-    }
-    let mut subtree_mass: Vec<f64> = model.bodies.iter().map(|b| b.mass).collect();
-    for b in (1..model.bodies.len()).rev() {
-        if let Some(p) = parent_body[b] {
-            subtree_mass[p] += subtree_mass[b];
-        }
-    }
-
-    for joint in &model.joints {
-        let body = &mut model.bodies[joint.child];
-        if let Some(bound) = options.bound_mass {
-            if body.mass < bound {
-                model.repairs.push(Repair::MassRaised {
-                    body: body.name.clone(),
-                    old: body.mass,
-                    new: bound,
-                });
-                body.mass = bound;
-            }
-        }
-        let principal = principal_axes(&body.inertia);
-        if let (Some(bound), Some((moments, axes))) = (options.bound_inertia, principal) {
-            if moments.iter().any(|&m| m < bound) {
-                let new = moments.map(|m| m.max(bound));
-                body.inertia = rebuild(&axes, new);
-                model.repairs.push(Repair::InertiaRaised {
-                    body: body.name.clone(),
-                    old: moments,
-                    new,
-                });
-            }
-        }
-        let moments = body.principal_moments().unwrap_or([f64::NAN; 3]);
-        if !invertible(body.mass, &moments) {
-            return Err(ImportError::SingularBody {
-                joint: joint.name.clone(),
-                line: joint.line,
-                links: body.links.iter().map(|l| l.name.clone()).collect(),
-                mass: body.mass,
-                moments,
-                massless_subtree: subtree_mass[joint.child] == 0.0,
-            });
-        }
-    }
-    Ok(())
 }

@@ -14,6 +14,7 @@ mod hard_cases;
 mod joint_space;
 mod limits;
 mod mechanisms;
+mod module_order;
 mod robots;
 mod scene1_free_body;
 mod simulate;

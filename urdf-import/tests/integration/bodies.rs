@@ -1,4 +1,4 @@
-//! Stage 2 after merging (check_bodies): every body a moving joint carries needs a positive mass and positive
+//! Stage 4 (bodies, after merging): every body a moving joint carries needs a positive mass and positive
 //! principal moments; massless subtrees; the repairs `MasslessSubtrees::Freeze`, `bound_mass`, `bound_inertia`;
 //! the massless root.
 
