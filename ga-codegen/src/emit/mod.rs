@@ -5,7 +5,8 @@
 //! for every type pair, with `core::ops` sugar (`*` geometric, `^` outer, `&` regressive, `|` left
 //! contraction); each is also an inherent `const fn` named after the operation and the right-hand
 //! type (`a.geometric_motor(b)`), so products can be evaluated in constants and const assertions.
-//! The code uses only `core`, and each function's doc comment states its exact cost.
+//! The code uses only `core`, but for the closed forms (`exp`, `log`, `sqrt`, `normalized`), which call `std`'s float
+//! functions; each function's doc comment states its exact cost.
 //!
 //! One file per kind of item, declared in the order each builds on the ones before it: `emitter` (the state and the
 //! small pieces: literals, identifiers, doc lines) → `code` (a function's body from its program or tables) → `types`
