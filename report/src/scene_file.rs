@@ -42,7 +42,6 @@ use dynamics::{
     MechanismError, Pga, Reference, ScrewCoordinates, Simulation, State,
 };
 use nalgebra::{DVector, Isometry3, Quaternion, SVector, Translation3, Unit, UnitQuaternion, Vector3};
-use scenarios::Formulation;
 use serde::Deserialize;
 
 use crate::names::{IntegratorName, StabilisationName};
@@ -610,11 +609,12 @@ pub(crate) enum FormulationName {
     Pinning,
 }
 
-impl From<FormulationName> for Formulation {
-    fn from(name: FormulationName) -> Formulation {
-        match name {
-            FormulationName::VirtualPower => Formulation::VirtualPower,
-            FormulationName::Pinning => Formulation::Pinning,
+impl FormulationName {
+    /// The name in summaries: "virtual power" or "pinning".
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            FormulationName::VirtualPower => "virtual power",
+            FormulationName::Pinning => "pinning",
         }
     }
 }

@@ -372,11 +372,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         .joints
         .iter()
         .map(|j| {
-            let what = format!(
-                "{} by {}",
-                j.geometry.kind(),
-                scenarios::Formulation::from(j.formulation).name()
-            );
+            let what = format!("{} by {}", j.geometry.kind(), j.formulation.name());
             if layout.named {
                 format!(
                     "{} ({what}, {} to {})",
