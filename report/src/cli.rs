@@ -14,10 +14,10 @@ use crate::adaptive_sweep::{AdaptiveCase, AdaptivePlan, DEFAULT_TOLERANCES};
 use crate::anchors::Anchors;
 use crate::job::run_job_with_robots;
 use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
-use crate::names::{IntegratorName, StabilisationName};
 use crate::robot_sweep::{self, RobotPlan};
 use crate::scene_job::run_scene_file;
 use crate::sweep::{SweepPlan, DEFAULT_STEPS};
+use scene_file::names::{IntegratorName, StabilisationName};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SceneName {
@@ -109,9 +109,9 @@ pub(crate) struct Options {
 /// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
 pub(crate) const MAX_DURATION: f64 = 1000.0;
 
-/// The most steps one run of the sweep may take, as a scene file's ([`crate::scene_file::MAX_STEPS`]): a step of
+/// The most steps one run of the sweep may take, as a scene file's ([`scene_file::MAX_STEPS`]): a step of
 /// 1e-12 s would otherwise run for days.
-const MAX_STEPS_PER_RUN: f64 = crate::scene_file::MAX_STEPS as f64;
+const MAX_STEPS_PER_RUN: f64 = scene_file::MAX_STEPS as f64;
 
 impl Options {
     /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,

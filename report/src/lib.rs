@@ -10,13 +10,13 @@
 //!
 //! The adaptive runs (the embedded pairs over tolerances) follow them: [`adaptive_sweep`] → `adaptive_report`.
 //!
-//! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
+//! A scene can also come from a TOML file (the `scene-file` crate), run by [`scene_job`] (`--scene-file`).
 //!
 //! MuJoCo's and Pinocchio's times come from [`anchors`] where `--anchors FILE` measured them beside the run,
 //! else from the recorded constants.
 //!
 //! The command line is [`cli`]; the integrators and stabilisations by the names it and scene files use are in
-//! [`names`].
+//! `scene_file::names`.
 
 #![deny(missing_docs)]
 
@@ -34,11 +34,9 @@ pub mod measure;
 mod mechanism_report;
 pub mod mechanism_sweep;
 mod mujoco;
-pub mod names;
 pub mod plot;
 mod robot_figures;
 mod robot_report;
 pub mod robot_sweep;
-pub mod scene_file;
 pub mod scene_job;
 pub mod sweep;

@@ -1,4 +1,4 @@
-//! Running a scene file (`--scene-file`, [`crate::scene_file`]): the scene in each requested algebra, then
+//! Running a scene file (`--scene-file`, [`scene_file`]): the scene in each requested algebra, then
 //! its trajectories (CSV), energy and constraint-violation plots and `summary.md` in the output folder.
 //!
 //! The trajectory `<stem>_<algebra>.csv` of named `[[body]]` entries or a robot has the columns `t`, then per body in
@@ -24,8 +24,9 @@ use crate::csv;
 use crate::figures::{running_max, styled, LOG_FLOOR};
 use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
-use crate::scene_file::{End, FileAlgebra, Layout, Pose, SceneFile, SceneFileError};
 use crate::sweep::AlgebraKind;
+use scene_file::robot::{JointDynamicsName, LimitsName, LoadedRobot, MimicName, RobotSpec, RootName};
+use scene_file::{End, FileAlgebra, Layout, Pose, SceneFile, SceneFileError};
 
 /// Why a scene file's run or output failed.
 #[derive(Debug, thiserror::Error)]
@@ -219,7 +220,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
             AlgebraKind::Cga => run_in::<Cga>(algebra, &scene),
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let robot = scene.robot_summary()?;
+    let robot = scene.robot()?.map(|(spec, loaded)| robot_summary(loaded, spec));
 
     let write_error = |path: &Path| {
         let path = path.to_path_buf();
@@ -667,6 +668,140 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             let _ = writeln!(out, "Trajectory: [{file}]({file}) (columns: {columns}).\n");
         }
     }
+    out
+}
+
+/// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.
+fn robot_summary(loaded: &LoadedRobot, spec: &RobotSpec) -> String {
+    let model = &loaded.model;
+    let mut out = String::new();
+    let links: usize = model.bodies.iter().map(|b| b.links.len()).sum();
+    let kinds: Vec<String> = model
+        .joint_counts()
+        .iter()
+        .map(|(kind, n)| format!("{n} {kind}"))
+        .collect();
+    let joint_dof: usize = model.joints.iter().map(|j| j.kind.degrees_of_freedom()).sum();
+    let free = spec.root == RootName::Free;
+    let _ = writeln!(
+        out,
+        "Robot `{}` from {}: {links} links, {} merged into other links' bodies (fixed joints), so {} bodies ({} \
+         moving); root {}; joints: {}; {} degrees of freedom{}.\n",
+        escape(&model.name),
+        escape(&loaded.path.display().to_string()),
+        model.merged_links,
+        model.bodies.len(),
+        loaded.body_count(spec),
+        if free {
+            "free (a floating base)"
+        } else {
+            "fixed to the world"
+        },
+        if kinds.is_empty() {
+            "none".to_owned()
+        } else {
+            kinds.join(", ")
+        },
+        joint_dof + if free { 6 } else { 0 },
+        if free { " (6 of them the base's)" } else { "" },
+    );
+    let list = |title: &str, items: Vec<String>, out: &mut String| {
+        if items.is_empty() {
+            let _ = writeln!(out, "- {title}: none");
+        } else {
+            let _ = writeln!(out, "- {title}:");
+            for item in items {
+                let _ = writeln!(out, "  - {}", escape(&item));
+            }
+        }
+    };
+    list(
+        "Repairs",
+        model.repairs.iter().map(ToString::to_string).collect(),
+        &mut out,
+    );
+    list(
+        "Frozen joints (massless subtrees, coordinate 0)",
+        model
+            .frozen_joints
+            .iter()
+            .map(|f| format!("{} ({}, line {})", f.name, f.kind, f.line))
+            .collect(),
+        &mut out,
+    );
+    list("Importer warnings", model.warnings.clone(), &mut out);
+    let damped: Vec<String> = model
+        .joints
+        .iter()
+        .filter(|j| j.damping > 0.0)
+        .map(|j| format!("{}: {}", j.name, j.damping))
+        .collect();
+    let friction: Vec<String> = model
+        .joints
+        .iter()
+        .filter(|j| j.friction != 0.0)
+        .map(|j| format!("{}: {} (not modelled)", j.name, j.friction))
+        .collect();
+    match spec.joint_dynamics {
+        JointDynamicsName::Urdf => {
+            list(
+                "URDF joint damping, applied as joint damping (N m s/rad or N s/m)",
+                damped,
+                &mut out,
+            );
+            list("URDF Coulomb friction, not modelled", friction, &mut out);
+        }
+        JointDynamicsName::Ignore => {
+            list(
+                "URDF joint damping, ignored (joint_dynamics = \"ignore\")",
+                damped,
+                &mut out,
+            );
+            list(
+                "URDF Coulomb friction, ignored (joint_dynamics = \"ignore\"; never modelled)",
+                friction,
+                &mut out,
+            );
+        }
+    }
+    let limited = model
+        .joints
+        .iter()
+        .filter(|j| j.limit.is_some_and(|l| l.lower.is_some() || l.upper.is_some()))
+        .count();
+    let _ = match spec.limits {
+        LimitsName::Ignore => writeln!(
+            out,
+            "- Joint limits: not enforced (limits = \"ignore\"); {limited} joints have position limits in the URDF"
+        ),
+        LimitsName::Enforce => writeln!(
+            out,
+            "- Joint limits: enforced on the {limited} joints with position limits in the URDF (restitution {})",
+            spec.limit_restitution.unwrap_or(0.0)
+        ),
+    };
+    let mimics: Vec<String> = model
+        .joints
+        .iter()
+        .filter_map(|j| {
+            j.mimic
+                .as_ref()
+                .map(|m| format!("{} = {} {} + {}", j.name, m.multiplier, m.joint, m.offset))
+        })
+        .collect();
+    list(
+        match spec.mimic {
+            MimicName::Constraint => "Mimics, coupled (mimic = \"constraint\")",
+            MimicName::Independent => "Mimics, independent joints (mimic = \"independent\")",
+        },
+        mimics,
+        &mut out,
+    );
+    if !model.ignored.is_empty() {
+        let ignored: Vec<String> = model.ignored.iter().map(|(tag, n)| format!("<{tag}> × {n}")).collect();
+        let _ = writeln!(out, "- Ignored elements: {}", escape(&ignored.join(", ")));
+    }
+    let _ = writeln!(out, "- Gravity on the robot's bodies: {:?} m/s²\n", spec.gravity);
     out
 }
 

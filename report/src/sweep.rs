@@ -9,26 +9,7 @@ use reference::{SceneConstraint, SceneId, SceneParameters};
 use scenarios::{Formulation, SceneAlgebra};
 
 use crate::measure::{measure, Measurements};
-
-/// The two algebras, as a value (the simulators are generic; this picks the instantiation).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum AlgebraKind {
-    /// Conformal GA, [`dynamics::Cga`].
-    Cga,
-    /// Projective GA, [`dynamics::Pga`].
-    Pga,
-}
-
-impl AlgebraKind {
-    pub(crate) const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
-
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            AlgebraKind::Cga => "CGA",
-            AlgebraKind::Pga => "PGA",
-        }
-    }
-}
+pub use scene_file::names::AlgebraKind;
 
 /// One run of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -13,11 +13,11 @@ use dynamics::{Cga, Dynamics, Pga};
 use proptest::prelude::*;
 use reference::SceneId;
 use report::markdown::agreement;
-use report::names::IntegratorName;
-use report::scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, SceneFile};
 use report::scene_job::{run_scene_file, AlgebraRun};
 use scenarios::mechanism_measures::measure;
 use scenarios::{build, build_mechanism, Formulation, MechanismId, SceneAlgebra};
+use scene_file::names::IntegratorName;
+use scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, SceneFile};
 
 fn heavy_top_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml")
@@ -1026,7 +1026,7 @@ fn files_larger_than_the_cap_are_refused() {
     let dir = std::env::temp_dir().join("report-scene-file-large");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("large.toml");
-    let padding = "#".repeat(report::scene_file::MAX_FILE_BYTES as usize + 1);
+    let padding = "#".repeat(scene_file::MAX_FILE_BYTES as usize + 1);
     std::fs::write(&file, format!("{VALID}\n{padding}")).unwrap();
     let message = SceneFile::load(&file).unwrap_err().to_string();
     assert_mentions(&message, &["larger than"]);

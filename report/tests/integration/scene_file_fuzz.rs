@@ -10,8 +10,8 @@ use std::ops::Range;
 use dynamics::{Cga, Pga};
 use nalgebra::{UnitQuaternion, Vector3};
 use proptest::prelude::*;
-use report::scene_file::{joint_violations, FileAlgebra, JointGeometry, Pose, SceneFile};
 use report::sweep::AlgebraKind;
+use scene_file::{joint_violations, FileAlgebra, JointGeometry, Pose, SceneFile};
 
 /// The shipped scene files, read when the test is compiled.
 const SCENES: [(&str, &str); 8] = [
@@ -346,7 +346,7 @@ fn check_in(text: &str, folder: &std::path::Path) -> Result<(), TestCaseError> {
             return Ok(());
         }
     };
-    let ok = |what: &str, result: Result<(), report::scene_file::SceneFileError>| {
+    let ok = |what: &str, result: Result<(), scene_file::SceneFileError>| {
         result.map_err(|e| TestCaseError::fail(format!("parsed, but {what} failed: {e}")))
     };
     let layout = scene

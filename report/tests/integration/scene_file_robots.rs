@@ -19,8 +19,8 @@ use std::path::{Path, PathBuf};
 use dynamics::simulate::Plan;
 use dynamics::{Cga, Pga, State};
 use nalgebra::{UnitQuaternion, Vector3};
-use report::scene_file::{FileAlgebra, SceneFile};
 use report::scene_job::run_scene_file;
+use scene_file::{FileAlgebra, SceneFile};
 
 fn scenes() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")

@@ -12,19 +12,19 @@ use super::{invalid, Layout, Place, SceneFile, SceneFileError};
 /// of the plane `normal · x = offset` (world) that the normal points to, meeting it with `restitution`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct ContactSpec {
+pub struct ContactSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
+    pub name: Option<String>,
     #[serde(default)]
-    pub(crate) body: Option<String>,
+    pub body: Option<String>,
     #[serde(deserialize_with = "super::exactly")]
-    pub(crate) point: [f64; 3],
+    pub point: [f64; 3],
     #[serde(default = "up", deserialize_with = "super::exactly")]
-    pub(crate) normal: [f64; 3],
+    pub normal: [f64; 3],
     #[serde(default)]
-    pub(crate) offset: f64,
+    pub offset: f64,
     #[serde(default)]
-    pub(crate) restitution: f64,
+    pub restitution: f64,
 }
 
 /// The default normal: world z, a floor.
@@ -34,7 +34,7 @@ fn up() -> [f64; 3] {
 
 impl ContactSpec {
     /// The contact's name: as written, else "contact k" (1-based).
-    pub(crate) fn name(&self, index: usize) -> String {
+    pub fn name(&self, index: usize) -> String {
         self.name.clone().unwrap_or_else(|| format!("contact {}", index + 1))
     }
 }

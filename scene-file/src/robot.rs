@@ -4,7 +4,6 @@
 //! coordinates are written to `<stem>_joints_<algebra>.csv` in the columns of `reference/data/robots/*.csv`.
 
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
@@ -23,7 +22,7 @@ const MAX_URDF_BYTES: u64 = 64 << 20;
 /// `root = "fixed" | "free"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum RootName {
+pub enum RootName {
     #[default]
     Fixed,
     Free,
@@ -32,7 +31,7 @@ pub(crate) enum RootName {
 /// `mimic = "constraint" | "independent"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum MimicName {
+pub enum MimicName {
     #[default]
     Constraint,
     Independent,
@@ -41,7 +40,7 @@ pub(crate) enum MimicName {
 /// `joint_dynamics = "urdf" | "ignore"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum JointDynamicsName {
+pub enum JointDynamicsName {
     #[default]
     Urdf,
     Ignore,
@@ -50,7 +49,7 @@ pub(crate) enum JointDynamicsName {
 /// `limits = "ignore" | "enforce"`: the URDF's position limits of revolute and prismatic joints.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum LimitsName {
+pub enum LimitsName {
     #[default]
     Ignore,
     Enforce,
@@ -59,7 +58,7 @@ pub(crate) enum LimitsName {
 /// `massless_subtrees = "error" | "freeze"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum MasslessName {
+pub enum MasslessName {
     #[default]
     Error,
     Freeze,
@@ -68,7 +67,7 @@ pub(crate) enum MasslessName {
 /// `repairs = { … }`: the importer's opt-in repairs ([`ImportOptions`]).
 #[derive(Clone, Copy, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct RepairsSpec {
+pub struct RepairsSpec {
     #[serde(default)]
     massless_subtrees: MasslessName,
     #[serde(default)]
@@ -82,58 +81,58 @@ pub(crate) struct RepairsSpec {
 /// The `[robot]` table.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct RobotSpec {
+pub struct RobotSpec {
     /// The URDF file, relative to the scene file.
-    pub(crate) urdf: String,
+    pub urdf: String,
     #[serde(default)]
-    pub(crate) root: RootName,
+    pub root: RootName,
     #[serde(default)]
-    pub(crate) mimic: MimicName,
+    pub mimic: MimicName,
     #[serde(default)]
-    pub(crate) joint_dynamics: JointDynamicsName,
+    pub joint_dynamics: JointDynamicsName,
     #[serde(default)]
-    pub(crate) limits: LimitsName,
+    pub limits: LimitsName,
     /// The restitution of every enforced bound, in [0, 1] (default 0: a joint stops at its bound).
     #[serde(default)]
-    pub(crate) limit_restitution: Option<f64>,
+    pub limit_restitution: Option<f64>,
     /// m/s², world.
     #[serde(default = "standard_gravity")]
     #[serde(deserialize_with = "super::exactly")]
-    pub(crate) gravity: [f64; 3],
+    pub gravity: [f64; 3],
     /// Joint positions by name (rad or m).
     #[serde(default)]
-    pub(crate) q: BTreeMap<String, f64>,
+    pub q: BTreeMap<String, f64>,
     /// Joint velocities by name (rad/s or m/s).
     #[serde(default)]
-    pub(crate) v: BTreeMap<String, f64>,
+    pub v: BTreeMap<String, f64>,
     /// The root link frame's origin (m, world), for a free root.
     #[serde(default)]
     #[serde(deserialize_with = "super::maybe_exactly")]
-    pub(crate) base_position: Option<[f64; 3]>,
+    pub base_position: Option<[f64; 3]>,
     /// The root link frame's orientation (world ← root), for a free root.
     #[serde(default)]
-    pub(crate) base_orientation: Option<OrientationSpec>,
+    pub base_orientation: Option<OrientationSpec>,
     /// The root link frame origin's velocity (m/s, world), for a free root.
     #[serde(default)]
     #[serde(deserialize_with = "super::maybe_exactly")]
-    pub(crate) base_velocity: Option<[f64; 3]>,
+    pub base_velocity: Option<[f64; 3]>,
     /// The angular velocity (rad/s, world), for a free root.
     #[serde(default)]
     #[serde(deserialize_with = "super::maybe_exactly")]
-    pub(crate) base_angular_velocity: Option<[f64; 3]>,
+    pub base_angular_velocity: Option<[f64; 3]>,
     /// Constant joint torques (N m) or forces (N) by joint name.
     #[serde(default)]
-    pub(crate) torque: BTreeMap<String, f64>,
+    pub torque: BTreeMap<String, f64>,
     #[serde(default)]
-    pub(crate) repairs: Option<RepairsSpec>,
+    pub repairs: Option<RepairsSpec>,
 }
 
 /// The robot's URDF, read and imported.
 #[derive(Clone, Debug)]
-pub(crate) struct LoadedRobot {
+pub struct LoadedRobot {
     /// The URDF file as found (the scene file's folder joined with `urdf`).
-    pub(crate) path: PathBuf,
-    pub(crate) model: RobotModel,
+    pub path: PathBuf,
+    pub model: RobotModel,
 }
 
 impl RobotSpec {
@@ -155,7 +154,7 @@ impl RobotSpec {
     }
 
     /// The importer's limit option: a restitution only with `limits = "enforce"`, and in [0, 1].
-    pub(crate) fn limits(&self) -> Result<Limits, SceneFileError> {
+    pub fn limits(&self) -> Result<Limits, SceneFileError> {
         match (self.limits, self.limit_restitution) {
             (LimitsName::Ignore, None) => Ok(Limits::Ignore),
             (LimitsName::Ignore, Some(_)) => Err(invalid(
@@ -175,7 +174,7 @@ impl RobotSpec {
         }
     }
 
-    pub(crate) fn root(&self) -> Root {
+    pub fn root(&self) -> Root {
         match self.root {
             RootName::Fixed => Root::Fixed,
             RootName::Free => Root::Free,
@@ -184,7 +183,7 @@ impl RobotSpec {
 
     /// Reads the URDF at `urdf` relative to `dir` and imports it: an error naming the path when the file cannot be
     /// read, the importer's error verbatim otherwise.
-    pub(crate) fn load(&self, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
+    pub fn load(&self, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
         self.limits()?;
         let repairs = self.repairs.unwrap_or_default();
         for (key, value) in [
@@ -230,7 +229,7 @@ impl LoadedRobot {
 
     /// The index of the moving joint `name` in the model, or an error under `what` naming it and listing the robot's
     /// joints (or saying it is frozen).
-    pub(crate) fn joint_index(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+    pub fn joint_index(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
         if let Some(index) = self.model.joints.iter().position(|j| j.name == name) {
             return Ok(index);
         }
@@ -250,7 +249,7 @@ impl LoadedRobot {
     }
 
     /// The index of a one-coordinate moving joint.
-    pub(crate) fn single_coordinate_joint(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+    pub fn single_coordinate_joint(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
         let index = self.joint_index(what, name)?;
         let kind = self.model.joints[index].kind;
         if kind.degrees_of_freedom() != 1 {
@@ -266,7 +265,7 @@ impl LoadedRobot {
     }
 
     /// Every link name, body by body.
-    pub(crate) fn links(&self) -> impl Iterator<Item = &str> {
+    pub fn links(&self) -> impl Iterator<Item = &str> {
         self.model
             .bodies
             .iter()
@@ -274,12 +273,12 @@ impl LoadedRobot {
     }
 
     /// Whether `name` is one of the robot's joints (moving or frozen).
-    pub(crate) fn has_joint(&self, name: &str) -> bool {
+    pub fn has_joint(&self, name: &str) -> bool {
         self.model.joints.iter().any(|j| j.name == name) || self.model.frozen_joints.iter().any(|f| f.name == name)
     }
 
     /// The number of mechanism bodies the robot adds (its root is the world when fixed).
-    pub(crate) fn body_count(&self, spec: &RobotSpec) -> usize {
+    pub fn body_count(&self, spec: &RobotSpec) -> usize {
         self.model.bodies.len() - usize::from(spec.root == RootName::Fixed)
     }
 
@@ -353,7 +352,7 @@ impl LoadedRobot {
 
     /// The robot built in algebra `A` (its mechanism the scene's first bodies and joints) and its bodies' states at
     /// the start.
-    pub(crate) fn build<A: Algebra>(&self, spec: &RobotSpec) -> Result<(Robot<A>, Vec<State<A>>), SceneFileError> {
+    pub fn build<A: Algebra>(&self, spec: &RobotSpec) -> Result<(Robot<A>, Vec<State<A>>), SceneFileError> {
         let gravity = finite("robot.gravity", spec.gravity)?;
         if gravity.amax() > 1e50 {
             return Err(invalid(
@@ -373,149 +372,11 @@ impl LoadedRobot {
             .map_err(|e| invalid("robot", format!("the start: {e}")))?;
         Ok((robot, states))
     }
-
-    /// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.
-    pub(crate) fn summary(&self, spec: &RobotSpec) -> String {
-        let model = &self.model;
-        let mut out = String::new();
-        let links: usize = model.bodies.iter().map(|b| b.links.len()).sum();
-        let kinds: Vec<String> = model
-            .joint_counts()
-            .iter()
-            .map(|(kind, n)| format!("{n} {kind}"))
-            .collect();
-        let joint_dof: usize = model.joints.iter().map(|j| j.kind.degrees_of_freedom()).sum();
-        let free = spec.root == RootName::Free;
-        let _ = writeln!(
-            out,
-            "Robot `{}` from {}: {links} links, {} merged into other links' bodies (fixed joints), so {} bodies ({} \
-             moving); root {}; joints: {}; {} degrees of freedom{}.\n",
-            crate::markdown::escape(&model.name),
-            crate::markdown::escape(&self.path.display().to_string()),
-            model.merged_links,
-            model.bodies.len(),
-            self.body_count(spec),
-            if free {
-                "free (a floating base)"
-            } else {
-                "fixed to the world"
-            },
-            if kinds.is_empty() {
-                "none".to_owned()
-            } else {
-                kinds.join(", ")
-            },
-            joint_dof + if free { 6 } else { 0 },
-            if free { " (6 of them the base's)" } else { "" },
-        );
-        let list = |title: &str, items: Vec<String>, out: &mut String| {
-            if items.is_empty() {
-                let _ = writeln!(out, "- {title}: none");
-            } else {
-                let _ = writeln!(out, "- {title}:");
-                for item in items {
-                    let _ = writeln!(out, "  - {}", crate::markdown::escape(&item));
-                }
-            }
-        };
-        list(
-            "Repairs",
-            model.repairs.iter().map(ToString::to_string).collect(),
-            &mut out,
-        );
-        list(
-            "Frozen joints (massless subtrees, coordinate 0)",
-            model
-                .frozen_joints
-                .iter()
-                .map(|f| format!("{} ({}, line {})", f.name, f.kind, f.line))
-                .collect(),
-            &mut out,
-        );
-        list("Importer warnings", model.warnings.clone(), &mut out);
-        let damped: Vec<String> = model
-            .joints
-            .iter()
-            .filter(|j| j.damping > 0.0)
-            .map(|j| format!("{}: {}", j.name, j.damping))
-            .collect();
-        let friction: Vec<String> = model
-            .joints
-            .iter()
-            .filter(|j| j.friction != 0.0)
-            .map(|j| format!("{}: {} (not modelled)", j.name, j.friction))
-            .collect();
-        match spec.joint_dynamics {
-            JointDynamicsName::Urdf => {
-                list(
-                    "URDF joint damping, applied as joint damping (N m s/rad or N s/m)",
-                    damped,
-                    &mut out,
-                );
-                list("URDF Coulomb friction, not modelled", friction, &mut out);
-            }
-            JointDynamicsName::Ignore => {
-                list(
-                    "URDF joint damping, ignored (joint_dynamics = \"ignore\")",
-                    damped,
-                    &mut out,
-                );
-                list(
-                    "URDF Coulomb friction, ignored (joint_dynamics = \"ignore\"; never modelled)",
-                    friction,
-                    &mut out,
-                );
-            }
-        }
-        let limited = model
-            .joints
-            .iter()
-            .filter(|j| j.limit.is_some_and(|l| l.lower.is_some() || l.upper.is_some()))
-            .count();
-        let _ = match spec.limits {
-            LimitsName::Ignore => writeln!(
-                out,
-                "- Joint limits: not enforced (limits = \"ignore\"); {limited} joints have position limits in the URDF"
-            ),
-            LimitsName::Enforce => writeln!(
-                out,
-                "- Joint limits: enforced on the {limited} joints with position limits in the URDF (restitution {})",
-                spec.limit_restitution.unwrap_or(0.0)
-            ),
-        };
-        let mimics: Vec<String> = model
-            .joints
-            .iter()
-            .filter_map(|j| {
-                j.mimic
-                    .as_ref()
-                    .map(|m| format!("{} = {} {} + {}", j.name, m.multiplier, m.joint, m.offset))
-            })
-            .collect();
-        list(
-            match spec.mimic {
-                MimicName::Constraint => "Mimics, coupled (mimic = \"constraint\")",
-                MimicName::Independent => "Mimics, independent joints (mimic = \"independent\")",
-            },
-            mimics,
-            &mut out,
-        );
-        if !model.ignored.is_empty() {
-            let ignored: Vec<String> = model.ignored.iter().map(|(tag, n)| format!("<{tag}> × {n}")).collect();
-            let _ = writeln!(
-                out,
-                "- Ignored elements: {}",
-                crate::markdown::escape(&ignored.join(", "))
-            );
-        }
-        let _ = writeln!(out, "- Gravity on the robot's bodies: {:?} m/s²\n", spec.gravity);
-        out
-    }
 }
 
 /// A robot joint's model, its child and parent bodies (mechanism indices; `None`: the world) and where its position
 /// coordinates start.
-pub(crate) type RobotJoint = (JointModel, usize, Option<usize>, usize);
+pub type RobotJoint = (JointModel, usize, Option<usize>, usize);
 
 /// Where a joints-CSV column comes from.
 #[derive(Clone, Copy, Debug)]
@@ -530,14 +391,14 @@ enum Source {
 /// (frozen ones at their constant 0), then for a free root `base.x, base.y, base.z, base.qw, base.qx, base.qy,
 /// base.qz` (the root link frame, world ← root).
 #[derive(Clone, Debug)]
-pub(crate) struct RobotColumns {
-    pub(crate) headers: Vec<String>,
+pub struct RobotColumns {
+    pub headers: Vec<String>,
     sources: Vec<Source>,
 }
 
 impl RobotColumns {
     /// The columns' values at joint positions `q` (the mechanism's joint space).
-    pub(crate) fn row(&self, q: &[f64]) -> Vec<f64> {
+    pub fn row(&self, q: &[f64]) -> Vec<f64> {
         self.sources
             .iter()
             .map(|s| match s {
@@ -584,7 +445,7 @@ fn coordinate_group<'s, A: Algebra>(
 
 impl LoadedRobot {
     /// The joints CSV's columns in `mechanism` (the robot's, with the scene's bodies added).
-    pub(crate) fn columns<A: Algebra>(
+    pub fn columns<A: Algebra>(
         &self,
         robot: &Robot<A>,
         mechanism: &Mechanism<A>,
@@ -643,7 +504,7 @@ impl LoadedRobot {
 
     /// Every moving joint's model with its child and parent body (mechanism indices) and where its positions start,
     /// to measure how far the bodies are from the pose their joint coordinates give.
-    pub(crate) fn joint_models<A: Algebra>(
+    pub fn joint_models<A: Algebra>(
         &self,
         robot: &Robot<A>,
         mechanism: &Mechanism<A>,

@@ -18,13 +18,13 @@ const MAX_VALUE: f64 = 1e50;
 /// `offset + amplitude sin(2π frequency t + phase)`: frequency in Hz, phase in rad.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct Sine {
+pub struct Sine {
     #[serde(default)]
-    pub(crate) offset: f64,
-    pub(crate) amplitude: f64,
-    pub(crate) frequency: f64,
+    pub offset: f64,
+    pub amplitude: f64,
+    pub frequency: f64,
     #[serde(default)]
-    pub(crate) phase: f64,
+    pub phase: f64,
 }
 
 impl Sine {
@@ -69,7 +69,7 @@ impl Sine {
     }
 
     /// The value, its rate and acceleration at `t` (exact).
-    pub(crate) fn at(&self, t: f64) -> PathPoint<f64> {
+    pub fn at(&self, t: f64) -> PathPoint<f64> {
         let omega = TAU * self.frequency;
         let (sin, cos) = (omega * t + self.phase).sin_cos();
         PathPoint {
@@ -82,7 +82,7 @@ impl Sine {
 
 /// A value over time, written as a number (a constant) or `{ kind = "sine", offset, amplitude, frequency, phase }`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum TimeValue {
+pub enum TimeValue {
     Constant(f64),
     Sine(Sine),
 }
@@ -132,7 +132,7 @@ impl<'de> Deserialize<'de> for TimeValue {
 
 impl TimeValue {
     /// Checked: finite, and within 1e50.
-    pub(crate) fn checked(self, what: &str) -> Result<TimeValue, SceneFileError> {
+    pub fn checked(self, what: &str) -> Result<TimeValue, SceneFileError> {
         match self {
             TimeValue::Constant(value) => Ok(TimeValue::Constant(bounded(what, value)?)),
             TimeValue::Sine(sine) => Ok(TimeValue::Sine(sine.checked(what)?)),
@@ -140,7 +140,7 @@ impl TimeValue {
     }
 
     /// The value at `t`.
-    pub(crate) fn at(&self, t: f64) -> f64 {
+    pub fn at(&self, t: f64) -> f64 {
         match self {
             TimeValue::Constant(value) => *value,
             TimeValue::Sine(sine) => sine.at(t).value,
@@ -148,7 +148,7 @@ impl TimeValue {
     }
 
     /// "2 N m" or "sine", for the summary.
-    pub(crate) fn describe(&self) -> String {
+    pub fn describe(&self) -> String {
         match self {
             TimeValue::Constant(value) => format!("{value}"),
             TimeValue::Sine(s) => format!(
@@ -160,7 +160,7 @@ impl TimeValue {
 }
 
 /// A finite value of at most 1e50 in magnitude.
-pub(crate) fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
+pub fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
     if value.is_finite() && value.abs() <= MAX_VALUE {
         Ok(value)
     } else {
@@ -169,7 +169,7 @@ pub(crate) fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
 }
 
 /// A finite, non-negative value of at most 1e50.
-pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError> {
+pub fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError> {
     if value.is_finite() && (0.0..=MAX_VALUE).contains(&value) {
         Ok(value)
     } else {
@@ -184,7 +184,7 @@ pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError
 /// `{ kind = "sine", offset, amplitude, frequency, phase }`.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum DriveSpec {
+pub enum DriveSpec {
     /// `start + rate t`.
     ConstantRate {
         #[serde(default)]
@@ -197,7 +197,7 @@ pub(crate) enum DriveSpec {
 
 impl DriveSpec {
     /// The checked drive over a run of `duration` s: finite parameters whose value stays within 1e50.
-    pub(crate) fn checked(self, what: &str, duration: f64) -> Result<DriveSpec, SceneFileError> {
+    pub fn checked(self, what: &str, duration: f64) -> Result<DriveSpec, SceneFileError> {
         match self {
             DriveSpec::ConstantRate { start, rate } => {
                 let start = bounded(&format!("{what}.start"), start)?;
@@ -216,7 +216,7 @@ impl DriveSpec {
     }
 
     /// The prescribed value, rate and acceleration at `t` (exact).
-    pub(crate) fn at(&self, t: f64) -> PathPoint<f64> {
+    pub fn at(&self, t: f64) -> PathPoint<f64> {
         match *self {
             DriveSpec::ConstantRate { start, rate } => PathPoint {
                 value: start + rate * t,
@@ -228,7 +228,7 @@ impl DriveSpec {
     }
 
     /// For the summary.
-    pub(crate) fn describe(&self) -> String {
+    pub fn describe(&self) -> String {
         match self {
             DriveSpec::ConstantRate { start, rate } => format!("{start} + {rate} t"),
             DriveSpec::Sine(s) => format!(
@@ -243,74 +243,74 @@ impl DriveSpec {
 /// robot link, or `"world"`), each point in its body's (or link's, or the world's) coordinates.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct SpringSpec {
+pub struct SpringSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
+    pub name: Option<String>,
     #[serde(deserialize_with = "super::exactly")]
-    pub(crate) between: [String; 2],
+    pub between: [String; 2],
     #[serde(deserialize_with = "super::points")]
-    pub(crate) points: [[f64; 3]; 2],
+    pub points: [[f64; 3]; 2],
     /// N/m.
-    pub(crate) stiffness: f64,
+    pub stiffness: f64,
     /// N s/m.
     #[serde(default)]
-    pub(crate) damping: f64,
+    pub damping: f64,
     /// m.
-    pub(crate) rest_length: f64,
+    pub rest_length: f64,
 }
 
 /// `[[couple]]`: a constant moment (N m, world axes) on the first body and its opposite on the second.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct CoupleSpec {
+pub struct CoupleSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
+    pub name: Option<String>,
     #[serde(deserialize_with = "super::exactly")]
-    pub(crate) between: [String; 2],
+    pub between: [String; 2],
     #[serde(deserialize_with = "super::exactly")]
-    pub(crate) moment: [f64; 3],
+    pub moment: [f64; 3],
 }
 
 /// `[[joint_torque]]`: a torque (N m) or force (N) on a one-coordinate joint by name, constant or a sine of time.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct JointTorqueSpec {
+pub struct JointTorqueSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
-    pub(crate) joint: String,
-    pub(crate) torque: TimeValue,
+    pub name: Option<String>,
+    pub joint: String,
+    pub torque: TimeValue,
 }
 
 /// `[[joint_damping]]`: viscous damping `−c q̇` on every coordinate of a joint by name.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct JointDampingSpec {
+pub struct JointDampingSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
-    pub(crate) joint: String,
+    pub name: Option<String>,
+    pub joint: String,
     /// N m s/rad or N s/m.
-    pub(crate) damping: f64,
+    pub damping: f64,
 }
 
 /// `[[pd]]`: a PD controller on one-coordinate joints by name, `τ = kp (target − q) − kd q̇` (+ the bias forces h(q, v)
 /// with `gravity_compensation = true`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct PdSpec {
+pub struct PdSpec {
     #[serde(default)]
-    pub(crate) name: Option<String>,
+    pub name: Option<String>,
     /// N m/rad or N/m.
-    pub(crate) kp: f64,
+    pub kp: f64,
     /// N m s/rad or N s/m.
-    pub(crate) kd: f64,
+    pub kd: f64,
     /// rad or m, by joint name.
-    pub(crate) target: BTreeMap<String, f64>,
+    pub target: BTreeMap<String, f64>,
     #[serde(default)]
-    pub(crate) gravity_compensation: bool,
+    pub gravity_compensation: bool,
 }
 
 /// An element's name: the one written, or `default`; checked non-empty and unique among `taken`.
-pub(crate) fn element_name(
+pub fn element_name(
     written: &Option<String>,
     default: impl FnOnce() -> String,
     taken: &mut Vec<String>,

@@ -10,7 +10,7 @@ use super::{direction, exactly, finite, invalid, maybe_exactly, OrientationSpec,
 /// A surface: its kind and its parameters (lengths in metres).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum SurfaceSpec {
+pub enum SurfaceSpec {
     /// `x²/a² + y²/b² + z²/c² = 1`, `radii = [a, b, c]` along the local axes.
     Ellipsoid {
         #[serde(deserialize_with = "exactly")]
@@ -124,7 +124,7 @@ fn pose(
 
 impl SurfaceSpec {
     /// The surface, with messages naming `what` (e.g. `constraint bead: surface`) and the key at fault.
-    pub(crate) fn surface(&self, what: &str) -> Result<Surface, SceneFileError> {
+    pub fn surface(&self, what: &str) -> Result<Surface, SceneFileError> {
         let built = match self {
             SurfaceSpec::Ellipsoid {
                 radii,

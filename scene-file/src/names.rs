@@ -65,7 +65,7 @@ impl From<IntegratorName> for Integrator {
 /// The stabilisations by name, on the command line and in scene files.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub(crate) enum StabilisationName {
+pub enum StabilisationName {
     /// Post-step projection onto the constraint manifold (theory §10).
     Projection,
     /// Baumgarte feedback, α = β = 10 (theory §10).
@@ -83,6 +83,26 @@ impl From<StabilisationName> for Stabilisation {
                 beta: 10.0,
             },
             StabilisationName::None => Stabilisation::None,
+        }
+    }
+}
+
+/// The two algebras, as a value (the simulators are generic; this picks the instantiation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum AlgebraKind {
+    /// Conformal GA, [`dynamics::Cga`].
+    Cga,
+    /// Projective GA, [`dynamics::Pga`].
+    Pga,
+}
+
+impl AlgebraKind {
+    pub const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AlgebraKind::Cga => "CGA",
+            AlgebraKind::Pga => "PGA",
         }
     }
 }

@@ -37,7 +37,7 @@ use super::{invalid, AxisFreedom, CheckedGeometry, FileAlgebra, SceneFileError};
 /// out (no bound on that side), not both; the restitution defaults to 0 (the joint stops at its bound). Read as a
 /// table only (serde's derived struct would also take an array, its entries by position).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct LimitSpec {
+pub struct LimitSpec {
     lower: Option<f64>,
     upper: Option<f64>,
     restitution: Option<f64>,
@@ -61,7 +61,7 @@ impl<'de> Deserialize<'de> for LimitSpec {
 
 impl LimitSpec {
     /// The limit, or an error naming `what` (the joint's `limit` entry) and the values.
-    pub(crate) fn limit(&self, what: &str) -> Result<JointLimit, SceneFileError> {
+    pub fn limit(&self, what: &str) -> Result<JointLimit, SceneFileError> {
         if self.lower.is_none() && self.upper.is_none() {
             return Err(invalid(what, "needs a lower or an upper bound, or both"));
         }
@@ -80,7 +80,7 @@ impl LimitSpec {
 
 /// The smallest rotation taking the unit vector `from` to the unit vector `to`; exactly the identity when they are
 /// equal, a half turn about `from`'s first normal when they are opposite.
-pub(crate) fn smallest_rotation(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
+pub fn smallest_rotation(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
     if from == to {
         return UnitQuaternion::identity();
     }
@@ -107,7 +107,7 @@ fn frame_rotation(from: (Vector3<f64>, Vector3<f64>), to: (Vector3<f64>, Vector3
 
 /// Whether a joint of this geometry becomes a joint model (ball, hinge, cylindrical, prismatic, planar, universal,
 /// fixed); the others (points on lines, planes, spheres, circles) stay constraints.
-pub(crate) fn has_model(geometry: &CheckedGeometry) -> bool {
+pub fn has_model(geometry: &CheckedGeometry) -> bool {
     matches!(
         geometry,
         CheckedGeometry::Ball { .. }
@@ -121,7 +121,7 @@ pub(crate) fn has_model(geometry: &CheckedGeometry) -> bool {
 /// The joint model of `geometry` (its reference side in the reference's frame, which sits at `frame` in the
 /// reference body's frame: a robot link's frame, else the identity), driven by `drive` if given; `None` for a
 /// geometry without one ([`has_model`]).
-pub(crate) fn joint_model(
+pub fn joint_model(
     name: &str,
     geometry: &CheckedGeometry,
     frame: &Isometry3<f64>,
@@ -226,7 +226,7 @@ fn geometry_kind(geometry: &CheckedGeometry) -> &'static str {
 /// The rows of `model` in the chosen formulation: by virtual power its own ([`JointModel::virtual_power`]); by
 /// pinning the pinned objects of its frames (a point, a line and a point, a line, a line and a plane, a plane; a
 /// driven joint's and a weld's motor by two pinned lines). A universal joint has no pinned form.
-pub(crate) fn rows<A: FileAlgebra>(
+pub fn rows<A: FileAlgebra>(
     model: &JointModel,
     pinned: bool,
     drive: Option<DriveSpec>,

@@ -1,7 +1,7 @@
 //! Scenes described in a TOML file (docs/scene-files.md): bodies with their shape or inertia, initial pose
 //! and velocities and forces, joints to the world or between bodies, a URDF robot, force elements between bodies,
 //! algebra, integrator, step and duration, run without writing Rust (`--scene-file`; the run and its output are in
-//! [`crate::scene_job`]).
+//! the report crate's `scene_job`).
 //!
 //! Two layouts, one system: a single `[body]` with its `[initial]` state, `[[forces]]` and `[[constraints]]`
 //! to the world; or named `[[body]]` entries, each with its `initial` state and `forces`, and `[[joint]]`
@@ -12,7 +12,7 @@
 //! side in body coordinates and the rest in its reference's frame; a `[[joint]]` of the first seven kinds is a joint
 //! model (`joint_models`), with coordinates, a `drive` if it is a hinge or prismatic joint, and the articulated solve.
 //! Force elements (`[[spring]]`, `[[couple]]`, `[[joint_torque]]`, `[[joint_damping]]`, `[[pd]]`) are in `elements`,
-//! the robot in `robot`. The run's output, its CSV columns included, is described in [`crate::scene_job`].
+//! the robot in `robot`. The run's output, its CSV columns included, is described in the report crate's `scene_job`.
 //!
 //! [`SceneFile::parse`] checks everything a run needs, down to building the system in each requested
 //! algebra, so a bad file fails before anything runs, with a message that names the offending entry. The
@@ -22,7 +22,8 @@
 mod contacts;
 mod elements;
 mod joint_models;
-mod robot;
+pub mod names;
+pub mod robot;
 mod surfaces;
 
 use std::path::Path;
@@ -44,8 +45,7 @@ use dynamics::{
 use nalgebra::{DVector, Isometry3, Quaternion, SVector, Translation3, Unit, UnitQuaternion, Vector3};
 use serde::Deserialize;
 
-use crate::names::{IntegratorName, StabilisationName};
-use crate::sweep::AlgebraKind;
+use crate::names::{AlgebraKind, IntegratorName, StabilisationName};
 use elements::{
     bounded, element_name, non_negative, CoupleSpec, DriveSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec,
     TimeValue,
@@ -194,7 +194,7 @@ impl AlgebraChoice {
 pub struct SceneFile {
     /// A title for the summary and the plots.
     #[serde(default)]
-    pub(crate) title: Option<String>,
+    pub title: Option<String>,
     /// Which algebras run the scene.
     #[serde(default)]
     pub algebra: AlgebraChoice,
@@ -219,59 +219,59 @@ pub struct SceneFile {
     #[serde(default = "default_sample_interval")]
     pub sample_interval: f64,
     #[serde(default = "default_stabilisation")]
-    pub(crate) stabilisation: StabilisationName,
+    pub stabilisation: StabilisationName,
     /// How far the start may be moved onto its joints (m and rad) before it is refused as breaking them: its
     /// rounding passes, a body placed off its joint does not.
     #[serde(default = "default_max_start_correction")]
-    pub(crate) max_start_correction: f64,
+    pub max_start_correction: f64,
     /// Gains for `stabilisation = "baumgarte"` (default α = β = 10, as on the command line).
     #[serde(default)]
-    pub(crate) baumgarte: Option<BaumgarteGains>,
+    pub baumgarte: Option<BaumgarteGains>,
     /// `[body]`, one body, or `[[body]]`, named bodies; none with a `[robot]` alone.
     #[serde(default)]
-    pub(crate) body: Option<Bodies>,
+    pub body: Option<Bodies>,
     /// The single body's initial state.
     #[serde(default)]
-    pub(crate) initial: Option<InitialSpec>,
+    pub initial: Option<InitialSpec>,
     /// The single body's forces.
     #[serde(default)]
-    pub(crate) forces: Vec<ForceSpec>,
+    pub forces: Vec<ForceSpec>,
     /// The single body's constraints to the world.
     #[serde(default)]
     pub constraints: Vec<ConstraintSpec>,
     /// Joints between named bodies, or a named body and the world or a robot link.
     #[serde(default)]
-    pub(crate) joint: Vec<JointSpec>,
+    pub joint: Vec<JointSpec>,
     /// A URDF robot.
     #[serde(default)]
-    pub(crate) robot: Option<RobotSpec>,
+    pub robot: Option<RobotSpec>,
     /// Spring-dampers between two bodies.
     #[serde(default)]
-    pub(crate) spring: Vec<SpringSpec>,
+    pub spring: Vec<SpringSpec>,
     /// Constant couples between two bodies.
     #[serde(default)]
-    pub(crate) couple: Vec<CoupleSpec>,
+    pub couple: Vec<CoupleSpec>,
     /// Torques on joints by name.
     #[serde(default)]
-    pub(crate) joint_torque: Vec<JointTorqueSpec>,
+    pub joint_torque: Vec<JointTorqueSpec>,
     /// Viscous damping on joints by name.
     #[serde(default)]
-    pub(crate) joint_damping: Vec<JointDampingSpec>,
+    pub joint_damping: Vec<JointDampingSpec>,
     /// PD controllers on joints by name.
     #[serde(default)]
-    pub(crate) pd: Vec<PdSpec>,
+    pub pd: Vec<PdSpec>,
     /// Body points kept above world planes.
     #[serde(default)]
-    pub(crate) contact: Vec<contacts::ContactSpec>,
+    pub contact: Vec<contacts::ContactSpec>,
     /// The robot's URDF, read by [`SceneFile::parse`].
     #[serde(skip)]
-    pub(crate) loaded_robot: Option<Arc<LoadedRobot>>,
+    pub loaded_robot: Option<Arc<LoadedRobot>>,
 }
 
 /// The `body` key: a table (`[body]`, one body) or an array of tables (`[[body]]`, named bodies). Deserialized
 /// by peeking at which it is, so that toml's messages keep their line and column.
 #[derive(Clone, Debug)]
-pub(crate) enum Bodies {
+pub enum Bodies {
     One(BodySpec),
     Named(Vec<NamedBody>),
 }
@@ -301,19 +301,19 @@ impl<'de> Deserialize<'de> for Bodies {
 /// A `[[body]]` entry: a name, the body as in `[body]`, its initial state and its forces.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct NamedBody {
+pub struct NamedBody {
     /// Letters, digits, `_` and `-` (it heads CSV columns and names the body in messages).
-    pub(crate) name: String,
-    pub(crate) mass: f64,
+    pub name: String,
+    pub mass: f64,
     #[serde(default)]
-    pub(crate) shape: Option<Shape>,
+    pub shape: Option<Shape>,
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
-    pub(crate) principal_moments: Option<[f64; 3]>,
+    pub principal_moments: Option<[f64; 3]>,
     #[serde(default)]
-    pub(crate) initial: Option<InitialSpec>,
+    pub initial: Option<InitialSpec>,
     #[serde(default)]
-    pub(crate) forces: Vec<ForceSpec>,
+    pub forces: Vec<ForceSpec>,
 }
 
 /// A `[[joint]]`: `between = [body, reference]`, the reference another body or `"world"`. The geometry is that
@@ -321,37 +321,37 @@ pub(crate) struct NamedBody {
 /// `world_axis`, also written `reference_point`, `reference_axis`; normals, offsets, centres) in the
 /// reference's: its body coordinates, or the world's.
 #[derive(Clone, Debug, Deserialize)]
-pub(crate) struct JointSpec {
-    pub(crate) name: String,
+pub struct JointSpec {
+    pub name: String,
     #[serde(deserialize_with = "exactly")]
-    pub(crate) between: [String; 2],
+    pub between: [String; 2],
     #[serde(default)]
-    pub(crate) formulation: FormulationName,
+    pub formulation: FormulationName,
     /// The prescribed coordinate of a hinge or prismatic joint.
     #[serde(default)]
-    pub(crate) drive: Option<DriveSpec>,
+    pub drive: Option<DriveSpec>,
     /// The range of a hinge's or prismatic joint's coordinate, enforced exactly.
     #[serde(default)]
-    pub(crate) limit: Option<LimitSpec>,
+    pub limit: Option<LimitSpec>,
     #[serde(flatten)]
-    pub(crate) geometry: Geometry,
+    pub geometry: Geometry,
 }
 
 /// A body of the scene, whichever layout it came from.
 #[derive(Clone, Debug)]
 pub struct LayoutBody {
-    pub(crate) name: String,
-    pub(crate) spec: BodySpec,
+    pub name: String,
+    pub spec: BodySpec,
     /// Its state at t = 0, as the file gives it.
     pub initial: InitialSpec,
     /// Whether the file gives it (an `initial` table); otherwise its joint places it.
-    pub(crate) initial_given: bool,
-    pub(crate) forces: Vec<ForceSpec>,
+    pub initial_given: bool,
+    pub forces: Vec<ForceSpec>,
 }
 
 /// What a joint holds its body to, or where a force element's end is.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum End {
+pub enum End {
     World,
     /// A body of the file, by its index in [`Layout::bodies`].
     Body(usize),
@@ -361,16 +361,16 @@ pub(crate) enum End {
 
 /// A joint of the scene: its name in messages, its body (by index) and reference.
 #[derive(Clone, Debug)]
-pub(crate) struct LayoutJoint {
-    pub(crate) name: String,
-    pub(crate) body: usize,
-    pub(crate) reference: End,
-    pub(crate) formulation: FormulationName,
-    pub(crate) geometry: Geometry,
+pub struct LayoutJoint {
+    pub name: String,
+    pub body: usize,
+    pub reference: End,
+    pub formulation: FormulationName,
+    pub geometry: Geometry,
     /// A `[[joint]]` entry (a joint model where it can be), not a `[[constraints]]` one.
-    pub(crate) entry: bool,
-    pub(crate) drive: Option<DriveSpec>,
-    pub(crate) limit: Option<LimitSpec>,
+    pub entry: bool,
+    pub drive: Option<DriveSpec>,
+    pub limit: Option<LimitSpec>,
 }
 
 /// The scene's bodies and joints.
@@ -378,9 +378,9 @@ pub(crate) struct LayoutJoint {
 pub struct Layout {
     /// In file order.
     pub bodies: Vec<LayoutBody>,
-    pub(crate) joints: Vec<LayoutJoint>,
+    pub joints: Vec<LayoutJoint>,
     /// Whether the bodies are named `[[body]]` entries (else the single `[body]`, named "body").
-    pub(crate) named: bool,
+    pub named: bool,
 }
 
 impl Layout {
@@ -464,9 +464,9 @@ fn default_stabilisation() -> StabilisationName {
 /// `baumgarte = { alpha = …, beta = … }` (1/s). Read as a table only: serde's derived struct would also take an
 /// array and drop any numbers past the second (`baumgarte = [1, 2, 3]`).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct BaumgarteGains {
-    pub(crate) alpha: f64,
-    pub(crate) beta: f64,
+pub struct BaumgarteGains {
+    pub alpha: f64,
+    pub beta: f64,
 }
 
 impl<'de> Deserialize<'de> for BaumgarteGains {
@@ -504,19 +504,19 @@ impl<'de> Deserialize<'de> for BaumgarteGains {
 /// of mass along the body axes).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct BodySpec {
-    pub(crate) mass: f64,
+pub struct BodySpec {
+    pub mass: f64,
     #[serde(default)]
-    pub(crate) shape: Option<Shape>,
+    pub shape: Option<Shape>,
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
-    pub(crate) principal_moments: Option<[f64; 3]>,
+    pub principal_moments: Option<[f64; 3]>,
 }
 
 /// A solid of uniform density, centred on its centre of mass; lengths in metres.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum Shape {
+pub enum Shape {
     /// Side lengths along body x, y, z.
     Cuboid {
         #[serde(deserialize_with = "exactly")]
@@ -545,18 +545,18 @@ pub struct InitialSpec {
     /// Centre of mass, world (m).
     #[serde(default)]
     #[serde(deserialize_with = "exactly")]
-    pub(crate) position: [f64; 3],
+    pub position: [f64; 3],
     /// Body → world; the identity if absent.
     #[serde(default)]
     pub orientation: OrientationSpec,
     /// Angular velocity in body axes (rad/s).
     #[serde(default)]
     #[serde(deserialize_with = "exactly")]
-    pub(crate) body_angular_velocity: [f64; 3],
+    pub body_angular_velocity: [f64; 3],
     /// Centre-of-mass velocity, world (m/s).
     #[serde(default)]
     #[serde(deserialize_with = "exactly")]
-    pub(crate) velocity: [f64; 3],
+    pub velocity: [f64; 3],
 }
 
 /// Body → world rotation: `axis` with `angle` (rad) or `degrees`, or a `quaternion` [w, x, y, z]
@@ -565,17 +565,17 @@ pub struct InitialSpec {
 #[serde(deny_unknown_fields)]
 pub struct OrientationSpec {
     #[serde(default, deserialize_with = "maybe_exactly")]
-    pub(crate) axis: Option<[f64; 3]>,
-    pub(crate) angle: Option<f64>,
-    pub(crate) degrees: Option<f64>,
+    pub axis: Option<[f64; 3]>,
+    pub angle: Option<f64>,
+    pub degrees: Option<f64>,
     #[serde(default, deserialize_with = "maybe_exactly")]
-    pub(crate) quaternion: Option<[f64; 4]>,
+    pub quaternion: Option<[f64; 4]>,
 }
 
 /// An external force on the body (world frame).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum ForceSpec {
+pub enum ForceSpec {
     /// Uniform gravity at the centre of mass (m/s²; default 9.81 along −z).
     Gravity {
         #[serde(default = "standard_gravity")]
@@ -603,7 +603,7 @@ fn standard_gravity() -> [f64; 3] {
 /// How a constraint is written (theory §6 and §7–§9).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum FormulationName {
+pub enum FormulationName {
     #[default]
     VirtualPower,
     Pinning,
@@ -611,7 +611,7 @@ pub(crate) enum FormulationName {
 
 impl FormulationName {
     /// The name in summaries: "virtual power" or "pinning".
-    pub(crate) fn name(self) -> &'static str {
+    pub fn name(self) -> &'static str {
         match self {
             FormulationName::VirtualPower => "virtual power",
             FormulationName::Pinning => "pinning",
@@ -623,16 +623,16 @@ impl FormulationName {
 #[derive(Clone, Debug, Deserialize)]
 pub struct ConstraintSpec {
     #[serde(default)]
-    pub(crate) formulation: FormulationName,
+    pub formulation: FormulationName,
     #[serde(flatten)]
-    pub(crate) geometry: Geometry,
+    pub geometry: Geometry,
 }
 
 /// What a constraint holds. Body points and axes are in body coordinates, the rest in world coordinates;
 /// lengths in metres. Axes and normals need not be unit.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(crate) enum Geometry {
+pub enum Geometry {
     /// The body point stays at the world point (rank 3).
     BallJoint {
         #[serde(deserialize_with = "exactly")]
@@ -747,17 +747,17 @@ pub(crate) enum Geometry {
 /// A body axis through a body point, held on a world axis through a world point.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct AxisJoint {
+pub struct AxisJoint {
     #[serde(deserialize_with = "exactly")]
-    pub(crate) body_point: [f64; 3],
+    pub body_point: [f64; 3],
     #[serde(deserialize_with = "exactly")]
-    pub(crate) body_axis: [f64; 3],
+    pub body_axis: [f64; 3],
     #[serde(alias = "reference_point")]
     #[serde(deserialize_with = "exactly")]
-    pub(crate) world_point: [f64; 3],
+    pub world_point: [f64; 3],
     #[serde(alias = "reference_axis")]
     #[serde(deserialize_with = "exactly")]
-    pub(crate) world_axis: [f64; 3],
+    pub world_axis: [f64; 3],
 }
 
 /// `[T; N]` from an array of exactly `N` values: serde's own arrays read the first `N` and let toml drop the rest
@@ -853,7 +853,7 @@ impl Shape {
 }
 
 impl BodySpec {
-    pub(crate) fn body(&self) -> Result<Body, SceneFileError> {
+    pub fn body(&self) -> Result<Body, SceneFileError> {
         let body = match (&self.shape, self.principal_moments) {
             (Some(shape), None) => shape.body(self.mass),
             (None, Some(moments)) => Body::new(self.mass, Vector3::from(moments)),
@@ -872,7 +872,7 @@ impl OrientationSpec {
     }
 
     /// [`OrientationSpec::rotation`], with messages naming the key `what`.
-    pub(crate) fn rotation_of(&self, what: &str) -> Result<UnitQuaternion<f64>, SceneFileError> {
+    pub fn rotation_of(&self, what: &str) -> Result<UnitQuaternion<f64>, SceneFileError> {
         let axis_angle = |axis: [f64; 3], angle: f64| {
             if !angle.is_finite() {
                 return Err(invalid(what, format!("angle {angle} is not finite")));
@@ -918,7 +918,7 @@ impl ForceSpec {
         })
     }
 
-    pub(crate) fn kind(&self) -> &'static str {
+    pub fn kind(&self) -> &'static str {
         match self {
             ForceSpec::Gravity { .. } => "gravity",
             ForceSpec::Force { .. } => "constant force",
@@ -927,7 +927,7 @@ impl ForceSpec {
     }
 
     /// Whether the force has a potential, so that the energy is conserved under it.
-    pub(crate) fn conservative(&self) -> bool {
+    pub fn conservative(&self) -> bool {
         matches!(self, ForceSpec::Gravity { .. })
     }
 }
@@ -1086,7 +1086,7 @@ pub enum CheckedGeometry {
 }
 
 impl Geometry {
-    pub(crate) fn kind(&self) -> &'static str {
+    pub fn kind(&self) -> &'static str {
         match self {
             Geometry::BallJoint { .. } => "ball joint",
             Geometry::Hinge(_) => "hinge",
@@ -1105,7 +1105,7 @@ impl Geometry {
     }
 
     /// Whether the checked geometry needs the pose the body starts in (a fixed joint without a given pose).
-    pub(crate) fn needs_start(&self) -> bool {
+    pub fn needs_start(&self) -> bool {
         matches!(self, Geometry::Fixed { position, orientation } if position.is_none() || orientation.is_none())
     }
 
@@ -1611,19 +1611,19 @@ pub fn joint_violations<'a>(joints: &'a [JointGeometry], poses: &'a [Pose]) -> i
 /// A system ready to run in one algebra: the mechanism (the robot's bodies and joints first, then the file's), its
 /// initial state (one per body) on the joints, and what the run measures.
 pub struct SceneSystem<A: Algebra> {
-    pub(crate) system: Mechanism<A>,
-    pub(crate) initial: Vec<State<A>>,
+    pub system: Mechanism<A>,
+    pub initial: Vec<State<A>>,
     /// Every body's name, in the mechanism's order.
-    pub(crate) names: Vec<String>,
+    pub names: Vec<String>,
     /// The file's joints: their geometry (reference side in the reference body's frame, or the world's), body and
     /// reference, by mechanism index.
-    pub(crate) geometries: Vec<JointGeometry>,
+    pub geometries: Vec<JointGeometry>,
     /// The robot's moving joints: model, child, parent (mechanism indices) and where the coordinates start.
-    pub(crate) robot_joints: Vec<RobotJoint>,
+    pub robot_joints: Vec<RobotJoint>,
     /// The joints CSV's columns, with a robot.
-    pub(crate) robot_columns: Option<RobotColumns>,
+    pub robot_columns: Option<RobotColumns>,
     /// How far putting the file's start on the joints moved each body.
-    pub(crate) start_correction: Correction,
+    pub start_correction: Correction,
 }
 
 impl<A: Algebra> SceneSystem<A> {
@@ -1648,7 +1648,7 @@ impl<A: Algebra> SceneSystem<A> {
     }
 
     /// The joints CSV's values between `t` and `energy` at the mechanism's joint positions `q`.
-    pub(crate) fn joint_row(&self, q: &[f64]) -> Option<Vec<f64>> {
+    pub fn joint_row(&self, q: &[f64]) -> Option<Vec<f64>> {
         self.robot_columns.as_ref().map(|c| c.row(q))
     }
 
@@ -1729,7 +1729,7 @@ impl SceneFile {
     ///
     /// ```
     /// use std::path::Path;
-    /// use report::scene_file::SceneFile;
+    /// use scene_file::SceneFile;
     ///
     /// // The heavy top shipped in the workspace's `scenes` folder: a cone on a ball joint at its tip.
     /// let scene = SceneFile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml"))?;
@@ -1757,7 +1757,7 @@ impl SceneFile {
     /// ([`SceneFile::parse_in`] takes another).
     ///
     /// ```
-    /// use report::scene_file::SceneFile;
+    /// use scene_file::SceneFile;
     ///
     /// // A pendulum: a 1 m rod hung from the world by a ball joint at its top end.
     /// let pendulum = r#"
@@ -1792,7 +1792,7 @@ impl SceneFile {
     /// [`SceneFile::parse`], with a robot's URDF path relative to `folder` (the scene file's).
     ///
     /// ```
-    /// use report::scene_file::SceneFile;
+    /// use scene_file::SceneFile;
     ///
     /// let folder = std::env::temp_dir().join(format!("parse-in-{}", std::process::id()));
     /// std::fs::create_dir_all(&folder)?;
@@ -1879,7 +1879,7 @@ impl SceneFile {
 
     /// The robot's URDF as read, with its `[robot]` table; an error if the table was not read by
     /// [`SceneFile::parse`].
-    fn robot(&self) -> Result<Option<(&RobotSpec, &LoadedRobot)>, SceneFileError> {
+    pub fn robot(&self) -> Result<Option<(&RobotSpec, &LoadedRobot)>, SceneFileError> {
         match (&self.robot, &self.loaded_robot) {
             (Some(spec), Some(loaded)) => Ok(Some((spec, loaded))),
             (Some(_), None) => Err(invalid(
@@ -1891,7 +1891,7 @@ impl SceneFile {
     }
 
     /// How the run steps, for titles and summaries: "dt = 0.001 s", or "tolerance = 1e-8 (adaptive steps)".
-    pub(crate) fn stepping(&self) -> String {
+    pub fn stepping(&self) -> String {
         match (self.dt, self.tolerance) {
             (_, Some(tolerance)) => format!("tolerance = {tolerance:e} (adaptive steps)"),
             (dt, None) => format!("dt = {:e} s", dt.unwrap_or(f64::NAN)),
@@ -2631,7 +2631,7 @@ impl SceneFile {
     }
 
     /// Runs `system` (this scene's, [`SceneFile::system`]).
-    pub(crate) fn run<A: FileAlgebra>(&self, system: &SceneSystem<A>) -> Result<Simulation<A>, SceneFileError> {
+    pub fn run<A: FileAlgebra>(&self, system: &SceneSystem<A>) -> Result<Simulation<A>, SceneFileError> {
         let schedule = self.schedule()?;
         let failed = |message: String| SceneFileError::Run {
             algebra: A::NAME,
@@ -2672,13 +2672,8 @@ impl SceneFile {
             && !robot_damped)
     }
 
-    /// The robot's part of the summary, with a robot.
-    pub(crate) fn robot_summary(&self) -> Result<Option<String>, SceneFileError> {
-        Ok(self.robot()?.map(|(spec, loaded)| loaded.summary(spec)))
-    }
-
     /// The force elements, for the summary: "spring 1 (spring-damper, k = 100 N/m, …)".
-    pub(crate) fn element_list(&self) -> Result<Vec<String>, SceneFileError> {
+    pub fn element_list(&self) -> Result<Vec<String>, SceneFileError> {
         let mut out = Vec::new();
         if let Some((spec, loaded)) = self.robot()? {
             if spec.joint_dynamics == JointDynamicsName::Urdf {
