@@ -25,7 +25,9 @@ use crate::figures::{running_max, styled, LOG_FLOOR};
 use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
 use crate::sweep::AlgebraKind;
-use scene_file::robot::{JointDynamicsName, LimitsName, LoadedRobot, MimicName, RobotSpec, RootName};
+use scene_file::check::robot::LoadedRobot;
+use scene_file::syntax::elements::{DriveSpec, TimeValue};
+use scene_file::syntax::robot::{JointDynamicsName, LimitsName, MimicName, RobotSpec, RootName};
 use scene_file::{End, FileAlgebra, Layout, Pose, SceneFile, SceneFileError};
 
 /// Why a scene file's run or output failed.
@@ -261,7 +263,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .first()
         .and_then(|r| r.bodies[0].first())
         .is_some_and(|s| s.energy.abs() >= ABSOLUTE_ENERGY_BELOW);
-    let energy_title = format!("{title}: energy change, {}", scene.stepping());
+    let energy_title = format!("{title}: energy change, {}", stepping(&scene));
     let energy_axis = if relative {
         "|E(t) − E₀| / |E₀|"
     } else {
@@ -275,7 +277,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     )?;
     files.push(energy_path);
     if !layout.joints.is_empty() || robot.is_some() {
-        let violation_title = format!("{title}: constraint violation, {}", scene.stepping());
+        let violation_title = format!("{title}: constraint violation, {}", stepping(&scene));
         let violation_path = output.join(format!("{stem}_violation.png"));
         // The running maximum: per-sample violations at round-off are noise that hides the curves.
         let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation up to t (m)");
@@ -302,7 +304,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
                 run.algebra.name(),
                 scientific(run.max_energy_change()),
                 if relative { "" } else { " J" },
-                scene.stepping()
+                stepping(&scene)
             )
         })
         .collect();
@@ -315,7 +317,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         stabilisation: scene.stabilisation()?,
         relative_energy: relative,
         robot: robot.as_deref(),
-        elements: scene.element_list()?,
+        elements: element_list(&scene)?,
         splitting: matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)),
     };
     let mut text = summary(&setup, &runs, &file_names);
@@ -420,7 +422,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         listed(forces),
         listed(constraints),
         Integrator::from(scene.integrator).name(),
-        scene.stepping(),
+        stepping(scene),
         scene.duration,
         scene.sample_interval,
         match setup.stabilisation {
@@ -669,6 +671,108 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         }
     }
     out
+}
+
+/// How the run steps, for titles and summaries: "dt = 0.001 s", or "tolerance = 1e-8 (adaptive steps)".
+fn stepping(scene: &SceneFile) -> String {
+    match (scene.dt, scene.tolerance) {
+        (_, Some(tolerance)) => format!("tolerance = {tolerance:e} (adaptive steps)"),
+        (dt, None) => format!("dt = {:e} s", dt.unwrap_or(f64::NAN)),
+    }
+}
+
+/// The force elements, for the summary: "spring 1 (spring-damper, k = 100 N/m, …)".
+fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
+    let mut out = Vec::new();
+    if let Some((spec, loaded)) = scene.robot()? {
+        if spec.joint_dynamics == JointDynamicsName::Urdf {
+            for j in loaded.model.joints.iter().filter(|j| j.damping > 0.0) {
+                out.push(format!("{} damping (URDF): {} on {}", j.name, j.damping, j.name));
+            }
+        }
+        for (name, value) in &spec.torque {
+            out.push(format!("torque on {name}: {value} (constant)"));
+        }
+    }
+    for (k, s) in scene.spring.iter().enumerate() {
+        out.push(format!(
+            "{} (spring-damper {} – {}: k = {} N/m, c = {} N s/m, rest length {} m)",
+            s.name.clone().unwrap_or_else(|| format!("spring {}", k + 1)),
+            s.between[0],
+            s.between[1],
+            s.stiffness,
+            s.damping,
+            s.rest_length
+        ));
+    }
+    for (k, c) in scene.couple.iter().enumerate() {
+        out.push(format!(
+            "{} (couple {:?} N m on {}, its opposite on {})",
+            c.name.clone().unwrap_or_else(|| format!("couple {}", k + 1)),
+            c.moment,
+            c.between[0],
+            c.between[1]
+        ));
+    }
+    for t in &scene.joint_torque {
+        out.push(format!(
+            "{} (joint torque {} on {})",
+            t.name.clone().unwrap_or_else(|| format!("torque on {}", t.joint)),
+            describe_time_value(&t.torque),
+            t.joint
+        ));
+    }
+    for d in &scene.joint_damping {
+        out.push(format!(
+            "{} (joint damping {} on {})",
+            d.name.clone().unwrap_or_else(|| format!("damping on {}", d.joint)),
+            d.damping,
+            d.joint
+        ));
+    }
+    for (k, pd) in scene.pd.iter().enumerate() {
+        let targets: Vec<String> = pd.target.iter().map(|(j, v)| format!("{j} → {v}")).collect();
+        out.push(format!(
+            "{} (PD, kp = {}, kd = {}{}: {})",
+            pd.name.clone().unwrap_or_else(|| format!("pd {}", k + 1)),
+            pd.kp,
+            pd.kd,
+            if pd.gravity_compensation {
+                ", with the bias forces h(q, v) added"
+            } else {
+                ""
+            },
+            targets.join(", ")
+        ));
+    }
+    for j in scene.joint.iter().filter(|j| j.drive.is_some()) {
+        if let Some(drive) = j.drive {
+            out.push(format!("drive of {}: q(t) = {}", j.name, describe_drive(&drive)));
+        }
+    }
+    Ok(out)
+}
+
+/// "2 N m" or "sine", for the summary.
+fn describe_time_value(value: &TimeValue) -> String {
+    match value {
+        TimeValue::Constant(value) => format!("{value}"),
+        TimeValue::Sine(s) => format!(
+            "{} + {} sin(2π {} Hz t + {})",
+            s.offset, s.amplitude, s.frequency, s.phase
+        ),
+    }
+}
+
+/// For the summary.
+fn describe_drive(drive: &DriveSpec) -> String {
+    match drive {
+        DriveSpec::ConstantRate { start, rate } => format!("{start} + {rate} t"),
+        DriveSpec::Sine(s) => format!(
+            "{} + {} sin(2π {} Hz t + {})",
+            s.offset, s.amplitude, s.frequency, s.phase
+        ),
+    }
 }
 
 /// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.

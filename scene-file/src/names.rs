@@ -1,5 +1,6 @@
 //! The integrators and stabilisations by the names the command line (`--integrators`, `--stabilisation`) and
-//! scene files (`integrator`, `stabilisation`) give them.
+//! scene files (`integrator`, `stabilisation`) give them, and the algebras and constraint formulations by the names
+//! scene files give them.
 
 use clap::ValueEnum;
 use dynamics::constraints::Stabilisation;
@@ -103,6 +104,49 @@ impl AlgebraKind {
         match self {
             AlgebraKind::Cga => "CGA",
             AlgebraKind::Pga => "PGA",
+        }
+    }
+}
+
+/// Which algebras run the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AlgebraChoice {
+    /// `"pga"`
+    Pga,
+    /// `"cga"`
+    Cga,
+    /// `"both"`, to compare them (the default).
+    #[default]
+    Both,
+}
+
+impl AlgebraChoice {
+    /// The algebras, in the order they run.
+    pub fn algebras(self) -> Vec<AlgebraKind> {
+        match self {
+            AlgebraChoice::Pga => vec![AlgebraKind::Pga],
+            AlgebraChoice::Cga => vec![AlgebraKind::Cga],
+            AlgebraChoice::Both => vec![AlgebraKind::Pga, AlgebraKind::Cga],
+        }
+    }
+}
+
+/// How a constraint is written (theory §6 and §7–§9).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FormulationName {
+    #[default]
+    VirtualPower,
+    Pinning,
+}
+
+impl FormulationName {
+    /// The name in summaries: "virtual power" or "pinning".
+    pub fn name(self) -> &'static str {
+        match self {
+            FormulationName::VirtualPower => "virtual power",
+            FormulationName::Pinning => "pinning",
         }
     }
 }

@@ -1,43 +1,14 @@
-//! Scene files' contacts (docs/scene-files.md): `[[contact]]`, a body point kept above a world plane, exactly
-//! (`dynamics::contacts`).
+//! The file's contacts added to the mechanism, each point in its body's (or link's) frame, and a start below a contact's
+//! plane refused.
 
 use dynamics::contacts::PlaneContact;
 use dynamics::{Algebra, Dynamics, Mechanism, Reference, State};
 use nalgebra::Vector3;
-use serde::Deserialize;
 
-use super::{invalid, Layout, Place, SceneFile, SceneFileError};
-
-/// `[[contact]]`: `point` (m) of `body` (a named body or robot link; the only body may go unnamed) kept on the side
-/// of the plane `normal · x = offset` (world) that the normal points to, meeting it with `restitution`.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSpec {
-    #[serde(default)]
-    pub name: Option<String>,
-    #[serde(default)]
-    pub body: Option<String>,
-    #[serde(deserialize_with = "super::exactly")]
-    pub point: [f64; 3],
-    #[serde(default = "up", deserialize_with = "super::exactly")]
-    pub normal: [f64; 3],
-    #[serde(default)]
-    pub offset: f64,
-    #[serde(default)]
-    pub restitution: f64,
-}
-
-/// The default normal: world z, a floor.
-fn up() -> [f64; 3] {
-    [0.0, 0.0, 1.0]
-}
-
-impl ContactSpec {
-    /// The contact's name: as written, else "contact k" (1-based).
-    pub fn name(&self, index: usize) -> String {
-        self.name.clone().unwrap_or_else(|| format!("contact {}", index + 1))
-    }
-}
+use super::system::Place;
+use crate::check::layout::{end_of, Layout};
+use crate::error::{invalid, SceneFileError};
+use crate::syntax::file::SceneFile;
 
 impl SceneFile {
     /// Adds the file's contacts to `system`, each point in its body's (or link's) frame.
@@ -54,7 +25,7 @@ impl SceneFile {
                 (None, [only], None) => only.name.clone(),
                 (None, ..) => return Err(invalid(format!("{what}: body"), "name the body whose point it is")),
             };
-            let end = super::end_of(
+            let end = end_of(
                 &layout.bodies,
                 self.robot()?.map(|(_, l)| l),
                 &format!("{what}: body"),

@@ -24,59 +24,14 @@
 
 use std::sync::Arc;
 
-use dynamics::constraints::{pinning, Constraint, ConstraintError, MotorPoint};
-use dynamics::limits::JointLimit;
+use dynamics::constraints::{pinning, Constraint, MotorPoint};
 use dynamics::{motor, JointKind, JointModel, ScrewCoordinates};
 use nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
-use serde::Deserialize;
 
-use super::elements::DriveSpec;
-use super::{invalid, AxisFreedom, CheckedGeometry, FileAlgebra, SceneFileError};
-
-/// A joint's `limit = { lower = …, upper = …, restitution = … }` (rad or m; docs/limits.md): either bound may be left
-/// out (no bound on that side), not both; the restitution defaults to 0 (the joint stops at its bound). Read as a
-/// table only (serde's derived struct would also take an array, its entries by position).
-#[derive(Clone, Copy, Debug)]
-pub struct LimitSpec {
-    lower: Option<f64>,
-    upper: Option<f64>,
-    restitution: Option<f64>,
-}
-
-const LIMIT_KEYS: &[&str] = &["lower", "upper", "restitution"];
-
-impl<'de> Deserialize<'de> for LimitSpec {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let table = std::collections::BTreeMap::<String, f64>::deserialize(deserializer)?;
-        if let Some(key) = table.keys().find(|key| !LIMIT_KEYS.contains(&key.as_str())) {
-            return Err(serde::de::Error::unknown_field(key, LIMIT_KEYS));
-        }
-        Ok(LimitSpec {
-            lower: table.get("lower").copied(),
-            upper: table.get("upper").copied(),
-            restitution: table.get("restitution").copied(),
-        })
-    }
-}
-
-impl LimitSpec {
-    /// The limit, or an error naming `what` (the joint's `limit` entry) and the values.
-    pub fn limit(&self, what: &str) -> Result<JointLimit, SceneFileError> {
-        if self.lower.is_none() && self.upper.is_none() {
-            return Err(invalid(what, "needs a lower or an upper bound, or both"));
-        }
-        let refused = |error: ConstraintError| match error {
-            ConstraintError::InvalidParameter { reason, .. } => invalid(what, reason),
-            other => invalid(what, other.to_string()),
-        };
-        JointLimit::new(
-            self.lower.unwrap_or(f64::NEG_INFINITY),
-            self.upper.unwrap_or(f64::INFINITY),
-        )
-        .and_then(|limit| limit.with_restitution(self.restitution.unwrap_or(0.0)))
-        .map_err(refused)
-    }
-}
+use super::constraints::FileAlgebra;
+use crate::check::geometry::{AxisFreedom, CheckedGeometry};
+use crate::error::{invalid, SceneFileError};
+use crate::syntax::elements::DriveSpec;
 
 /// The smallest rotation taking the unit vector `from` to the unit vector `to`; exactly the identity when they are
 /// equal, a half turn about `from`'s first normal when they are opposite.
