@@ -25,10 +25,9 @@ use crate::figures::{running_max, styled, LOG_FLOOR};
 use crate::markdown::{agreement, escape, scientific};
 use crate::plot::{chart, Labels, Panel, PlotError, Series};
 use crate::sweep::AlgebraKind;
-use scene_file::check::robot::LoadedRobot;
 use scene_file::syntax::elements::{DriveSpec, TimeValue};
-use scene_file::syntax::robot::{JointDynamicsName, LimitsName, MimicName, RobotSpec, RootName};
-use scene_file::{End, FileAlgebra, Layout, Pose, SceneFile, SceneFileError};
+use scene_file::syntax::robot::{JointDynamicsName, LimitsName, MimicName, RootName};
+use scene_file::{CheckedScene, End, FileAlgebra, Layout, LoadedRobot, Pose, Scene, SceneFileError, Stepping};
 
 /// Why a scene file's run or output failed.
 #[derive(Debug, thiserror::Error)]
@@ -113,12 +112,13 @@ pub struct SceneJobSummary {
     pub warnings: Vec<String>,
 }
 
-fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<AlgebraRun, SceneFileError> {
+fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &Scene) -> Result<AlgebraRun, SceneFileError> {
     let system = scene.system::<A>()?;
-    let simulation = scene.run(&system)?;
+    let simulation = scene.simulate::<A>()?;
+    let contacts = !scene.checked().contacts.is_empty();
     let bodies = simulation.bodies;
     let samples = &bodies[0];
-    let duration = scene.schedule()?.duration();
+    let duration = scene.checked().schedule.duration();
     let stepping = simulation.stepping_time.as_secs_f64();
     let initial_energy = samples.first().map_or(0.0, |s| s.energy);
     let scale = if initial_energy.abs() < ABSOLUTE_ENERGY_BELOW {
@@ -140,7 +140,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
     for k in 0..samples.len() {
         let poses: Vec<Pose> = bodies.iter().map(|b| (b[k].position, b[k].orientation)).collect();
         // The sampled states, for the joint positions of a robot and the heights of contacts.
-        let states: Vec<State<A>> = if robot || !scene.contact.is_empty() {
+        let states: Vec<State<A>> = if robot || contacts {
             (bodies.iter().enumerate())
                 .map(|(i, b)| b[k].state(mechanism.body(i)))
                 .collect()
@@ -162,7 +162,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
             None
         };
         violation.push(system.joint_violation(&poses, q.as_deref()));
-        if !scene.contact.is_empty() {
+        if contacts {
             let heights = mechanism
                 .contact_heights(&states)
                 .map_err(|e| failed("the contact heights", &e))?;
@@ -185,7 +185,7 @@ fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &SceneFile) -> Result<Alg
         names: system.body_names().to_vec(),
         joints,
         bodies,
-        start_correction: system.start_correction.clone(),
+        start_correction: system.start_correction().clone(),
         statistics: simulation.statistics,
         transitions,
         deepest,
@@ -211,9 +211,10 @@ fn write_joints(path: &Path, headers: &[String], rows: &[Vec<f64>], samples: &[S
 
 /// Loads the scene file at `path`, runs it and writes the output into `output`.
 pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, SceneJobError> {
-    let scene = SceneFile::load(path)?;
-    let layout = scene.layout()?;
-    let runs = scene
+    let scene = Scene::load(path)?;
+    let checked = scene.checked();
+    let layout = &checked.layout;
+    let runs = checked
         .algebra
         .algebras()
         .into_iter()
@@ -222,7 +223,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
             AlgebraKind::Cga => run_in::<Cga>(algebra, &scene),
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let robot = scene.robot()?.map(|(spec, loaded)| robot_summary(loaded, spec));
+    let robot = checked.robot.as_ref().map(|robot| robot_summary(&robot.loaded));
 
     let write_error = |path: &Path| {
         let path = path.to_path_buf();
@@ -230,7 +231,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     };
     std::fs::create_dir_all(output).map_err(write_error(output))?;
     let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
-    let title = scene.title.clone().unwrap_or_else(|| stem.to_owned());
+    let title = checked.title.clone().unwrap_or_else(|| stem.to_owned());
     let mut files = Vec::new();
     for run in &runs {
         let csv_path = output.join(format!("{stem}_{}.csv", run.algebra.name().to_lowercase()));
@@ -263,7 +264,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .first()
         .and_then(|r| r.bodies[0].first())
         .is_some_and(|s| s.energy.abs() >= ABSOLUTE_ENERGY_BELOW);
-    let energy_title = format!("{title}: energy change, {}", stepping(&scene));
+    let energy_title = format!("{title}: energy change, {}", stepping(checked));
     let energy_axis = if relative {
         "|E(t) − E₀| / |E₀|"
     } else {
@@ -277,7 +278,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
     )?;
     files.push(energy_path);
     if !layout.joints.is_empty() || robot.is_some() {
-        let violation_title = format!("{title}: constraint violation, {}", stepping(&scene));
+        let violation_title = format!("{title}: constraint violation, {}", stepping(checked));
         let violation_path = output.join(format!("{stem}_violation.png"));
         // The running maximum: per-sample violations at round-off are noise that hides the curves.
         let labels = Labels::new(&violation_title, "time (s)", "largest constraint violation up to t (m)");
@@ -293,7 +294,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
         .iter()
         .filter_map(|f| f.file_name().and_then(|n| n.to_str()).map(str::to_owned))
         .collect();
-    let conservative = scene.conservative()?;
+    let conservative = checked.conservative;
     let warnings: Vec<String> = runs
         .iter()
         .filter(|run| conservative && run.max_energy_change() > ENERGY_WARNING)
@@ -304,21 +305,21 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
                 run.algebra.name(),
                 scientific(run.max_energy_change()),
                 if relative { "" } else { " J" },
-                stepping(&scene)
+                stepping(checked)
             )
         })
         .collect();
     let setup = Setup {
-        scene: &scene,
-        layout: &layout,
+        scene: checked,
+        layout,
         conservative,
         path,
         title: &title,
-        stabilisation: scene.stabilisation()?,
+        stabilisation: checked.stabilisation,
         relative_energy: relative,
         robot: robot.as_deref(),
-        elements: element_list(&scene)?,
-        splitting: matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)),
+        elements: element_list(checked),
+        splitting: matches!(Integrator::from(checked.integrator), Integrator::Splitting(_)),
     };
     let mut text = summary(&setup, &runs, &file_names);
     for warning in &warnings {
@@ -330,7 +331,7 @@ pub fn run_scene_file(path: &Path, output: &Path) -> Result<SceneJobSummary, Sce
 
 /// What `summary.md` says about the scene besides the runs.
 struct Setup<'a> {
-    scene: &'a SceneFile,
+    scene: &'a CheckedScene,
     layout: &'a Layout,
     /// Whether every force has a potential.
     conservative: bool,
@@ -375,7 +376,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
         .joints
         .iter()
         .map(|j| {
-            let what = format!("{} by {}", j.geometry.kind(), j.formulation.name());
+            let what = format!("{} by {}", j.kind, j.formulation.name());
             if layout.named {
                 format!(
                     "{} ({what}, {} to {})",
@@ -435,12 +436,12 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
     if let Some(robot) = setup.robot {
         let _ = writeln!(out, "{robot}");
     }
-    if !scene.contact.is_empty() {
+    if !scene.contacts.is_empty() {
         let _ = writeln!(
             out,
             "Contacts, each a body point kept above the world plane n · x = d (docs/contacts.md):\n"
         );
-        for (k, contact) in scene.contact.iter().enumerate() {
+        for (k, contact) in scene.contacts.iter().enumerate() {
             let _ = writeln!(
                 out,
                 "- {}: the point {:?} m of {}, n = {:?}, d = {} m, restitution {}",
@@ -529,7 +530,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             "{} ({}): {} bounces, {} holds, {} releases, the first at t = {:.6} s; the impacts changed the energy by \
              {} J{}.",
             {
-                let contacts: Vec<String> = (scene.contact.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
+                let contacts: Vec<String> = (scene.contacts.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
                 let on_contact = |t: &LimitTransition| contacts.contains(&t.constraint);
                 match (run.transitions.iter().any(on_contact), run.transitions.iter().all(on_contact)) {
                     (false, _) => "Joint limits",
@@ -543,7 +544,7 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
             count(|c| matches!(c, LimitChange::Released { .. })),
             run.transitions[0].t,
             scientific(taken),
-            if scene.contact.is_empty() {
+            if scene.contacts.is_empty() {
                 String::new()
             } else {
                 format!(
@@ -674,27 +675,27 @@ fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
 }
 
 /// How the run steps, for titles and summaries: "dt = 0.001 s", or "tolerance = 1e-8 (adaptive steps)".
-fn stepping(scene: &SceneFile) -> String {
-    match (scene.dt, scene.tolerance) {
-        (_, Some(tolerance)) => format!("tolerance = {tolerance:e} (adaptive steps)"),
-        (dt, None) => format!("dt = {:e} s", dt.unwrap_or(f64::NAN)),
+fn stepping(scene: &CheckedScene) -> String {
+    match scene.stepping {
+        Stepping::Adaptive { tolerance } => format!("tolerance = {tolerance:e} (adaptive steps)"),
+        Stepping::Fixed { dt } => format!("dt = {dt:e} s"),
     }
 }
 
 /// The force elements, for the summary: "spring 1 (spring-damper, k = 100 N/m, …)".
-fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
+fn element_list(scene: &CheckedScene) -> Vec<String> {
     let mut out = Vec::new();
-    if let Some((spec, loaded)) = scene.robot()? {
-        if spec.joint_dynamics == JointDynamicsName::Urdf {
-            for j in loaded.model.joints.iter().filter(|j| j.damping > 0.0) {
+    if let Some(robot) = scene.robot.as_ref().map(|robot| &robot.loaded) {
+        if robot.spec.joint_dynamics == JointDynamicsName::Urdf {
+            for j in robot.model.joints.iter().filter(|j| j.damping > 0.0) {
                 out.push(format!("{} damping (URDF): {} on {}", j.name, j.damping, j.name));
             }
         }
-        for (name, value) in &spec.torque {
+        for (name, value) in &robot.spec.torque {
             out.push(format!("torque on {name}: {value} (constant)"));
         }
     }
-    for (k, s) in scene.spring.iter().enumerate() {
+    for (k, s) in scene.springs.iter().enumerate() {
         out.push(format!(
             "{} (spring-damper {} – {}: k = {} N/m, c = {} N s/m, rest length {} m)",
             s.name.clone().unwrap_or_else(|| format!("spring {}", k + 1)),
@@ -705,7 +706,7 @@ fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
             s.rest_length
         ));
     }
-    for (k, c) in scene.couple.iter().enumerate() {
+    for (k, c) in scene.couples.iter().enumerate() {
         out.push(format!(
             "{} (couple {:?} N m on {}, its opposite on {})",
             c.name.clone().unwrap_or_else(|| format!("couple {}", k + 1)),
@@ -714,7 +715,7 @@ fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
             c.between[1]
         ));
     }
-    for t in &scene.joint_torque {
+    for t in &scene.joint_torques {
         out.push(format!(
             "{} (joint torque {} on {})",
             t.name.clone().unwrap_or_else(|| format!("torque on {}", t.joint)),
@@ -722,7 +723,7 @@ fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
             t.joint
         ));
     }
-    for d in &scene.joint_damping {
+    for d in &scene.joint_dampings {
         out.push(format!(
             "{} (joint damping {} on {})",
             d.name.clone().unwrap_or_else(|| format!("damping on {}", d.joint)),
@@ -730,7 +731,7 @@ fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
             d.joint
         ));
     }
-    for (k, pd) in scene.pd.iter().enumerate() {
+    for (k, pd) in scene.pds.iter().enumerate() {
         let targets: Vec<String> = pd.target.iter().map(|(j, v)| format!("{j} → {v}")).collect();
         out.push(format!(
             "{} (PD, kp = {}, kd = {}{}: {})",
@@ -745,12 +746,12 @@ fn element_list(scene: &SceneFile) -> Result<Vec<String>, SceneFileError> {
             targets.join(", ")
         ));
     }
-    for j in scene.joint.iter().filter(|j| j.drive.is_some()) {
+    for j in &scene.layout.joints {
         if let Some(drive) = j.drive {
             out.push(format!("drive of {}: q(t) = {}", j.name, describe_drive(&drive)));
         }
     }
-    Ok(out)
+    out
 }
 
 /// "2 N m" or "sine", for the summary.
@@ -776,8 +777,8 @@ fn describe_drive(drive: &DriveSpec) -> String {
 }
 
 /// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.
-fn robot_summary(loaded: &LoadedRobot, spec: &RobotSpec) -> String {
-    let model = &loaded.model;
+fn robot_summary(robot: &LoadedRobot) -> String {
+    let (model, spec) = (&robot.model, &robot.spec);
     let mut out = String::new();
     let links: usize = model.bodies.iter().map(|b| b.links.len()).sum();
     let kinds: Vec<String> = model
@@ -792,10 +793,10 @@ fn robot_summary(loaded: &LoadedRobot, spec: &RobotSpec) -> String {
         "Robot `{}` from {}: {links} links, {} merged into other links' bodies (fixed joints), so {} bodies ({} \
          moving); root {}; joints: {}; {} degrees of freedom{}.\n",
         escape(&model.name),
-        escape(&loaded.path.display().to_string()),
+        escape(&robot.path.display().to_string()),
         model.merged_links,
         model.bodies.len(),
-        loaded.body_count(spec),
+        robot.body_count(),
         if free {
             "free (a floating base)"
         } else {

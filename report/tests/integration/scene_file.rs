@@ -17,7 +17,7 @@ use report::scene_job::{run_scene_file, AlgebraRun};
 use scenarios::mechanism_measures::measure;
 use scenarios::{build, build_mechanism, Formulation, MechanismId, SceneAlgebra};
 use scene_file::names::IntegratorName;
-use scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, SceneFile};
+use scene_file::{joint_violations, AlgebraChoice, FileAlgebra, Pose, Scene, Stepping};
 
 fn heavy_top_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/heavy_top.toml")
@@ -29,10 +29,13 @@ fn heavy_top_text() -> String {
 
 /// The largest orientation (rad) and position (m) difference between the file's run and the built-in
 /// scene 3a run with the same integrator and step.
-fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, formulation: Formulation) -> (f64, f64) {
+fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &Scene, formulation: Formulation) -> (f64, f64) {
     let from_file = scene.simulate::<A>().expect("the file runs");
     let builtin = build::<A>(SceneId::TopCusp, formulation, Stabilisation::PROJECTION).expect("scene 3a builds");
-    let schedule = Schedule::new(scene.dt.expect("a fixed step"), builtin.duration).expect("scene 3a's schedule");
+    let Stepping::Fixed { dt } = scene.checked().stepping else {
+        panic!("a fixed step")
+    };
+    let schedule = Schedule::new(dt, builtin.duration).expect("scene 3a's schedule");
     let builtin =
         dynamics::simulate(&builtin.system, &[builtin.initial], Method::Rk4, &schedule).expect("scene 3a runs");
     assert_eq!(from_file.body(0).len(), builtin.body(0).len());
@@ -41,13 +44,17 @@ fn difference_from_scene_3a<A: FileAlgebra + SceneAlgebra>(scene: &SceneFile, fo
 
 #[test]
 fn heavy_top_file_runs_as_the_builtin_scene_3a() {
-    let scene = SceneFile::load(&heavy_top_path()).expect("scenes/heavy_top.toml parses");
-    assert_eq!(scene.algebra, AlgebraChoice::Both);
-    assert_eq!((scene.dt, scene.duration), (Some(1e-3), 10.0));
-    assert_eq!(scene.constraints.len(), 1);
+    let scene = Scene::load(&heavy_top_path()).expect("scenes/heavy_top.toml parses");
+    let checked = scene.checked();
+    assert_eq!(checked.algebra, AlgebraChoice::Both);
+    assert_eq!(
+        (checked.stepping, checked.duration),
+        (Stepping::Fixed { dt: 1e-3 }, 10.0)
+    );
+    assert_eq!(checked.layout.joints.len(), 1);
     // The same top by pinning its tip instead of a ball joint by virtual power.
     let pinned =
-        SceneFile::parse(&heavy_top_text().replace("formulation = \"virtual_power\"", "formulation = \"pinning\""))
+        Scene::parse(&heavy_top_text().replace("formulation = \"virtual_power\"", "formulation = \"pinning\""))
             .expect("the pinned variant parses");
     // The file writes the initial position rounded to 15 digits and the centre-of-mass velocity as zero, where
     // scene 3a computes them (ω × c is 1e-16, not 0); both states are projected onto the constraint, so they
@@ -112,10 +119,10 @@ fn a_tolerance_in_place_of_dt_runs_adaptive_steps() {
             " kept, ",
         ],
     );
-    let fixed = SceneFile::parse(&VALID.replace("dt = 1e-3", "dt = 1e-3\nintegrator = \"dp5-body\"")).unwrap();
-    assert_eq!((fixed.dt, fixed.tolerance), (Some(1e-3), None));
-    let fifth = SceneFile::parse(&VALID.replace("dt = 1e-3", "tolerance = 1e-6\nintegrator = \"dp5-body\"")).unwrap();
-    assert_eq!(fifth.integrator, IntegratorName::Dp5Body);
+    let fixed = Scene::parse(&VALID.replace("dt = 1e-3", "dt = 1e-3\nintegrator = \"dp5-body\"")).unwrap();
+    assert_eq!(fixed.checked().stepping, Stepping::Fixed { dt: 1e-3 });
+    let fifth = Scene::parse(&VALID.replace("dt = 1e-3", "tolerance = 1e-6\nintegrator = \"dp5-body\"")).unwrap();
+    assert_eq!(fifth.checked().integrator, IntegratorName::Dp5Body);
 }
 
 /// The shipped scene `file` run by the main job's scene runner into a fresh `dir`: the folder and the two algebras'
@@ -200,19 +207,19 @@ fn contacts_name_their_body_and_work_far_from_the_origin() {
         .replace("\nvelocity = [", "\ninitial.velocity = [");
     let named = named.replace("[[forces]]\nkind = \"gravity\"", "forces = [{ kind = \"gravity\" }]")
         + "\n[[body]]\nname = \"ball\"\nmass = 1.0\nshape = { kind = \"sphere\", radius = 0.1 }\ninitial.position = [2.0, 0.0, 1.0]\n";
-    let error = SceneFile::parse(&named).unwrap_err().to_string();
+    let error = Scene::parse(&named).unwrap_err().to_string();
     assert!(
         error.contains("contact contact 1: body") && error.contains("name the body"),
         "{error}"
     );
     let with_body = named.replace("[[contact]]\n", "[[contact]]\nbody = \"cube\"\n");
-    SceneFile::parse(&with_body).unwrap();
+    Scene::parse(&with_body).unwrap();
     // A floor 1e5 m up, the cube above it: it runs and lands on it.
     let far = base
         .replace("position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 100000.5]")
         .replace("restitution = 0.5", "restitution = 0.5\noffset = 1e5")
         .replace("duration = 3.0", "duration = 0.5");
-    let scene = SceneFile::parse(&far).unwrap();
+    let scene = Scene::parse(&far).unwrap();
     let run = scene.simulate::<Pga>().unwrap();
     assert!(!run.transitions.is_empty());
 }
@@ -301,7 +308,7 @@ fn the_shipped_limited_double_pendulum_bounces_within_its_limits() {
     }
     assert!(pga.max_energy_change() < 1e-9, "{}", pga.max_energy_change());
     assert!(pga.max_violation() < 1e-12, "{}", pga.max_violation());
-    let scene = SceneFile::load(&scene_path("limited_double_pendulum.toml")).unwrap();
+    let scene = Scene::load(&scene_path("limited_double_pendulum.toml")).unwrap();
     let system = scene.system::<Pga>().unwrap();
     let mechanism = system.mechanism();
     let elbow: Vec<f64> = (pga.bodies[0].iter().zip(&pga.bodies[1]))
@@ -377,7 +384,7 @@ world_point = [0.0, 0.0, 0.0]
 /// The message of the error parsing `VALID` with `from` replaced by `to`.
 fn error_with(from: &str, to: &str) -> String {
     assert!(VALID.contains(from), "{from}");
-    match SceneFile::parse(&VALID.replacen(from, to, 1)) {
+    match Scene::parse(&VALID.replacen(from, to, 1)) {
         Ok(_) => panic!("replacing {from} by {to} should fail"),
         Err(error) => error.to_string(),
     }
@@ -391,8 +398,8 @@ fn assert_mentions(message: &str, parts: &[&str]) {
 
 #[test]
 fn the_valid_scene_parses() {
-    let scene = SceneFile::parse(VALID).expect("valid");
-    assert_eq!(scene.algebra, AlgebraChoice::Both);
+    let scene = Scene::parse(VALID).expect("valid");
+    assert_eq!(scene.checked().algebra, AlgebraChoice::Both);
 }
 
 #[test]
@@ -687,9 +694,9 @@ fn pinning_on_a_sphere_runs_in_cga_alone() {
         "algebra = \"cga\"\n{}",
         text.replace("[0.0, 0.0, -0.5]", "[0.5, 0.0, -0.5]")
     );
-    let scene = SceneFile::parse(&text).expect("CGA has spheres");
+    let scene = Scene::parse(&text).expect("CGA has spheres");
     let run = scene.simulate::<Cga>().expect("runs");
-    let joints = scene.layout().unwrap().joint_geometries().unwrap();
+    let joints = scene.checked().layout.joint_geometries().unwrap();
     let worst = run
         .body(0)
         .iter()
@@ -700,7 +707,7 @@ fn pinning_on_a_sphere_runs_in_cga_alone() {
 
 #[test]
 fn reading_a_missing_file_fails_with_the_reason() {
-    let message = SceneFile::load(&PathBuf::from("/nonexistent/scene.toml"))
+    let message = Scene::load(&PathBuf::from("/nonexistent/scene.toml"))
         .unwrap_err()
         .to_string();
     assert_mentions(&message, &["cannot read the file"]);
@@ -715,17 +722,12 @@ fn scene_path(name: &str) -> PathBuf {
 fn difference_from_builtin<A: FileAlgebra + SceneAlgebra>(file: &str, id: MechanismId) -> f64 {
     let text = std::fs::read_to_string(scene_path(file)).unwrap();
     let duration = text.lines().find(|l| l.starts_with("duration = ")).unwrap();
-    let scene = SceneFile::parse(&text.replace(duration, "duration = 0.2")).expect("the file parses");
+    let scene = Scene::parse(&text.replace(duration, "duration = 0.2")).expect("the file parses");
     let from_file = scene.simulate::<A>().expect("the file runs");
     let builtin = build_mechanism::<A>(id, Formulation::VirtualPower, Stabilisation::PROJECTION).unwrap();
-    let integrator = dynamics::integrate::Integrator::from(scene.integrator);
-    let builtin = dynamics::simulate(
-        &builtin.system,
-        &builtin.initial,
-        integrator,
-        &scene.schedule().unwrap(),
-    )
-    .expect("the built-in mechanism runs");
+    let integrator = dynamics::integrate::Integrator::from(scene.checked().integrator);
+    let builtin = dynamics::simulate(&builtin.system, &builtin.initial, integrator, &scene.checked().schedule)
+        .expect("the built-in mechanism runs");
     assert_eq!(from_file.bodies.len(), builtin.bodies.len());
     from_file
         .bodies
@@ -762,7 +764,7 @@ fn mechanism_files_run_as_the_builtin_mechanisms() {
 /// requirement; measured 3.7e-13 rad, 1.5e-13 m), hinges at round-off, and the CSV has every body's columns.
 #[test]
 fn double_pendulum_file_matches_the_reference() {
-    let scene = SceneFile::load(&scene_path("double_pendulum.toml")).unwrap();
+    let scene = Scene::load(&scene_path("double_pendulum.toml")).unwrap();
     let run = scene.simulate::<Pga>().unwrap();
     let measures = measure(MechanismId::DoublePendulum, &run.bodies).unwrap();
     let (orientation, position) = (measures.orientation_end.unwrap(), measures.position_end.unwrap());
@@ -826,10 +828,10 @@ reference_point = [0.0, 0.0, -0.5]
 
 #[test]
 fn mechanism_files_fail_with_the_entry_named() {
-    assert!(SceneFile::parse(TWO_BODIES).is_ok());
+    assert!(Scene::parse(TWO_BODIES).is_ok());
     let error = |from: &str, to: &str| {
         assert!(TWO_BODIES.contains(from), "{from}");
-        SceneFile::parse(&TWO_BODIES.replacen(from, to, 1))
+        Scene::parse(&TWO_BODIES.replacen(from, to, 1))
             .expect_err(to)
             .to_string()
     };
@@ -876,7 +878,7 @@ fn contradictory_joints_fail_with_their_names() {
         )
     };
     // The lower rod's end held 3.6 m from the shoulder, out of the arm's 2 m reach.
-    let unreachable = SceneFile::parse(&with_wrist("[3.0, 0.0, -2.0]")).expect_err("unreachable");
+    let unreachable = Scene::parse(&with_wrist("[3.0, 0.0, -2.0]")).expect_err("unreachable");
     assert_mentions(
         &unreachable.to_string(),
         &["wrist", "cannot hold together", "after projection"],
@@ -888,7 +890,7 @@ fn contradictory_joints_fail_with_their_names() {
         "initial.position = [0.0, 0.0, -0.5]\ninitial.body_angular_velocity = [1.0, 0.0, 0.0]",
         1,
     );
-    let locked = SceneFile::parse(&turning).expect_err("locked");
+    let locked = Scene::parse(&turning).expect_err("locked");
     assert_mentions(&locked.to_string(), &["elbow", "shoulder", "wrist", "inconsistent"]);
 }
 
@@ -960,13 +962,13 @@ fn every_joint_kind_holds_between_moving_bodies() {
         for formulation in ["virtual_power", "pinning"] {
             for algebra in ["pga", "cga"] {
                 let label = format!("{formulation}, {algebra}: {joint}");
-                let scene = SceneFile::parse(&slider_scene(joint, formulation, algebra)).expect(&label);
+                let scene = Scene::parse(&slider_scene(joint, formulation, algebra)).expect(&label);
                 let bodies = match algebra {
                     "pga" => scene.simulate::<Pga>().map(|run| run.bodies),
                     _ => scene.simulate::<Cga>().map(|run| run.bodies),
                 }
                 .expect(&label);
-                let geometries = scene.layout().unwrap().joint_geometries().unwrap();
+                let geometries = scene.checked().layout.joint_geometries().unwrap();
                 let samples = bodies[0].len();
                 let violation = (0..samples)
                     .map(|k| {
@@ -1014,7 +1016,7 @@ fn bad_joint_geometry_names_the_joint_and_field() {
         (planar, &["constraint under test: world_normal", "no direction"]),
         (line, &["constraint under test: body_point", "not finite"]),
     ] {
-        let message = SceneFile::parse(&slider_scene(joint, "pinning", "both"))
+        let message = Scene::parse(&slider_scene(joint, "pinning", "both"))
             .unwrap_err()
             .to_string();
         assert_mentions(&message, parts);
@@ -1028,10 +1030,10 @@ fn files_larger_than_the_cap_are_refused() {
     let file = dir.join("large.toml");
     let padding = "#".repeat(scene_file::MAX_FILE_BYTES as usize + 1);
     std::fs::write(&file, format!("{VALID}\n{padding}")).unwrap();
-    let message = SceneFile::load(&file).unwrap_err().to_string();
+    let message = Scene::load(&file).unwrap_err().to_string();
     assert_mentions(&message, &["larger than"]);
     // An endless file is read only up to the cap.
-    let endless = SceneFile::load(&PathBuf::from("/dev/zero")).unwrap_err().to_string();
+    let endless = Scene::load(&PathBuf::from("/dev/zero")).unwrap_err().to_string();
     assert_mentions(&endless, &["larger than"]);
 }
 
@@ -1069,7 +1071,7 @@ proptest! {
             include_str!("../../../scenes/four_bar.toml"),
             &slider,
         ][which];
-        let _ = SceneFile::parse(&mutated(base, at, &replacement));
+        let _ = Scene::parse(&mutated(base, at, &replacement));
     }
 }
 
@@ -1173,10 +1175,7 @@ fn the_sample_cap_counts_every_body() {
     let chain = include_str!("../../../scenes/chain.toml")
         .replacen("dt = 1e-3", "dt = 1e-4\nsample_interval = 1e-4", 1)
         .replacen("duration = 5.0", "duration = 10.0", 1);
-    let error = SceneFile::parse(&chain)
-        .and_then(|scene| scene.schedule())
-        .unwrap_err()
-        .to_string();
+    let error = Scene::parse(&chain).map(drop).unwrap_err().to_string();
     assert!(
         error.contains("100001 samples") && error.contains("of 16 bodies"),
         "{error}"
@@ -1197,7 +1196,7 @@ fn a_step_too_large_for_a_scene_names_the_step() {
                     "duration = 0.2",
                     &format!("duration = 3.0\nsample_interval = {dt}\nstabilisation = \"projection\""),
                 );
-            let scene = SceneFile::parse(&source).unwrap();
+            let scene = Scene::parse(&source).unwrap();
             if let Err(error) = scene.simulate::<Pga>() {
                 let message = error.to_string();
                 let names_the_step = message.contains(&format!("the step dt = {dt} is too large for the constraints"))
@@ -1241,15 +1240,14 @@ fn the_summary_says_how_far_the_start_was_moved_onto_the_joints() {
     );
     assert!(text.contains("by 1.3e-1 m"), "{text}");
     let rounded = VALID.replace("position = [0.0, 0.0, -0.5]", "position = [0.0, 1e-6, -0.499999]");
-    let scene = SceneFile::parse(&rounded).expect("six digits pass");
+    let scene = Scene::parse(&rounded).expect("six digits pass");
     assert!(scene.simulate::<Pga>().is_ok());
 }
 
 /// A duration that is not a whole number of sample intervals ends with a shorter one, sampled at its end.
 #[test]
 fn a_duration_off_the_sample_grid_ends_with_a_shorter_interval() {
-    let scene =
-        SceneFile::parse(&VALID.replace("duration = 0.1", "duration = 0.105")).expect("a partial last interval");
+    let scene = Scene::parse(&VALID.replace("duration = 0.1", "duration = 0.105")).expect("a partial last interval");
     let run = scene.simulate::<Pga>().unwrap();
     let times: Vec<f64> = run.body(0).iter().map(|sample| sample.t).collect();
     assert_eq!(times.len(), 12);
@@ -1261,7 +1259,7 @@ fn a_duration_off_the_sample_grid_ends_with_a_shorter_interval() {
 #[test]
 fn a_typo_in_a_joint_is_reported_at_its_line() {
     let typo = VALID.replace("world_point = [0.0, 0.0, 0.0]", "world_pont = [0.0, 0.0, 0.0]");
-    let message = SceneFile::parse(&typo).unwrap_err().to_string();
+    let message = Scene::parse(&typo).unwrap_err().to_string();
     let line = typo.lines().position(|l| l.starts_with("world_pont")).unwrap() + 1;
     assert!(
         message.starts_with(&format!("TOML parse error at line {line}: unknown field `world_pont`")),

@@ -2,16 +2,17 @@
 //! TOML-ish fragments, and the shipped scene files mutated (lines deleted, duplicated, swapped or inserted,
 //! numbers replaced by extreme values, strings emptied or renamed, the file cut short) give a scene or an error,
 //! never a panic. Where a file parses, what the scene job does before its run (layout, joint geometries,
-//! schedule, stabilisation, the system in each requested algebra) succeeds, as `SceneFile::parse` promises, and
+//! the system in each requested algebra; the schedule and stabilisation are checked parts of the scene) succeeds, as
+//! `Scene::parse` promises, and
 //! a run cut to at most a few steps ends in a simulation or an error, never a panic.
 
 use std::ops::Range;
+use std::path::Path;
 
 use dynamics::{Cga, Pga};
 use nalgebra::{UnitQuaternion, Vector3};
 use proptest::prelude::*;
-use report::sweep::AlgebraKind;
-use scene_file::{joint_violations, FileAlgebra, JointGeometry, Pose, SceneFile};
+use scene_file::{joint_violations, AlgebraKind, CheckedScene, FileAlgebra, JointGeometry, Pose, Scene, SceneFile};
 
 /// The shipped scene files, read when the test is compiled.
 const SCENES: [(&str, &str); 8] = [
@@ -305,15 +306,20 @@ impl Mutation {
     }
 }
 
-/// Runs `scene` cut to one sample interval in algebra `A`, if that is at most [`MAX_RUN_STEPS`] steps: a
-/// simulation of every body with every sample's joint violations, or an error that says something.
-fn short_run<A: FileAlgebra>(scene: &SceneFile, joints: &[JointGeometry]) -> Result<(), TestCaseError> {
-    let mut short = scene.clone();
+/// Runs the scene of `file` (a robot's URDF relative to `folder`) cut to one sample interval in algebra `A`, if that
+/// is at most [`MAX_RUN_STEPS`] steps: a simulation of every body with every sample's joint violations, or an error
+/// that says something.
+fn short_run<A: FileAlgebra>(file: &SceneFile, folder: &Path, joints: &[JointGeometry]) -> Result<(), TestCaseError> {
+    let mut short = file.clone();
     short.duration = short.sample_interval;
-    let Ok(schedule) = short.schedule() else {
-        return Ok(());
+    let short = match Scene::new(short, folder) {
+        Ok(short) => short,
+        Err(error) => {
+            prop_assert!(!error.to_string().is_empty());
+            return Ok(());
+        }
     };
-    if schedule.step_count() > MAX_RUN_STEPS {
+    if short.checked().schedule.step_count() > MAX_RUN_STEPS {
         return Ok(());
     }
     match short.simulate::<A>() {
@@ -334,12 +340,12 @@ fn short_run<A: FileAlgebra>(scene: &SceneFile, joints: &[JointGeometry]) -> Res
 /// Parses `text`: an error that says something, or a scene whose every step before the run succeeds and whose
 /// short run ends without a panic.
 fn check(text: &str) -> Result<(), TestCaseError> {
-    check_in(text, std::path::Path::new(""))
+    check_in(text, Path::new(""))
 }
 
 /// [`check`], with a robot's URDF relative to `folder`.
-fn check_in(text: &str, folder: &std::path::Path) -> Result<(), TestCaseError> {
-    let scene = match SceneFile::parse_in(text, folder) {
+fn check_in(text: &str, folder: &Path) -> Result<(), TestCaseError> {
+    let scene = match Scene::parse_in(text, folder) {
         Ok(scene) => scene,
         Err(error) => {
             prop_assert!(!error.to_string().is_empty());
@@ -349,27 +355,23 @@ fn check_in(text: &str, folder: &std::path::Path) -> Result<(), TestCaseError> {
     let ok = |what: &str, result: Result<(), scene_file::SceneFileError>| {
         result.map_err(|e| TestCaseError::fail(format!("parsed, but {what} failed: {e}")))
     };
-    let layout = scene
-        .layout()
-        .map_err(|e| TestCaseError::fail(format!("layout: {e}")))?;
+    let file = SceneFile::parse(text).expect("the scene parsed");
+    let layout = &scene.checked().layout;
     // Joints to robot links are placed by the system only (`SceneSystem::joint_violation`).
     let joints = match layout.joint_geometries() {
         Ok(joints) => joints,
         Err(e) if e.to_string().contains("only the built system places") => Vec::new(),
         Err(e) => return Err(TestCaseError::fail(format!("joint geometries: {e}"))),
     };
-    ok("schedule", scene.schedule().map(drop))?;
-    ok("stabilisation", scene.stabilisation().map(drop))?;
-    ok("conservative", scene.conservative().map(drop))?;
-    for algebra in scene.algebra.algebras() {
+    for algebra in scene.checked().algebra.algebras() {
         match algebra {
             AlgebraKind::Pga => {
                 ok("the PGA system", scene.system::<Pga>().map(drop))?;
-                short_run::<Pga>(&scene, &joints)?;
+                short_run::<Pga>(&file, folder, &joints)?;
             }
             AlgebraKind::Cga => {
                 ok("the CGA system", scene.system::<Cga>().map(drop))?;
-                short_run::<Cga>(&scene, &joints)?;
+                short_run::<Cga>(&file, folder, &joints)?;
             }
         }
     }
@@ -736,8 +738,9 @@ fn direction_arrays(text: &str) -> Vec<Range<usize>> {
 
 /// The run of `text` over one sample interval in algebra `A`: every body's (position, orientation) per sample.
 fn first_samples<A: FileAlgebra>(text: &str) -> Result<Vec<Vec<Pose>>, String> {
-    let mut scene = SceneFile::parse(text).map_err(|e| e.to_string())?;
-    scene.duration = scene.sample_interval;
+    let mut file = SceneFile::parse(text).map_err(|e| e.to_string())?;
+    file.duration = file.sample_interval;
+    let scene = Scene::new(file, Path::new("")).map_err(|e| e.to_string())?;
     let run = scene.simulate::<A>().map_err(|e| e.to_string())?;
     Ok(run
         .bodies
@@ -749,14 +752,10 @@ fn first_samples<A: FileAlgebra>(text: &str) -> Result<Vec<Vec<Pose>>, String> {
 /// What a scene file says before anything is solved: each body's initial rotation, and each joint's violation
 /// with the bodies at a few poses.
 fn meaning(text: &str) -> Result<(Vec<UnitQuaternion<f64>>, Vec<f64>), String> {
-    let scene: SceneFile = toml::from_str(text).map_err(|e| e.to_string())?;
-    let layout = scene.layout().map_err(|e| e.to_string())?;
-    let rotations = layout
-        .bodies
-        .iter()
-        .map(|b| b.initial.orientation.rotation())
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| e.to_string())?;
+    let file = SceneFile::parse(text).map_err(|e| e.to_string())?;
+    let scene = CheckedScene::new(file, Path::new("")).map_err(|e| e.to_string())?;
+    let layout = &scene.layout;
+    let rotations: Vec<UnitQuaternion<f64>> = layout.bodies.iter().map(|b| b.initial.orientation).collect();
     let joints = layout.joint_geometries().map_err(|e| e.to_string())?;
     let mut violations = Vec::new();
     for pose in 0..4 {
@@ -878,7 +877,7 @@ proptest! {
             }
         }
         if shipped {
-            let run = |text: &str| match SceneFile::parse(text).map(|s| s.algebra.algebras()[0]) {
+            let run = |text: &str| match Scene::parse(text).map(|s| s.checked().algebra.algebras()[0]) {
                 Ok(AlgebraKind::Pga) | Err(_) => first_samples::<Pga>(text),
                 Ok(AlgebraKind::Cga) => first_samples::<Cga>(text),
             };
@@ -902,11 +901,11 @@ proptest! {
 #[test]
 fn shipped_scene_files_pass_the_checks() {
     for (name, text) in SCENES {
-        assert!(SceneFile::parse(text).is_ok(), "{name}");
+        assert!(Scene::parse(text).is_ok(), "{name}");
         check(text).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
     for (name, text) in ROBOT_SCENES {
-        SceneFile::parse_in(text, &scenes()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        Scene::parse_in(text, &scenes()).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_in(text, &scenes()).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
 }
@@ -952,7 +951,7 @@ fn orientations_of_any_scale_are_the_rotation_written() {
         "orientation = { quaternion = [0.9659258262890683e-300, 0.25881904510252074e-300, 0.0, 0.0] }",
     ] {
         let text = heavy_top_with(axis, to);
-        assert!(SceneFile::parse(&text).is_ok(), "{to}");
+        assert!(Scene::parse(&text).is_ok(), "{to}");
         let (rotations, _) = meaning(&text).unwrap();
         let angle = rotations[0].angle_to(&written[0]);
         assert!(angle < 1e-15, "{to}: {angle:e} rad from the rotation written");
@@ -989,13 +988,13 @@ fn joint_normals_of_any_scale_are_the_geometry_written() {
         (plane("[0.0, 0.0, 1.0]", "0.5"), plane("[0.0, 0.0, 1e300]", "5e299")),
         (plane("[0.0, 0.0, 1.0]", "0.5"), plane("[0.0, 0.0, 1e-300]", "5e-301")),
     ] {
-        assert!(SceneFile::parse(&scaled).is_ok(), "{scaled}");
+        assert!(Scene::parse(&scaled).is_ok(), "{scaled}");
         let ((_, expected), (_, violations)) = (meaning(&written).unwrap(), meaning(&scaled).unwrap());
         for (a, b) in expected.iter().zip(&violations) {
             assert!((a - b).abs() < 1e-15, "{a} became {b}: {scaled}");
         }
     }
-    let message = SceneFile::parse(&plane("[0.0, 0.0, 1e-320]", "0.5"))
+    let message = Scene::parse(&plane("[0.0, 0.0, 1e-320]", "0.5"))
         .unwrap_err()
         .to_string();
     assert!(

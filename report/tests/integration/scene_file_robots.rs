@@ -20,7 +20,7 @@ use dynamics::simulate::Plan;
 use dynamics::{Cga, Pga, State};
 use nalgebra::{UnitQuaternion, Vector3};
 use report::scene_job::run_scene_file;
-use scene_file::{FileAlgebra, SceneFile};
+use scene_file::{FileAlgebra, Scene};
 
 fn scenes() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")
@@ -147,10 +147,10 @@ fn solo12_file_matches_the_reference() {
 /// work (`Sample::work`: the force elements' and the drives'), the largest |W|, and, independently, the work of the
 /// driven joint `driven` (if any), `∫ τ_drive q̇ dt` by Simpson's rule over the steps, with τ_drive the drive's
 /// generalised force `[M q̈ + h]` at its coordinate (no actuator acts on it).
-fn energy_balance<A: FileAlgebra>(scene: &SceneFile, driven: Option<&str>) -> (f64, f64, f64) {
+fn energy_balance<A: FileAlgebra>(scene: &Scene, driven: Option<&str>) -> (f64, f64, f64) {
     let system = scene.system::<A>().expect("the scene builds");
     let mechanism = system.mechanism();
-    let schedule = scene.schedule().unwrap();
+    let schedule = &scene.checked().schedule;
     let slot = driven.map(|name| {
         let group = mechanism
             .joint_space()
@@ -179,12 +179,12 @@ fn energy_balance<A: FileAlgebra>(scene: &SceneFile, driven: Option<&str>) -> (f
         ));
         ControlFlow::Continue(())
     };
-    let integrator = dynamics::Integrator::from(scene.integrator);
+    let integrator = dynamics::Integrator::from(scene.checked().integrator);
     let run = dynamics::simulate(
         mechanism,
         system.initial(),
         integrator,
-        Plan::new(&schedule).observer(observer),
+        Plan::new(schedule).observer(observer),
     )
     .expect("the scene runs");
     let seen = seen.into_inner();
@@ -221,13 +221,13 @@ fn energy_balance<A: FileAlgebra>(scene: &SceneFile, driven: Option<&str>) -> (f
 fn energy_change_equals_the_work_in_the_damped_driven_scene() {
     let path = scenes().join("ur5_paddle.toml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let driven = SceneFile::load(&path).unwrap();
+    let driven = Scene::load(&path).unwrap();
     let drive_line = text
         .lines()
         .find(|l| l.starts_with("drive = "))
         .expect("the drive")
         .to_owned();
-    let free = SceneFile::parse_in(&text.replace(&drive_line, ""), &scenes()).expect("without the drive");
+    let free = Scene::parse_in(&text.replace(&drive_line, ""), &scenes()).expect("without the drive");
     for (label, scene, joint) in [("driven", &driven, Some("paddle_hinge")), ("free", &free, None)] {
         for (algebra, (worst, work, drive)) in [
             ("PGA", energy_balance::<Pga>(scene, joint)),
@@ -305,7 +305,7 @@ between = ["arm", "world"]
 
 /// The joint coordinates of a file's system at its start (after the projection).
 fn start_coordinates(text: &str) -> Vec<f64> {
-    let scene = SceneFile::parse(text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let scene = Scene::parse(text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     let system = scene.system::<Pga>().unwrap();
     system.mechanism().joint_positions(system.initial(), None).unwrap()
 }
@@ -383,7 +383,7 @@ fn drives_are_followed() {
             )
             .replace("duration = 0.5", "duration = 1.0")
             .replace("name = \"arm\"", "name = \"arm\"\nforces = [{ kind = \"gravity\" }]");
-            let scene = SceneFile::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+            let scene = Scene::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
             let system = scene.system::<Pga>().unwrap();
             let run = scene.simulate::<Pga>().unwrap();
             let mut worst = 0.0f64;
@@ -434,7 +434,7 @@ v = {{ shoulder_pan_joint = 0.5, wrist_3_joint = 2.0 }}
         "[[joint]]\nname = \"pivot\"\nbetween = [\"bob\", \"base\"]\nkind = \"ball_joint\"\n\
          body_point = [0.0, 0.0, 0.3]\nreference_point = [1.0, 0.0, 0.0]",
     );
-    let scene = SceneFile::parse_in(&hung, &robots()).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Scene::parse_in(&hung, &robots()).unwrap_or_else(|e| panic!("{e}"));
     let run = scene.simulate::<Pga>().unwrap();
     let worst = run
         .body(6)
@@ -462,7 +462,7 @@ v = {{ shoulder_pan_joint = 0.5, wrist_3_joint = 2.0 }}
     let runs: Vec<_> = [on_ee, on_wrist]
         .iter()
         .map(|text| {
-            SceneFile::parse_in(text, &robots())
+            Scene::parse_in(text, &robots())
                 .unwrap_or_else(|e| panic!("{e}"))
                 .simulate::<Cga>()
                 .unwrap()
@@ -523,7 +523,7 @@ formulation = "{formulation}"
 {joint}
 "#
             );
-            let scene = SceneFile::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+            let scene = Scene::parse(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
             let (bodies, violation) = match algebra {
                 "pga" => violation_run::<Pga>(&scene),
                 _ => violation_run::<Cga>(&scene),
@@ -540,7 +540,7 @@ formulation = "{formulation}"
 }
 
 /// The run's samples and the largest joint violation over them.
-fn violation_run<A: FileAlgebra>(scene: &SceneFile) -> (Vec<Vec<dynamics::simulate::Sample>>, f64) {
+fn violation_run<A: FileAlgebra>(scene: &Scene) -> (Vec<Vec<dynamics::simulate::Sample>>, f64) {
     let system = scene.system::<A>().unwrap();
     let run = scene.simulate::<A>().unwrap();
     let worst = (0..run.bodies[0].len())
@@ -596,7 +596,7 @@ fn arm_scene(robot: &str) -> String {
 fn massless_moving_links_and_urdf_dynamics() {
     let dir = fresh("arm");
     std::fs::write(dir.join("arm.urdf"), arm_urdf("", "")).unwrap();
-    let refused = SceneFile::parse_in(&arm_scene("q = { shoulder = 0.5 }"), &dir)
+    let refused = Scene::parse_in(&arm_scene("q = { shoulder = 0.5 }"), &dir)
         .unwrap_err()
         .to_string();
     println!("{refused}");
@@ -630,7 +630,7 @@ fn massless_moving_links_and_urdf_dynamics() {
     println!("URDF damping: work {work:.3e} J, |E(t) − E₀ − W(t)| ≤ {worst:.1e} J");
     assert!(work < -1e-3 && worst < 1e-10, "work {work:e} J, balance {worst:e} J");
     // The frozen joint has no coordinate to start at.
-    let message = SceneFile::parse_in(
+    let message = Scene::parse_in(
         &frozen.replace("q = { shoulder = 0.5 }", "q = { shoulder = 0.5, spin = 1.0 }"),
         &dir,
     )
@@ -659,14 +659,14 @@ fn mimics_are_coupled_or_independent() {
         ),
     )
     .unwrap();
-    let coupled = SceneFile::parse_in(&arm_scene("q = { shoulder = 0.5, slide = 0.2 }"), &dir)
+    let coupled = Scene::parse_in(&arm_scene("q = { shoulder = 0.5, slide = 0.2 }"), &dir)
         .unwrap_err()
         .to_string();
     assert!(
         coupled.contains("`slide` follows `shoulder`") && coupled.contains("0.2 given, 0.05 implied"),
         "{coupled}"
     );
-    let scene = SceneFile::parse_in(
+    let scene = Scene::parse_in(
         &arm_scene("mimic = \"independent\"\nq = { shoulder = 0.5, slide = 0.2 }"),
         &dir,
     )
@@ -775,7 +775,7 @@ q = { FL_KFE = -0.5 }
 fn the_careless_input_bases_parse() {
     let enforced = FIXED.replace("limits = \"ignore\"", "limits = \"enforce\"\nlimit_restitution = 0.5");
     for base in [FIXED, FREE, &enforced] {
-        let scene = SceneFile::parse_in(base, &robots()).unwrap_or_else(|e| panic!("{e}"));
+        let scene = Scene::parse_in(base, &robots()).unwrap_or_else(|e| panic!("{e}"));
         scene.simulate::<Pga>().expect("runs");
         scene.simulate::<Cga>().expect("runs");
     }
@@ -1007,7 +1007,7 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
     for (base, from, to, parts) in cases {
         assert!(base.contains(from), "{from:?} is not in the base");
         let text = base.replacen(from, to, 1);
-        match SceneFile::parse_in(&text, &robots()) {
+        match Scene::parse_in(&text, &robots()) {
             Ok(_) => failures.push(format!("{from:?} → {to:?} parsed")),
             Err(error) => {
                 let message = error.to_string();
@@ -1052,7 +1052,7 @@ fn careless_but_valid_values_run() {
     for (from, to) in cases {
         assert!(FIXED.contains(from), "{from:?} is not in the base");
         let text = FIXED.replacen(from, to, 1);
-        let scene = SceneFile::parse_in(&text, &robots()).unwrap_or_else(|e| panic!("{from} → {to}: {e}"));
+        let scene = Scene::parse_in(&text, &robots()).unwrap_or_else(|e| panic!("{from} → {to}: {e}"));
         scene.simulate::<Pga>().unwrap_or_else(|e| panic!("{from} → {to}: {e}"));
     }
 }

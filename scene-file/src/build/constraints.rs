@@ -1,5 +1,5 @@
-//! A joint that is no joint model as a `dynamics` constraint, by pinning or by virtual power; [`FileAlgebra`], the
-//! algebras scene files run in (only CGA has the spheres and circles that pinning a point to one needs).
+//! A joint that is no joint model as a `dynamics` constraint, by pinning or by virtual power, in an algebra with
+//! [`RoundPins`] (only CGA has the spheres and circles that pinning a point to one needs).
 
 use std::sync::Arc;
 
@@ -10,9 +10,9 @@ use nalgebra::Vector3;
 use crate::check::geometry::{AxisFreedom, CheckedGeometry};
 use crate::error::{invalid, SceneFileError};
 
-/// An algebra in which scene files run. Only CGA has the spheres and circles that pinning a point to one
-/// needs (theory §9, §13).
-pub trait FileAlgebra: PinningAlgebra {
+/// The pins of a body point on a sphere or a circle, where the algebra has them: only CGA has the spheres and circles
+/// that pinning a point to one needs (theory §9, §13).
+pub trait RoundPins: PinningAlgebra {
     /// The pin holding the body point (body coordinates) on the sphere (world, m); `None` without spheres.
     fn point_on_sphere_pin(
         name: String,
@@ -29,7 +29,7 @@ pub trait FileAlgebra: PinningAlgebra {
     ) -> Option<Arc<dyn Constraint<Self>>>;
 }
 
-impl FileAlgebra for Pga {
+impl RoundPins for Pga {
     fn point_on_sphere_pin(_: String, _: Vector3<f64>, _: Vector3<f64>, _: f64) -> Option<Arc<dyn Constraint<Self>>> {
         None
     }
@@ -43,7 +43,7 @@ impl FileAlgebra for Pga {
     }
 }
 
-impl FileAlgebra for Cga {
+impl RoundPins for Cga {
     fn point_on_sphere_pin(
         name: String,
         body_point: Vector3<f64>,
@@ -64,7 +64,7 @@ impl FileAlgebra for Cga {
 
 /// The constraint of `geometry` (checked, its reference side in the reference body's frame, or the world's) in
 /// algebra `A`, by pinning or by virtual power, called `name` in messages.
-pub(crate) fn constraint_of<A: FileAlgebra>(
+pub(crate) fn constraint_of<A: RoundPins>(
     name: String,
     geometry: CheckedGeometry,
     pinned: bool,

@@ -24,11 +24,10 @@
 
 use std::sync::Arc;
 
-use dynamics::constraints::{pinning, Constraint, MotorPoint};
+use dynamics::constraints::{pinning, Constraint, MotorPoint, PinningAlgebra};
 use dynamics::{motor, JointKind, JointModel, ScrewCoordinates};
 use nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
-use super::constraints::FileAlgebra;
 use crate::check::geometry::{AxisFreedom, CheckedGeometry};
 use crate::error::{invalid, SceneFileError};
 use crate::syntax::elements::DriveSpec;
@@ -181,7 +180,7 @@ fn geometry_kind(geometry: &CheckedGeometry) -> &'static str {
 /// The rows of `model` in the chosen formulation: by virtual power its own ([`JointModel::virtual_power`]); by
 /// pinning the pinned objects of its frames (a point, a line and a point, a line, a line and a plane, a plane; a
 /// driven joint's and a weld's motor by two pinned lines). A universal joint has no pinned form.
-pub fn rows<A: FileAlgebra>(
+pub(crate) fn rows<A: PinningAlgebra>(
     model: &JointModel,
     pinned: bool,
     drive: Option<DriveSpec>,

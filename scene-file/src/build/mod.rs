@@ -3,6 +3,7 @@
 pub mod constraints;
 pub mod joint_models;
 pub mod robot;
+pub mod assembly;
 pub mod elements;
 pub mod contacts;
 pub mod system;

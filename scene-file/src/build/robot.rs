@@ -3,33 +3,19 @@
 
 use dynamics::JointModel;
 use dynamics::{Algebra, CoordinateGroup, JointId, JointSpace, Mechanism, Reference, State};
-use urdf_import::{BuildOptions, Robot};
+use urdf_import::Robot;
 
-use crate::check::robot::LoadedRobot;
-use crate::check::values::finite;
+use crate::check::robot::{CheckedRobot, LoadedRobot};
 use crate::error::{invalid, SceneFileError};
-use crate::syntax::robot::RobotSpec;
 
-impl LoadedRobot {
+impl CheckedRobot {
     /// The robot built in algebra `A` (its mechanism the scene's first bodies and joints) and its bodies' states at
     /// the start.
-    pub fn build<A: Algebra>(&self, spec: &RobotSpec) -> Result<(Robot<A>, Vec<State<A>>), SceneFileError> {
-        let gravity = finite("robot.gravity", spec.gravity)?;
-        if gravity.amax() > 1e50 {
-            return Err(invalid(
-                "robot.gravity",
-                format!("{:?} is beyond 1e50 m/s²", spec.gravity),
-            ));
-        }
-        let start = self.start(spec)?;
-        let options = BuildOptions {
-            root: spec.root(),
-            gravity,
-            limits: spec.limits()?,
-        };
-        let robot = Robot::<A>::build(self.model.clone(), &options).map_err(|e| invalid("robot", e.to_string()))?;
+    pub(crate) fn build<A: Algebra>(&self) -> Result<(Robot<A>, Vec<State<A>>), SceneFileError> {
+        let robot =
+            Robot::<A>::build(self.loaded.model.clone(), &self.options).map_err(|e| invalid("robot", e.to_string()))?;
         let states = robot
-            .initial_states(&start)
+            .initial_states(&self.start)
             .map_err(|e| invalid("robot", format!("the start: {e}")))?;
         Ok((robot, states))
     }

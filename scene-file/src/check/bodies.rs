@@ -1,11 +1,15 @@
-//! The bodies checked: their mass properties, orientations and forces.
+//! The bodies checked: their mass properties, initial states ([`InitialState`]) and forces ([`BodyForce`]), and any
+//! orientation a file gives.
 
-use dynamics::{Algebra, Body, BodyError, Force};
+use dynamics::{Algebra, Body, BodyError, Force, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 use super::values::{direction, finite, rescaled};
 use crate::error::{invalid, SceneFileError};
-use crate::syntax::bodies::{BodySpec, ForceSpec, OrientationSpec, Shape};
+use crate::syntax::bodies::{BodySpec, ForceSpec, InitialSpec, OrientationSpec, Shape};
+
+/// A body's pose: its centre of mass (world) and its orientation body → world.
+pub type Pose = (Vector3<f64>, UnitQuaternion<f64>);
 
 impl Shape {
     fn body(&self, mass: f64) -> Result<Body, BodyError> {
@@ -19,7 +23,8 @@ impl Shape {
 }
 
 impl BodySpec {
-    pub fn body(&self) -> Result<Body, SceneFileError> {
+    /// The body's mass properties, from its shape or its principal moments.
+    pub(crate) fn body(&self) -> Result<Body, SceneFileError> {
         let body = match (&self.shape, self.principal_moments) {
             (Some(shape), None) => shape.body(self.mass),
             (None, Some(moments)) => Body::new(self.mass, Vector3::from(moments)),
@@ -31,13 +36,8 @@ impl BodySpec {
 }
 
 impl OrientationSpec {
-    /// The rotation, or an error naming what is wrong: keys given in another combination, a non-finite
-    /// angle, a zero axis or quaternion.
-    pub fn rotation(&self) -> Result<UnitQuaternion<f64>, SceneFileError> {
-        self.rotation_of("initial.orientation")
-    }
-
-    /// [`OrientationSpec::rotation`], with messages naming the key `what`.
+    /// The rotation, or an error under `what` (the key) naming what is wrong: keys given in another combination, a
+    /// non-finite angle, a zero axis or quaternion.
     pub fn rotation_of(&self, what: &str) -> Result<UnitQuaternion<f64>, SceneFileError> {
         let axis_angle = |axis: [f64; 3], angle: f64| {
             if !angle.is_finite() {
@@ -68,32 +68,111 @@ impl OrientationSpec {
 }
 
 impl ForceSpec {
-    pub(crate) fn force<A: Algebra>(&self, index: usize) -> Result<Force<A>, SceneFileError> {
+    /// The force checked finite, messages naming it `force {index}` (1-based).
+    pub(crate) fn checked(&self, index: usize) -> Result<BodyForce, SceneFileError> {
         let what = |field: &str| format!("force {index}: {field}");
         Ok(match *self {
-            ForceSpec::Gravity { acceleration } => Force::Gravity {
+            ForceSpec::Gravity { acceleration } => BodyForce::Gravity {
                 acceleration: finite(&what("acceleration"), acceleration)?,
             },
-            ForceSpec::Force { force, point } => Force::Line {
+            ForceSpec::Force { force, point } => BodyForce::Line {
                 force: finite(&what("force"), force)?,
                 point: finite(&what("point"), point)?,
             },
-            ForceSpec::Couple { moment } => Force::Couple {
+            ForceSpec::Couple { moment } => BodyForce::Couple {
                 moment: finite(&what("moment"), moment)?,
             },
         })
     }
+}
 
-    pub fn kind(&self) -> &'static str {
+/// An external force on a body, checked finite (world frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BodyForce {
+    /// Uniform gravity at the centre of mass.
+    Gravity {
+        /// m/s².
+        acceleration: Vector3<f64>,
+    },
+    /// A constant force along a fixed world line.
+    Line {
+        /// N.
+        force: Vector3<f64>,
+        /// A point of its line (m).
+        point: Vector3<f64>,
+    },
+    /// A constant couple.
+    Couple {
+        /// N m.
+        moment: Vector3<f64>,
+    },
+}
+
+impl BodyForce {
+    /// The force in algebra `A`.
+    pub fn force<A: Algebra>(self) -> Force<A> {
         match self {
-            ForceSpec::Gravity { .. } => "gravity",
-            ForceSpec::Force { .. } => "constant force",
-            ForceSpec::Couple { .. } => "couple",
+            BodyForce::Gravity { acceleration } => Force::Gravity { acceleration },
+            BodyForce::Line { force, point } => Force::Line { force, point },
+            BodyForce::Couple { moment } => Force::Couple { moment },
+        }
+    }
+
+    /// What it is, for the summary: "gravity", "constant force" or "couple".
+    pub fn kind(self) -> &'static str {
+        match self {
+            BodyForce::Gravity { .. } => "gravity",
+            BodyForce::Line { .. } => "constant force",
+            BodyForce::Couple { .. } => "couple",
         }
     }
 
     /// Whether the force has a potential, so that the energy is conserved under it.
-    pub fn conservative(&self) -> bool {
-        matches!(self, ForceSpec::Gravity { .. })
+    pub fn conservative(self) -> bool {
+        matches!(self, BodyForce::Gravity { .. })
+    }
+}
+
+/// A body's state at t = 0, checked: every value finite, the orientation a rotation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InitialState {
+    /// Centre of mass, world (m).
+    pub position: Vector3<f64>,
+    /// Body → world.
+    pub orientation: UnitQuaternion<f64>,
+    /// Angular velocity in body axes (rad/s).
+    pub body_angular_velocity: Vector3<f64>,
+    /// Centre-of-mass velocity, world (m/s).
+    pub velocity: Vector3<f64>,
+}
+
+impl InitialState {
+    /// The state of `body` in algebra `A`.
+    pub fn state<A: Algebra>(&self, body: &Body) -> State<A> {
+        State::new(
+            body,
+            self.position,
+            &self.orientation,
+            self.body_angular_velocity,
+            self.velocity,
+        )
+    }
+
+    /// The body's pose.
+    pub fn pose(&self) -> Pose {
+        (self.position, self.orientation)
+    }
+}
+
+impl InitialSpec {
+    /// The state checked, messages naming its keys after `prefix` (the body's, "body NAME: ", or none).
+    pub(crate) fn checked(&self, prefix: &str) -> Result<InitialState, SceneFileError> {
+        let at = |key: &str| format!("{prefix}initial.{key}");
+        Ok(InitialState {
+            position: finite(&at("position"), self.position)?,
+            orientation: self.orientation.rotation_of(&at("orientation"))?,
+            body_angular_velocity: finite(&at("body_angular_velocity"), self.body_angular_velocity)?,
+            velocity: finite(&at("velocity"), self.velocity)?,
+        })
     }
 }

@@ -6,6 +6,7 @@ use dynamics::surfaces::{Surface, SurfaceError};
 use dynamics::Pga;
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 
+use super::bodies::Pose;
 use super::values::{direction, finite, positive, rescaled};
 use crate::error::{invalid, SceneFileError};
 use crate::syntax::joints::Geometry;
@@ -111,32 +112,109 @@ pub enum CheckedGeometry {
     },
 }
 
-impl Geometry {
-    /// Every value checked; `start` is the body's pose in the reference's frame at the start, which a fixed joint
-    /// without a given pose keeps ([`Geometry::needs_start`]).
-    pub(crate) fn checked(&self, name: &str, start: Option<Pose>) -> Result<CheckedGeometry, SceneFileError> {
-        let what = |field: &str| format!("constraint {name}: {field}");
-        let point = |field: &str, values| finite(&what(field), values);
-        let unit = |field: &str, values| direction(&what(field), values).map(Unit::into_inner);
-        // Normal to a unit axis: its component across the axis, which must not vanish (its length does not matter,
-        // so it is rescaled, lest the component overflow).
-        let across = |field: &str, axis: Vector3<f64>, values| {
-            let (_, normal) = rescaled(&what(field), values)?;
-            let across = normal - axis * axis.dot(&normal);
-            if across.norm() > 1e-9 * normal.norm() {
-                Ok(across.normalize())
-            } else {
-                Err(invalid(what(field), "is zero or along the axis"))
+/// A joint's geometry as checked: every value the file gives, and where a fixed joint is given no pose, the start's.
+#[allow(clippy::large_enum_variant)] // as `CheckedGeometry`, which it mostly is
+#[derive(Clone, Copy, Debug)]
+pub enum HeldGeometry {
+    /// Every value given.
+    Given(CheckedGeometry),
+    /// A fixed joint without a position or an orientation (or both): it keeps those the body starts in.
+    WeldAtStart {
+        /// The body's centre of mass in the reference's frame (m), if given.
+        position: Option<Vector3<f64>>,
+        /// Body → reference, if given.
+        orientation: Option<UnitQuaternion<f64>>,
+    },
+}
+
+impl HeldGeometry {
+    /// The geometry; a fixed joint's missing position or orientation taken from `start`, the body's pose in its
+    /// reference's frame at the start (asked for only then).
+    pub fn at_start(self, start: impl FnOnce() -> Pose) -> CheckedGeometry {
+        match self {
+            HeldGeometry::Given(geometry) => geometry,
+            HeldGeometry::WeldAtStart { position, orientation } => {
+                let start = start();
+                CheckedGeometry::Weld {
+                    position: position.unwrap_or(start.0),
+                    orientation: orientation.unwrap_or(start.1),
+                }
             }
-        };
-        let round = |body_point, centre, radius, normal| {
-            Ok::<_, SceneFileError>(CheckedGeometry::Round {
-                body_point: point("body_point", body_point)?,
-                centre: point("centre", centre)?,
-                radius: positive(&what("radius"), radius)?,
-                normal,
-            })
-        };
+        }
+    }
+}
+
+/// The values of the constraint `name`, checked with messages naming it and the key.
+struct Fields<'a> {
+    name: &'a str,
+}
+
+impl Fields<'_> {
+    fn what(&self, field: &str) -> String {
+        format!("constraint {}: {field}", self.name)
+    }
+
+    fn point(&self, field: &str, values: [f64; 3]) -> Result<Vector3<f64>, SceneFileError> {
+        finite(&self.what(field), values)
+    }
+
+    fn unit(&self, field: &str, values: [f64; 3]) -> Result<Vector3<f64>, SceneFileError> {
+        direction(&self.what(field), values).map(Unit::into_inner)
+    }
+
+    /// A point and a unit direction: an axis, or a plane by its normal.
+    fn point_and_direction(
+        &self,
+        (point, direction): (&str, &str),
+        values: ([f64; 3], [f64; 3]),
+    ) -> Result<(Vector3<f64>, Vector3<f64>), SceneFileError> {
+        Ok((self.point(point, values.0)?, self.unit(direction, values.1)?))
+    }
+
+    /// Normal to a unit axis: its component across the axis, which must not vanish (its length does not matter,
+    /// so it is rescaled, lest the component overflow).
+    fn across(&self, field: &str, axis: Vector3<f64>, values: [f64; 3]) -> Result<Vector3<f64>, SceneFileError> {
+        let (_, normal) = rescaled(&self.what(field), values)?;
+        let across = normal - axis * axis.dot(&normal);
+        if across.norm() > 1e-9 * normal.norm() {
+            Ok(across.normalize())
+        } else {
+            Err(invalid(self.what(field), "is zero or along the axis"))
+        }
+    }
+}
+
+impl Geometry {
+    /// Every value checked, messages naming the constraint `name`.
+    pub(crate) fn checked(&self, name: &str) -> Result<HeldGeometry, SceneFileError> {
+        let fields = Fields { name };
+        match self {
+            Geometry::Fixed { position, orientation } => {
+                let position = position.map(|p| fields.point("position", p)).transpose()?;
+                let orientation = (orientation.as_ref())
+                    .map(|o| o.rotation_of(&fields.what("orientation")))
+                    .transpose()?;
+                Ok(match (position, orientation) {
+                    (Some(position), Some(orientation)) => {
+                        HeldGeometry::Given(CheckedGeometry::Weld { position, orientation })
+                    }
+                    _ => HeldGeometry::WeldAtStart { position, orientation },
+                })
+            }
+            Geometry::BallJoint { .. }
+            | Geometry::Universal(_)
+            | Geometry::Hinge(_)
+            | Geometry::Cylindrical(_)
+            | Geometry::Prismatic { .. }
+            | Geometry::Planar { .. } => self.checked_joint(&fields).map(HeldGeometry::Given),
+            _ => self.checked_point_on(&fields).map(HeldGeometry::Given),
+        }
+    }
+
+    /// A joint between frames: a ball, universal, hinge, cylindrical, prismatic or planar joint.
+    fn checked_joint(&self, fields: &Fields) -> Result<CheckedGeometry, SceneFileError> {
+        let point = |field: &str, values| fields.point(field, values);
+        let unit = |field: &str, values| fields.unit(field, values);
         Ok(match self {
             Geometry::BallJoint {
                 body_point,
@@ -146,49 +224,19 @@ impl Geometry {
                 world_point: point("world_point", *world_point)?,
             },
             Geometry::Universal(joint) => CheckedGeometry::Universal {
-                body: (
-                    point("body_point", joint.body_point)?,
-                    unit("body_axis", joint.body_axis)?,
-                ),
-                world: (
-                    point("world_point", joint.world_point)?,
-                    unit("world_axis", joint.world_axis)?,
-                ),
+                body: fields.point_and_direction(("body_point", "body_axis"), (joint.body_point, joint.body_axis))?,
+                world: fields
+                    .point_and_direction(("world_point", "world_axis"), (joint.world_point, joint.world_axis))?,
             },
-            Geometry::Fixed { position, orientation } => {
-                let start = || {
-                    start.ok_or_else(|| {
-                        invalid(
-                            what("position, orientation"),
-                            "the pose the body starts in is not known here",
-                        )
-                    })
-                };
-                CheckedGeometry::Weld {
-                    position: match position {
-                        Some(p) => point("position", *p)?,
-                        None => start()?.0,
-                    },
-                    orientation: match orientation {
-                        Some(o) => o.rotation_of(&what("orientation"))?,
-                        None => start()?.1,
-                    },
-                }
-            }
             Geometry::Hinge(joint) | Geometry::Cylindrical(joint) => CheckedGeometry::Axis {
                 freedom: if matches!(self, Geometry::Hinge(_)) {
                     AxisFreedom::Turn
                 } else {
                     AxisFreedom::TurnAndSlide
                 },
-                body: (
-                    point("body_point", joint.body_point)?,
-                    unit("body_axis", joint.body_axis)?,
-                ),
-                world: (
-                    point("world_point", joint.world_point)?,
-                    unit("world_axis", joint.world_axis)?,
-                ),
+                body: fields.point_and_direction(("body_point", "body_axis"), (joint.body_point, joint.body_axis))?,
+                world: fields
+                    .point_and_direction(("world_point", "world_axis"), (joint.world_point, joint.world_axis))?,
             },
             Geometry::Prismatic {
                 body_point,
@@ -201,8 +249,8 @@ impl Geometry {
                 let (body_axis, world_axis) = (unit("body_axis", *body_axis)?, unit("world_axis", *world_axis)?);
                 CheckedGeometry::Axis {
                     freedom: AxisFreedom::Slide {
-                        body_normal: across("body_normal", body_axis, *body_normal)?,
-                        world_normal: across("world_normal", world_axis, *world_normal)?,
+                        body_normal: fields.across("body_normal", body_axis, *body_normal)?,
+                        world_normal: fields.across("world_normal", world_axis, *world_normal)?,
                     },
                     body: (point("body_point", *body_point)?, body_axis),
                     world: (point("world_point", *world_point)?, world_axis),
@@ -214,19 +262,33 @@ impl Geometry {
                 world_point,
                 world_normal,
             } => CheckedGeometry::Planar {
-                body: (point("body_point", *body_point)?, unit("body_normal", *body_normal)?),
-                world: (
-                    point("world_point", *world_point)?,
-                    unit("world_normal", *world_normal)?,
-                ),
+                body: fields.point_and_direction(("body_point", "body_normal"), (*body_point, *body_normal))?,
+                world: fields.point_and_direction(("world_point", "world_normal"), (*world_point, *world_normal))?,
             },
+            _ => unreachable!("`checked` passes joints between frames only"),
+        })
+    }
+
+    /// A body point on a line, plane, sphere, circle, surface or curve.
+    fn checked_point_on(&self, fields: &Fields) -> Result<CheckedGeometry, SceneFileError> {
+        let what = |field: &str| fields.what(field);
+        let point = |field: &str, values| fields.point(field, values);
+        let round = |body_point, centre, radius, normal| {
+            Ok::<_, SceneFileError>(CheckedGeometry::Round {
+                body_point: point("body_point", body_point)?,
+                centre: point("centre", centre)?,
+                radius: positive(&what("radius"), radius)?,
+                normal,
+            })
+        };
+        Ok(match self {
             Geometry::PointOnLine {
                 body_point,
                 world_point,
                 world_axis,
             } => CheckedGeometry::Line {
                 body_point: point("body_point", *body_point)?,
-                world: (point("world_point", *world_point)?, unit("world_axis", *world_axis)?),
+                world: fields.point_and_direction(("world_point", "world_axis"), (*world_point, *world_axis))?,
             },
             Geometry::PointOnPlane {
                 body_point,
@@ -261,7 +323,7 @@ impl Geometry {
                 centre,
                 radius,
                 normal,
-            } => round(*body_point, *centre, *radius, Some(unit("normal", *normal)?))?,
+            } => round(*body_point, *centre, *radius, Some(fields.unit("normal", *normal)?))?,
             Geometry::PointOnSurface { body_point, surface } => CheckedGeometry::Surfaces {
                 body_point: point("body_point", *body_point)?,
                 first: surface.surface(&what("surface"))?,
@@ -280,6 +342,7 @@ impl Geometry {
                     ))
                 }
             },
+            _ => unreachable!("`checked` passes points on curves and surfaces only"),
         })
     }
 }
@@ -458,9 +521,6 @@ impl CheckedGeometry {
         }
     }
 }
-
-/// A body's pose: its centre of mass (world) and its orientation body → world.
-pub type Pose = (Vector3<f64>, UnitQuaternion<f64>);
 
 /// The pose of a body at `body` (world) in the frame of a reference at `reference` (the world if `None`).
 pub(crate) fn relative_pose(body: &Pose, reference: Option<&Pose>) -> Pose {

@@ -1,11 +1,14 @@
-//! A scene file's robot read: its URDF imported by `urdf_import` (at most 64 MiB), its joints found by name, and its
-//! start (joint positions and velocities by name, a floating base's pose and twist) checked.
+//! A scene file's robot: its URDF read (at most 64 MiB) and imported by `urdf_import` ([`LoadedRobot`]), its joints
+//! found by name, then its gravity and start (joint positions and velocities by name, a floating base's pose and twist)
+//! checked ([`CheckedRobot`]).
 
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
 use nalgebra::{UnitQuaternion, Vector3};
-use urdf_import::{BaseStart, ImportOptions, Limits, MasslessSubtrees, MimicMode, RobotModel, RobotStart, Root};
+use urdf_import::{
+    BaseStart, BuildOptions, ImportOptions, Limits, MasslessSubtrees, MimicMode, RobotModel, RobotStart, Root,
+};
 
 use super::values::finite;
 use crate::error::{invalid, SceneFileError};
@@ -14,12 +17,64 @@ use crate::syntax::robot::{LimitsName, MasslessName, MimicName, RobotSpec, RootN
 /// URDF files larger than this are refused before they are read to the end (a typo naming /dev/zero must not hang).
 const MAX_URDF_BYTES: u64 = 64 << 20;
 
-/// The robot's URDF, read and imported.
+/// The `[robot]` table with its URDF read and imported.
 #[derive(Clone, Debug)]
 pub struct LoadedRobot {
+    /// The table as written.
+    pub spec: RobotSpec,
     /// The URDF file as found (the scene file's folder joined with `urdf`).
     pub path: PathBuf,
+    /// The URDF imported.
     pub model: RobotModel,
+    /// Whether its joint limits are enforced, checked.
+    limits: Limits,
+}
+
+/// The `[robot]` table checked: its URDF read and imported, its gravity and start checked.
+#[derive(Clone, Debug)]
+pub struct CheckedRobot {
+    /// The table and its URDF.
+    pub loaded: LoadedRobot,
+    /// Joint positions and velocities by name, a floating base's pose and twist.
+    pub start: RobotStart,
+    /// Its root, gravity and limits.
+    pub options: BuildOptions,
+}
+
+impl LoadedRobot {
+    /// Reads the URDF at `spec.urdf` relative to `dir` and imports it.
+    pub(crate) fn load(spec: &RobotSpec, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
+        let limits = spec.limits()?;
+        let (path, model) = spec.load(dir)?;
+        Ok(LoadedRobot {
+            spec: spec.clone(),
+            path,
+            model,
+            limits,
+        })
+    }
+
+    /// The robot with its gravity and start checked.
+    pub(crate) fn checked(self) -> Result<CheckedRobot, SceneFileError> {
+        let gravity = finite("robot.gravity", self.spec.gravity)?;
+        if gravity.amax() > 1e50 {
+            return Err(invalid(
+                "robot.gravity",
+                format!("{:?} is beyond 1e50 m/s²", self.spec.gravity),
+            ));
+        }
+        let start = self.start()?;
+        let options = BuildOptions {
+            root: self.spec.root(),
+            gravity,
+            limits: self.limits,
+        };
+        Ok(CheckedRobot {
+            loaded: self,
+            start,
+            options,
+        })
+    }
 }
 
 impl RobotSpec {
@@ -41,7 +96,7 @@ impl RobotSpec {
     }
 
     /// The importer's limit option: a restitution only with `limits = "enforce"`, and in [0, 1].
-    pub fn limits(&self) -> Result<Limits, SceneFileError> {
+    fn limits(&self) -> Result<Limits, SceneFileError> {
         match (self.limits, self.limit_restitution) {
             (LimitsName::Ignore, None) => Ok(Limits::Ignore),
             (LimitsName::Ignore, Some(_)) => Err(invalid(
@@ -61,17 +116,16 @@ impl RobotSpec {
         }
     }
 
-    pub fn root(&self) -> Root {
+    fn root(&self) -> Root {
         match self.root {
             RootName::Fixed => Root::Fixed,
             RootName::Free => Root::Free,
         }
     }
 
-    /// Reads the URDF at `urdf` relative to `dir` and imports it: an error naming the path when the file cannot be
-    /// read, the importer's error verbatim otherwise.
-    pub fn load(&self, dir: &Path) -> Result<LoadedRobot, SceneFileError> {
-        self.limits()?;
+    /// Reads the URDF at `urdf` relative to `dir` and imports it: its path and model, or an error naming the path when
+    /// the file cannot be read, the importer's error verbatim otherwise.
+    fn load(&self, dir: &Path) -> Result<(PathBuf, RobotModel), SceneFileError> {
         let repairs = self.repairs.unwrap_or_default();
         for (key, value) in [
             ("bound_mass", repairs.bound_mass),
@@ -99,7 +153,7 @@ impl RobotSpec {
         let text = String::from_utf8(bytes).map_err(|e| cannot(&format!("it is not UTF-8 ({e})")))?;
         let model = urdf_import::read(&text, &self.import_options())
             .map_err(|e| invalid("robot.urdf", format!("{}: {e}", path.display())))?;
-        Ok(LoadedRobot { path, model })
+        Ok((path, model))
     }
 }
 
@@ -165,12 +219,13 @@ impl LoadedRobot {
     }
 
     /// The number of mechanism bodies the robot adds (its root is the world when fixed).
-    pub fn body_count(&self, spec: &RobotSpec) -> usize {
-        self.model.bodies.len() - usize::from(spec.root == RootName::Fixed)
+    pub fn body_count(&self) -> usize {
+        self.model.bodies.len() - usize::from(self.spec.root == RootName::Fixed)
     }
 
     /// The start: joint positions and velocities by name, the base's pose and twist (free root only).
-    pub(crate) fn start(&self, spec: &RobotSpec) -> Result<RobotStart, SceneFileError> {
+    fn start(&self) -> Result<RobotStart, SceneFileError> {
+        let spec = &self.spec;
         let mut start = RobotStart::default();
         for (key, values, target) in [
             ("q", &spec.q, &mut start.positions),

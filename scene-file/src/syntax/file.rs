@@ -1,6 +1,8 @@
-//! A whole scene file ([`SceneFile`]) with its defaults, and toml's errors placed at the offending key.
+//! A whole scene file ([`SceneFile`]) with its defaults: its text read (at most [`MAX_FILE_BYTES`]) and parsed, toml's
+//! errors placed at the offending key.
 
-use std::sync::Arc;
+use std::io::Read as _;
+use std::path::Path;
 
 use dynamics::simulate::SAMPLE_INTERVAL;
 use serde::Deserialize;
@@ -10,8 +12,7 @@ use super::contacts::ContactSpec;
 use super::elements::{CoupleSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec};
 use super::joints::{ConstraintSpec, JointSpec};
 use super::robot::RobotSpec;
-use crate::check::robot::LoadedRobot;
-use crate::error::SceneFileError;
+use crate::error::{invalid, SceneFileError};
 use crate::names::{AlgebraChoice, IntegratorName, StabilisationName};
 
 /// A whole scene file.
@@ -24,13 +25,9 @@ pub struct SceneFile {
     /// Which algebras run the scene.
     #[serde(default)]
     pub algebra: AlgebraChoice,
-    /// The integrator as written, if it is.
-    #[serde(default, rename = "integrator")]
-    pub(crate) integrator_written: Option<IntegratorName>,
-    /// The integrator: as written, else `"rkmk8-body"` with a `[robot]` and `"rk4"` without (set by
-    /// [`SceneFile::parse`]); the splittings run a single body without constraints only.
-    #[serde(skip, default = "default_integrator")]
-    pub integrator: IntegratorName,
+    /// The integrator, if the file names one (the default depends on the scene: `CheckedScene::integrator`).
+    #[serde(default)]
+    pub integrator: Option<IntegratorName>,
     /// The fixed step (s); it must divide the sample interval. A file gives this or `tolerance`.
     #[serde(default)]
     pub dt: Option<f64>,
@@ -89,13 +86,26 @@ pub struct SceneFile {
     /// Body points kept above world planes.
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
-    /// The robot's URDF, read by [`SceneFile::parse`].
-    #[serde(skip)]
-    pub loaded_robot: Option<Arc<LoadedRobot>>,
 }
 
-fn default_integrator() -> IntegratorName {
-    IntegratorName::Rk4
+impl SceneFile {
+    /// Parses a scene file's text: its syntax only (nothing is checked but what toml and the structs' types check).
+    pub fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
+        toml::from_str(text).map_err(|error| at_unknown_key(text, error))
+    }
+}
+
+/// The text of the file at `path`, refused unread past [`MAX_FILE_BYTES`] (a typo naming /dev/zero must not hang).
+pub fn read_text(path: &Path) -> Result<String, SceneFileError> {
+    let file = std::fs::File::open(path).map_err(SceneFileError::Read)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(SceneFileError::Read)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(invalid("the file", format!("is larger than {MAX_FILE_BYTES} bytes")));
+    }
+    String::from_utf8(bytes).map_err(|e| invalid("the file", format!("is not UTF-8: {e}")))
 }
 
 fn default_sample_interval() -> f64 {
@@ -155,7 +165,7 @@ pub const MAX_FILE_BYTES: u64 = 4 << 20;
 
 /// The reader's error, or, for an unknown key it can only place at its table's header (tables read through a `kind`
 /// tag), the same message at the key's own line: the first `key =` between the header and the next one.
-pub(crate) fn at_unknown_key(text: &str, error: toml::de::Error) -> SceneFileError {
+fn at_unknown_key(text: &str, error: toml::de::Error) -> SceneFileError {
     let message = error.message().trim().to_owned();
     let key = message
         .strip_prefix("unknown field `")

@@ -189,11 +189,6 @@ impl Geometry {
             Geometry::PointOnCurve { .. } => "point on curve",
         }
     }
-
-    /// Whether the checked geometry needs the pose the body starts in (a fixed joint without a given pose).
-    pub fn needs_start(&self) -> bool {
-        matches!(self, Geometry::Fixed { position, orientation } if position.is_none() || orientation.is_none())
-    }
 }
 
 /// A joint's `limit = { lower = …, upper = …, restitution = … }` (rad or m; docs/limits.md): either bound may be left
