@@ -2,14 +2,14 @@
 //! scene files (`integrator`, `stabilisation`) give them, and the algebras and constraint formulations by the names
 //! scene files give them.
 
-use clap::ValueEnum;
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method, SplittingMethod};
 use dynamics::JointMethod;
 use serde::Deserialize;
 
 /// The integrators by name, on the command line and in scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum IntegratorName {
     /// Classic RK4, then renormalisation (the paper's method).
@@ -25,12 +25,12 @@ pub enum IntegratorName {
     /// Dormand–Prince's embedded pair of orders 5 and 4 on the body-momentum RKMK scheme: the integrator of
     /// adaptive runs (`tolerance`), or a 5th-order method at a fixed step.
     #[serde(rename = "dp5-body")]
-    #[value(name = "dp5-body")]
+    #[cfg_attr(feature = "clap", value(name = "dp5-body"))]
     Dp5Body,
     /// Dormand–Prince's pair of order 8 with embedded orders 5 and 3 (DOP853) on the body-momentum RKMK scheme:
     /// the default integrator of adaptive runs, or an 8th-order method at a fixed step.
     #[serde(rename = "dop853-body")]
-    #[value(name = "dop853-body")]
+    #[cfg_attr(feature = "clap", value(name = "dop853-body"))]
     Dop853Body,
     /// Strang splitting, order 2; a free body only.
     Strang,
@@ -64,7 +64,8 @@ impl From<IntegratorName> for Integrator {
 }
 
 /// The stabilisations by name, on the command line and in scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum StabilisationName {
     /// Post-step projection onto the constraint manifold (theory §10).
