@@ -99,8 +99,10 @@ pub enum AlgebraKind {
 }
 
 impl AlgebraKind {
+    /// Both, CGA first (the order of the main job's sweep).
     pub const ALL: [AlgebraKind; 2] = [AlgebraKind::Cga, AlgebraKind::Pga];
 
+    /// "CGA" or "PGA".
     pub fn name(self) -> &'static str {
         match self {
             AlgebraKind::Cga => "CGA",
@@ -137,8 +139,10 @@ impl AlgebraChoice {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FormulationName {
+    /// Constraint wrenches (theory §6).
     #[default]
     VirtualPower,
+    /// Pinned multivectors and linear functions of them (theory §7, §9).
     Pinning,
 }
 

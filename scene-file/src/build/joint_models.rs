@@ -34,7 +34,7 @@ use crate::syntax::elements::DriveSpec;
 
 /// The smallest rotation taking the unit vector `from` to the unit vector `to`; exactly the identity when they are
 /// equal, a half turn about `from`'s first normal when they are opposite.
-pub fn smallest_rotation(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
+pub(crate) fn smallest_rotation(from: &Vector3<f64>, to: &Vector3<f64>) -> UnitQuaternion<f64> {
     if from == to {
         return UnitQuaternion::identity();
     }
@@ -61,7 +61,7 @@ fn frame_rotation(from: (Vector3<f64>, Vector3<f64>), to: (Vector3<f64>, Vector3
 
 /// Whether a joint of this geometry becomes a joint model (ball, hinge, cylindrical, prismatic, planar, universal,
 /// fixed); the others (points on lines, planes, spheres, circles) stay constraints.
-pub fn has_model(geometry: &CheckedGeometry) -> bool {
+pub(crate) fn has_model(geometry: &CheckedGeometry) -> bool {
     matches!(
         geometry,
         CheckedGeometry::Ball { .. }
@@ -75,7 +75,7 @@ pub fn has_model(geometry: &CheckedGeometry) -> bool {
 /// The joint model of `geometry` (its reference side in the reference's frame, which sits at `frame` in the
 /// reference body's frame: a robot link's frame, else the identity), driven by `drive` if given; `None` for a
 /// geometry without one ([`has_model`]).
-pub fn joint_model(
+pub(crate) fn joint_model(
     name: &str,
     geometry: &CheckedGeometry,
     frame: &Isometry3<f64>,

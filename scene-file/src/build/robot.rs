@@ -23,7 +23,7 @@ impl CheckedRobot {
 
 /// A robot joint's model, its child and parent bodies (mechanism indices; `None`: the world) and where its position
 /// coordinates start.
-pub type RobotJoint = (JointModel, usize, Option<usize>, usize);
+pub(crate) type RobotJoint = (JointModel, usize, Option<usize>, usize);
 
 /// Where a joints-CSV column comes from.
 #[derive(Clone, Copy, Debug)]
@@ -38,14 +38,15 @@ enum Source {
 /// (frozen ones at their constant 0), then for a free root `base.x, base.y, base.z, base.qw, base.qx, base.qy,
 /// base.qz` (the root link frame, world ← root).
 #[derive(Clone, Debug)]
-pub struct RobotColumns {
-    pub headers: Vec<String>,
+pub(crate) struct RobotColumns {
+    /// `joint`, `joint.x`, …, `base.qz`.
+    pub(crate) headers: Vec<String>,
     sources: Vec<Source>,
 }
 
 impl RobotColumns {
     /// The columns' values at joint positions `q` (the mechanism's joint space).
-    pub fn row(&self, q: &[f64]) -> Vec<f64> {
+    pub(crate) fn row(&self, q: &[f64]) -> Vec<f64> {
         self.sources
             .iter()
             .map(|s| match s {
@@ -92,7 +93,7 @@ fn coordinate_group<'s, A: Algebra>(
 
 impl LoadedRobot {
     /// The joints CSV's columns in `mechanism` (the robot's, with the scene's bodies added).
-    pub fn columns<A: Algebra>(
+    pub(crate) fn columns<A: Algebra>(
         &self,
         robot: &Robot<A>,
         mechanism: &Mechanism<A>,
@@ -151,7 +152,7 @@ impl LoadedRobot {
 
     /// Every moving joint's model with its child and parent body (mechanism indices) and where its positions start,
     /// to measure how far the bodies are from the pose their joint coordinates give.
-    pub fn joint_models<A: Algebra>(
+    pub(crate) fn joint_models<A: Algebra>(
         &self,
         robot: &Robot<A>,
         mechanism: &Mechanism<A>,

@@ -53,7 +53,7 @@ impl Sine {
     }
 
     /// The value, its rate and acceleration at `t` (exact).
-    pub fn at(&self, t: f64) -> PathPoint<f64> {
+    pub(crate) fn at(&self, t: f64) -> PathPoint<f64> {
         let omega = TAU * self.frequency;
         let (sin, cos) = (omega * t + self.phase).sin_cos();
         PathPoint {
@@ -66,7 +66,7 @@ impl Sine {
 
 impl TimeValue {
     /// Checked: finite, and within 1e50.
-    pub fn checked(self, what: &str) -> Result<TimeValue, SceneFileError> {
+    pub(crate) fn checked(self, what: &str) -> Result<TimeValue, SceneFileError> {
         match self {
             TimeValue::Constant(value) => Ok(TimeValue::Constant(bounded(what, value)?)),
             TimeValue::Sine(sine) => Ok(TimeValue::Sine(sine.checked(what)?)),
@@ -74,7 +74,7 @@ impl TimeValue {
     }
 
     /// The value at `t`.
-    pub fn at(&self, t: f64) -> f64 {
+    pub(crate) fn at(&self, t: f64) -> f64 {
         match self {
             TimeValue::Constant(value) => *value,
             TimeValue::Sine(sine) => sine.at(t).value,
@@ -84,7 +84,7 @@ impl TimeValue {
 
 impl DriveSpec {
     /// The checked drive over a run of `duration` s: finite parameters whose value stays within 1e50.
-    pub fn checked(self, what: &str, duration: f64) -> Result<DriveSpec, SceneFileError> {
+    pub(crate) fn checked(self, what: &str, duration: f64) -> Result<DriveSpec, SceneFileError> {
         match self {
             DriveSpec::ConstantRate { start, rate } => {
                 let start = bounded(&format!("{what}.start"), start)?;
@@ -103,7 +103,7 @@ impl DriveSpec {
     }
 
     /// The prescribed value, rate and acceleration at `t` (exact).
-    pub fn at(&self, t: f64) -> PathPoint<f64> {
+    pub(crate) fn at(&self, t: f64) -> PathPoint<f64> {
         match *self {
             DriveSpec::ConstantRate { start, rate } => PathPoint {
                 value: start + rate * t,
@@ -117,7 +117,7 @@ impl DriveSpec {
 
 impl LimitSpec {
     /// The limit, or an error naming `what` (the joint's `limit` entry) and the values.
-    pub fn limit(&self, what: &str) -> Result<JointLimit, SceneFileError> {
+    pub(crate) fn limit(&self, what: &str) -> Result<JointLimit, SceneFileError> {
         if self.lower.is_none() && self.upper.is_none() {
             return Err(invalid(what, "needs a lower or an upper bound, or both"));
         }
@@ -135,7 +135,7 @@ impl LimitSpec {
 }
 
 /// An element's name: the one written, or `default`; checked non-empty and unique among `taken`.
-pub fn element_name(
+pub(crate) fn element_name(
     written: &Option<String>,
     default: impl FnOnce() -> String,
     taken: &mut Vec<String>,

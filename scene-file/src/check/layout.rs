@@ -14,7 +14,7 @@ use crate::names::FormulationName;
 use crate::syntax::bodies::{Bodies, BodySpec, ForceSpec, InitialSpec, NamedBody};
 use crate::syntax::elements::DriveSpec;
 use crate::syntax::file::SceneFile;
-use crate::syntax::joints::{Geometry, LimitSpec};
+use crate::syntax::joints::{Geometry, JointSpec, LimitSpec};
 
 /// A body of the scene, whichever layout it came from, checked.
 #[derive(Clone, Debug)]
@@ -255,50 +255,10 @@ impl<'f> Names<'f> {
         let names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
         let mut joints: Vec<JointEntry> = Vec::with_capacity(file.joint.len());
         for spec in &file.joint {
-            let name = &spec.name;
-            if name.is_empty() {
-                return Err(invalid("joint \"\"", "a joint needs a non-empty name"));
+            if joints.iter().any(|j| j.name == spec.name) {
+                return Err(invalid(format!("joint {}", spec.name), "two joints have this name"));
             }
-            if joints.iter().any(|j| &j.name == name) {
-                return Err(invalid(format!("joint {name}"), "two joints have this name"));
-            }
-            if robot.is_some_and(|r| r.has_joint(name)) {
-                return Err(invalid(format!("joint {name}"), "the robot has a joint of this name"));
-            }
-            let [held, reference] = &spec.between;
-            let what = format!("joint {name}: between");
-            if held == WORLD {
-                return Err(invalid(
-                    what,
-                    "the first is the held body, not the world (write [\"body\", \"world\"])",
-                ));
-            }
-            let body = match end_of(&names, robot, &what, held)? {
-                End::Body(index) => index,
-                _ => {
-                    return Err(invalid(
-                        what,
-                        format!(
-                            "the first is the held body, a [[body]] entry; the robot link {held} can be the \
-                             reference (the second) only"
-                        ),
-                    ))
-                }
-            };
-            let reference = end_of(&names, robot, &what, reference)?;
-            if reference == End::Body(body) {
-                return Err(invalid(what, format!("joins {held} to itself")));
-            }
-            joints.push(JointEntry {
-                name: name.clone(),
-                body,
-                reference,
-                formulation: spec.formulation,
-                geometry: &spec.geometry,
-                entry: true,
-                drive: spec.drive,
-                limit: spec.limit,
-            });
+            joints.push(JointEntry::named(spec, &names, robot)?);
         }
         Ok(Names {
             bodies,
@@ -354,7 +314,56 @@ impl BodyEntry<'_> {
     }
 }
 
-impl JointEntry<'_> {
+impl<'f> JointEntry<'f> {
+    /// A `[[joint]]` entry, its names resolved among `bodies` and the robot's links.
+    fn named(
+        spec: &'f JointSpec,
+        bodies: &[&str],
+        robot: Option<&LoadedRobot>,
+    ) -> Result<JointEntry<'f>, SceneFileError> {
+        let name = &spec.name;
+        if name.is_empty() {
+            return Err(invalid("joint \"\"", "a joint needs a non-empty name"));
+        }
+        if robot.is_some_and(|r| r.has_joint(name)) {
+            return Err(invalid(format!("joint {name}"), "the robot has a joint of this name"));
+        }
+        let [held, reference] = &spec.between;
+        let what = format!("joint {name}: between");
+        if held == WORLD {
+            return Err(invalid(
+                what,
+                "the first is the held body, not the world (write [\"body\", \"world\"])",
+            ));
+        }
+        let body = match end_of(bodies, robot, &what, held)? {
+            End::Body(index) => index,
+            _ => {
+                return Err(invalid(
+                    what,
+                    format!(
+                        "the first is the held body, a [[body]] entry; the robot link {held} can be the \
+                         reference (the second) only"
+                    ),
+                ))
+            }
+        };
+        let reference = end_of(bodies, robot, &what, reference)?;
+        if reference == End::Body(body) {
+            return Err(invalid(what, format!("joins {held} to itself")));
+        }
+        Ok(JointEntry {
+            name: name.clone(),
+            body,
+            reference,
+            formulation: spec.formulation,
+            geometry: &spec.geometry,
+            entry: true,
+            drive: spec.drive,
+            limit: spec.limit,
+        })
+    }
+
     /// The joint's geometry, drive (over a run of `duration` s) and limit checked.
     fn checked(self, duration: f64) -> Result<LayoutJoint, SceneFileError> {
         let name = &self.name;

@@ -170,7 +170,7 @@ impl LoadedRobot {
 
     /// The index of the moving joint `name` in the model, or an error under `what` naming it and listing the robot's
     /// joints (or saying it is frozen).
-    pub fn joint_index(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+    pub(crate) fn joint_index(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
         if let Some(index) = self.model.joints.iter().position(|j| j.name == name) {
             return Ok(index);
         }
@@ -190,7 +190,7 @@ impl LoadedRobot {
     }
 
     /// The index of a one-coordinate moving joint.
-    pub fn single_coordinate_joint(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
+    pub(crate) fn single_coordinate_joint(&self, what: &str, name: &str) -> Result<usize, SceneFileError> {
         let index = self.joint_index(what, name)?;
         let kind = self.model.joints[index].kind;
         if kind.degrees_of_freedom() != 1 {
@@ -206,7 +206,7 @@ impl LoadedRobot {
     }
 
     /// Every link name, body by body.
-    pub fn links(&self) -> impl Iterator<Item = &str> {
+    pub(crate) fn links(&self) -> impl Iterator<Item = &str> {
         self.model
             .bodies
             .iter()
@@ -214,7 +214,7 @@ impl LoadedRobot {
     }
 
     /// Whether `name` is one of the robot's joints (moving or frozen).
-    pub fn has_joint(&self, name: &str) -> bool {
+    pub(crate) fn has_joint(&self, name: &str) -> bool {
         self.model.joints.iter().any(|j| j.name == name) || self.model.frozen_joints.iter().any(|f| f.name == name)
     }
 

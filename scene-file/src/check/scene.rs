@@ -103,7 +103,7 @@ impl CheckedScene {
         let names = Names::resolve(&file, robot.as_ref())?;
         let bodies = names.body_count() + robot.as_ref().map_or(0, LoadedRobot::body_count);
         check_samples(&schedule, bodies, &file)?;
-        check_integrator(integrator, stepping)?;
+        check_error_estimate(integrator, stepping)?;
         let free_body = names.joint_count() == 0
             && names.body_count() == 1
             && robot.is_none()
@@ -237,7 +237,7 @@ fn check_samples(schedule: &Schedule, bodies: usize, file: &SceneFile) -> Result
 }
 
 /// Refuses an integrator without an error estimate for adaptive steps.
-fn check_integrator(integrator: IntegratorName, stepping: Stepping) -> Result<(), SceneFileError> {
+fn check_error_estimate(integrator: IntegratorName, stepping: Stepping) -> Result<(), SceneFileError> {
     let method = Integrator::from(integrator);
     if matches!(stepping, Stepping::Adaptive { .. }) && method.estimate_order().is_none() {
         return Err(invalid(

@@ -37,7 +37,7 @@ fn pose(
 
 impl SurfaceSpec {
     /// The surface, with messages naming `what` (e.g. `constraint bead: surface`) and the key at fault.
-    pub fn surface(&self, what: &str) -> Result<Surface, SceneFileError> {
+    pub(crate) fn surface(&self, what: &str) -> Result<Surface, SceneFileError> {
         let built = match self {
             SurfaceSpec::Ellipsoid {
                 radii,

@@ -49,7 +49,7 @@ pub(crate) fn positive(what: &str, value: f64) -> Result<f64, SceneFileError> {
 pub(crate) const MAX_VALUE: f64 = 1e50;
 
 /// A finite value of at most 1e50 in magnitude.
-pub fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
+pub(crate) fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
     if value.is_finite() && value.abs() <= MAX_VALUE {
         Ok(value)
     } else {
@@ -58,7 +58,7 @@ pub fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
 }
 
 /// A finite, non-negative value of at most 1e50.
-pub fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError> {
+pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError> {
     if value.is_finite() && (0.0..=MAX_VALUE).contains(&value) {
         Ok(value)
     } else {

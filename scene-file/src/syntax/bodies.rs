@@ -8,7 +8,9 @@ use super::arrays::{exactly, maybe_exactly};
 /// by peeking at which it is, so that toml's messages keep their line and column.
 #[derive(Clone, Debug)]
 pub enum Bodies {
+    /// `[body]`: the single body, named "body".
     One(BodySpec),
+    /// `[[body]]`: named bodies.
     Named(Vec<NamedBody>),
 }
 
@@ -40,14 +42,19 @@ impl<'de> Deserialize<'de> for Bodies {
 pub struct NamedBody {
     /// Letters, digits, `_` and `-` (it heads CSV columns and names the body in messages).
     pub name: String,
+    /// kg.
     pub mass: f64,
+    /// A solid of uniform density; give this or `principal_moments`.
     #[serde(default)]
     pub shape: Option<Shape>,
+    /// About the centre of mass along the body axes (kg m²); give this or `shape`.
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
     pub principal_moments: Option<[f64; 3]>,
+    /// Its state at t = 0; where absent, its joint places it.
     #[serde(default)]
     pub initial: Option<InitialSpec>,
+    /// Its external forces.
     #[serde(default)]
     pub forces: Vec<ForceSpec>,
 }
@@ -57,9 +64,12 @@ pub struct NamedBody {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
+    /// kg.
     pub mass: f64,
+    /// A solid of uniform density; give this or `principal_moments`.
     #[serde(default)]
     pub shape: Option<Shape>,
+    /// About the centre of mass along the body axes (kg m²); give this or `shape`.
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
     pub principal_moments: Option<[f64; 3]>,
@@ -71,20 +81,27 @@ pub struct BodySpec {
 pub enum Shape {
     /// Side lengths along body x, y, z.
     Cuboid {
+        /// Along body x, y, z (m).
         #[serde(deserialize_with = "exactly")]
         size: [f64; 3],
     },
     /// A thin rod along body z; its small axial moment (kg m²) keeps the inertia invertible.
     Rod {
+        /// m.
         length: f64,
+        /// kg m².
         axial_moment: f64,
     },
     /// Axis along body z, tip at body (0, 0, −3 height / 4).
     Cone {
+        /// m.
         height: f64,
+        /// Of the base (m).
         radius: f64,
     },
+    /// A ball.
     Sphere {
+        /// m.
         radius: f64,
     },
 }
@@ -116,10 +133,14 @@ pub struct InitialSpec {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OrientationSpec {
+    /// The rotation axis, of any length; with `angle` or `degrees`.
     #[serde(default, deserialize_with = "maybe_exactly")]
     pub axis: Option<[f64; 3]>,
+    /// About `axis` (rad).
     pub angle: Option<f64>,
+    /// About `axis` (°).
     pub degrees: Option<f64>,
+    /// [w, x, y, z], of any length.
     #[serde(default, deserialize_with = "maybe_exactly")]
     pub quaternion: Option<[f64; 4]>,
 }
@@ -130,19 +151,23 @@ pub struct OrientationSpec {
 pub enum ForceSpec {
     /// Uniform gravity at the centre of mass (m/s²; default 9.81 along −z).
     Gravity {
+        /// m/s², world.
         #[serde(default = "standard_gravity")]
         #[serde(deserialize_with = "exactly")]
         acceleration: [f64; 3],
     },
     /// A constant force (N) along the fixed world line through `point` (m).
     Force {
+        /// N, world.
         #[serde(deserialize_with = "exactly")]
         force: [f64; 3],
+        /// A point of the force's line (m, world).
         #[serde(deserialize_with = "exactly")]
         point: [f64; 3],
     },
     /// A constant couple (N m).
     Couple {
+        /// N m, world.
         #[serde(deserialize_with = "exactly")]
         moment: [f64; 3],
     },

@@ -10,16 +10,22 @@ use super::arrays::exactly;
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
+    /// The contact's name in messages and the summary (default "contact k").
     #[serde(default)]
     pub name: Option<String>,
+    /// A named body or robot link; the only body of a scene may go unnamed.
     #[serde(default)]
     pub body: Option<String>,
+    /// In the body's (or link's) coordinates (m).
     #[serde(deserialize_with = "exactly")]
     pub point: [f64; 3],
+    /// The plane's normal, world, any length (default +z, a floor).
     #[serde(default = "up", deserialize_with = "exactly")]
     pub normal: [f64; 3],
+    /// `normal · x` on the plane (m times the normal's length).
     #[serde(default)]
     pub offset: f64,
+    /// Newton's coefficient, in [0, 1] (default 0: the point stays on the plane).
     #[serde(default)]
     pub restitution: f64,
 }

@@ -11,10 +11,14 @@ use super::arrays::{exactly, points};
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sine {
+    /// The value's centre.
     #[serde(default)]
     pub offset: f64,
+    /// Half the swing.
     pub amplitude: f64,
+    /// Hz, at least 0.
     pub frequency: f64,
+    /// rad.
     #[serde(default)]
     pub phase: f64,
 }
@@ -22,7 +26,9 @@ pub struct Sine {
 /// A value over time, written as a number (a constant) or `{ kind = "sine", offset, amplitude, frequency, phase }`.
 #[derive(Clone, Copy, Debug)]
 pub enum TimeValue {
+    /// A number.
     Constant(f64),
+    /// A sine of time.
     Sine(Sine),
 }
 
@@ -76,8 +82,10 @@ impl<'de> Deserialize<'de> for TimeValue {
 pub enum DriveSpec {
     /// `start + rate t`.
     ConstantRate {
+        /// The coordinate at t = 0 (rad or m).
         #[serde(default)]
         start: f64,
+        /// rad/s or m/s.
         rate: f64,
     },
     /// `offset + amplitude sin(2π frequency t + phase)`.
@@ -89,10 +97,13 @@ pub enum DriveSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpringSpec {
+    /// The element's name in messages and the summary; a default names it by kind and place.
     #[serde(default)]
     pub name: Option<String>,
+    /// Its two ends: a body of the file, a robot link or `"world"`.
     #[serde(deserialize_with = "exactly")]
     pub between: [String; 2],
+    /// A point of each end, in that end's coordinates (m).
     #[serde(deserialize_with = "points")]
     pub points: [[f64; 3]; 2],
     /// N/m.
@@ -108,10 +119,13 @@ pub struct SpringSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CoupleSpec {
+    /// The element's name in messages and the summary; a default names it by kind and place.
     #[serde(default)]
     pub name: Option<String>,
+    /// The body the moment acts on, then the one its opposite acts on (a body, a robot link or `"world"`).
     #[serde(deserialize_with = "exactly")]
     pub between: [String; 2],
+    /// N m, world axes.
     #[serde(deserialize_with = "exactly")]
     pub moment: [f64; 3],
 }
@@ -120,9 +134,12 @@ pub struct CoupleSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointTorqueSpec {
+    /// The element's name in messages and the summary; a default names it by kind and place.
     #[serde(default)]
     pub name: Option<String>,
+    /// The joint, by name: the robot's or the file's.
     pub joint: String,
+    /// N m or N.
     pub torque: TimeValue,
 }
 
@@ -130,8 +147,10 @@ pub struct JointTorqueSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointDampingSpec {
+    /// The element's name in messages and the summary; a default names it by kind and place.
     #[serde(default)]
     pub name: Option<String>,
+    /// The joint, by name: the robot's or the file's.
     pub joint: String,
     /// N m s/rad or N s/m.
     pub damping: f64,
@@ -142,6 +161,7 @@ pub struct JointDampingSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PdSpec {
+    /// The element's name in messages and the summary; a default names it by kind and place.
     #[serde(default)]
     pub name: Option<String>,
     /// N m/rad or N/m.
@@ -150,6 +170,7 @@ pub struct PdSpec {
     pub kd: f64,
     /// rad or m, by joint name.
     pub target: BTreeMap<String, f64>,
+    /// Add the bias forces h(q, v), so the controller holds the targets against gravity.
     #[serde(default)]
     pub gravity_compensation: bool,
 }

@@ -41,6 +41,7 @@ pub struct SceneFile {
     /// Time between recorded samples (s).
     #[serde(default = "default_sample_interval")]
     pub sample_interval: f64,
+    /// How the joints are held: `"projection"` (the default), `"baumgarte"` or `"none"`.
     #[serde(default = "default_stabilisation")]
     pub stabilisation: StabilisationName,
     /// How far the start may be moved onto its joints (m and rad) before it is refused as breaking them: its
@@ -125,7 +126,9 @@ fn default_stabilisation() -> StabilisationName {
 /// array and drop any numbers past the second (`baumgarte = [1, 2, 3]`).
 #[derive(Clone, Copy, Debug)]
 pub struct BaumgarteGains {
+    /// 1/s.
     pub alpha: f64,
+    /// 1/s.
     pub beta: f64,
 }
 

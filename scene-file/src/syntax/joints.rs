@@ -15,9 +15,12 @@ use crate::names::FormulationName;
 /// reference's: its body coordinates, or the world's.
 #[derive(Clone, Debug, Deserialize)]
 pub struct JointSpec {
+    /// Non-empty and unique among the file's and the robot's joints.
     pub name: String,
+    /// The held body (a `[[body]]` entry), then its reference: another body, `"world"` or a robot link.
     #[serde(deserialize_with = "exactly")]
     pub between: [String; 2],
+    /// By virtual power (the default) or by pinning.
     #[serde(default)]
     pub formulation: FormulationName,
     /// The prescribed coordinate of a hinge or prismatic joint.
@@ -26,6 +29,7 @@ pub struct JointSpec {
     /// The range of a hinge's or prismatic joint's coordinate, enforced exactly.
     #[serde(default)]
     pub limit: Option<LimitSpec>,
+    /// What it holds.
     #[serde(flatten)]
     pub geometry: Geometry,
 }
@@ -33,8 +37,10 @@ pub struct JointSpec {
 /// One constraint: its geometry and formulation.
 #[derive(Clone, Debug, Deserialize)]
 pub struct ConstraintSpec {
+    /// By virtual power (the default) or by pinning.
     #[serde(default)]
     pub formulation: FormulationName,
+    /// What it holds.
     #[serde(flatten)]
     pub geometry: Geometry,
 }
@@ -46,8 +52,10 @@ pub struct ConstraintSpec {
 pub enum Geometry {
     /// The body point stays at the world point (rank 3).
     BallJoint {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The reference's coordinates (m).
         #[serde(alias = "reference_point")]
         #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
@@ -60,18 +68,24 @@ pub enum Geometry {
     /// The body slides along the world axis without turning: a cylindrical joint that also keeps the body
     /// normal (normal to the body axis) along the world normal (normal to the world axis) (rank 5).
     Prismatic {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// Body coordinates, any length.
         #[serde(deserialize_with = "exactly")]
         body_axis: [f64; 3],
+        /// Body coordinates, any length.
         #[serde(deserialize_with = "exactly")]
         body_normal: [f64; 3],
+        /// The reference's coordinates (m).
         #[serde(alias = "reference_point")]
         #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
+        /// The reference's coordinates, any length.
         #[serde(alias = "reference_axis")]
         #[serde(deserialize_with = "exactly")]
         world_axis: [f64; 3],
+        /// The reference's coordinates, any length.
         #[serde(alias = "reference_normal")]
         #[serde(deserialize_with = "exactly")]
         world_normal: [f64; 3],
@@ -79,13 +93,17 @@ pub enum Geometry {
     /// The body plane through the body point normal to the body normal stays on the world plane through the
     /// world point normal to the world normal (rank 3).
     Planar {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// Body coordinates, any length.
         #[serde(deserialize_with = "exactly")]
         body_normal: [f64; 3],
+        /// The reference's coordinates (m).
         #[serde(alias = "reference_point")]
         #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
+        /// The reference's coordinates, any length.
         #[serde(alias = "reference_normal")]
         #[serde(deserialize_with = "exactly")]
         world_normal: [f64; 3],
@@ -97,59 +115,78 @@ pub enum Geometry {
     /// `orientation` (body → reference, as `[initial] orientation`), each the pose at the start if not given
     /// (rank 6).
     Fixed {
+        /// The body's centre of mass in the reference's frame (m).
         #[serde(default)]
         #[serde(deserialize_with = "maybe_exactly")]
         position: Option<[f64; 3]>,
+        /// Body → reference.
         #[serde(default)]
         orientation: Option<OrientationSpec>,
     },
     /// The body point stays on the world plane `normal · x = offset` (rank 1).
     PointOnPlane {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The reference's coordinates, any length.
         #[serde(deserialize_with = "exactly")]
         normal: [f64; 3],
+        /// `normal · x` on the plane (m times the normal's length).
         offset: f64,
     },
     /// The body point stays on the world line through the world point along the world axis (rank 2).
     PointOnLine {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The reference's coordinates (m).
         #[serde(alias = "reference_point")]
         #[serde(deserialize_with = "exactly")]
         world_point: [f64; 3],
+        /// The reference's coordinates, any length.
         #[serde(alias = "reference_axis")]
         #[serde(deserialize_with = "exactly")]
         world_axis: [f64; 3],
     },
     /// The body point stays on the sphere (rank 1).
     PointOnSphere {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The reference's coordinates (m).
         #[serde(deserialize_with = "exactly")]
         centre: [f64; 3],
+        /// m.
         radius: f64,
     },
     /// The body point stays on a surface (rank 1).
     PointOnSurface {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The surface, in the reference's frame.
         surface: SurfaceSpec,
     },
     /// The body point stays on the curve where two surfaces meet (rank 2).
     PointOnCurve {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The two surfaces, in the reference's frame.
         surfaces: Vec<SurfaceSpec>,
     },
     /// The body point stays on the circle of the sphere in the plane through its centre normal to
     /// `normal` (rank 2).
     PointOnCircle {
+        /// Body coordinates (m).
         #[serde(deserialize_with = "exactly")]
         body_point: [f64; 3],
+        /// The sphere's and the circle's centre, the reference's coordinates (m).
         #[serde(deserialize_with = "exactly")]
         centre: [f64; 3],
+        /// m.
         radius: f64,
+        /// The circle's plane's normal, any length.
         #[serde(deserialize_with = "exactly")]
         normal: [f64; 3],
     },
@@ -159,19 +196,24 @@ pub enum Geometry {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AxisJoint {
+    /// Body coordinates (m).
     #[serde(deserialize_with = "exactly")]
     pub body_point: [f64; 3],
+    /// Body coordinates, any length.
     #[serde(deserialize_with = "exactly")]
     pub body_axis: [f64; 3],
+    /// The reference's coordinates (m).
     #[serde(alias = "reference_point")]
     #[serde(deserialize_with = "exactly")]
     pub world_point: [f64; 3],
+    /// The reference's coordinates, any length.
     #[serde(alias = "reference_axis")]
     #[serde(deserialize_with = "exactly")]
     pub world_axis: [f64; 3],
 }
 
 impl Geometry {
+    /// What it is, in messages and the summary: "hinge", "point on sphere", ….
     pub fn kind(&self) -> &'static str {
         match self {
             Geometry::BallJoint { .. } => "ball joint",

@@ -12,8 +12,10 @@ use super::bodies::{standard_gravity, OrientationSpec};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RootName {
+    /// Bolted to the world.
     #[default]
     Fixed,
+    /// A floating base.
     Free,
 }
 
@@ -21,8 +23,10 @@ pub enum RootName {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MimicName {
+    /// A follower coupled to its leader by a constraint.
     #[default]
     Constraint,
+    /// Every mimic joint a joint of its own.
     Independent,
 }
 
@@ -30,8 +34,10 @@ pub enum MimicName {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum JointDynamicsName {
+    /// The URDF's `<dynamics>` damping as joint damping (its friction is not modelled).
     #[default]
     Urdf,
+    /// No damping.
     Ignore,
 }
 
@@ -39,8 +45,10 @@ pub enum JointDynamicsName {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LimitsName {
+    /// Not enforced.
     #[default]
     Ignore,
+    /// Enforced exactly, as one-sided constraints.
     Enforce,
 }
 
@@ -48,8 +56,10 @@ pub enum LimitsName {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MasslessName {
+    /// A moving link with no mass below it is an error.
     #[default]
     Error,
+    /// Its joint is frozen at 0.
     Freeze,
 }
 
@@ -73,12 +83,16 @@ pub struct RepairsSpec {
 pub struct RobotSpec {
     /// The URDF file, relative to the scene file.
     pub urdf: String,
+    /// What the root link is attached to.
     #[serde(default)]
     pub root: RootName,
+    /// How `<mimic>` joints move.
     #[serde(default)]
     pub mimic: MimicName,
+    /// Whether the URDF's joint damping applies.
     #[serde(default)]
     pub joint_dynamics: JointDynamicsName,
+    /// Whether the URDF's position limits are enforced.
     #[serde(default)]
     pub limits: LimitsName,
     /// The restitution of every enforced bound, in [0, 1] (default 0: a joint stops at its bound).
@@ -112,6 +126,7 @@ pub struct RobotSpec {
     /// Constant joint torques (N m) or forces (N) by joint name.
     #[serde(default)]
     pub torque: BTreeMap<String, f64>,
+    /// The importer's opt-in repairs of a messy URDF.
     #[serde(default)]
     pub repairs: Option<RepairsSpec>,
 }
