@@ -558,29 +558,59 @@ fn the_careless_input_bases_parse() {
     }
 }
 
-/// Every new key with its careless inputs: the base (FIXED or FREE) with `from` replaced by `to` fails with a message
-/// that contains every one of the parts (the entry and the value).
+/// A careless input: in the base text, `from` replaced by `to`, and the parts its message must mention (the entry and
+/// the value).
+type Row<'a> = (&'a str, &'a str, &'a str, &'a [&'a str]);
+
+/// Every row's text (a robot's URDF relative to the robots' folder) fails with a message that contains every one of
+/// its parts; the rows that do not are listed together.
+fn assert_each_refused(rows: &[Row]) {
+    let mut failures = Vec::new();
+    for (base, from, to, parts) in rows {
+        assert!(base.contains(from), "{from:?} is not in the base");
+        let text = base.replacen(from, to, 1);
+        match Scene::parse_in(&text, &robots()) {
+            Ok(_) => failures.push(format!("{from:?} → {to:?} parsed")),
+            Err(error) => {
+                let message = error.to_string();
+                if let Some(part) = parts.iter().find(|p| !message.contains(**p)) {
+                    failures.push(format!("{from:?} → {to:?}: {message:?} does not mention {part:?}"));
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} rows:\n{}",
+        failures.len(),
+        rows.len(),
+        failures.join("\n")
+    );
+    println!(
+        "{} careless inputs, each refused naming the entry and the value",
+        rows.len()
+    );
+}
+
+/// A shipped scene file's text.
+fn shipped(name: &str) -> String {
+    std::fs::read_to_string(scenes().join(name)).unwrap()
+}
+
+/// The `[robot]` table's keys with their careless inputs ([`FIXED`] and [`FREE`] edited), a missing, empty or
+/// massless URDF among them.
 #[test]
-fn careless_inputs_fail_naming_the_entry_and_the_value() {
+fn careless_robot_keys_fail_naming_the_entry_and_the_value() {
     let dir = fresh("careless");
     std::fs::write(dir.join("empty.urdf"), "").unwrap();
     std::fs::write(dir.join("massless.urdf"), ARM_MASSLESS_SENSOR).unwrap();
-    std::fs::write(dir.join("arm.urdf"), ARM).unwrap();
     let ur5 = robots().join("ur5_robot.urdf").display().to_string();
     let solo = robots().join("solo12.urdf").display().to_string();
     let empty = dir.join("empty.urdf").display().to_string();
     let massless = dir.join("massless.urdf").display().to_string();
     let urdf = "urdf = \"ur5_robot.urdf\"";
-    let block = std::fs::read_to_string(scenes().join("bouncing_block.toml")).unwrap();
-    let first = "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 0.5";
-    let torus = std::fs::read_to_string(scenes().join("bead_on_torus.toml")).unwrap();
-    let rod = std::fs::read_to_string(scenes().join("rod_on_ellipsoid.toml")).unwrap();
-    let table = std::fs::read_to_string(scenes().join("turntable_pendulum.toml")).unwrap();
-    let ring = "surface = { kind = \"torus\", centre = [0.0, 0.0, 1.0], axis = [0.3, 0.0, 1.0], major_radius = 1.0, minor_radius = 0.3 }";
-    let egg = "radii = [1.2, 0.8, 0.5], orientation = { axis = [0.0, 1.0, 0.0], degrees = 15.0 } }";
-    let curve = "kind = \"point_on_curve\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]";
     #[rustfmt::skip]
-    let cases: &[(&str, &str, &str, &[&str])] = &[
+    let rows: &[Row] = &[
         // robot.urdf: missing, a folder, empty, a massless moving link, wrong type, wrong value.
         (FIXED, urdf, "urdf = \"no_such.urdf\"", &["robot.urdf", "cannot read", "no_such.urdf", "No such file"]),
         (FIXED, urdf, "urdf = \".\"", &["robot.urdf", "cannot read"]),
@@ -637,6 +667,15 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "massless_subtrees = \"error\"", "massless_subtrees = \"melt\"", &["unknown variant `melt`", "`freeze`"]),
         (FIXED, "balance_inertia = false", "balance_inertia = \"yes\"", &["invalid type: string \"yes\"", "expected a boolean"]),
         (FIXED, "balance_inertia = false", "balance = false", &["unknown field `balance`"]),
+    ];
+    assert_each_refused(rows);
+}
+
+/// Bodies and joints beside a robot, the universal and fixed joints, drives and limits, with their careless inputs.
+#[test]
+fn careless_joints_fail_naming_the_entry_and_the_value() {
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
         // Bodies and joints with the robot: link names, held links, name clashes, the single [body] layout.
         (FIXED, "between = [\"paddle\", \"tool0\"]", "between = [\"paddle\", \"tool9\"]", &["joint hinge: between", "no body named \"tool9\"", "tool0", "wrist_3_link"]),
         (FIXED, "between = [\"paddle\", \"tool0\"]", "between = [\"tool0\", \"paddle\"]", &["joint hinge: between", "held body", "tool0"]),
@@ -678,6 +717,15 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "kind = \"fixed\"", "kind = \"fixed\"\nlimit = { upper = 1.0 }", &["joint weld: limit", "only revolute and prismatic joints can be limited"]),
         (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }\nlimit = { lower = -1.0, upper = 1.0 }", &["joint hinge: limit", "driven joint cannot be limited"]),
         (FIXED, "drive = { kind = \"sine\", offset = 0.0, amplitude = 0.6, frequency = 1.0, phase = 0.0 }", "limit = { lower = 0.5, upper = 1.0 }", &["joint hinge: limit", "the start puts the joint at", "outside [0.5, 1.0]"]),
+    ];
+    assert_each_refused(rows);
+}
+
+/// The force elements and the integrator with their careless inputs.
+#[test]
+fn careless_force_elements_fail_naming_the_entry_and_the_value() {
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
         // The spring: names, points, stiffness, damping, rest length.
         (FIXED, "between = [\"bob\", \"world\"]", "between = [\"bob\", \"moon\"]", &["spring spring 1: between", "no body named \"moon\""]),
         (FIXED, "between = [\"bob\", \"world\"]", "between = [\"world\", \"base_link\"]", &["spring spring 1: between", "same body"]),
@@ -718,6 +766,17 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"strang\"", &["integrator", "splitting method"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"rkmk8-joint\"\nstabilisation = \"baumgarte\"", &["integrator", "joint coordinates", "Baumgarte"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"euler\"", &["unknown variant `euler`", "`rkmk8-joint`"]),
+    ];
+    assert_each_refused(rows);
+}
+
+/// `[[contact]]` with its careless inputs (the shipped bouncing block edited).
+#[test]
+fn careless_contacts_fail_naming_the_entry_and_the_value() {
+    let block = shipped("bouncing_block.toml");
+    let first = "[[contact]]\npoint = [-0.1, -0.1, -0.1]\nrestitution = 0.5";
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
         // [[contact]]: points, normals, offsets and restitutions NaN, infinite, huge or out of range, wrong lengths
         // and types, unknown keys, an unknown body, the world, an empty or repeated name, a start below the floor,
         // Baumgarte stabilisation.
@@ -739,6 +798,21 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (&block, first, &format!("{first}\nname = \"contact 2\""), &["contact contact 2", "already named"]),
         (&block, "position = [0.0, 0.0, 0.5]", "position = [0.0, 0.0, 0.05]", &["contact contact", "below its plane"]),
         (&block, "stabilisation = \"projection\"", "stabilisation = \"baumgarte\"", &["contact contact 1", "need the articulated solve"]),
+    ];
+    assert_each_refused(rows);
+}
+
+/// Points on surfaces and curves with their careless inputs (the shipped surface scenes edited).
+#[test]
+fn careless_surfaces_fail_naming_the_entry_and_the_value() {
+    let torus = shipped("bead_on_torus.toml");
+    let rod = shipped("rod_on_ellipsoid.toml");
+    let table = shipped("turntable_pendulum.toml");
+    let ring = "surface = { kind = \"torus\", centre = [0.0, 0.0, 1.0], axis = [0.3, 0.0, 1.0], major_radius = 1.0, minor_radius = 0.3 }";
+    let egg = "radii = [1.2, 0.8, 0.5], orientation = { axis = [0.0, 1.0, 0.0], degrees = 15.0 } }";
+    let curve = "kind = \"point_on_curve\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]";
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
         // point_on_surface and point_on_curve: every surface kind's parameters NaN, zero, negative, huge, of the wrong
         // length or type, unknown kinds and keys, orientation given twice, a curve of one or three surfaces, a start at
         // a singular point or where the surfaces are tangent, a drive on a surface joint.
@@ -780,31 +854,7 @@ fn careless_inputs_fail_naming_the_entry_and_the_value() {
         (&torus, &format!("kind = \"point_on_surface\"\nformulation = \"pinning\"\nbody_point = [0.0, 0.0, 0.0]\n{ring}"), &format!("{curve}\nsurfaces = [{{ kind = \"plane\", normal = [0.0, 0.0, 1.0], offset = nan }}, {{ kind = \"plane\", normal = [1.0, 0.0, 0.0], offset = 1.19 }}]"), &["surfaces[0].offset", "NaN"]),
         (&table, "kind = \"point_on_surface\"", "kind = \"point_on_surface\"\ndrive = { kind = \"constant_rate\", rate = 1.0 }", &["joint rider: drive", "only hinge and prismatic"]),
     ];
-    let mut failures = Vec::new();
-    for (base, from, to, parts) in cases {
-        assert!(base.contains(from), "{from:?} is not in the base");
-        let text = base.replacen(from, to, 1);
-        match Scene::parse_in(&text, &robots()) {
-            Ok(_) => failures.push(format!("{from:?} → {to:?} parsed")),
-            Err(error) => {
-                let message = error.to_string();
-                if let Some(part) = parts.iter().find(|p| !message.contains(**p)) {
-                    failures.push(format!("{from:?} → {to:?}: {message:?} does not mention {part:?}"));
-                }
-            }
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} of {} rows:\n{}",
-        failures.len(),
-        cases.len(),
-        failures.join("\n")
-    );
-    println!(
-        "{} careless inputs, each refused naming the entry and the value",
-        cases.len()
-    );
+    assert_each_refused(rows);
 }
 
 /// The same keys with values that are careless but valid run: zero gravity, zero gains, zero stiffness and damping, a

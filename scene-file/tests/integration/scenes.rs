@@ -128,9 +128,18 @@ fn the_valid_scene_parses() {
     assert_eq!(scene.checked().algebra, AlgebraChoice::Both);
 }
 
+/// Each row: [`VALID`] with `from` replaced by `to` fails with a message that mentions every one of the parts.
+fn assert_each_fails(rows: &[(&str, &str, &[&str])]) {
+    for (from, to, parts) in rows {
+        assert_mentions(&error_with(from, to), parts);
+    }
+}
+
+/// What toml and the format's types refuse, with the line: broken syntax, unknown keys and kinds, missing fields,
+/// wrong types, and arrays of the wrong length (extra numbers are refused, not dropped).
 #[test]
-fn bad_files_fail_with_clear_messages() {
-    let cases: &[(&str, &str, &[&str])] = &[
+fn bad_syntax_fails_naming_the_key_and_the_line() {
+    assert_each_fails(&[
         ("dt = 1e-3", "dt = [", &["TOML parse error at line 3", "expected value"]),
         (
             "kind = \"rod\"",
@@ -141,39 +150,92 @@ fn bad_files_fail_with_clear_messages() {
         ("duration = 0.1", "duraton = 0.1", &["unknown field `duraton`"]),
         (
             "dt = 1e-3",
-            "dt = 1e-3\nmax_start_correction = 0.0",
-            &["max_start_correction: must be positive and finite (m and rad), got 0"],
-        ),
-        (
-            "dt = 1e-3",
-            "dt = 1e-3\nmax_start_correction = -1e-3",
-            &["max_start_correction: must be positive and finite"],
-        ),
-        (
-            "dt = 1e-3",
-            "dt = 1e-3\nmax_start_correction = nan",
-            &["max_start_correction: must be positive and finite"],
-        ),
-        (
-            "dt = 1e-3",
-            "dt = 1e-3\nmax_start_correction = inf",
-            &["max_start_correction: must be positive and finite"],
-        ),
-        (
-            "dt = 1e-3",
             "dt = 1e-3\nmax_start_correction = [1e-3]",
             &["line 3", "invalid type: sequence, expected f64"],
         ),
+        ("axial_moment = 1e-3 }", "}", &["missing field `axial_moment`"]),
+        (
+            "dt = 1e-3",
+            "tolerance = [1e-8]",
+            &["line 2", "invalid type: sequence, expected f64"],
+        ),
+        (
+            "dt = 1e-3",
+            "tolerance = \"tight\"",
+            &["line 2", "invalid type: string"],
+        ),
+        (
+            "kind = \"gravity\"",
+            "kind = \"magnetism\"",
+            &["unknown variant `magnetism`", "`couple`"],
+        ),
+        (
+            "kind = \"ball_joint\"",
+            "kind = \"weld\"",
+            &["unknown variant `weld`", "`point_on_circle`"],
+        ),
+        ("world_point =", "world_pont =", &["unknown field `world_pont`"]),
+        (
+            "body_point = [0.0, 0.0, 0.5]",
+            "body_point = [0.0, 0.5]",
+            &["invalid length 2"],
+        ),
+        // Extra numbers are refused, not dropped.
         (
             "position = [0.0, 0.0, -0.5]",
-            "position = [0.0, 0.0, -0.63]",
+            "position = [0.0, 0.0, -0.5, 99.0]",
+            &["line 8", "invalid length 4, expected an array of 3"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\nvelocity = [1.0, 0.0, 0.0, 0.0]",
+            &["invalid length 4, expected an array of 3"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\norientation = { quaternion = [1.0, 0.0, 0.0, 0.0, 0.0] }",
+            &["invalid length 5, expected an array of 4"],
+        ),
+        (
+            "shape = { kind = \"rod\", length = 1.0, axial_moment = 1e-3 }",
+            "principal_moments = [1.0, 1.0, 1.0, 1.0]",
+            &["invalid length 4, expected an array of 3"],
+        ),
+        (
+            "kind = \"ball_joint\"",
+            "kind = \"ball_joint\"\nformulation = \"glue\"",
+            &["unknown variant `glue`", "`pinning`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nintegrator = \"euler\"",
+            &["unknown variant `euler`", "`rkmk4-body`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = [1.0, 2.0, 3.0]",
             &[
-                "the start breaks the joints",
-                "by 1.300e-1 m",
-                "max_start_correction = 0.001",
+                "line 4",
+                "invalid type: sequence, expected a table { alpha = …, beta = … }",
             ],
         ),
-        ("axial_moment = 1e-3 }", "}", &["missing field `axial_moment`"]),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0, beta = 2.0, gamma = 3.0 }",
+            &["unknown field `gamma`, expected `alpha` or `beta`"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0 }",
+            &["missing field `beta`"],
+        ),
+    ]);
+}
+
+/// Steps, tolerances and durations that make no schedule, and integrators that cannot step it.
+#[test]
+fn bad_timing_fails_naming_the_keys() {
+    assert_each_fails(&[
         (
             "dt = 1e-3",
             "dt = -1e-3",
@@ -227,16 +289,6 @@ fn bad_files_fail_with_clear_messages() {
             &["tolerance: the absolute tolerance must be finite and at least 1e-15"],
         ),
         (
-            "dt = 1e-3",
-            "tolerance = [1e-8]",
-            &["line 2", "invalid type: sequence, expected f64"],
-        ),
-        (
-            "dt = 1e-3",
-            "tolerance = \"tight\"",
-            &["line 2", "invalid type: string"],
-        ),
-        (
             "dt = 1e-3\nduration = 0.1",
             "tolerance = 1e-8\nduration = 1e300",
             &["more than 10000000 samples"],
@@ -259,6 +311,18 @@ fn bad_files_fail_with_clear_messages() {
             "dt = 3e-3",
             &["the step 0.003 does not divide the sample interval 0.01"],
         ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nintegrator = \"strang\"",
+            &["integrator: Strang is a splitting method"],
+        ),
+    ]);
+}
+
+/// Bodies whose mass properties or initial state are not physical.
+#[test]
+fn bad_bodies_fail_naming_the_value() {
+    assert_each_fails(&[
         ("mass = 1.0", "mass = 0.0", &["body: mass must be positive", "0"]),
         (
             "[initial]",
@@ -290,57 +354,42 @@ fn bad_files_fail_with_clear_messages() {
             "position = [0.0, 0.0, -0.5]\norientation = { degrees = 30.0, quaternion = [1.0, 0.0, 0.0, 0.0] }",
             &["initial.orientation: give `axis` with either `angle` (rad) or `degrees`, or a `quaternion`"],
         ),
+    ]);
+}
+
+/// A start correction that is no distance, a start off its joint by more than it, and stabilisations the joints
+/// cannot have.
+#[test]
+fn a_bad_start_correction_or_stabilisation_fails_naming_the_key() {
+    assert_each_fails(&[
         (
-            "kind = \"gravity\"",
-            "kind = \"magnetism\"",
-            &["unknown variant `magnetism`", "`couple`"],
-        ),
-        (
-            "kind = \"ball_joint\"",
-            "kind = \"weld\"",
-            &["unknown variant `weld`", "`point_on_circle`"],
-        ),
-        ("world_point =", "world_pont =", &["unknown field `world_pont`"]),
-        (
-            "body_point = [0.0, 0.0, 0.5]",
-            "body_point = [0.0, 0.5]",
-            &["invalid length 2"],
-        ),
-        // Extra numbers are refused, not dropped.
-        (
-            "position = [0.0, 0.0, -0.5]",
-            "position = [0.0, 0.0, -0.5, 99.0]",
-            &["line 8", "invalid length 4, expected an array of 3"],
-        ),
-        (
-            "position = [0.0, 0.0, -0.5]",
-            "position = [0.0, 0.0, -0.5]\nvelocity = [1.0, 0.0, 0.0, 0.0]",
-            &["invalid length 4, expected an array of 3"],
-        ),
-        (
-            "position = [0.0, 0.0, -0.5]",
-            "position = [0.0, 0.0, -0.5]\norientation = { quaternion = [1.0, 0.0, 0.0, 0.0, 0.0] }",
-            &["invalid length 5, expected an array of 4"],
-        ),
-        (
-            "shape = { kind = \"rod\", length = 1.0, axial_moment = 1e-3 }",
-            "principal_moments = [1.0, 1.0, 1.0, 1.0]",
-            &["invalid length 4, expected an array of 3"],
-        ),
-        (
-            "kind = \"ball_joint\"",
-            "kind = \"ball_joint\"\nformulation = \"glue\"",
-            &["unknown variant `glue`", "`pinning`"],
+            "dt = 1e-3",
+            "dt = 1e-3\nmax_start_correction = 0.0",
+            &["max_start_correction: must be positive and finite (m and rad), got 0"],
         ),
         (
             "dt = 1e-3",
-            "dt = 1e-3\nintegrator = \"euler\"",
-            &["unknown variant `euler`", "`rkmk4-body`"],
+            "dt = 1e-3\nmax_start_correction = -1e-3",
+            &["max_start_correction: must be positive and finite"],
         ),
         (
             "dt = 1e-3",
-            "dt = 1e-3\nintegrator = \"strang\"",
-            &["integrator: Strang is a splitting method"],
+            "dt = 1e-3\nmax_start_correction = nan",
+            &["max_start_correction: must be positive and finite"],
+        ),
+        (
+            "dt = 1e-3",
+            "dt = 1e-3\nmax_start_correction = inf",
+            &["max_start_correction: must be positive and finite"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.63]",
+            &[
+                "the start breaks the joints",
+                "by 1.300e-1 m",
+                "max_start_correction = 0.001",
+            ],
         ),
         (
             "dt = 1e-3",
@@ -359,27 +408,16 @@ fn bad_files_fail_with_clear_messages() {
         ),
         (
             "dt = 1e-3",
-            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = [1.0, 2.0, 3.0]",
-            &[
-                "line 4",
-                "invalid type: sequence, expected a table { alpha = …, beta = … }",
-            ],
-        ),
-        (
-            "dt = 1e-3",
-            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0, beta = 2.0, gamma = 3.0 }",
-            &["unknown field `gamma`, expected `alpha` or `beta`"],
-        ),
-        (
-            "dt = 1e-3",
-            "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = 1.0 }",
-            &["missing field `beta`"],
-        ),
-        (
-            "dt = 1e-3",
             "dt = 1e-3\nstabilisation = \"baumgarte\"\nbaumgarte = { alpha = nan, beta = 2.0 }",
             &["Baumgarte gains must be non-negative and at most 1e6"],
         ),
+    ]);
+}
+
+/// Constraints without a direction or a positive radius, and pins on objects the algebra lacks.
+#[test]
+fn bad_constraints_fail_naming_the_constraint() {
+    assert_each_fails(&[
         (
             "kind = \"ball_joint\"\nbody_point = [0.0, 0.0, 0.5]\nworld_point = [0.0, 0.0, 0.0]",
             "kind = \"hinge\"\nbody_point = [0.0, 0.0, 0.5]\nbody_axis = [0.0, 0.0, 0.0]\n\
@@ -403,10 +441,7 @@ fn bad_files_fail_with_clear_messages() {
             "kind = \"point_on_sphere\"\nbody_point = [0.0, 0.0, -0.5]\ncentre = [0.0, 0.0, 0.0]\nradius = -1.0",
             &["constraint 1 (point on sphere): radius: must be positive and finite, got -1"],
         ),
-    ];
-    for (from, to, parts) in cases {
-        assert_mentions(&error_with(from, to), parts);
-    }
+    ]);
 }
 
 #[test]
