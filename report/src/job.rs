@@ -8,20 +8,21 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use reference::SceneId;
 
-use crate::adaptive_report::{adaptive_section, FixedRuns};
-use crate::adaptive_sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
-use crate::anchors::Anchors;
-use crate::contacts_report::contacts_section;
+use crate::adaptive::figures::FixedRuns;
+use crate::adaptive::section::adaptive_section;
+use crate::adaptive::sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
+use crate::contacts::section::contacts_section;
 use crate::csv;
-use crate::figures::{self, showcase_step};
-use crate::limits_report::limits_section;
-use crate::markdown::{self, RunResult};
-use crate::mechanism_report::mechanism_section;
-use crate::mechanism_sweep::{run_mechanism, MechanismPlan, MechanismResult};
+use crate::limits::section::limits_section;
+use crate::measured_anchors::Anchors;
+use crate::mechanisms::section::mechanism_section;
+use crate::mechanisms::sweep::{run_mechanism, MechanismPlan, MechanismResult};
 use crate::plot::PlotError;
-use crate::robot_report::robot_section;
-use crate::robot_sweep::{robot_label, run_robot, RobotPlan, RobotResult};
-use crate::sweep::{run, Outcome, SweepPlan};
+use crate::robots::section::robot_section;
+use crate::robots::sweep::{robot_label, run_robot, RobotPlan, RobotResult};
+use crate::single_bodies::figures::{self, showcase_step};
+use crate::single_bodies::section;
+use crate::single_bodies::sweep::{run, Outcome, RunResult, SweepPlan};
 
 /// Why the job could not write its output.
 #[derive(Debug, thiserror::Error)]
@@ -204,7 +205,7 @@ pub fn run_job_with_robots(
     }
     let threads = rayon::current_num_threads();
     let report_path = output.join("report.md");
-    let mut text = markdown::report(&results, threads, &figure_files);
+    let mut text = section::report(&results, threads, &figure_files);
     text.push_str(&mechanism_section(output, &mechanism_results, anchors)?);
     text.push_str(&robot_section(output, &robot_results, anchors)?);
     let fixed = FixedRuns {

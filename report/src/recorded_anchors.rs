@@ -5,14 +5,11 @@
 //! plots: CPU per simulated second = time per step / dt.
 //!
 //! These are constants, the fallback wherever `--anchors` did not measure a figure beside the run
-//! ([`crate::anchors`]; the single bodies have no shared MuJoCo script and are always these): wherever the report
+//! ([`crate::measured_anchors`]; the single bodies have no shared MuJoCo script and are always these): wherever the report
 //! shows them it says when and where they were measured ([`SINGLE_BODY_MEASURED`], [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a
-//! run of another length (`--duration`) is not compared with them ([`length_mismatch`]).
+//! run of another length (`--duration`) is not compared with them ([`crate::measure::length_mismatch`]).
 
 use reference::SceneId;
-
-use crate::anchors::{Anchors, Key, Time};
-use crate::measure::Measurements;
 
 /// (dt, error) points and the time per step (s).
 #[derive(Clone, Copy)]
@@ -33,41 +30,6 @@ impl Anchor {
     }
 }
 
-/// The error measure of the anchors: end orientation (rad), except the circle scene's end position (m).
-pub(crate) fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
-    match scene {
-        SceneId::RodOnCircle | SceneId::RodOnSphere => measurements.position_end,
-        _ => measurements.orientation_end,
-    }
-}
-
-/// The CPU per simulated second at which a work-precision series first reaches `target` error: interpolated
-/// linearly in log–log between the two runs that bracket it (a fixed-step method's error is a power of its
-/// cost), the cheapest run's cost if that already reaches it, None if no run does. `points` are
-/// (CPU per simulated second, error).
-pub(crate) fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
-    let mut sorted: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|(cost, error)| *cost > 0.0 && error.is_finite())
-        .collect();
-    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let first = *sorted.first()?;
-    if first.1 <= target {
-        return Some(first.0);
-    }
-    sorted.windows(2).find_map(|pair| {
-        let ((cheap, coarse), (dear, fine)) = (pair[0], pair[1]);
-        (coarse > target && fine <= target).then(|| {
-            if fine <= 0.0 {
-                return dear;
-            }
-            let fraction = (coarse / target).ln() / (coarse / fine).ln();
-            (cheap.ln() + fraction * (dear / cheap).ln()).exp()
-        })
-    })
-}
-
 /// The day the single-body figures below entered the code (commit b6f0a06): the day they were measured is not
 /// recorded; docs/benchmarks.md calls it an earlier day than the mechanisms' 2026-11-25.
 pub(crate) const SINGLE_BODY_RECORDED: &str = "2026-11-22";
@@ -86,19 +48,6 @@ pub(crate) fn single_body_legend() -> String {
 
 /// The day the mechanisms' MuJoCo and Pinocchio figures were measured ([`MECHANISMS_MEASURED`]).
 pub(crate) const MECHANISMS_DATE: &str = "2026-11-25";
-
-/// Why runs of `duration` (s) cannot be compared with MuJoCo's error at the full length `full` (s), if they
-/// cannot: "n/a: shortened run (2 s of T = 10 s)". Errors grow with time, so a shorter run's error at its end is
-/// not comparable with MuJoCo's at T.
-pub(crate) fn length_mismatch(duration: f64, full: f64) -> Option<String> {
-    if (duration - full).abs() <= 1e-9 * full.abs() {
-        None
-    } else if duration < full {
-        Some(format!("n/a: shortened run ({duration} s of T = {full} s)"))
-    } else {
-        Some(format!("n/a: run of {duration} s, not T = {full} s"))
-    }
-}
 
 pub(crate) fn anchor(scene: SceneId) -> Option<Anchor> {
     let points = |errors: [f64; 3]| [(1e-2, errors[0]), (1e-3, errors[1]), (1e-4, errors[2])];
@@ -151,7 +100,9 @@ pub(crate) const DOUBLE_PENDULUM: Anchor = Anchor {
 /// M2, the four-bar, its loop closed by MuJoCo's soft equality `connect`: coupler centre-of-mass error at T (m),
 /// the largest loop violation (m) and the time per step (s), at dt = 1e-3 (the error does not fall with dt).
 pub(crate) const FOUR_BAR_COUPLER_ERROR: f64 = 4.45e-2;
+
 pub(crate) const FOUR_BAR_VIOLATION: f64 = 4.43e-4;
+
 pub(crate) const FOUR_BAR_TIME_PER_STEP: f64 = 11.0e-6;
 
 /// M3: MuJoCo's time per RK4 step (s) at dt = 1e-3 for the chain of N links, ball joints and (about x) hinges.
@@ -164,6 +115,7 @@ pub(crate) const CHAIN_BALL_TIME_PER_STEP: [(usize, f64); 7] = [
     (32, 228.0e-6),
     (64, 1239.1e-6),
 ];
+
 pub(crate) const CHAIN_HINGE_TIME_PER_STEP: [(usize, f64); 7] = [
     (1, 6.0e-6),
     (2, 6.8e-6),
@@ -186,73 +138,10 @@ pub(crate) const PINOCCHIO_CHAIN_EVALUATION: [(usize, f64); 7] = [
     (64, 25.04e-6),
 ];
 
-/// M1's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`DOUBLE_PENDULUM`]'s.
-pub(crate) fn double_pendulum_time(anchors: &Anchors) -> Time<'_> {
-    anchors.time(Key::DoublePendulum, DOUBLE_PENDULUM.time_per_step, MECHANISMS_DATE)
-}
+/// When the reference's MuJoCo and Pinocchio figures were recorded; said wherever they are shown.
+pub(crate) const RECORDED_WHEN: &str = "when the reference was made (see reference/data/robots/README.md)";
 
-/// M2's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`FOUR_BAR_TIME_PER_STEP`].
-pub(crate) fn four_bar_time(anchors: &Anchors) -> Time<'_> {
-    anchors.time(Key::FourBar, FOUR_BAR_TIME_PER_STEP, MECHANISMS_DATE)
-}
+/// The versions of the reference's `versions` field.
+pub(crate) const MUJOCO: &str = "MuJoCo 4.0 RK4";
 
-/// M3's MuJoCo times per step by chain length, ball joints or hinges: measured where `anchors` has them.
-pub(crate) fn chain_times(anchors: &Anchors, ball: bool) -> Vec<(usize, Time<'_>)> {
-    let recorded = if ball {
-        &CHAIN_BALL_TIME_PER_STEP
-    } else {
-        &CHAIN_HINGE_TIME_PER_STEP
-    };
-    recorded
-        .iter()
-        .map(|&(links, seconds)| {
-            (
-                links,
-                anchors.time(Key::Chain { ball, links }, seconds, MECHANISMS_DATE),
-            )
-        })
-        .collect()
-}
-
-/// M3's Pinocchio times per evaluation by chain length: measured where `anchors` has them.
-pub(crate) fn pinocchio_chain_times(anchors: &Anchors) -> Vec<(usize, Time<'_>)> {
-    PINOCCHIO_CHAIN_EVALUATION
-        .iter()
-        .map(|&(links, seconds)| {
-            (
-                links,
-                anchors.time(Key::PinocchioChain(links), seconds, MECHANISMS_DATE),
-            )
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn cost_at_error_interpolates_log_log() {
-        // error = cost⁻⁴: 1e-4 at cost 10, 1e-8 at cost 100; 1e-6 lies halfway in log, at cost √1000.
-        let points = [(100.0, 1e-8), (10.0, 1e-4)];
-        let cost = cost_at_error(&points, 1e-6).unwrap();
-        assert!((cost - 1000f64.sqrt()).abs() < 1e-9, "{cost}");
-        assert_eq!(cost_at_error(&points, 1e-3), Some(10.0));
-        assert_eq!(cost_at_error(&points, 1e-9), None);
-        // The first crossing from the cheap end counts, not a later one past a round-off floor.
-        let floored = [(10.0, 1e-4), (100.0, 1e-8), (1000.0, 2e-8)];
-        assert!((cost_at_error(&floored, 1e-6).unwrap() - 1000f64.sqrt()).abs() < 1e-9);
-    }
-
-    #[test]
-    fn runs_of_another_length_are_not_compared() {
-        assert_eq!(length_mismatch(10.0, 10.0), None);
-        assert_eq!(
-            length_mismatch(2.0, 10.0).as_deref(),
-            Some("n/a: shortened run (2 s of T = 10 s)")
-        );
-        assert!(length_mismatch(20.0, 10.0).unwrap().starts_with("n/a"));
-        assert!(MECHANISMS_MEASURED.contains(MECHANISMS_DATE));
-        assert!(SINGLE_BODY_MEASURED.contains(SINGLE_BODY_RECORDED));
-    }
-}
+pub(crate) const PINOCCHIO: &str = "Pinocchio 4.1";

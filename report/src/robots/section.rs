@@ -7,74 +7,24 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use dynamics::integrate::Integrator;
-use dynamics::joint_integration::JointMethod;
 use dynamics::Pga;
 use reference::robots::{RobotId, RobotReference};
+use scene_file::AlgebraKind;
 
-use crate::anchors::{sources_short, Anchors, Key, Source, Time, SPREAD_NOTE};
-use crate::figures::{panel_title, slot, styled, Family};
-use crate::markdown::{compare_rows, integrator_rank, scientific, RowKey};
-use crate::mujoco::cost_at_error;
-use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series};
-use crate::robot_figures::motion_figure;
-use crate::robot_sweep::{
-    robot_label, RobotConfig, RobotOutcome, RobotResult, StickFigure, LEFT_OUT, LONG_TIMING, MAX_REPEATS, MIN_REPEATS,
-    MIN_TIMING, SNAPSHOT_TIMES,
-};
-use crate::sweep::AlgebraKind;
+use super::figures::{motion_picture, work_precision_figure};
+use super::sweep::{robot_label, row_key, series_of, RobotResult, LEFT_OUT};
+use crate::markdown::{compare_rows, scientific};
+use crate::measure::cost_at_error;
+use crate::measured_anchors::{mujoco_time, Anchors, SPREAD_NOTE};
+use crate::plot::PlotError;
+use crate::recorded_anchors::{MUJOCO, PINOCCHIO, RECORDED_WHEN};
+use crate::runs::{LONG_TIMING, MAX_REPEATS, MIN_REPEATS, MIN_TIMING};
 
-/// When the reference's MuJoCo and Pinocchio figures were recorded; said wherever they are shown.
-const RECORDED_WHEN: &str = "when the reference was made (see reference/data/robots/README.md)";
-/// The versions of the reference's `versions` field.
-const MUJOCO: &str = "MuJoCo 4.0 RK4";
-const PINOCCHIO: &str = "Pinocchio 4.1";
 /// The step of MuJoCo's run whose error the costs are compared at (s).
 const MUJOCO_DT: f64 = 1e-3;
 
 fn file_stem(id: RobotId) -> String {
     format!("robot_{}", id.name())
-}
-
-/// An integrator's place in the tables: the general methods in their order, then the joint-coordinate ones.
-fn rank(integrator: Integrator) -> usize {
-    match integrator {
-        Integrator::Joint(method) => 100 + JointMethod::ALL.iter().position(|&m| m == method).unwrap_or(0),
-        other => integrator_rank(other),
-    }
-}
-
-fn row_key(config: &RobotConfig) -> RowKey {
-    (config.algebra, 0, rank(config.integrator), config.dt)
-}
-
-/// The work-precision panel of an integrator (its place) and its place in the panel (0 or 1): the general methods
-/// by [`Family`], with the eighth-order joint-coordinate method beside the eighth-order body method, and the other
-/// two joint-coordinate methods in a panel of their own.
-fn panel(integrator: Integrator) -> (usize, usize) {
-    match integrator {
-        Integrator::Joint(JointMethod::Rkmk8) => (Family::EighthOrder as usize, 1),
-        Integrator::Joint(method) => (10, usize::from(method == JointMethod::Rkmk6)),
-        general => {
-            let (family, member) = Family::of(general);
-            (family as usize, member)
-        }
-    }
-}
-
-/// A panel's title, from the integrators it shows.
-fn panel_heading(panel: usize, integrators: &[Integrator]) -> String {
-    let joint_eighth = integrators.contains(&Integrator::Joint(JointMethod::Rkmk8));
-    let body_eighth = integrators.contains(&Integrator::General(dynamics::Method::Rkmk8Body));
-    match panel {
-        10 => "RKMK4-joint and RKMK6-joint (stepping in joint coordinates)".to_owned(),
-        p if p == Family::EighthOrder as usize && joint_eighth && body_eighth => {
-            "RKMK8-body and RKMK8-joint (order 8: body momentum, joint coordinates)".to_owned()
-        }
-        p if p == Family::EighthOrder as usize && joint_eighth => "RKMK8-joint (order 8, joint coordinates)".to_owned(),
-        _ => integrators
-            .first()
-            .map_or(String::new(), |&i| panel_title(None, Family::of(i).0)),
-    }
 }
 
 /// A cost ratio: one decimal from 1 up, two below.
@@ -89,21 +39,6 @@ fn ratio(r: f64) -> String {
 fn table_header(out: &mut String, columns: &[&str]) {
     let _ = writeln!(out, "| {} |", columns.join(" | "));
     let _ = writeln!(out, "|{}|", vec!["---"; columns.len()].join("|"));
-}
-
-/// A robot's successful runs by series (algebra, method), each sorted by cost.
-fn series_of(results: &[RobotResult], id: RobotId) -> BTreeMap<(AlgebraKind, usize), Vec<&RobotOutcome>> {
-    let mut groups: BTreeMap<(AlgebraKind, usize), Vec<&RobotOutcome>> = BTreeMap::new();
-    for (config, result) in results {
-        if let (true, Ok(outcome)) = (config.robot == id, result) {
-            let (algebra, _, method, _) = row_key(config);
-            groups.entry((algebra, method)).or_default().push(outcome);
-        }
-    }
-    for runs in groups.values_mut() {
-        runs.sort_by(|a, b| a.cpu_per_simulated_second.total_cmp(&b.cpu_per_simulated_second));
-    }
-    groups
 }
 
 /// "6 moving bodies (11 URDF links, …), 6 revolute joints, 6 degrees of freedom, root `world` fixed to the world;
@@ -136,18 +71,6 @@ fn model_line(id: RobotId) -> String {
         "{bodies} moving bodies ({links} URDF links, those joined by fixed joints merged into one body), {joints} \
          joints, {dof} degrees of freedom, {root}; {mass:.2} kg moving"
     )
-}
-
-/// MuJoCo's time per step of a recorded run of robot `id`: measured in this run if `anchors` has it.
-fn mujoco_time<'a>(anchors: &'a Anchors, id: RobotId, run: &reference::robots::MujocoRun) -> Time<'a> {
-    let recorded = run.microseconds_per_step * 1e-6;
-    match Key::robot(id, run.dt) {
-        Some(key) => anchors.time(key, recorded, RECORDED_WHEN),
-        None => Time {
-            seconds: recorded,
-            source: Source::Recorded(RECORDED_WHEN),
-        },
-    }
 }
 
 /// MuJoCo's run at `dt`, if recorded.
@@ -316,148 +239,6 @@ fn runs_table(out: &mut String, results: &[RobotResult], id: RobotId, free_base:
         }
         let _ = writeln!(out, "| {} |", row.join(" | "));
     }
-}
-
-/// Work-precision: a panel per integrator family, PGA and CGA per method, MuJoCo's two points in each.
-fn work_precision_figure(
-    dir: &Path,
-    results: &[RobotResult],
-    id: RobotId,
-    reference: &RobotReference,
-    name: &str,
-    anchors: &Anchors,
-) -> Result<bool, PlotError> {
-    let groups = series_of(results, id);
-    if groups.is_empty() {
-        return Ok(false);
-    }
-    let times: Vec<Time> = reference.mujoco.iter().map(|r| mujoco_time(anchors, id, r)).collect();
-    let mujoco_source = sources_short(&times.iter().map(|t| t.source).collect::<Vec<_>>());
-    let mut mujoco: Vec<(f64, f64)> = reference
-        .mujoco
-        .iter()
-        .zip(&times)
-        .map(|(r, time)| (time.seconds / r.dt, r.max_joint_error))
-        .collect();
-    mujoco.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut steps: Vec<f64> = reference.mujoco.iter().map(|r| r.dt).collect();
-    steps.sort_by(|a, b| b.total_cmp(a));
-    let steps: Vec<String> = steps.iter().map(|dt| format!("{dt:.0e}")).collect();
-    let mut panels_runs: BTreeMap<usize, BTreeMap<usize, Series>> = BTreeMap::new();
-    let mut shown: BTreeMap<usize, Vec<Integrator>> = BTreeMap::new();
-    for runs in groups.values() {
-        let config = runs[0].config;
-        let (key, member) = panel(config.integrator);
-        shown.entry(key).or_default().push(config.integrator);
-        let points = runs
-            .iter()
-            .map(|o| (o.cpu_per_simulated_second, o.joint_error))
-            .collect();
-        let line = Series {
-            markers: true,
-            ..Series::line(config.series_label(), points)
-        };
-        panels_runs
-            .entry(key)
-            .or_default()
-            .insert(slot(config.algebra, member), styled(line, config.algebra, member));
-    }
-    let titles: Vec<String> = panels_runs.keys().map(|key| panel_heading(*key, &shown[key])).collect();
-    let panels: Vec<Panel> = panels_runs
-        .into_values()
-        .zip(&titles)
-        .map(|(series, title)| {
-            let mut series: Vec<Series> = series.into_values().collect();
-            series.push(Series::reference_points(
-                format!("{MUJOCO}, dt\u{a0}=\u{a0}{}, {mujoco_source}", steps.join(" and ")),
-                mujoco.clone(),
-            ));
-            Panel::new(
-                Labels::new(
-                    title,
-                    "CPU per simulated second (s)",
-                    "largest joint-position error over 1 s (rad)",
-                ),
-                series,
-            )
-            .log_x()
-            .log_y()
-        })
-        .collect();
-    let caption = format!(
-        "Black triangles: {MUJOCO} on the same URDF at dt = {}, its errors recorded {RECORDED_WHEN}, its times \
-         {mujoco_source}; {PINOCCHIO}'s C++ ABA takes {:.2} µs per evaluation, recorded {RECORDED_WHEN}. Ours: this job's, the fastest of repeated timings. Error: the largest joint-position error against Pinocchio's reference over the 101 samples every \
-         0.01 s. Dark, solid: PGA; light, dashed: CGA.",
-        steps.join(" and "),
-        reference.pinocchio_aba_microseconds
-    );
-    figure_with_caption(
-        &dir.join(name),
-        &format!("{}: joint error against CPU time", robot_label(id)),
-        &panels,
-        &caption,
-    )?;
-    Ok(true)
-}
-
-/// The motion of the most accurate run (PGA if any), as stick figures; for a floating base relative to the whole
-/// robot's centre of mass. Returns the run's label, or None without a run.
-fn motion_picture(dir: &Path, results: &[RobotResult], id: RobotId, name: &str) -> Result<Option<String>, PlotError> {
-    let candidates = || {
-        results
-            .iter()
-            .filter(|(c, _)| c.robot == id)
-            .filter_map(|(_, r)| r.as_ref().ok())
-            .filter(|o| o.figures.len() == SNAPSHOT_TIMES.len())
-    };
-    let most_accurate = |algebra: AlgebraKind| {
-        candidates()
-            .filter(|o| o.config.algebra == algebra)
-            .min_by(|a, b| a.joint_error.total_cmp(&b.joint_error))
-    };
-    let Some(run) = most_accurate(AlgebraKind::Pga).or_else(|| most_accurate(AlgebraKind::Cga)) else {
-        return Ok(None);
-    };
-    let free = run.base_position_error.is_some();
-    let figures: Vec<StickFigure> = if free {
-        run.figures
-            .iter()
-            .map(|f| {
-                let shift = |p: &nalgebra::Vector3<f64>| p - f.centre;
-                StickFigure {
-                    t: f.t,
-                    segments: f.segments.iter().map(|[a, b]| [shift(a), shift(b)]).collect(),
-                    centres: f.centres.iter().map(shift).collect(),
-                    centre: nalgebra::Vector3::zeros(),
-                }
-            })
-            .collect()
-    } else {
-        run.figures.clone()
-    };
-    let label = format!("{}, dt = {:e} s", run.config.series_label(), run.config.dt);
-    let mut caption = format!(
-        "{label}, passive under gravity from the reference's start (no torques, no contacts), at t = 0, 0.25, 0.5, 0.75 \
-         and 1 s, palest first. Each joint origin is joined to its parent's (the base frame's origin for the joints on \
-         the root), each end body's joint origin to its farthest link frame (the tool flange, a foot); circles: the \
-         bodies' centres of mass. One scale on every axis."
-    );
-    if free {
-        let (first, last) = (&run.figures[0], &run.figures[run.figures.len() - 1]);
-        let _ = write!(
-            caption,
-            " Positions relative to the whole robot's centre of mass at each instant, which falls {:.2} m along its \
-             parabola in the second.",
-            first.centre.z - last.centre.z
-        );
-    }
-    motion_figure(
-        &dir.join(name),
-        &format!("{}: the motion over 1 s", robot_label(id)),
-        &figures,
-        &caption,
-    )?;
-    Ok(Some(label))
 }
 
 /// Solo-12's error floors: the methods that step the bodies' motors against those that step in joint coordinates.

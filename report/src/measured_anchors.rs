@@ -1,7 +1,7 @@
 //! MuJoCo's and Pinocchio's times measured on this machine beside the run (`--anchors FILE`, written by
 //! `tools/anchors/measure`; docs/benchmarks.md). A ratio of our cost to a constant measured on another day reads
 //! whatever load the machine had then; measured in the same hour, both sides see the same machine. Every figure the
-//! file lacks falls back to the recorded constant of `report/src/mujoco.rs`, and the report says which is which.
+//! file lacks falls back to the recorded constant of `recorded_anchors`, and the report says which is which.
 //!
 //! The file is checked whole before the job runs: a careless or stale file is an error naming the figure, never a
 //! silent fallback.
@@ -13,7 +13,10 @@ use std::time::{SystemTime, UNIX_EPOCH};
 use reference::robots::RobotId;
 use serde::Deserialize;
 
-use crate::mujoco::CHAIN_BALL_TIME_PER_STEP;
+use crate::recorded_anchors::{
+    CHAIN_BALL_TIME_PER_STEP, CHAIN_HINGE_TIME_PER_STEP, DOUBLE_PENDULUM, FOUR_BAR_TIME_PER_STEP, MECHANISMS_DATE,
+    PINOCCHIO_CHAIN_EVALUATION, RECORDED_WHEN,
+};
 
 /// The version of the file layout this report reads.
 pub const FORMAT: u32 = 1;
@@ -278,7 +281,7 @@ impl Anchors {
     /// No measured figures: the report uses its recorded constants.
     ///
     /// ```
-    /// use report::anchors::Anchors;
+    /// use report::measured_anchors::Anchors;
     ///
     /// assert_eq!(format!("{:?}", Anchors::none()), format!("{:?}", Anchors::default()));
     /// ```
@@ -289,7 +292,7 @@ impl Anchors {
     /// Reads and checks the file at `path` ([`Anchors::parse`]).
     ///
     /// ```
-    /// use report::anchors::{Anchors, AnchorsError};
+    /// use report::measured_anchors::{Anchors, AnchorsError};
     ///
     /// let missing = Anchors::read(std::path::Path::new("no/such/anchors.json"));
     /// assert!(matches!(missing, Err(AnchorsError::Io { .. })));
@@ -308,7 +311,7 @@ impl Anchors {
     ///
     /// ```
     /// use std::time::SystemTime;
-    /// use report::anchors::Anchors;
+    /// use report::measured_anchors::Anchors;
     ///
     /// // Not what `tools/anchors/measure` writes: an error naming what is missing, never a silent fallback.
     /// let error = Anchors::parse("{}", SystemTime::now()).unwrap_err();
@@ -531,6 +534,59 @@ fn unix_seconds(text: &str) -> Option<i64> {
     let day_of_era = year_of_era * 365 + year_of_era / 4 - year_of_era / 100 + day_of_year;
     let days = era * 146_097 + day_of_era - 719_468;
     Some(days * 86_400 + hour * 3600 + minute * 60 + second)
+}
+
+/// M1's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`DOUBLE_PENDULUM`]'s.
+pub(crate) fn double_pendulum_time(anchors: &Anchors) -> Time<'_> {
+    anchors.time(Key::DoublePendulum, DOUBLE_PENDULUM.time_per_step, MECHANISMS_DATE)
+}
+
+/// M2's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`FOUR_BAR_TIME_PER_STEP`].
+pub(crate) fn four_bar_time(anchors: &Anchors) -> Time<'_> {
+    anchors.time(Key::FourBar, FOUR_BAR_TIME_PER_STEP, MECHANISMS_DATE)
+}
+
+/// M3's MuJoCo times per step by chain length, ball joints or hinges: measured where `anchors` has them.
+pub(crate) fn chain_times(anchors: &Anchors, ball: bool) -> Vec<(usize, Time<'_>)> {
+    let recorded = if ball {
+        &CHAIN_BALL_TIME_PER_STEP
+    } else {
+        &CHAIN_HINGE_TIME_PER_STEP
+    };
+    recorded
+        .iter()
+        .map(|&(links, seconds)| {
+            (
+                links,
+                anchors.time(Key::Chain { ball, links }, seconds, MECHANISMS_DATE),
+            )
+        })
+        .collect()
+}
+
+/// M3's Pinocchio times per evaluation by chain length: measured where `anchors` has them.
+pub(crate) fn pinocchio_chain_times(anchors: &Anchors) -> Vec<(usize, Time<'_>)> {
+    PINOCCHIO_CHAIN_EVALUATION
+        .iter()
+        .map(|&(links, seconds)| {
+            (
+                links,
+                anchors.time(Key::PinocchioChain(links), seconds, MECHANISMS_DATE),
+            )
+        })
+        .collect()
+}
+
+/// MuJoCo's time per step of a recorded run of robot `id`: measured in this run if `anchors` has it.
+pub(crate) fn mujoco_time<'a>(anchors: &'a Anchors, id: RobotId, run: &reference::robots::MujocoRun) -> Time<'a> {
+    let recorded = run.microseconds_per_step * 1e-6;
+    match Key::robot(id, run.dt) {
+        Some(key) => anchors.time(key, recorded, RECORDED_WHEN),
+        None => Time {
+            seconds: recorded,
+            source: Source::Recorded(RECORDED_WHEN),
+        },
+    }
 }
 
 #[cfg(test)]

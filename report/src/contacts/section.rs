@@ -5,68 +5,15 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::Duration;
 
-use dynamics::limits::LimitTransition;
-use dynamics::{simulate, Algebra, Cga, Method, Pga, Schedule, Tolerance};
+use dynamics::{Cga, Pga};
 use scenarios::contacts::ContactScene;
+use scene_file::AlgebraKind;
 
-use crate::limits_report::{drift_net_of_impacts, in_both_algebras, transition_cells};
-use crate::markdown::scientific;
+use super::sweep::{run_in, ContactRun, TOLERANCE};
+use crate::markdown::{scientific, transition_cells};
 use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series};
-use crate::sweep::AlgebraKind;
-
-/// The tolerance the contact scenes run at.
-const TOLERANCE: f64 = 1e-12;
-
-/// One scene run in one algebra.
-struct ContactRun {
-    scene: ContactScene,
-    algebra: AlgebraKind,
-    /// (t, the lowest corner's height, the centre's height, the energy) per sample.
-    samples: Vec<(f64, f64, f64, f64)>,
-    transitions: Vec<LimitTransition>,
-    steps: usize,
-    stepping_time: Duration,
-}
-
-fn run_in<A: Algebra>(scene: ContactScene, algebra: AlgebraKind) -> Result<ContactRun, String> {
-    let (system, start) = scene.build::<A>().map_err(|e| e.to_string())?;
-    let tolerance = Tolerance::new(TOLERANCE, TOLERANCE).map_err(|e| e.to_string())?;
-    let schedule = Schedule::adaptive(tolerance, scene.duration(), 0.005).map_err(|e| e.to_string())?;
-    let run = simulate(&system, &start, Method::Dop853Body, &schedule).map_err(|e| e.to_string())?;
-    let samples = (run.body(0).iter())
-        .map(|s| {
-            let lowest = (ContactScene::corners().iter())
-                .map(|corner| (s.position + s.orientation * corner).z)
-                .fold(f64::INFINITY, f64::min);
-            (s.t, lowest, s.position.z, s.energy)
-        })
-        .collect();
-    Ok(ContactRun {
-        scene,
-        algebra,
-        samples,
-        transitions: run.transitions,
-        steps: run.statistics.accepted,
-        stepping_time: run.stepping_time,
-    })
-}
-
-impl ContactRun {
-    /// The deepest a corner went below the floor at the samples (m; zero if none did).
-    fn deepest(&self) -> f64 {
-        self.samples.iter().map(|s| -s.1).fold(0.0, f64::max)
-    }
-
-    /// The largest |E(t) − E₀ − L(t)| (J), L(t) what the impacts took up to t.
-    fn drift(&self) -> f64 {
-        drift_net_of_impacts(
-            self.samples.iter().map(|&(t, _, _, energy)| (t, energy)),
-            &self.transitions,
-        )
-    }
-}
+use crate::runs::in_both_algebras;
 
 /// The section: every contact scene in both algebras, a figure and a table.
 pub(crate) fn contacts_section(dir: &Path) -> Result<String, PlotError> {

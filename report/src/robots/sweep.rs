@@ -8,15 +8,19 @@
 //! a run sampled only at its steps, so the partial steps do not count. Runs are repeated for the timing and the
 //! fastest repeat is kept (at least 5 repeats), which filters the shared machine's interruptions out of short runs.
 
+use std::collections::BTreeMap;
+
 use dynamics::integrate::{Integrator, Method};
 use dynamics::joint_integration::JointMethod;
-use dynamics::simulate::{simulate, Schedule, Simulation};
-use dynamics::{Algebra, Cga, Dynamics, Mechanism, Pga, Reference, State};
-use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
-use reference::robots::{RobotId, RobotReference};
+use dynamics::simulate::{simulate, Schedule};
+use dynamics::{Algebra, Cga, Pga};
+use reference::robots::RobotId;
 use scenarios::{build_robot, RobotScene};
+use scene_file::AlgebraKind;
 
-use crate::sweep::{AlgebraKind, RunError};
+use super::measure::{measure_robot, metrics_error, StickFigure};
+use crate::markdown::{integrator_rank, RowKey};
+use crate::runs::{fastest_of_repeats, RunError};
 
 /// The robots' steps without `--steps` (s): from where only the eighth-order method is still accurate to where the
 /// fourth-order ones reach MuJoCo's accuracy at dt = 1e-3. Steps above 0.01 s are whole divisors of the 1 s run.
@@ -39,19 +43,6 @@ pub(crate) const LEFT_OUT: &str = "RK4 runs Solo-12 only at dt ≤ 5e-3 and RKMK
      by t = 0.87 s when the step guard stopped it; at 2e-2 and 4e-2, and RKMK4 at 2e-2 and 4e-2, the runs stopped \
      between 0.16 and 0.45 s with a leg turning more than a radian per step or a joint residual no longer finite), \
      while the body-momentum methods stay within 1e-5 rad at dt = 4e-2";
-
-/// The times of the stick figures of the motion (s).
-pub(crate) const SNAPSHOT_TIMES: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
-
-/// Each configuration is timed over at least [`MIN_REPEATS`] runs unless these take [`LONG_TIMING`] s of stepping,
-/// and over at least [`MIN_TIMING`] s of stepping, in at most [`MAX_REPEATS`] runs; the fastest run counts.
-pub(crate) const MIN_REPEATS: usize = 5;
-/// See [`MIN_REPEATS`] (s).
-pub(crate) const LONG_TIMING: f64 = 0.4;
-/// See [`MIN_REPEATS`] (s).
-pub(crate) const MIN_TIMING: f64 = 0.05;
-/// See [`MIN_REPEATS`].
-pub(crate) const MAX_REPEATS: usize = 25;
 
 /// The robot's name in the report.
 pub fn robot_label(id: RobotId) -> &'static str {
@@ -78,7 +69,7 @@ impl RobotPlan {
     /// Both robots over [`DEFAULT_STEPS`], with every joint-coordinate method.
     ///
     /// ```
-    /// use report::robot_sweep::{RobotPlan, DEFAULT_STEPS};
+    /// use report::robots::{RobotPlan, DEFAULT_STEPS};
     ///
     /// let plan = RobotPlan::all();
     /// assert_eq!((plan.robots.len(), plan.joint_methods.len()), (2, 3)); // UR5 and Solo-12; RKMK4, 6 and 8
@@ -156,21 +147,6 @@ impl RobotConfig {
     }
 }
 
-/// The robot drawn as a stick figure at one instant: segments between joint origins, and the bodies' centres of
-/// mass (m, world).
-#[derive(Clone, Debug, PartialEq)]
-pub struct StickFigure {
-    /// The time (s).
-    pub t: f64,
-    /// Each joint origin joined to its parent's (the base frame origin for joints on the root), then each end body's
-    /// joint origin joined to its farthest merged link frame (a foot, the tool flange).
-    pub segments: Vec<[Vector3<f64>; 2]>,
-    /// The bodies' centres of mass.
-    pub centres: Vec<Vector3<f64>>,
-    /// The whole robot's centre of mass.
-    pub centre: Vector3<f64>,
-}
-
 /// A finished robot run.
 #[derive(Clone, Debug)]
 pub struct RobotOutcome {
@@ -208,10 +184,6 @@ pub(crate) fn run_robot(config: &RobotConfig) -> Result<RobotOutcome, RunError> 
 
 fn simulation_error(error: impl std::fmt::Display) -> RunError {
     RunError::Simulation(error.to_string())
-}
-
-fn metrics_error(error: impl std::fmt::Display) -> RunError {
-    RunError::Metrics(error.to_string())
 }
 
 fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
@@ -253,203 +225,42 @@ fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {
     })
 }
 
-/// Runs `run` until the timing rule of [`MIN_REPEATS`] is met: the first run, the fastest stepping time (s) and
-/// the number of runs.
-pub(crate) fn fastest_of_repeats<A: Algebra>(
-    mut run: impl FnMut() -> Result<Simulation<A>, RunError>,
-) -> Result<(Simulation<A>, f64, usize), RunError> {
-    let first_run = run()?;
-    let mut best = first_run.stepping_time.as_secs_f64();
-    let (mut total, mut repeats) = (best, 1);
-    while repeats < MAX_REPEATS && (total < MIN_TIMING || (repeats < MIN_REPEATS && total < LONG_TIMING)) {
-        let again = run()?.stepping_time.as_secs_f64();
-        best = best.min(again);
-        total += again;
-        repeats += 1;
+/// An integrator's place in the tables: the general methods in their order, then the joint-coordinate ones.
+pub(crate) fn rank(integrator: Integrator) -> usize {
+    match integrator {
+        Integrator::Joint(method) => 100 + JointMethod::ALL.iter().position(|&m| m == method).unwrap_or(0),
+        other => integrator_rank(other),
     }
-    Ok((first_run, best, repeats))
 }
 
-/// A run's errors against the reference and its stick figures.
-pub(crate) struct Measured {
-    /// The largest joint-position error against the reference over every sample (rad).
-    pub(crate) joint_error: f64,
-    /// Base origin (m) and orientation (rad) errors.
-    base: Option<(f64, f64)>,
-    energy_change: f64,
-    figures: Vec<StickFigure>,
+pub(crate) fn row_key(config: &RobotConfig) -> RowKey {
+    (config.algebra, 0, rank(config.integrator), config.dt)
 }
 
-/// The bodies' states at sample `k` of a run, from its recorded poses and velocities.
-fn states_at<A: Algebra>(mechanism: &Mechanism<A>, run: &Simulation<A>, k: usize) -> Vec<State<A>> {
-    run.bodies
-        .iter()
-        .enumerate()
-        .map(|(i, samples)| {
-            let s = &samples[k];
-            State::from_world_twist(
-                Dynamics::body(mechanism, i),
-                s.position,
-                &s.orientation,
-                s.angular_velocity,
-                s.velocity,
-            )
-        })
-        .collect()
-}
-
-/// The angle (rad) of the turn between the reference's orientation and the quaternion `q` (w, x, y, z).
-fn angle_between(reference: &UnitQuaternion<f64>, q: &[f64]) -> f64 {
-    let ours = UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3]));
-    reference.rotation_to(&ours).angle()
-}
-
-/// A run's errors against the reference: the run must be sampled at the reference's times.
-pub(crate) fn measure_robot<A: Algebra>(scene: &RobotScene<A>, run: &Simulation<A>) -> Result<Measured, RunError> {
-    let mechanism = scene.robot.mechanism();
-    let reference: &RobotReference = &scene.reference;
-    let space = mechanism.joint_space().map_err(metrics_error)?;
-    let offsets: Vec<usize> = reference
-        .joints
-        .iter()
-        .map(|name| {
-            space
-                .group(name)
-                .map(|g| g.position_offset())
-                .ok_or_else(|| metrics_error(format!("no joint `{name}` in the mechanism")))
-        })
-        .collect::<Result<_, _>>()?;
-    // A floating base's coordinates: its frame's origin and orientation (x, y, z, qw, qx, qy, qz).
-    let base = space
-        .groups()
-        .iter()
-        .find(|g| g.joint().is_none())
-        .map(|g| g.position_offset());
-    let recorded = run.bodies.first().map_or(0, Vec::len);
-    if recorded != reference.samples.len() {
-        return Err(metrics_error(format!(
-            "{recorded} samples, the reference has {}",
-            reference.samples.len()
-        )));
-    }
-    let energy_start = run.bodies[0][0].energy;
-    let (mut joint_error, mut energy_change) = (0.0f64, 0.0f64);
-    let mut base_error: Option<(f64, f64)> = None;
-    let mut previous: Option<Vec<f64>> = None;
-    let mut figures = Vec::new();
-    for (k, expected) in reference.samples.iter().enumerate() {
-        let t = run.bodies[0][k].t;
-        if (t - expected.t).abs() > 1e-9 {
-            return Err(metrics_error(format!(
-                "sample {k} at t = {t}, the reference's at {}",
-                expected.t
-            )));
-        }
-        let states = states_at(mechanism, run, k);
-        let q = mechanism
-            .joint_positions(&states, previous.as_deref())
-            .map_err(metrics_error)?;
-        for (&at, value) in offsets.iter().zip(&expected.joints) {
-            joint_error = joint_error.max((q[at] - value).abs());
-        }
-        if let (Some(at), Some((position, orientation))) = (base, &expected.base) {
-            let origin = (Vector3::new(q[at], q[at + 1], q[at + 2]) - position).norm();
-            let turn = angle_between(orientation, &q[at + 3..at + 7]);
-            let (o, r) = base_error.unwrap_or((0.0, 0.0));
-            base_error = Some((o.max(origin), r.max(turn)));
-        }
-        energy_change = energy_change.max((run.bodies[0][k].energy - energy_start).abs());
-        if !joint_error.is_finite() {
-            return Err(metrics_error(format!("the joint positions are not finite at t = {t}")));
-        }
-        if SNAPSHOT_TIMES.iter().any(|&s| (s - expected.t).abs() < 1e-9) {
-            figures.push(stick_figure(scene, run, k));
-        }
-        previous = Some(q);
-    }
-    Ok(Measured {
-        joint_error,
-        base: base_error,
-        energy_change,
-        figures,
-    })
-}
-
-/// The robot at sample `k` as a stick figure (see [`StickFigure`]).
-fn stick_figure<A: Algebra>(scene: &RobotScene<A>, run: &Simulation<A>, k: usize) -> StickFigure {
-    let mechanism = scene.robot.mechanism();
-    let poses: Vec<Isometry3<f64>> = run
-        .bodies
-        .iter()
-        .map(|samples| Isometry3::from_parts(samples[k].position.into(), samples[k].orientation))
-        .collect();
-    let mut segments = Vec::new();
-    // Each group's origin: the joint origin (the child's joint frame), or a free root's base frame origin.
-    let mut origins: Vec<Option<Vector3<f64>>> = vec![None; poses.len()];
-    let mut has_children = vec![false; poses.len()];
-    if let Ok(space) = mechanism.joint_space() {
-        for group in space.groups() {
-            let body = group.body().index();
-            origins[body] = Some((poses[body] * group.model().child_frame()).translation.vector);
-        }
-        for group in space.groups() {
-            let Some(joint) = group.joint() else { continue };
-            let parent = match mechanism.joint(joint) {
-                Some((_, _, Reference::Body(parent))) => {
-                    has_children[parent.index()] = true;
-                    origins[parent.index()]
-                }
-                // A joint on a fixed root: the base frame is the world's.
-                _ => Some(Vector3::zeros()),
-            };
-            if let (Some(from), Some(to)) = (parent, origins[group.body().index()]) {
-                segments.push([from, to]);
-            }
+/// A robot's successful runs by series (algebra, method), each sorted by cost.
+pub(crate) fn series_of(results: &[RobotResult], id: RobotId) -> BTreeMap<(AlgebraKind, usize), Vec<&RobotOutcome>> {
+    let mut groups: BTreeMap<(AlgebraKind, usize), Vec<&RobotOutcome>> = BTreeMap::new();
+    for (config, result) in results {
+        if let (true, Ok(outcome)) = (config.robot == id, result) {
+            let (algebra, _, method, _) = row_key(config);
+            groups.entry((algebra, method)).or_default().push(outcome);
         }
     }
-    // The end bodies: their joint origin joined to their farthest merged link frame (a foot, the tool flange).
-    for (body, name) in mechanism.body_names().enumerate() {
-        let (Some(origin), false) = (origins[body], has_children[body]) else {
-            continue;
-        };
-        let Some(rigid) = scene.robot.model().bodies.iter().find(|b| b.name == name) else {
-            continue;
-        };
-        let farthest = rigid
-            .links
-            .iter()
-            .filter_map(|link| scene.robot.link_frame(&link.name))
-            .filter(|(reference, _)| matches!(reference, Reference::Body(b) if b.index() == body))
-            .map(|(_, frame)| (poses[body] * frame).translation.vector)
-            .max_by(|a, b| (a - origin).norm().total_cmp(&(b - origin).norm()));
-        if let Some(end) = farthest.filter(|end| (end - origin).norm() > 0.01) {
-            segments.push([origin, end]);
-        }
+    for runs in groups.values_mut() {
+        runs.sort_by(|a, b| a.cpu_per_simulated_second.total_cmp(&b.cpu_per_simulated_second));
     }
-    let centres: Vec<Vector3<f64>> = poses.iter().map(|p| p.translation.vector).collect();
-    let total: f64 = (0..poses.len()).map(|i| Dynamics::body(mechanism, i).mass()).sum();
-    let centre = centres
-        .iter()
-        .enumerate()
-        .map(|(i, c)| c * Dynamics::body(mechanism, i).mass())
-        .sum::<Vector3<f64>>()
-        / total;
-    StickFigure {
-        t: run.bodies[0][k].t,
-        segments,
-        centres,
-        centre,
-    }
+    groups
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::measure::SNAPSHOT_TIMES;
     use super::*;
 
     #[test]
     fn the_plan_covers_robot_algebra_method_and_step() {
         let plan = RobotPlan::all();
-        let integrators = crate::sweep::default_integrators();
+        let integrators = crate::single_bodies::sweep::default_integrators();
         let configs = plan.configurations(&integrators);
         // Splittings are left out: five general methods and three joint-coordinate ones; Solo-12 by RK4 without 4e-2,
         // 2e-2 and 1e-2, by RKMK4 without 4e-2 and 2e-2.

@@ -1,6 +1,6 @@
 //! The adaptive runs of the main job: every selected scene (single bodies, M1–M3, the robots) in PGA with each
 //! embedded pair (DP5(4)-body, DOP853-body) over a sweep of tolerances, measured as the fixed-step runs of the same
-//! scene are, so the report draws both on the same work-precision axes (`adaptive_report`).
+//! scene are, so the report draws both on the same work-precision axes (`figures`, `section`).
 //!
 //! Single bodies run by virtual power (scene 1 as a free body), M1 and M2 by virtual power with projection, M3 as
 //! its 64-link long run; each over the scene's duration (or the job's), sampled every 0.01 s. The error is the one
@@ -20,10 +20,11 @@ use reference::{SceneConstraint, SceneId};
 use scenarios::mechanism_measures::{measure as measure_mechanism, MechanismMeasures};
 use scenarios::{build_mechanism, Formulation, MechanismId};
 
-use crate::figures::headline_error;
-use crate::measure::measure;
-use crate::robot_sweep::{fastest_of_repeats, measure_robot, robot_label};
-use crate::sweep::{free_body, RunError};
+use crate::robots::measure::measure_robot;
+use crate::robots::sweep::robot_label;
+use crate::runs::{fastest_of_repeats, RunError};
+use crate::single_bodies::measure::{headline_error, measure};
+use crate::single_bodies::sweep::free_body;
 
 /// The tolerances without `--tolerances`: 1e-3 to 1e-13, a decade apart.
 pub const DEFAULT_TOLERANCES: [f64; 11] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13];

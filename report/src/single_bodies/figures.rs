@@ -10,16 +10,18 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use dynamics::integrate::{Integrator, Method, SplittingMethod};
+use dynamics::integrate::Integrator;
 use nalgebra::Vector3;
 use reference::{SceneConstraint, SceneId};
 use scenarios::Formulation;
+use scene_file::AlgebraKind;
 
-use crate::markdown::{formulation_rank, RunResult};
-use crate::measure::Measurements;
-use crate::mujoco;
-use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series, Shape};
-use crate::sweep::{AlgebraKind, Outcome};
+use super::measure::headline_error;
+use super::sweep::{Outcome, RunResult};
+use crate::markdown::formulation_rank;
+use crate::panels::{panel_title, running_max, slot, styled, Family, LOG_FLOOR};
+use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series};
+use crate::recorded_anchors;
 
 /// A file-name stem for a scene.
 pub(crate) fn stem(scene: SceneId) -> &'static str {
@@ -30,90 +32,6 @@ pub(crate) fn stem(scene: SceneId) -> &'static str {
         SceneId::TopSteady => "scene3b_top_steady",
         SceneId::RodOnSphere => "scene4_rod_on_sphere",
         SceneId::RodOnCircle => "scene4_rod_on_circle",
-    }
-}
-
-/// The integrator families the plots put in panels of their own.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub(crate) enum Family {
-    /// RK4 and RKMK4: the momentum integrated in the world frame.
-    WorldFrame,
-    /// RKMK4-body and RKMK6-body: the momentum carried in the body frame.
-    BodyMomentum,
-    /// RKMK8-body, the same scheme at order 8, in a panel of its own (a third pair of colours would pass the six
-    /// an axis may carry with MuJoCo's points).
-    EighthOrder,
-    /// DP5(4)-body and DOP853-body, the embedded pairs of adaptive schedules, stepped at fixed sizes.
-    Embedded,
-    /// Strang and Yoshida-4 (free bodies only).
-    Splitting,
-    /// The methods stepping in joint coordinates (mechanisms of joint models only).
-    JointCoordinates,
-}
-
-impl Family {
-    /// An integrator's family and its place in it (0 or 1).
-    pub(crate) fn of(integrator: Integrator) -> (Family, usize) {
-        match integrator {
-            Integrator::General(Method::Rk4) => (Family::WorldFrame, 0),
-            Integrator::General(Method::Rkmk4) => (Family::WorldFrame, 1),
-            Integrator::General(Method::Rkmk4Body) => (Family::BodyMomentum, 0),
-            Integrator::General(Method::Rkmk6Body) => (Family::BodyMomentum, 1),
-            Integrator::General(Method::Rkmk8Body) => (Family::EighthOrder, 0),
-            Integrator::General(Method::Dopri5Body) => (Family::Embedded, 0),
-            Integrator::General(Method::Dop853Body) => (Family::Embedded, 1),
-            Integrator::Splitting(SplittingMethod::Strang) => (Family::Splitting, 0),
-            Integrator::Splitting(SplittingMethod::Yoshida4) => (Family::Splitting, 1),
-            Integrator::Joint(method) => (
-                Family::JointCoordinates,
-                usize::from(method != dynamics::JointMethod::Rkmk4),
-            ),
-        }
-    }
-
-    pub(crate) fn title(self) -> &'static str {
-        match self {
-            Family::WorldFrame => "RK4 and RKMK4 (momentum in the world frame)",
-            Family::BodyMomentum => "RKMK4-body and RKMK6-body (momentum in the body frame)",
-            Family::EighthOrder => "RKMK8-body (order 8, momentum in the body frame)",
-            Family::Embedded => {
-                "DP5(4)-body and DOP853-body (embedded pairs, orders 5 and 8, momentum in the body frame)"
-            }
-            Family::Splitting => "Strang and Yoshida-4 splittings",
-            Family::JointCoordinates => "RKMK-joint (joint coordinates)",
-        }
-    }
-}
-
-/// The palette slot of a run: the hue pair (blue, vermilion) by the integrator's place in its family, the dark
-/// shade for PGA and the light one for CGA, so a colour means the same in every panel and never repeats in one.
-pub(crate) fn slot(algebra: AlgebraKind, member: usize) -> usize {
-    2 * member
-        + match algebra {
-            AlgebraKind::Pga => 0,
-            AlgebraKind::Cga => 1,
-        }
-}
-
-/// A run's series in the style of its algebra: PGA solid with circles, CGA dashed with squares (so where the two
-/// algebras give the same curve, the PGA one shows through the CGA dashes).
-pub(crate) fn styled(series: Series, algebra: AlgebraKind, member: usize) -> Series {
-    Series {
-        slot: Some(slot(algebra, member)),
-        dashed: algebra == AlgebraKind::Cga,
-        shape: match algebra {
-            AlgebraKind::Pga => Shape::Circle,
-            AlgebraKind::Cga => Shape::Square,
-        },
-        ..series
-    }
-}
-
-/// A panel's title: its formulation, if any, and its family.
-pub(crate) fn panel_title(formulation: Option<Formulation>, family: Family) -> String {
-    match formulation {
-        Some(f) => format!("{}: {}", f.name(), family.title()),
-        None => family.title().to_owned(),
     }
 }
 
@@ -150,14 +68,6 @@ fn panels_of<'a>(outcomes: &[&'a Outcome]) -> Vec<PanelRuns<'a>> {
 /// A series label within a panel: "PGA, RK4" (the panel's title gives the formulation and family).
 fn short_label(algebra: AlgebraKind, integrator: Integrator) -> String {
     format!("{}, {}", algebra.name(), integrator.name())
-}
-
-/// The work-precision error of a scene: orientation at T, except scene 4, whose anchor is a position.
-pub(crate) fn headline_error(scene: SceneId, measurements: &Measurements) -> f64 {
-    match scene {
-        SceneId::RodOnSphere | SceneId::RodOnCircle => measurements.position_end,
-        _ => measurements.orientation_end,
-    }
 }
 
 /// The step closest to 1e-3 among those run: the one the over-time plots and CSVs show.
@@ -214,20 +124,6 @@ fn traced_path(scene: SceneId) -> (&'static str, &'static str, &'static str, Pro
     }
 }
 
-/// Values below this are drawn at it on the log plots of drift and violation (round-off is about 1e-16).
-pub(crate) const LOG_FLOOR: f64 = 1e-17;
-
-/// The running maximum of a sequence (the largest value up to each point).
-pub(crate) fn running_max(values: &[f64]) -> Vec<f64> {
-    values
-        .iter()
-        .scan(f64::NEG_INFINITY, |largest, &v| {
-            *largest = largest.max(v);
-            Some(*largest)
-        })
-        .collect()
-}
-
 /// Draws every figure of one scene into `dir`; returns the file names.
 pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Result<Vec<String>, PlotError> {
     let outcomes: Vec<&Outcome> = results.iter().filter_map(|(_, r)| r.as_ref().ok()).collect();
@@ -242,8 +138,8 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
     let full = scene.parameters().duration;
     let mismatch = outcomes
         .iter()
-        .find_map(|o| mujoco::length_mismatch(o.config.duration, full));
-    let mujoco_points = mujoco::work_precision_points(scene).filter(|_| mismatch.is_none());
+        .find_map(|o| crate::measure::length_mismatch(o.config.duration, full));
+    let mujoco_points = recorded_anchors::work_precision_points(scene).filter(|_| mismatch.is_none());
     let titles: Vec<String> = groups.iter().map(|g| panel_title(g.formulation, g.family)).collect();
     let y = match scene {
         SceneId::RodOnSphere | SceneId::RodOnCircle => "centre-of-mass position error at T (m)",
@@ -271,14 +167,17 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
                 })
                 .collect();
             if let Some(points) = &mujoco_points {
-                series.push(Series::reference_points(mujoco::single_body_legend(), points.clone()));
+                series.push(Series::reference_points(
+                    recorded_anchors::single_body_legend(),
+                    points.clone(),
+                ));
             }
             Panel::new(Labels::new(title, "CPU per simulated second (s)", y), series)
                 .log_x()
                 .log_y()
         })
         .collect();
-    let caption = match (mujoco::anchor(scene), &mismatch) {
+    let caption = match (recorded_anchors::anchor(scene), &mismatch) {
         (None, _) => "No MuJoCo figures for this scene.".to_owned(),
         (Some(_), Some(why)) => format!(
             "MuJoCo's points are not drawn, {why}: its errors were measured at the scene's full T. Dark, solid: \
@@ -286,7 +185,7 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
         ),
         (Some(_), None) => format!(
             "Black triangles: {}, at dt = 1e-2, 1e-3, 1e-4. Dark, solid: PGA; light, dashed: CGA.",
-            mujoco::SINGLE_BODY_MEASURED
+            recorded_anchors::SINGLE_BODY_MEASURED
         ),
     };
     let name = format!("{stem}_work_precision.png");
@@ -407,8 +306,8 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
 
 #[cfg(test)]
 mod tests {
+    use super::super::sweep::{default_integrators, SweepPlan, DEFAULT_STEPS};
     use super::*;
-    use crate::sweep::{default_integrators, SweepPlan, DEFAULT_STEPS};
     use dynamics::constraints::Stabilisation;
 
     #[test]

@@ -5,119 +5,15 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::time::Duration;
 
-use dynamics::limits::{energy_changed_by, LimitChange, LimitTransition};
-use dynamics::{simulate, Algebra, Cga, Dynamics, Method, Pga, Schedule, State, Tolerance};
+use dynamics::{Cga, Pga};
 use scenarios::limits::LimitScene;
+use scene_file::AlgebraKind;
 
-use crate::markdown::scientific;
+use super::sweep::{run_in, LimitRun, TOLERANCE};
+use crate::markdown::{scientific, transition_cells};
 use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series};
-use crate::sweep::AlgebraKind;
-
-/// The tolerance the limit scenes run at.
-const TOLERANCE: f64 = 1e-12;
-
-/// One scene run in one algebra.
-struct LimitRun {
-    scene: LimitScene,
-    algebra: AlgebraKind,
-    /// (t, the limited coordinate, the energy) per sample.
-    samples: Vec<(f64, f64, f64)>,
-    transitions: Vec<LimitTransition>,
-    steps: usize,
-    stepping_time: Duration,
-}
-
-fn run_in<A: Algebra>(scene: LimitScene, algebra: AlgebraKind) -> Result<LimitRun, String> {
-    let (system, start) = scene.build::<A>().map_err(|e| e.to_string())?;
-    let tolerance = Tolerance::new(TOLERANCE, TOLERANCE).map_err(|e| e.to_string())?;
-    let schedule = Schedule::adaptive(tolerance, scene.duration(), 0.01).map_err(|e| e.to_string())?;
-    let run = simulate(&system, &start, Method::Dop853Body, &schedule).map_err(|e| e.to_string())?;
-    let mut previous: Option<Vec<f64>> = None;
-    let mut samples = Vec::with_capacity(run.body(0).len());
-    for k in 0..run.body(0).len() {
-        let states: Vec<State<A>> = (0..run.bodies.len())
-            .map(|i| run.body(i)[k].state(system.body(i)))
-            .collect();
-        let q = system
-            .joint_positions(&states, previous.as_deref())
-            .map_err(|e| e.to_string())?;
-        let sample = &run.body(0)[k];
-        samples.push((sample.t, q[scene.limited_coordinate()], sample.energy));
-        previous = Some(q);
-    }
-    Ok(LimitRun {
-        scene,
-        algebra,
-        samples,
-        transitions: run.transitions,
-        steps: run.statistics.accepted,
-        stepping_time: run.stepping_time,
-    })
-}
-
-impl LimitRun {
-    /// How far the coordinate went past a bound (rad; zero if it never did).
-    fn passed(&self) -> f64 {
-        let limit = self.scene.limit();
-        (self.samples.iter())
-            .map(|(_, q, _)| (limit.lower() - q).max(q - limit.upper()).max(0.0))
-            .fold(0.0, f64::max)
-    }
-
-    /// The largest |E(t) − E₀ − L(t)| (J), L(t) what the impacts took up to t.
-    fn drift(&self) -> f64 {
-        drift_net_of_impacts(
-            self.samples.iter().map(|&(t, _, energy)| (t, energy)),
-            &self.transitions,
-        )
-    }
-}
-
-/// The largest |E(t) − E₀ − L(t)| (J) over `(t, E)` samples, L(t) what the `transitions` changed the energy by up to t.
-pub(crate) fn drift_net_of_impacts(samples: impl Iterator<Item = (f64, f64)>, transitions: &[LimitTransition]) -> f64 {
-    let mut start = None;
-    samples
-        .map(|(t, energy)| {
-            let start = *start.get_or_insert(energy);
-            (energy - start - energy_changed_by(transitions, t)).abs()
-        })
-        .fold(0.0, f64::max)
-}
-
-/// The table cells of a run's transitions: bounces, holds, releases and the first transition's time (s).
-pub(crate) fn transition_cells(transitions: &[LimitTransition]) -> String {
-    let count = |kind: fn(&LimitChange) -> bool| transitions.iter().filter(|t| kind(&t.change)).count();
-    let first = transitions.first().map_or("–".to_owned(), |t| format!("{:.15}", t.t));
-    format!(
-        "{} | {} | {} | {first}",
-        count(|c| matches!(c, LimitChange::Bounced { .. })),
-        count(|c| matches!(c, LimitChange::Held { .. })),
-        count(|c| matches!(c, LimitChange::Released { .. })),
-    )
-}
-
-/// Every scene run by `run` in PGA and in CGA; a failed run is a line of `out` naming the scene, the algebra and why.
-pub(crate) fn in_both_algebras<S: Copy, R>(
-    scenes: &[S],
-    label: fn(S) -> &'static str,
-    run: impl Fn(S, AlgebraKind) -> Result<R, String>,
-    out: &mut String,
-) -> Vec<R> {
-    let mut runs = Vec::new();
-    for &scene in scenes {
-        for algebra in [AlgebraKind::Pga, AlgebraKind::Cga] {
-            match run(scene, algebra) {
-                Ok(result) => runs.push(result),
-                Err(error) => {
-                    let _ = writeln!(out, "{} in {}: failed: {error}\n", label(scene), algebra.name());
-                }
-            }
-        }
-    }
-    runs
-}
+use crate::runs::in_both_algebras;
 
 /// The section: every limit scene in both algebras, a figure and a table.
 pub(crate) fn limits_section(dir: &Path) -> Result<String, PlotError> {

@@ -1,3 +1,5 @@
+//! The robots' figures: work-precision (a panel per integrator family, MuJoCo's points in each) and the motion of the
+//! most accurate run as stick figures, seen from the front, the side and above.
 //! A robot's motion as stick figures: the robot at a few instants drawn over each other, the earliest palest, in a
 //! side view (x–z) and a front view (y–z) side by side at one scale (a metre is as long on every axis). Each joint
 //! origin is joined to its parent's, the end bodies to their last link frame; circles mark the bodies' centres of
@@ -6,24 +8,214 @@
 //! Drawn with plotters directly (the charts of [`crate::plot`] are curves in a palette; these are figures in one
 //! fading hue), with the same embedded font and text sizes.
 
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
 use std::path::Path;
 
+use dynamics::integrate::Integrator;
+use dynamics::joint_integration::JointMethod;
 use nalgebra::Vector3;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use reference::robots::{RobotId, RobotReference};
+use scene_file::AlgebraKind;
 
+use super::measure::{StickFigure, SNAPSHOT_TIMES};
+use super::sweep::{robot_label, series_of, RobotResult};
+use crate::measured_anchors::{mujoco_time, sources_short, Anchors, Time};
+use crate::panels::{panel_title, slot, styled, Family};
 use crate::plot::{
-    px, register_font, wrap, PlotError, AXIS_TITLE_SIZE, FIGURE_TITLE_SIZE, FONT, LEGEND_SIZE, NOTE_COLOUR, NOTE_SIZE,
-    TICK_LABEL_SIZE,
+    figure_with_caption, px, register_font, wrap, Labels, Panel, PlotError, Series, AXIS_TITLE_SIZE, FIGURE_TITLE_SIZE,
+    FONT, LEGEND_SIZE, NOTE_COLOUR, NOTE_SIZE, TICK_LABEL_SIZE,
 };
-use crate::robot_sweep::StickFigure;
+use crate::recorded_anchors::{MUJOCO, PINOCCHIO, RECORDED_WHEN};
+
+/// The work-precision panel of an integrator (its place) and its place in the panel (0 or 1): the general methods
+/// by [`Family`], with the eighth-order joint-coordinate method beside the eighth-order body method, and the other
+/// two joint-coordinate methods in a panel of their own.
+fn panel(integrator: Integrator) -> (usize, usize) {
+    match integrator {
+        Integrator::Joint(JointMethod::Rkmk8) => (Family::EighthOrder as usize, 1),
+        Integrator::Joint(method) => (10, usize::from(method == JointMethod::Rkmk6)),
+        general => {
+            let (family, member) = Family::of(general);
+            (family as usize, member)
+        }
+    }
+}
+
+/// A panel's title, from the integrators it shows.
+fn panel_heading(panel: usize, integrators: &[Integrator]) -> String {
+    let joint_eighth = integrators.contains(&Integrator::Joint(JointMethod::Rkmk8));
+    let body_eighth = integrators.contains(&Integrator::General(dynamics::Method::Rkmk8Body));
+    match panel {
+        10 => "RKMK4-joint and RKMK6-joint (stepping in joint coordinates)".to_owned(),
+        p if p == Family::EighthOrder as usize && joint_eighth && body_eighth => {
+            "RKMK8-body and RKMK8-joint (order 8: body momentum, joint coordinates)".to_owned()
+        }
+        p if p == Family::EighthOrder as usize && joint_eighth => "RKMK8-joint (order 8, joint coordinates)".to_owned(),
+        _ => integrators
+            .first()
+            .map_or(String::new(), |&i| panel_title(None, Family::of(i).0)),
+    }
+}
+
+/// Work-precision: a panel per integrator family, PGA and CGA per method, MuJoCo's two points in each.
+pub(crate) fn work_precision_figure(
+    dir: &Path,
+    results: &[RobotResult],
+    id: RobotId,
+    reference: &RobotReference,
+    name: &str,
+    anchors: &Anchors,
+) -> Result<bool, PlotError> {
+    let groups = series_of(results, id);
+    if groups.is_empty() {
+        return Ok(false);
+    }
+    let times: Vec<Time> = reference.mujoco.iter().map(|r| mujoco_time(anchors, id, r)).collect();
+    let mujoco_source = sources_short(&times.iter().map(|t| t.source).collect::<Vec<_>>());
+    let mut mujoco: Vec<(f64, f64)> = reference
+        .mujoco
+        .iter()
+        .zip(&times)
+        .map(|(r, time)| (time.seconds / r.dt, r.max_joint_error))
+        .collect();
+    mujoco.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut steps: Vec<f64> = reference.mujoco.iter().map(|r| r.dt).collect();
+    steps.sort_by(|a, b| b.total_cmp(a));
+    let steps: Vec<String> = steps.iter().map(|dt| format!("{dt:.0e}")).collect();
+    let mut panels_runs: BTreeMap<usize, BTreeMap<usize, Series>> = BTreeMap::new();
+    let mut shown: BTreeMap<usize, Vec<Integrator>> = BTreeMap::new();
+    for runs in groups.values() {
+        let config = runs[0].config;
+        let (key, member) = panel(config.integrator);
+        shown.entry(key).or_default().push(config.integrator);
+        let points = runs
+            .iter()
+            .map(|o| (o.cpu_per_simulated_second, o.joint_error))
+            .collect();
+        let line = Series {
+            markers: true,
+            ..Series::line(config.series_label(), points)
+        };
+        panels_runs
+            .entry(key)
+            .or_default()
+            .insert(slot(config.algebra, member), styled(line, config.algebra, member));
+    }
+    let titles: Vec<String> = panels_runs.keys().map(|key| panel_heading(*key, &shown[key])).collect();
+    let panels: Vec<Panel> = panels_runs
+        .into_values()
+        .zip(&titles)
+        .map(|(series, title)| {
+            let mut series: Vec<Series> = series.into_values().collect();
+            series.push(Series::reference_points(
+                format!("{MUJOCO}, dt\u{a0}=\u{a0}{}, {mujoco_source}", steps.join(" and ")),
+                mujoco.clone(),
+            ));
+            Panel::new(
+                Labels::new(
+                    title,
+                    "CPU per simulated second (s)",
+                    "largest joint-position error over 1 s (rad)",
+                ),
+                series,
+            )
+            .log_x()
+            .log_y()
+        })
+        .collect();
+    let caption = format!(
+        "Black triangles: {MUJOCO} on the same URDF at dt = {}, its errors recorded {RECORDED_WHEN}, its times \
+         {mujoco_source}; {PINOCCHIO}'s C++ ABA takes {:.2} µs per evaluation, recorded {RECORDED_WHEN}. Ours: this job's, the fastest of repeated timings. Error: the largest joint-position error against Pinocchio's reference over the 101 samples every \
+         0.01 s. Dark, solid: PGA; light, dashed: CGA.",
+        steps.join(" and "),
+        reference.pinocchio_aba_microseconds
+    );
+    figure_with_caption(
+        &dir.join(name),
+        &format!("{}: joint error against CPU time", robot_label(id)),
+        &panels,
+        &caption,
+    )?;
+    Ok(true)
+}
+
+/// The motion of the most accurate run (PGA if any), as stick figures; for a floating base relative to the whole
+/// robot's centre of mass. Returns the run's label, or None without a run.
+pub(crate) fn motion_picture(
+    dir: &Path,
+    results: &[RobotResult],
+    id: RobotId,
+    name: &str,
+) -> Result<Option<String>, PlotError> {
+    let candidates = || {
+        results
+            .iter()
+            .filter(|(c, _)| c.robot == id)
+            .filter_map(|(_, r)| r.as_ref().ok())
+            .filter(|o| o.figures.len() == SNAPSHOT_TIMES.len())
+    };
+    let most_accurate = |algebra: AlgebraKind| {
+        candidates()
+            .filter(|o| o.config.algebra == algebra)
+            .min_by(|a, b| a.joint_error.total_cmp(&b.joint_error))
+    };
+    let Some(run) = most_accurate(AlgebraKind::Pga).or_else(|| most_accurate(AlgebraKind::Cga)) else {
+        return Ok(None);
+    };
+    let free = run.base_position_error.is_some();
+    let figures: Vec<StickFigure> = if free {
+        run.figures
+            .iter()
+            .map(|f| {
+                let shift = |p: &nalgebra::Vector3<f64>| p - f.centre;
+                StickFigure {
+                    t: f.t,
+                    segments: f.segments.iter().map(|[a, b]| [shift(a), shift(b)]).collect(),
+                    centres: f.centres.iter().map(shift).collect(),
+                    centre: nalgebra::Vector3::zeros(),
+                }
+            })
+            .collect()
+    } else {
+        run.figures.clone()
+    };
+    let label = format!("{}, dt = {:e} s", run.config.series_label(), run.config.dt);
+    let mut caption = format!(
+        "{label}, passive under gravity from the reference's start (no torques, no contacts), at t = 0, 0.25, 0.5, 0.75 \
+         and 1 s, palest first. Each joint origin is joined to its parent's (the base frame's origin for the joints on \
+         the root), each end body's joint origin to its farthest link frame (the tool flange, a foot); circles: the \
+         bodies' centres of mass. One scale on every axis."
+    );
+    if free {
+        let (first, last) = (&run.figures[0], &run.figures[run.figures.len() - 1]);
+        let _ = write!(
+            caption,
+            " Positions relative to the whole robot's centre of mass at each instant, which falls {:.2} m along its \
+             parabola in the second.",
+            first.centre.z - last.centre.z
+        );
+    }
+    motion_figure(
+        &dir.join(name),
+        &format!("{}: the motion over 1 s", robot_label(id)),
+        &figures,
+        &caption,
+    )?;
+    Ok(Some(label))
+}
 
 /// The image's width (px), the other plots' ([`crate::plot::SIZE`]), so text sizes and [`px`] are theirs.
 const WIDTH: u32 = crate::plot::SIZE.0;
+
 /// The views' height (px): as the data need at the views' scale, within these bounds.
 const PANEL_HEIGHT: (u32, u32) = (380, 760);
+
 const PANEL_TITLE_SIZE: f64 = 18.0;
+
 /// The instants' colours, earliest first: a sequential scale from pale green to dark blue (ColorBrewer's YlGnBu),
 /// which changes in hue as well as in lightness so that neighbouring instants stay apart.
 const SHADES: [RGBColor; 5] = [

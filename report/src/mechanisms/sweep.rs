@@ -9,12 +9,15 @@ use dynamics::{Cga, Pga};
 use reference::multibody::CHAIN_LENGTHS;
 use scenarios::mechanism_measures::{measure, MechanismMeasures};
 use scenarios::{build_mechanism, Formulation, MechanismId, SceneAlgebra};
+use scene_file::AlgebraKind;
+use std::collections::BTreeMap;
 
-use crate::sweep::{AlgebraKind, RunError};
+use crate::runs::RunError;
 
 /// M3's cost is measured as MuJoCo's is (`chain.py`): RK4 at dt = 1e-3, ball joints (virtual power: three
 /// reaction forces per joint), here over this much simulated time.
 pub(crate) const CHAIN_TIMING_DURATION: f64 = 1.0;
+
 /// M3's long run: the longest chain over docs/scenes.md's 10 s with the most accurate method, for its energy
 /// drift and joint violation.
 pub(crate) const CHAIN_LONG_RUN: (usize, Method, f64) = (64, Method::Rkmk6Body, 1e-3);
@@ -199,4 +202,34 @@ fn run_in<A: SceneAlgebra>(config: &MechanismConfig) -> Result<MechanismOutcome,
         time_per_step: stepping / run.statistics.accepted.max(1) as f64,
         measures,
     })
+}
+
+/// Why the runs of M1 or M2 cannot be compared with MuJoCo's error at the mechanism's T, if they cannot.
+pub(crate) fn length_mismatch(results: &[MechanismResult], id: MechanismId) -> Option<String> {
+    results
+        .iter()
+        .filter(|(c, _)| c.id == id)
+        .find_map(|(c, _)| crate::measure::length_mismatch(c.duration, id.duration()))
+}
+
+/// The successful runs of one mechanism, by series label, each sorted by cost.
+pub(crate) fn series_of(results: &[MechanismResult], id: MechanismId) -> BTreeMap<String, Vec<&MechanismOutcome>> {
+    let mut groups: BTreeMap<String, Vec<&MechanismOutcome>> = BTreeMap::new();
+    for (config, result) in results {
+        if let (true, Ok(outcome)) = (config.id == id, result) {
+            groups.entry(config.series_label()).or_default().push(outcome);
+        }
+    }
+    for runs in groups.values_mut() {
+        runs.sort_by(|a, b| a.cpu_per_simulated_second.total_cmp(&b.cpu_per_simulated_second));
+    }
+    groups
+}
+
+/// The error M1 and M2 are compared by: end orientation (M1, MuJoCo's measure), coupler position (M2).
+pub(crate) fn headline_error(outcome: &MechanismOutcome) -> Option<f64> {
+    match outcome.config.id {
+        MechanismId::FourBar => outcome.measures.four_bar.map(|f| f.coupler_error),
+        _ => outcome.measures.orientation_end,
+    }
 }

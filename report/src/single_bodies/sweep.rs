@@ -7,9 +7,10 @@ use dynamics::{Algebra, Body, Cga, Force, FreeBody, Pga};
 use nalgebra::Vector3;
 use reference::{SceneConstraint, SceneId, SceneParameters};
 use scenarios::{Formulation, SceneAlgebra};
+use scene_file::AlgebraKind;
 
-use crate::measure::{measure, Measurements};
-pub use scene_file::names::AlgebraKind;
+use super::measure::{measure, Measurements};
+use crate::runs::RunError;
 
 /// One run of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,20 +135,8 @@ pub struct Outcome {
     pub measurements: Measurements,
 }
 
-/// Why a run failed (reported in the table; the sweep goes on).
-#[derive(Clone, Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum RunError {
-    /// The scene could not be built.
-    #[error("scene: {0}")]
-    Scene(#[from] scenarios::SceneError),
-    /// The schedule, the body or the run failed: the simulator's message.
-    #[error("simulation: {0}")]
-    Simulation(String),
-    /// The samples could not be measured: the metric's message.
-    #[error("metrics: {0}")]
-    Metrics(String),
-}
+/// A run's result as the report sees it.
+pub(crate) type RunResult = (Config, Result<Outcome, RunError>);
 
 /// Runs one configuration.
 pub(crate) fn run(config: &Config) -> Result<Outcome, RunError> {
