@@ -1,6 +1,7 @@
 //! The Markdown the report's sections share: user text escaped, numbers for tables, and the order of table rows.
 
 use std::cmp::Ordering;
+use std::fmt::Write as _;
 
 use dynamics::integrate::Integrator;
 use dynamics::limits::{LimitChange, LimitTransition};
@@ -23,6 +24,13 @@ pub(crate) fn escape(text: &str) -> String {
         }
     }
     out
+}
+
+/// A table's header row and the row under it, for `columns`.
+pub(crate) fn table_header(out: &mut String, columns: &[impl AsRef<str>]) {
+    let columns: Vec<&str> = columns.iter().map(AsRef::as_ref).collect();
+    let _ = writeln!(out, "| {} |", columns.join(" | "));
+    let _ = writeln!(out, "|{}|", vec!["---"; columns.len()].join("|"));
 }
 
 /// A number for a table: two significant digits, or a plain 0.

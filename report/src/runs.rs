@@ -22,6 +22,16 @@ pub enum RunError {
     Metrics(String),
 }
 
+/// A [`RunError::Simulation`] with the simulator's message.
+pub(crate) fn simulation_error(error: impl std::fmt::Display) -> RunError {
+    RunError::Simulation(error.to_string())
+}
+
+/// A [`RunError::Metrics`] with the metric's message.
+pub(crate) fn metrics_error(error: impl std::fmt::Display) -> RunError {
+    RunError::Metrics(error.to_string())
+}
+
 /// Each configuration is timed over at least [`MIN_REPEATS`] runs unless these take [`LONG_TIMING`] s of stepping,
 /// and over at least [`MIN_TIMING`] s of stepping, in at most [`MAX_REPEATS`] runs; the fastest run counts.
 pub(crate) const MIN_REPEATS: usize = 5;

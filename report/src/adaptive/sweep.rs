@@ -22,7 +22,7 @@ use scenarios::{build_mechanism, Formulation, MechanismId};
 
 use crate::robots::measure::measure_robot;
 use crate::robots::sweep::robot_label;
-use crate::runs::{fastest_of_repeats, RunError};
+use crate::runs::{fastest_of_repeats, metrics_error, simulation_error, RunError};
 use crate::single_bodies::measure::{headline_error, measure};
 use crate::single_bodies::sweep::free_body;
 
@@ -166,10 +166,6 @@ pub struct AdaptiveOutcome {
 /// An adaptive run and its outcome, or why it failed.
 pub type AdaptiveResult = (AdaptiveConfig, Result<AdaptiveOutcome, RunError>);
 
-fn simulation_error(error: impl std::fmt::Display) -> RunError {
-    RunError::Simulation(error.to_string())
-}
-
 /// A timed run and the steps it kept.
 struct TimedRun<A: Algebra> {
     run: Simulation<A>,
@@ -236,8 +232,8 @@ pub(crate) fn run_adaptive(config: &AdaptiveConfig) -> Result<AdaptiveOutcome, R
                 )?,
                 Some(_) => timed_run(&built.system, &[built.initial], config, duration)?,
             };
-            let trajectory = scenarios::trajectory(run.body(0)).map_err(|e| RunError::Metrics(e.to_string()))?;
-            let measurements = measure(scene, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
+            let trajectory = scenarios::trajectory(run.body(0)).map_err(metrics_error)?;
+            let measurements = measure(scene, &trajectory).map_err(metrics_error)?;
             (headline_error(scene, &measurements), cpu, run.statistics, steps)
         }
         AdaptiveCase::Mechanism(id) => {
@@ -248,7 +244,7 @@ pub(crate) fn run_adaptive(config: &AdaptiveConfig) -> Result<AdaptiveOutcome, R
                 cpu_per_simulated_second: cpu,
                 steps,
             } = timed_run(&scene.system, &scene.initial, config, duration)?;
-            let measures = measure_mechanism(id, &run.bodies).map_err(|e| RunError::Metrics(e.to_string()))?;
+            let measures = measure_mechanism(id, &run.bodies).map_err(metrics_error)?;
             let error = mechanism_error(id, &measures)
                 .ok_or_else(|| RunError::Metrics("the run ends before the measure applies".into()))?;
             (error, cpu, run.statistics, steps)

@@ -15,7 +15,7 @@ use super::sweep::{
     headline_error, length_mismatch, series_of, MechanismConfig, MechanismOutcome, MechanismResult, CHAIN_LONG_RUN,
     CHAIN_TIMING_DURATION,
 };
-use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, RowKey};
+use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, table_header, RowKey};
 use crate::measure::cost_at_error;
 use crate::measured_anchors::{
     chain_times, double_pendulum_time, four_bar_time, pinocchio_chain_times, sources_short, Anchors, Time, SPREAD_NOTE,
@@ -68,11 +68,6 @@ fn cheapest(
             Some((label.clone(), cost_at_error(&points, target)?))
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))
-}
-
-fn table_header(out: &mut String, columns: &[&str]) {
-    let _ = writeln!(out, "| {} |", columns.join(" | "));
-    let _ = writeln!(out, "|{}|", vec!["---"; columns.len()].join("|"));
 }
 
 /// Every run of M1 or M2: a line per configuration and step.

@@ -12,7 +12,7 @@ use scenarios::{build_mechanism, Formulation, MechanismId, SceneAlgebra};
 use scene_file::AlgebraKind;
 use std::collections::BTreeMap;
 
-use crate::runs::RunError;
+use crate::runs::{metrics_error, simulation_error, RunError};
 
 /// M3's cost is measured as MuJoCo's is (`chain.py`): RK4 at dt = 1e-3, ball joints (virtual power: three
 /// reaction forces per joint), here over this much simulated time.
@@ -189,12 +189,11 @@ fn run_in<A: SceneAlgebra>(config: &MechanismConfig) -> Result<MechanismOutcome,
         MechanismId::FourBar => config.dt,
         _ => config.dt.max(0.01),
     };
-    let schedule = Schedule::with_sample_interval(config.dt, config.duration, sample_interval)
-        .map_err(|e| RunError::Simulation(e.to_string()))?;
+    let schedule =
+        Schedule::with_sample_interval(config.dt, config.duration, sample_interval).map_err(simulation_error)?;
     let scene = build_mechanism::<A>(config.id, config.formulation, config.stabilisation)?;
-    let run = simulate(&scene.system, &scene.initial, config.method, &schedule)
-        .map_err(|e| RunError::Simulation(e.to_string()))?;
-    let measures = measure(config.id, &run.bodies).map_err(|e| RunError::Metrics(e.to_string()))?;
+    let run = simulate(&scene.system, &scene.initial, config.method, &schedule).map_err(simulation_error)?;
+    let measures = measure(config.id, &run.bodies).map_err(metrics_error)?;
     let stepping = run.stepping_time.as_secs_f64();
     Ok(MechanismOutcome {
         config: *config,

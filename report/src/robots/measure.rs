@@ -8,7 +8,7 @@ use nalgebra::{Isometry3, Quaternion, UnitQuaternion, Vector3};
 use reference::robots::RobotReference;
 use scenarios::RobotScene;
 
-use crate::runs::RunError;
+use crate::runs::{metrics_error, RunError};
 
 /// The times of the stick figures of the motion (s).
 pub(crate) const SNAPSHOT_TIMES: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
@@ -26,10 +26,6 @@ pub struct StickFigure {
     pub centres: Vec<Vector3<f64>>,
     /// The whole robot's centre of mass.
     pub centre: Vector3<f64>,
-}
-
-pub(crate) fn metrics_error(error: impl std::fmt::Display) -> RunError {
-    RunError::Metrics(error.to_string())
 }
 
 /// A run's errors against the reference and its stick figures.

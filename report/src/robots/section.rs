@@ -13,7 +13,7 @@ use scene_file::AlgebraKind;
 
 use super::figures::{motion_picture, work_precision_figure};
 use super::sweep::{robot_label, row_key, series_of, RobotResult, LEFT_OUT};
-use crate::markdown::{compare_rows, scientific};
+use crate::markdown::{compare_rows, scientific, table_header};
 use crate::measure::cost_at_error;
 use crate::measured_anchors::{mujoco_time, Anchors, SPREAD_NOTE};
 use crate::plot::PlotError;
@@ -34,11 +34,6 @@ fn ratio(r: f64) -> String {
     } else {
         format!("{r:.2}×")
     }
-}
-
-fn table_header(out: &mut String, columns: &[&str]) {
-    let _ = writeln!(out, "| {} |", columns.join(" | "));
-    let _ = writeln!(out, "|{}|", vec!["---"; columns.len()].join("|"));
 }
 
 /// "6 moving bodies (11 URDF links, …), 6 revolute joints, 6 degrees of freedom, root `world` fixed to the world;

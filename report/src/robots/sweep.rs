@@ -18,9 +18,9 @@ use reference::robots::RobotId;
 use scenarios::{build_robot, RobotScene};
 use scene_file::AlgebraKind;
 
-use super::measure::{measure_robot, metrics_error, StickFigure};
+use super::measure::{measure_robot, StickFigure};
 use crate::markdown::{integrator_rank, RowKey};
-use crate::runs::{fastest_of_repeats, RunError};
+use crate::runs::{fastest_of_repeats, metrics_error, simulation_error, RunError};
 
 /// The robots' steps without `--steps` (s): from where only the eighth-order method is still accurate to where the
 /// fourth-order ones reach MuJoCo's accuracy at dt = 1e-3. Steps above 0.01 s are whole divisors of the 1 s run.
@@ -180,10 +180,6 @@ pub(crate) fn run_robot(config: &RobotConfig) -> Result<RobotOutcome, RunError> 
         AlgebraKind::Cga => run_in::<Cga>(config),
         AlgebraKind::Pga => run_in::<Pga>(config),
     }
-}
-
-fn simulation_error(error: impl std::fmt::Display) -> RunError {
-    RunError::Simulation(error.to_string())
 }
 
 fn run_in<A: Algebra>(config: &RobotConfig) -> Result<RobotOutcome, RunError> {

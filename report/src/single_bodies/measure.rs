@@ -205,11 +205,3 @@ pub(crate) fn headline_error(scene: SceneId, measurements: &Measurements) -> f64
         _ => measurements.orientation_end,
     }
 }
-
-/// The error measure of the anchors: end orientation (rad), except the circle scene's end position (m).
-pub(crate) fn anchored_error(scene: SceneId, measurements: &Measurements) -> f64 {
-    match scene {
-        SceneId::RodOnCircle | SceneId::RodOnSphere => measurements.position_end,
-        _ => measurements.orientation_end,
-    }
-}

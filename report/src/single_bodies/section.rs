@@ -7,9 +7,9 @@ use std::fmt::Write as _;
 use reference::SceneId;
 use scene_file::AlgebraKind;
 
-use super::measure::anchored_error;
+use super::measure::headline_error;
 use super::sweep::{Config, RunResult};
-use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, RowKey};
+use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, table_header, RowKey};
 use crate::measure::{agreement, cost_at_error};
 use crate::recorded_anchors;
 
@@ -48,8 +48,7 @@ fn scene_table(out: &mut String, results: &[&RunResult]) {
             .iter()
             .map(|(name, unit)| format!("{name} error ({unit})")),
     );
-    let _ = writeln!(out, "| {} |", header.join(" | "));
-    let _ = writeln!(out, "|{}|", vec!["---"; header.len()].join("|"));
+    table_header(out, &header);
     let mut rows: Vec<&RunResult> = results.to_vec();
     rows.sort_by(|a, b| compare_rows(&row_key(&a.0), &row_key(&b.0)));
     for (config, result) in rows {
@@ -131,7 +130,7 @@ fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
     let mut series: BTreeMap<String, Vec<(f64, f64, f64)>> = BTreeMap::new();
     for (config, result) in runs {
         if let Ok(outcome) = result {
-            let error = anchored_error(scene, &outcome.measurements);
+            let error = headline_error(scene, &outcome.measurements);
             series
                 .entry(config.series_label())
                 .or_default()

@@ -10,7 +10,7 @@ use scenarios::{Formulation, SceneAlgebra};
 use scene_file::AlgebraKind;
 
 use super::measure::{measure, Measurements};
-use crate::runs::RunError;
+use crate::runs::{metrics_error, simulation_error, RunError};
 
 /// One run of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -148,8 +148,7 @@ pub(crate) fn run(config: &Config) -> Result<Outcome, RunError> {
 
 /// A free scene's body as a [`FreeBody`] with its gravity, where every integrator (splittings included) applies.
 pub(crate) fn free_body<A: Algebra>(parameters: &SceneParameters) -> Result<FreeBody<A>, RunError> {
-    let body =
-        Body::new(parameters.mass, parameters.principal_moments).map_err(|e| RunError::Simulation(e.to_string()))?;
+    let body = Body::new(parameters.mass, parameters.principal_moments).map_err(simulation_error)?;
     let system = FreeBody::<A>::new(body);
     Ok(if parameters.gravity != 0.0 {
         system.with_force(Force::Gravity {
@@ -161,24 +160,22 @@ pub(crate) fn free_body<A: Algebra>(parameters: &SceneParameters) -> Result<Free
 }
 
 fn run_in<A: SceneAlgebra>(config: &Config) -> Result<Outcome, RunError> {
-    let schedule = Schedule::new(config.dt, config.duration).map_err(|e| RunError::Simulation(e.to_string()))?;
+    let schedule = Schedule::new(config.dt, config.duration).map_err(simulation_error)?;
     let mut simulation = match config.formulation {
         None => {
             // The free body runs as a `FreeBody`, where every integrator (splittings included) applies.
             let scene = scenarios::build::<A>(config.scene, Formulation::Pinning, config.stabilisation)?;
             let system = free_body(&scene.parameters)?;
-            simulate(&system, &[scene.initial], config.integrator, &schedule)
-                .map_err(|e| RunError::Simulation(e.to_string()))?
+            simulate(&system, &[scene.initial], config.integrator, &schedule).map_err(simulation_error)?
         }
         Some(formulation) => {
             let scene = scenarios::build::<A>(config.scene, formulation, config.stabilisation)?;
-            simulate(&scene.system, &[scene.initial], config.integrator, &schedule)
-                .map_err(|e| RunError::Simulation(e.to_string()))?
+            simulate(&scene.system, &[scene.initial], config.integrator, &schedule).map_err(simulation_error)?
         }
     };
     let stepping = simulation.stepping_time.as_secs_f64();
-    let trajectory = scenarios::trajectory(simulation.body(0)).map_err(|e| RunError::Metrics(e.to_string()))?;
-    let measurements = measure(config.scene, &trajectory).map_err(|e| RunError::Metrics(e.to_string()))?;
+    let trajectory = scenarios::trajectory(simulation.body(0)).map_err(metrics_error)?;
+    let measurements = measure(config.scene, &trajectory).map_err(metrics_error)?;
     Ok(Outcome {
         config: *config,
         cpu_per_simulated_second: stepping / schedule.duration(),
