@@ -1,6 +1,6 @@
 //! Running a scene file (`--scene-file`, the `scene-file` crate): the scene in each requested algebra (`run`), then
-//! its trajectories (CSV), energy and constraint-violation plots and `summary.md` (`describe`, `summary`) in the
-//! output folder (`write`).
+//! its trajectories (CSV), energy and constraint-violation plots (`figures`) and `summary.md` (`describe`, `summary`)
+//! in the output folder (`write`).
 //!
 //! The trajectory `<stem>_<algebra>.csv` of named `[[body]]` entries or a robot has the columns `t`, then per body in
 //! the mechanism's order (the robot's bodies, named after their links, first) `NAME.x, NAME.y, NAME.z` (centre of
@@ -14,6 +14,7 @@
 
 pub(crate) mod run;
 pub(crate) mod describe;
+pub(crate) mod figures;
 pub(crate) mod summary;
 pub(crate) mod write;
 

@@ -8,9 +8,9 @@ use std::path::Path;
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
 use dynamics::limits::{LimitChange, LimitTransition};
-use scene_file::{CheckedScene, End, Layout};
+use scene_file::{CheckedScene, End};
 
-use super::describe::stepping;
+use super::describe::{element_list, robot_summary, stepping};
 use super::run::AlgebraRun;
 use crate::csv;
 use crate::markdown::{escape, scientific};
@@ -19,20 +19,11 @@ use crate::measure::agreement;
 /// What `summary.md` says about the scene besides the runs.
 pub(crate) struct Setup<'a> {
     pub(crate) scene: &'a CheckedScene,
-    pub(crate) layout: &'a Layout,
-    /// Whether every force has a potential.
-    pub(crate) conservative: bool,
+    /// The scene file.
     pub(crate) path: &'a Path,
     pub(crate) title: &'a str,
-    pub(crate) stabilisation: Stabilisation,
     /// Whether the energy change is relative to |E₀| (else in J).
     pub(crate) relative_energy: bool,
-    /// The robot's part, with a robot.
-    pub(crate) robot: Option<&'a str>,
-    /// The force elements and drives, described.
-    pub(crate) elements: Vec<String>,
-    /// Whether a splitting method steps (it integrates no power: W stays 0).
-    pub(crate) splitting: bool,
 }
 
 /// Items joined by commas, or "none".
@@ -44,16 +35,39 @@ fn listed(items: Vec<String>) -> String {
     }
 }
 
-/// `summary.md`: the setup, then per algebra the energy change, the largest violation and the CPU time.
+/// `summary.md`: the setup, then per algebra the energy change, the largest violation and the CPU time, the steps, the
+/// start's correction and the impacts; what the numbers mean, the work done, the two algebras' agreement and the files.
 pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> String {
-    let Setup {
-        scene,
-        layout,
-        path,
-        title,
-        ..
-    } = *setup;
+    let scene = setup.scene;
     let mut out = String::new();
+    let robot = scene.robot.as_ref().map(|robot| robot_summary(&robot.loaded));
+    write_setup(&mut out, setup, robot.is_some());
+    if let Some(robot) = &robot {
+        let _ = writeln!(out, "{robot}");
+    }
+    write_contacts(&mut out, scene);
+    write_elements(&mut out, &element_list(scene));
+    // Joints to measure: the file's, or the robot's.
+    let joints = !scene.layout.joints.is_empty() || robot.is_some();
+    write_runs(&mut out, runs, joints);
+    if joints {
+        write_start_corrections(&mut out, scene, runs);
+    }
+    let limited = write_impacts(&mut out, scene, runs);
+    write_meanings(&mut out, setup, limited, robot.is_some());
+    if !scene.conservative {
+        write_work(&mut out, scene, runs);
+    }
+    write_agreement(&mut out, runs);
+    write_files(&mut out, scene, runs, files);
+    out
+}
+
+/// The title and the setup: the file, the bodies, forces and constraints, the integrator, steps, duration, sampling
+/// and stabilisation.
+fn write_setup(out: &mut String, setup: &Setup, robot: bool) {
+    let Setup { scene, path, title, .. } = *setup;
+    let layout = &scene.layout;
     let body_name = |end: &End| match end {
         End::World => "the world".to_owned(),
         End::Body(i) => layout.bodies[*i].name.clone(),
@@ -97,11 +111,7 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
         if layout.named {
             format!(
                 "{}bodies: {}; ",
-                if setup.robot.is_some() {
-                    "a robot (below); further "
-                } else {
-                    ""
-                },
+                if robot { "a robot (below); further " } else { "" },
                 listed(layout.bodies.iter().map(|b| escape(&b.name)).collect())
             )
         } else {
@@ -113,16 +123,17 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
         stepping(scene),
         scene.duration,
         scene.sample_interval,
-        match setup.stabilisation {
-            _ if layout.joints.is_empty() && setup.robot.is_none() => String::new(),
+        match scene.stabilisation {
+            _ if layout.joints.is_empty() && !robot => String::new(),
             Stabilisation::Projection { .. } => ", stabilised by projection".to_owned(),
             Stabilisation::Baumgarte { alpha, beta } => format!(", stabilised by Baumgarte (α = {alpha}, β = {beta})"),
             Stabilisation::None => ", without stabilisation".to_owned(),
         },
     );
-    if let Some(robot) = setup.robot {
-        let _ = writeln!(out, "{robot}");
-    }
+}
+
+/// The contacts, each a body point above a world plane.
+fn write_contacts(out: &mut String, scene: &CheckedScene) {
     if !scene.contacts.is_empty() {
         let _ = writeln!(
             out,
@@ -142,13 +153,21 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
         }
         let _ = writeln!(out);
     }
-    if !setup.elements.is_empty() {
+}
+
+/// The force elements and drives, described.
+fn write_elements(out: &mut String, elements: &[String]) {
+    if !elements.is_empty() {
         let _ = writeln!(out, "Force elements and drives:\n");
-        for element in &setup.elements {
+        for element in elements {
             let _ = writeln!(out, "- {}", escape(element));
         }
         let _ = writeln!(out);
     }
+}
+
+/// Per algebra the energy change, the largest violation (with `joints` to measure) and the CPU time, and the steps.
+fn write_runs(out: &mut String, runs: &[AlgebraRun], joints: bool) {
     let _ = writeln!(
         out,
         "| algebra | energy change at T | largest energy change | largest constraint violation (m) | CPU per \
@@ -162,7 +181,7 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
             run.algebra.name(),
             scientific(run.energy_change.last().copied().unwrap_or(0.0)),
             scientific(run.max_energy_change()),
-            if layout.joints.is_empty() && setup.robot.is_none() {
+            if !joints {
                 "–".to_owned()
             } else {
                 scientific(run.max_violation())
@@ -186,27 +205,33 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
         );
     }
     let _ = writeln!(out);
-    if !layout.joints.is_empty() || setup.robot.is_some() {
-        let corrections: Vec<String> = runs
-            .iter()
-            .filter_map(|run| {
-                let (body, _) = run.start_correction.largest()?;
-                Some(format!(
-                    "{} moved `{}` by {} m and turned it by {} rad",
-                    run.algebra.name(),
-                    escape(&run.names[body]),
-                    scientific(run.start_correction.moved[body]),
-                    scientific(run.start_correction.turned[body]),
-                ))
-            })
-            .collect();
-        let _ = writeln!(
-            out,
-            "Putting the start on the joints (at most max_start_correction = {} m and rad) {}.\n",
-            scene.max_start_correction,
-            corrections.join("; ")
-        );
-    }
+}
+
+/// How far putting the start on the joints moved the body it moved most, per algebra.
+fn write_start_corrections(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) {
+    let corrections: Vec<String> = runs
+        .iter()
+        .filter_map(|run| {
+            let (body, _) = run.start_correction.largest()?;
+            Some(format!(
+                "{} moved `{}` by {} m and turned it by {} rad",
+                run.algebra.name(),
+                escape(&run.names[body]),
+                scientific(run.start_correction.moved[body]),
+                scientific(run.start_correction.turned[body]),
+            ))
+        })
+        .collect();
+    let _ = writeln!(
+        out,
+        "Putting the start on the joints (at most max_start_correction = {} m and rad) {}.\n",
+        scene.max_start_correction,
+        corrections.join("; ")
+    );
+}
+
+/// The limits' and contacts' transitions per algebra, and whether there were any.
+fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) -> bool {
     let limited = runs.iter().any(|run| !run.transitions.is_empty());
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
         let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
@@ -244,6 +269,11 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
     if limited {
         let _ = writeln!(out);
     }
+    limited
+}
+
+/// What the energy change and the violation mean, with `limited` impacts and a `robot`.
+fn write_meanings(out: &mut String, setup: &Setup, limited: bool, robot: bool) {
     let _ = writeln!(
         out,
         "Energy change: {}{}.",
@@ -258,7 +288,7 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
             ""
         }
     );
-    if setup.conservative {
+    if setup.scene.conservative {
         let _ = writeln!(
             out,
             "Every force has a potential, so the energy change is the integrator's drift."
@@ -276,47 +306,53 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
          joints also of the point 1 m along the body axis, for prismatic and planar joints of the point 1 m along \
          the body normal, for universal joints how far the point 1 m along the body axis is off the plane normal to \
          the reference axis, for fixed joints the turn's angle in rad{}). CPU time is the stepping alone.\n",
-        if setup.robot.is_some() {
+        if robot {
             "; for the robot's joints the distance of each child's joint origin from where its joint coordinates \
              put it, and the angle of the turn between them"
         } else {
             ""
         }
     );
-    if !setup.conservative {
+}
+
+/// The work done by the forces without a potential against the energy change, per algebra.
+fn write_work(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) {
+    let _ = writeln!(
+        out,
+        "| algebra | E(T) − E₀ (J) | work W(T) (J) | E(T) − E₀ − W(T) (J) |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|");
+    for run in runs {
+        let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
+        let change = match (first, last) {
+            (Some(a), Some(b)) => b.energy - a.energy,
+            _ => 0.0,
+        };
+        let work = run.work.last().copied().unwrap_or(0.0);
         let _ = writeln!(
             out,
-            "| algebra | E(T) − E₀ (J) | work W(T) (J) | E(T) − E₀ − W(T) (J) |"
-        );
-        let _ = writeln!(out, "|---|---|---|---|");
-        for run in runs {
-            let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
-            let change = match (first, last) {
-                (Some(a), Some(b)) => b.energy - a.energy,
-                _ => 0.0,
-            };
-            let work = run.work.last().copied().unwrap_or(0.0);
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} | {} |",
-                run.algebra.name(),
-                scientific(change),
-                scientific(work),
-                scientific(change - work)
-            );
-        }
-        let _ = writeln!(
-            out,
-            "\nW is the work of the forces without a potential (force elements, drives, constant forces and couples) \
-             from the start, integrated with the method's own weights, so E(T) − E₀ − W(T) is the integration \
-             error.{}\n",
-            if setup.splitting {
-                " The splitting methods integrate no power: here W stays 0."
-            } else {
-                ""
-            }
+            "| {} | {} | {} | {} |",
+            run.algebra.name(),
+            scientific(change),
+            scientific(work),
+            scientific(change - work)
         );
     }
+    let _ = writeln!(
+        out,
+        "\nW is the work of the forces without a potential (force elements, drives, constant forces and couples) \
+         from the start, integrated with the method's own weights, so E(T) − E₀ − W(T) is the integration \
+         error.{}\n",
+        if matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)) {
+            " The splitting methods integrate no power: here W stays 0."
+        } else {
+            ""
+        }
+    );
+}
+
+/// How far the two algebras' runs are apart, if both ran.
+fn write_agreement(out: &mut String, runs: &[AlgebraRun]) {
     if let [first, second] = runs {
         let (angle, distance) = first
             .bodies
@@ -333,6 +369,10 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
             scientific(distance)
         );
     }
+}
+
+/// The files written, each with its columns.
+fn write_files(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun], files: &[String]) {
     for file in files {
         if file.ends_with(".png") {
             let _ = writeln!(out, "![{file}]({file})\n");
@@ -348,7 +388,7 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
                 }
             );
         } else {
-            let columns = if layout.named {
+            let columns = if scene.layout.named {
                 "t, then per body NAME.x, NAME.y, NAME.z (centre of mass, world, m), NAME.qw, NAME.qx, NAME.qy, \
                  NAME.qz (orientation body → world), then the energy of the whole system (J)"
                     .to_owned()
@@ -358,7 +398,6 @@ pub(crate) fn summary(setup: &Setup, runs: &[AlgebraRun], files: &[String]) -> S
             let _ = writeln!(out, "Trajectory: [{file}]({file}) (columns: {columns}).\n");
         }
     }
-    out
 }
 
 /// Whether the joints CSV has the floating base's columns.
