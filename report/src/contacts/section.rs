@@ -6,13 +6,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use dynamics::{Cga, Pga};
 use scenarios::contacts::ContactScene;
-use scene_file::AlgebraKind;
 
-use super::sweep::{run_in, ContactRun, TOLERANCE};
+use super::figures;
+use super::sweep::{run, TOLERANCE};
 use crate::markdown::{scientific, transition_cells};
-use crate::plot::{figure_with_caption, Labels, Panel, PlotError, Series};
+use crate::plot::PlotError;
 use crate::runs::in_both_algebras;
 
 /// The section: every contact scene in both algebras, a figure and a table.
@@ -26,64 +25,9 @@ pub(crate) fn contacts_section(dir: &Path) -> Result<String, PlotError> {
          pushes. A 0.2 m cube's eight corners are kept above the floor, restitution 0.5; the scenes of \
          `scenarios::contacts` run with DOP853-body at a tolerance of {TOLERANCE:e}, PGA and CGA.\n"
     );
-    let run = |scene, algebra| match algebra {
-        AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
-        AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
-    };
     let runs = in_both_algebras(&ContactScene::ALL, ContactScene::label, run, &mut out);
-    let mut panels = Vec::new();
-    for scene in ContactScene::ALL {
-        let of_scene: Vec<&ContactRun> = runs.iter().filter(|run| run.scene == scene).collect();
-        if of_scene.is_empty() {
-            continue;
-        }
-        let mut series = Vec::new();
-        for run in &of_scene {
-            let dashed = run.algebra == AlgebraKind::Cga;
-            series.push(Series {
-                dashed,
-                ..Series::line(
-                    format!("lowest corner, {}", run.algebra.name()),
-                    run.samples.iter().map(|&(t, lowest, _, _)| (t, lowest)).collect(),
-                )
-            });
-            series.push(Series {
-                dashed,
-                ..Series::line(
-                    format!("centre, {}", run.algebra.name()),
-                    run.samples.iter().map(|&(t, _, centre, _)| (t, centre)).collect(),
-                )
-            });
-        }
-        series.push(Series::reference_line(
-            "floor",
-            vec![(0.0, 0.0), (scene.duration(), 0.0)],
-        ));
-        if let Some(exact) = scene.exact_first_impact() {
-            series.push(Series {
-                markers_only: true,
-                ..Series::line("free-fall impact", vec![(exact, 0.0)])
-            });
-        }
-        let title = match scene {
-            ContactScene::FlatDrop => "Cube dropped flat: heights",
-            ContactScene::TumblingCube => "Cube dropped tumbling: heights",
-        };
-        panels.push(Panel::new(
-            Labels::new(title, "time (s)", "height above the floor (m)"),
-            series,
-        ));
-    }
-    if !panels.is_empty() {
-        figure_with_caption(
-            &dir.join("contacts.png"),
-            "Contacts: a cube bouncing on a floor",
-            &panels,
-            "The cube's lowest corner and its centre above the floor (black). Dropped flat, its four bottom corners \
-             land together at the free-fall time (the marker) and it bounces straight up at half the speed; dropped \
-             tumbling, its corners bounce until it rests on a face, 0.1 m up.",
-        )?;
-        let _ = writeln!(out, "![contacts.png](contacts.png)\n");
+    if let Some(name) = figures::draw(dir, &runs)? {
+        let _ = writeln!(out, "![{name}]({name})\n");
     }
     let _ = writeln!(
         out,

@@ -5,7 +5,7 @@
 use std::time::Duration;
 
 use dynamics::limits::LimitTransition;
-use dynamics::{simulate, Algebra, Method, Schedule, Tolerance};
+use dynamics::{simulate, Algebra, Cga, Method, Pga, Schedule, Tolerance};
 use scenarios::contacts::ContactScene;
 use scene_file::AlgebraKind;
 
@@ -25,7 +25,7 @@ pub(crate) struct ContactRun {
     pub(crate) stepping_time: Duration,
 }
 
-pub(crate) fn run_in<A: Algebra>(scene: ContactScene, algebra: AlgebraKind) -> Result<ContactRun, String> {
+fn run_in<A: Algebra>(scene: ContactScene, algebra: AlgebraKind) -> Result<ContactRun, String> {
     let (system, start) = scene.build::<A>().map_err(|e| e.to_string())?;
     let tolerance = Tolerance::new(TOLERANCE, TOLERANCE).map_err(|e| e.to_string())?;
     let schedule = Schedule::adaptive(tolerance, scene.duration(), 0.005).map_err(|e| e.to_string())?;
@@ -60,5 +60,13 @@ impl ContactRun {
             self.samples.iter().map(|&(t, _, _, energy)| (t, energy)),
             &self.transitions,
         )
+    }
+}
+
+/// Runs `scene` in `algebra`.
+pub(crate) fn run(scene: ContactScene, algebra: AlgebraKind) -> Result<ContactRun, String> {
+    match algebra {
+        AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
+        AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
     }
 }

@@ -5,7 +5,7 @@
 use std::time::Duration;
 
 use dynamics::limits::LimitTransition;
-use dynamics::{simulate, Algebra, Dynamics, Method, Schedule, State, Tolerance};
+use dynamics::{simulate, Algebra, Cga, Dynamics, Method, Pga, Schedule, State, Tolerance};
 use scenarios::limits::LimitScene;
 use scene_file::AlgebraKind;
 
@@ -25,7 +25,7 @@ pub(crate) struct LimitRun {
     pub(crate) stepping_time: Duration,
 }
 
-pub(crate) fn run_in<A: Algebra>(scene: LimitScene, algebra: AlgebraKind) -> Result<LimitRun, String> {
+fn run_in<A: Algebra>(scene: LimitScene, algebra: AlgebraKind) -> Result<LimitRun, String> {
     let (system, start) = scene.build::<A>().map_err(|e| e.to_string())?;
     let tolerance = Tolerance::new(TOLERANCE, TOLERANCE).map_err(|e| e.to_string())?;
     let schedule = Schedule::adaptive(tolerance, scene.duration(), 0.01).map_err(|e| e.to_string())?;
@@ -68,5 +68,13 @@ impl LimitRun {
             self.samples.iter().map(|&(t, _, energy)| (t, energy)),
             &self.transitions,
         )
+    }
+}
+
+/// Runs `scene` in `algebra`.
+pub(crate) fn run(scene: LimitScene, algebra: AlgebraKind) -> Result<LimitRun, String> {
+    match algebra {
+        AlgebraKind::Pga => run_in::<Pga>(scene, algebra),
+        AlgebraKind::Cga => run_in::<Cga>(scene, algebra),
     }
 }

@@ -390,48 +390,8 @@ pub(crate) fn motion_figure(path: &Path, title: &str, figures: &[StickFigure], c
             (y_range, z_range),
         )?;
 
-        // The legend: a sample line per instant, then the marks.
         let (legend, caption_area) = rest.split_vertically(legend_band);
-        let text = TextStyle::from((FONT, px(LEGEND_SIZE))).pos(Pos::new(HPos::Left, VPos::Center));
-        let middle = legend_band as i32 / 2;
-        let mut left = px(20.0) as i32;
-        for (k, figure) in figures.iter().enumerate() {
-            let colour = fading(k, figures.len());
-            let sample = px(26.0) as i32;
-            legend
-                .draw(&PathElement::new(
-                    vec![(left, middle), (left + sample, middle)],
-                    colour.stroke_width(px(2.8)),
-                ))
-                .map_err(|e| e.to_string())?;
-            let label = format!("t = {} s", figure.t);
-            legend
-                .draw_text(&label, &text, (left + sample + px(6.0) as i32, middle))
-                .map_err(|e| e.to_string())?;
-            left += sample + px(6.0) as i32 + px(78.0) as i32;
-        }
-        let dark = fading(figures.len() - 1, figures.len());
-        legend
-            .draw(&Circle::new(
-                (left + px(6.0) as i32, middle),
-                px(2.6) as i32,
-                dark.filled(),
-            ))
-            .map_err(|e| e.to_string())?;
-        legend
-            .draw_text("joint origin", &text, (left + px(16.0) as i32, middle))
-            .map_err(|e| e.to_string())?;
-        left += px(106.0) as i32;
-        legend
-            .draw(&Circle::new(
-                (left + px(6.0) as i32, middle),
-                px(5.0) as i32,
-                dark.stroke_width(px(2.0)),
-            ))
-            .map_err(|e| e.to_string())?;
-        legend
-            .draw_text("centre of mass", &text, (left + px(18.0) as i32, middle))
-            .map_err(|e| e.to_string())?;
+        draw_legend(&legend, figures, legend_band)?;
 
         let style = TextStyle::from(caption_font.clone()).color(&NOTE_COLOUR);
         for (k, line) in caption_lines.iter().enumerate() {
@@ -446,6 +406,51 @@ pub(crate) fn motion_figure(path: &Path, title: &str, figures: &[StickFigure], c
         root.present().map_err(|e| e.to_string())
     };
     draw().map_err(error)
+}
+
+/// The legend below the views, `band` high: a sample line per instant of `figures`, then the marks.
+fn draw_legend(legend: &DrawingArea<BitMapBackend, Shift>, figures: &[StickFigure], band: u32) -> Result<(), String> {
+    let text = TextStyle::from((FONT, px(LEGEND_SIZE))).pos(Pos::new(HPos::Left, VPos::Center));
+    let middle = band as i32 / 2;
+    let mut left = px(20.0) as i32;
+    for (k, figure) in figures.iter().enumerate() {
+        let colour = fading(k, figures.len());
+        let sample = px(26.0) as i32;
+        legend
+            .draw(&PathElement::new(
+                vec![(left, middle), (left + sample, middle)],
+                colour.stroke_width(px(2.8)),
+            ))
+            .map_err(|e| e.to_string())?;
+        let label = format!("t = {} s", figure.t);
+        legend
+            .draw_text(&label, &text, (left + sample + px(6.0) as i32, middle))
+            .map_err(|e| e.to_string())?;
+        left += sample + px(6.0) as i32 + px(78.0) as i32;
+    }
+    let dark = fading(figures.len() - 1, figures.len());
+    legend
+        .draw(&Circle::new(
+            (left + px(6.0) as i32, middle),
+            px(2.6) as i32,
+            dark.filled(),
+        ))
+        .map_err(|e| e.to_string())?;
+    legend
+        .draw_text("joint origin", &text, (left + px(16.0) as i32, middle))
+        .map_err(|e| e.to_string())?;
+    left += px(106.0) as i32;
+    legend
+        .draw(&Circle::new(
+            (left + px(6.0) as i32, middle),
+            px(5.0) as i32,
+            dark.stroke_width(px(2.0)),
+        ))
+        .map_err(|e| e.to_string())?;
+    legend
+        .draw_text("centre of mass", &text, (left + px(18.0) as i32, middle))
+        .map_err(|e| e.to_string())?;
+    Ok(())
 }
 
 #[cfg(test)]

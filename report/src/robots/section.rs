@@ -12,7 +12,7 @@ use reference::robots::{RobotId, RobotReference};
 use scene_file::AlgebraKind;
 
 use super::figures::{motion_picture, work_precision_figure};
-use super::sweep::{robot_label, row_key, series_of, RobotResult, LEFT_OUT};
+use super::sweep::{robot_label, row_key, series_of, RobotOutcome, RobotResult, LEFT_OUT};
 use crate::markdown::{compare_rows, scientific, table_header};
 use crate::measure::cost_at_error;
 use crate::measured_anchors::{mujoco_time, Anchors, SPREAD_NOTE};
@@ -151,12 +151,28 @@ fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference
         }
     }
     let _ = writeln!(out);
+    write_cheapest(out, &best, &groups, (target, anchor.dt), (theirs, flag));
+    if time.source.uncertain() {
+        let _ = writeln!(out, "{SPREAD_NOTE}.\n");
+    }
+}
+
+/// The cheapest configuration at MuJoCo's error `target` at its step `dt` in each algebra (`best`: label and
+/// interpolated cost), or, if none reaches it, the cheapest run at our floor; MuJoCo's cost `theirs`, `flag`ged if
+/// uncertain.
+fn write_cheapest(
+    out: &mut String,
+    best: &BTreeMap<AlgebraKind, (String, f64)>,
+    groups: &BTreeMap<(AlgebraKind, usize), Vec<&RobotOutcome>>,
+    (target, dt): (f64, f64),
+    (theirs, flag): (f64, &str),
+) {
     if best.is_empty() {
         let _ = write!(
             out,
             "No run reaches MuJoCo's {} rad at dt = {:.0e}",
             scientific(target),
-            anchor.dt
+            dt
         );
         // At our floor: the cheapest run within 1.5× of the smallest error of any run.
         let smallest = groups.values().flatten().map(|o| o.joint_error).min_by(f64::total_cmp);
@@ -191,9 +207,6 @@ fn speed_table(out: &mut String, results: &[RobotResult], id: RobotId, reference
             })
             .collect();
         let _ = writeln!(out, "Cheapest at MuJoCo's accuracy: {}.\n", summary.join("; "));
-    }
-    if time.source.uncertain() {
-        let _ = writeln!(out, "{SPREAD_NOTE}.\n");
     }
 }
 

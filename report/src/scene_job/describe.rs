@@ -113,8 +113,15 @@ fn describe_drive(drive: &DriveSpec) -> String {
 
 /// What the summary says about the robot: the model, the repairs and warnings, what of the URDF is not modelled.
 pub(crate) fn robot_summary(robot: &LoadedRobot) -> String {
-    let (model, spec) = (&robot.model, &robot.spec);
     let mut out = String::new();
+    write_robot_model(&mut out, robot);
+    write_robot_lists(&mut out, robot);
+    out
+}
+
+/// The robot's model: its links, bodies, root, joints and degrees of freedom.
+fn write_robot_model(out: &mut String, robot: &LoadedRobot) {
+    let (model, spec) = (&robot.model, &robot.spec);
     let links: usize = model.bodies.iter().map(|b| b.links.len()).sum();
     let kinds: Vec<String> = model
         .joint_counts()
@@ -145,31 +152,35 @@ pub(crate) fn robot_summary(robot: &LoadedRobot) -> String {
         joint_dof + if free { 6 } else { 0 },
         if free { " (6 of them the base's)" } else { "" },
     );
-    let list = |title: &str, items: Vec<String>, out: &mut String| {
-        if items.is_empty() {
-            let _ = writeln!(out, "- {title}: none");
-        } else {
-            let _ = writeln!(out, "- {title}:");
-            for item in items {
-                let _ = writeln!(out, "  - {}", escape(&item));
-            }
+}
+
+/// `title` and its items as a list item with a nested list, or "none".
+fn write_list(out: &mut String, title: &str, items: Vec<String>) {
+    if items.is_empty() {
+        let _ = writeln!(out, "- {title}: none");
+    } else {
+        let _ = writeln!(out, "- {title}:");
+        for item in items {
+            let _ = writeln!(out, "  - {}", escape(&item));
         }
-    };
-    list(
-        "Repairs",
-        model.repairs.iter().map(ToString::to_string).collect(),
-        &mut out,
-    );
-    list(
+    }
+}
+
+/// The repairs and warnings of the import, and what of the URDF is modelled and how: joint damping and friction,
+/// limits, mimics, the elements ignored, the gravity.
+fn write_robot_lists(out: &mut String, robot: &LoadedRobot) {
+    let (model, spec) = (&robot.model, &robot.spec);
+    write_list(out, "Repairs", model.repairs.iter().map(ToString::to_string).collect());
+    write_list(
+        out,
         "Frozen joints (massless subtrees, coordinate 0)",
         model
             .frozen_joints
             .iter()
             .map(|f| format!("{} ({}, line {})", f.name, f.kind, f.line))
             .collect(),
-        &mut out,
     );
-    list("Importer warnings", model.warnings.clone(), &mut out);
+    write_list(out, "Importer warnings", model.warnings.clone());
     let damped: Vec<String> = model
         .joints
         .iter()
@@ -184,23 +195,19 @@ pub(crate) fn robot_summary(robot: &LoadedRobot) -> String {
         .collect();
     match spec.joint_dynamics {
         JointDynamicsName::Urdf => {
-            list(
+            write_list(
+                out,
                 "URDF joint damping, applied as joint damping (N m s/rad or N s/m)",
                 damped,
-                &mut out,
             );
-            list("URDF Coulomb friction, not modelled", friction, &mut out);
+            write_list(out, "URDF Coulomb friction, not modelled", friction);
         }
         JointDynamicsName::Ignore => {
-            list(
-                "URDF joint damping, ignored (joint_dynamics = \"ignore\")",
-                damped,
-                &mut out,
-            );
-            list(
+            write_list(out, "URDF joint damping, ignored (joint_dynamics = \"ignore\")", damped);
+            write_list(
+                out,
                 "URDF Coulomb friction, ignored (joint_dynamics = \"ignore\"; never modelled)",
                 friction,
-                &mut out,
             );
         }
     }
@@ -229,18 +236,17 @@ pub(crate) fn robot_summary(robot: &LoadedRobot) -> String {
                 .map(|m| format!("{} = {} {} + {}", j.name, m.multiplier, m.joint, m.offset))
         })
         .collect();
-    list(
+    write_list(
+        out,
         match spec.mimic {
             MimicName::Constraint => "Mimics, coupled (mimic = \"constraint\")",
             MimicName::Independent => "Mimics, independent joints (mimic = \"independent\")",
         },
         mimics,
-        &mut out,
     );
     if !model.ignored.is_empty() {
         let ignored: Vec<String> = model.ignored.iter().map(|(tag, n)| format!("<{tag}> × {n}")).collect();
         let _ = writeln!(out, "- Ignored elements: {}", escape(&ignored.join(", ")));
     }
     let _ = writeln!(out, "- Gravity on the robot's bodies: {:?} m/s²\n", spec.gravity);
-    out
 }

@@ -131,23 +131,38 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
     if outcomes.is_empty() {
         return Ok(files);
     }
-    let stem = stem(scene);
     let groups = panels_of(&outcomes);
+    let titles: Vec<String> = groups.iter().map(|g| panel_title(g.formulation, g.family)).collect();
+    files.push(work_precision_figure(dir, scene, &outcomes, (&groups, &titles))?);
+    // Over time, at the showcase step.
+    let Some(dt) = showcase_step(&outcomes) else {
+        return Ok(files);
+    };
+    files.extend(over_time_figures(dir, scene, dt, (&groups, &titles))?);
+    files.extend(path_figure(dir, scene, &outcomes)?);
+    Ok(files)
+}
 
-    // Work-precision, MuJoCo's points in every panel where they compare (runs of the scene's full length).
+/// The work-precision figure, a panel per group of `groups` titled by `titles`, MuJoCo's points in every panel where
+/// they compare (runs of the scene's full length); returns its file name.
+fn work_precision_figure(
+    dir: &Path,
+    scene: SceneId,
+    outcomes: &[&Outcome],
+    (groups, titles): (&[PanelRuns], &[String]),
+) -> Result<String, PlotError> {
     let full = scene.parameters().duration;
     let mismatch = outcomes
         .iter()
         .find_map(|o| crate::measure::length_mismatch(o.config.duration, full));
     let mujoco_points = recorded_anchors::work_precision_points(scene).filter(|_| mismatch.is_none());
-    let titles: Vec<String> = groups.iter().map(|g| panel_title(g.formulation, g.family)).collect();
     let y = match scene {
         SceneId::RodOnSphere | SceneId::RodOnCircle => "centre-of-mass position error at T (m)",
         _ => "orientation error at T (rad)",
     };
     let panels: Vec<Panel> = groups
         .iter()
-        .zip(&titles)
+        .zip(titles)
         .map(|(group, title)| {
             let mut series: Vec<Series> = group
                 .series
@@ -188,19 +203,24 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
             recorded_anchors::SINGLE_BODY_MEASURED
         ),
     };
-    let name = format!("{stem}_work_precision.png");
+    let name = format!("{}_work_precision.png", stem(scene));
     let title = format!("Scene {}: error against CPU time", scene.label());
     figure_with_caption(&dir.join(&name), &title, &panels, &caption)?;
-    files.push(name);
+    Ok(name)
+}
 
-    // Over time, at the showcase step.
-    let Some(dt) = showcase_step(&outcomes) else {
-        return Ok(files);
-    };
+/// The energy drift and, for a constrained scene, the constraint violation over time at the step `dt`, a panel per
+/// group of `groups` titled by `titles`; returns their file names.
+fn over_time_figures(
+    dir: &Path,
+    scene: SceneId,
+    dt: f64,
+    (groups, titles): (&[PanelRuns], &[String]),
+) -> Result<Vec<String>, PlotError> {
     let over_time = |values: &dyn Fn(&Outcome) -> Vec<f64>, y: &'static str| -> Vec<Panel> {
         groups
             .iter()
-            .zip(&titles)
+            .zip(titles)
             .map(|(group, title)| {
                 let series = group
                     .series
@@ -220,6 +240,8 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
             })
             .collect()
     };
+    let stem = stem(scene);
+    let mut files = Vec::new();
     let name = format!("{stem}_energy_drift.png");
     let title = format!("Scene {}: energy drift, dt = {dt:.0e} s", scene.label());
     let panels = over_time(
@@ -250,8 +272,12 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
         )?;
         files.push(name);
     }
+    Ok(files)
+}
 
-    // The paper-style traced path: the most accurate PGA run against the reference.
+/// The paper-style traced path: the most accurate PGA run against the reference; returns its file name, if there is
+/// a run and a reference.
+fn path_figure(dir: &Path, scene: SceneId, outcomes: &[&Outcome]) -> Result<Option<String>, PlotError> {
     let (what, x, y, project, equal) = traced_path(scene);
     let best = outcomes.iter().min_by(|a, b| {
         a.config
@@ -293,15 +319,15 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
             },
             Series::reference_line("reference (scipy DOP853)", reference),
         ];
-        let name = format!("{stem}_path.png");
+        let name = format!("{}_path.png", stem(scene));
         let title = format!("Scene {}: {what}", scene.label());
         let panel = Panel::new(Labels { title: &title, x, y }, series).note(
             "The reference (black, dashed) is drawn over the simulated run (blue), which shows through its gaps.",
         );
         chart(&dir.join(&name), &if equal { panel.equal_aspect() } else { panel })?;
-        files.push(name);
+        return Ok(Some(name));
     }
-    Ok(files)
+    Ok(None)
 }
 
 #[cfg(test)]
