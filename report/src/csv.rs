@@ -1,7 +1,7 @@
 //! Trajectories as CSV, all written by one writer: a header of column names, then a line per sample of numbers in
 //! Rust's `{:e}` (exact when read back), comma-separated. One body in the reference files' columns plus the energy
-//! ([`write`]); several bodies' centres of mass and orientations, then the system's energy ([`write_bodies`]); a
-//! robot's joint coordinates between the time and the energy ([`write_joints`]).
+//! ([`write()`]); several bodies' centres of mass and orientations, then the system's energy (`write_bodies`); a
+//! robot's joint coordinates between the time and the energy (`write_joints`).
 
 use std::fmt::Write as _;
 use std::path::Path;

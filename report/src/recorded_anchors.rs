@@ -1,13 +1,17 @@
-//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies measured by the team and
-//! recorded here; the mechanisms from the reference set's scripts, with the date below): orientation
-//! error at T (rad; the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per
-//! step. Drawn as reference markers on the work-precision
-//! plots: CPU per simulated second = time per step / dt.
+//! MuJoCo's and Pinocchio's recorded figures, the constants the report compares our runs with wherever `--anchors`
+//! did not measure a figure beside the run ([`crate::measured_anchors`]; the single bodies have no shared MuJoCo script
+//! and are always these).
 //!
-//! These are constants, the fallback wherever `--anchors` did not measure a figure beside the run
-//! ([`crate::measured_anchors`]; the single bodies have no shared MuJoCo script and are always these): wherever the report
-//! shows them it says when and where they were measured ([`SINGLE_BODY_MEASURED`], [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a
-//! run of another length (`--duration`) is not compared with them ([`crate::measure::length_mismatch`]).
+//! MuJoCo 4.0's measured points on the same scenes and machine (RK4; the single bodies measured by the team and
+//! recorded here; the mechanisms from the reference set's scripts, with the date below): orientation error at T (rad;
+//! the circle scene: m, reduced coordinates) for dt = 1e-2, 1e-3, 1e-4, and the CPU time per step, drawn as reference
+//! markers on the work-precision plots (CPU per simulated second = time per step / dt); Pinocchio 4.1's time per
+//! evaluation on the chain. The robots' MuJoCo and Pinocchio figures are recorded with their references
+//! (`reference::robots`); here is when and with which versions ([`RECORDED_WHEN`], [`MUJOCO`], [`PINOCCHIO`]).
+//!
+//! Wherever the report shows these it says when and where they were measured ([`SINGLE_BODY_MEASURED`],
+//! [`MECHANISMS_MEASURED`]). MuJoCo's errors are at each scene's full T, so a run of another length (`--duration`) is
+//! not compared with them ([`crate::measure::length_mismatch`]).
 
 use reference::SceneId;
 

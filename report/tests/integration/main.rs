@@ -3,6 +3,7 @@
 //! `cargo test --release -p report --test integration <module>::` runs one file's tests.
 
 mod anchors_file;
+mod module_order;
 mod plot_smoke;
 mod scene_job;
 mod scene_job_robots;
