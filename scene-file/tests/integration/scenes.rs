@@ -71,7 +71,7 @@ fn heavy_top_file_runs_as_the_builtin_scene_3a() {
 }
 
 /// With two named bodies a contact names its body; a floor 1e5 m from the origin works. (The careless values of
-/// `[[contact]]` are rows of `scene_file_robots::careless_inputs_fail_naming_the_entry_and_the_value`.)
+/// `[[contact]]` are rows of `robots::careless_contacts_fail_naming_the_entry_and_the_value`.)
 #[test]
 fn contacts_name_their_body_and_work_far_from_the_origin() {
     let base = std::fs::read_to_string(scene_path("bouncing_block.toml")).unwrap();
