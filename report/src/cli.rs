@@ -10,14 +10,15 @@ use dynamics::Schedule;
 use reference::SceneId;
 use scenarios::MechanismId;
 
-use crate::adaptive_sweep::{AdaptiveCase, AdaptivePlan, DEFAULT_TOLERANCES};
-use crate::anchors::Anchors;
+use crate::adaptive::sweep::{AdaptiveCase, AdaptivePlan, DEFAULT_TOLERANCES};
 use crate::job::run_job_with_robots;
-use crate::mechanism_sweep::{self, MechanismKind, MechanismPlan};
-use crate::names::{IntegratorName, StabilisationName};
-use crate::robot_sweep::{self, RobotPlan};
+use crate::measured_anchors::Anchors;
+use crate::mechanisms::sweep::{MechanismKind, MechanismPlan};
+use crate::robots::sweep::RobotPlan;
 use crate::scene_job::run_scene_file;
-use crate::sweep::{SweepPlan, DEFAULT_STEPS};
+use crate::single_bodies::sweep::{SweepPlan, DEFAULT_STEPS};
+use crate::{mechanisms, robots};
+use scene_file::names::{IntegratorName, StabilisationName};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SceneName {
@@ -109,9 +110,9 @@ pub(crate) struct Options {
 /// The longest `--duration` accepted (s): a sweep runs every configuration for it, down to dt = 1e-4.
 pub(crate) const MAX_DURATION: f64 = 1000.0;
 
-/// The most steps one run of the sweep may take, as a scene file's ([`crate::scene_file::MAX_STEPS`]): a step of
+/// The most steps one run of the sweep may take, as a scene file's ([`scene_file::MAX_STEPS`]): a step of
 /// 1e-12 s would otherwise run for days.
-const MAX_STEPS_PER_RUN: f64 = crate::scene_file::MAX_STEPS as f64;
+const MAX_STEPS_PER_RUN: f64 = scene_file::MAX_STEPS as f64;
 
 impl Options {
     /// Why these options cannot make a job, if they cannot: every step must give a schedule (positive, finite,
@@ -235,7 +236,7 @@ impl Options {
             }
         };
         let integrators = if self.integrators.is_empty() {
-            crate::sweep::default_integrators()
+            crate::single_bodies::sweep::default_integrators()
         } else {
             self.integrators.iter().map(|&i| i.into()).collect()
         };
@@ -248,7 +249,7 @@ impl Options {
         };
         let mechanisms = MechanismPlan {
             mechanisms,
-            steps: steps(&mechanism_sweep::DEFAULT_STEPS),
+            steps: steps(&mechanisms::sweep::DEFAULT_STEPS),
         };
         let robots = RobotPlan {
             robots: if robots {
@@ -256,7 +257,7 @@ impl Options {
             } else {
                 Vec::new()
             },
-            steps: steps(&robot_sweep::DEFAULT_STEPS),
+            steps: steps(&robots::sweep::DEFAULT_STEPS),
             // With the default integrators, the robots also run in joint coordinates.
             joint_methods: if self.integrators.is_empty() {
                 dynamics::JointMethod::ALL.to_vec()
@@ -269,7 +270,7 @@ impl Options {
                 AdaptiveCase::Mechanism(match kind {
                     MechanismKind::DoublePendulum => MechanismId::DoublePendulum,
                     MechanismKind::FourBar => MechanismId::FourBar,
-                    MechanismKind::Chain => MechanismId::Chain(mechanism_sweep::CHAIN_LONG_RUN.0),
+                    MechanismKind::Chain => MechanismId::Chain(mechanisms::sweep::CHAIN_LONG_RUN.0),
                 })
             }))
             .chain(robots.robots.iter().map(|&robot| AdaptiveCase::Robot(robot)))

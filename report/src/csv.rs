@@ -1,5 +1,7 @@
-//! Trajectories as CSV: one body in the reference files' columns plus the energy; several bodies as every
-//! body's centre of mass and orientation, then the system's energy.
+//! Trajectories as CSV, all written by one writer: a header of column names, then a line per sample of numbers in
+//! Rust's `{:e}` (exact when read back), comma-separated. One body in the reference files' columns plus the energy
+//! ([`write()`]); several bodies' centres of mass and orientations, then the system's energy (`write_bodies`); a
+//! robot's joint coordinates between the time and the energy (`write_joints`).
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -11,12 +13,9 @@ pub const HEADER: &str = "t,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,energy";
 
 /// Writes the samples to `path`.
 pub fn write(path: &Path, samples: &[Sample]) -> std::io::Result<()> {
-    let mut text = String::with_capacity(samples.len() * 300 + HEADER.len() + 1);
-    text.push_str(HEADER);
-    text.push('\n');
-    for s in samples {
+    let rows = samples.iter().map(|s| {
         let q = s.orientation.quaternion();
-        let values = [
+        vec![
             s.t,
             s.position.x,
             s.position.y,
@@ -32,36 +31,77 @@ pub fn write(path: &Path, samples: &[Sample]) -> std::io::Result<()> {
             s.angular_velocity.y,
             s.angular_velocity.z,
             s.energy,
-        ];
-        let line: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
-        let _ = writeln!(text, "{}", line.join(","));
-    }
-    std::fs::write(path, text)
+        ]
+    });
+    write_table(path, HEADER.split(','), rows)
 }
 
 /// Writes several bodies' samples (`bodies[i][k]`) to `path`: `t`, then per body `NAME.x`, `NAME.y`, `NAME.z`
 /// (centre of mass, world, m), `NAME.qw`, `NAME.qx`, `NAME.qy`, `NAME.qz` (orientation body → world), then
 /// `energy` (the whole system's, J).
 pub(crate) fn write_bodies(path: &Path, names: &[&str], bodies: &[Vec<Sample>]) -> std::io::Result<()> {
-    let mut text = String::from("t");
-    for name in names {
-        for column in ["x", "y", "z", "qw", "qx", "qy", "qz"] {
-            let _ = write!(text, ",{name}.{column}");
-        }
-    }
-    text.push_str(",energy\n");
+    let pose = ["x", "y", "z", "qw", "qx", "qy", "qz"];
+    let per_body = names
+        .iter()
+        .flat_map(|name| pose.map(|column| format!("{name}.{column}")));
+    let columns = std::iter::once("t".to_owned())
+        .chain(per_body)
+        .chain(["energy".to_owned()]);
     let samples = bodies.first().map_or(0, Vec::len);
-    for k in 0..samples {
+    let rows = (0..samples).map(|k| {
         let first = &bodies[0][k];
-        let _ = write!(text, "{:e}", first.t);
+        let mut row = vec![first.t];
         for body in bodies {
             let s = &body[k];
             let q = s.orientation.quaternion();
-            for v in [s.position.x, s.position.y, s.position.z, q.w, q.i, q.j, q.k] {
-                let _ = write!(text, ",{v:e}");
-            }
+            row.extend([s.position.x, s.position.y, s.position.z, q.w, q.i, q.j, q.k]);
         }
-        let _ = writeln!(text, ",{:e}", first.energy);
+        row.push(first.energy);
+        row
+    });
+    write_table(path, columns, rows)
+}
+
+/// Writes a robot's joints CSV to `path`: `t`, the `headers` with each sample's `rows`, then `energy` (the whole
+/// system's, J), the time and energy from `samples`.
+pub(crate) fn write_joints(
+    path: &Path,
+    headers: &[String],
+    rows: &[Vec<f64>],
+    samples: &[Sample],
+) -> std::io::Result<()> {
+    let columns = std::iter::once("t")
+        .chain(headers.iter().map(String::as_str))
+        .chain(["energy"]);
+    let rows = rows.iter().zip(samples).map(|(row, sample)| {
+        let mut values = Vec::with_capacity(row.len() + 2);
+        values.push(sample.t);
+        values.extend(row);
+        values.push(sample.energy);
+        values
+    });
+    write_table(path, columns, rows)
+}
+
+/// Writes the header of `columns` and the `rows` to `path`.
+fn write_table(
+    path: &Path,
+    columns: impl IntoIterator<Item = impl AsRef<str>>,
+    rows: impl ExactSizeIterator<Item = Vec<f64>>,
+) -> std::io::Result<()> {
+    let columns: Vec<_> = columns.into_iter().collect();
+    let mut text = String::with_capacity(rows.len() * columns.len() * 24);
+    for (k, column) in columns.iter().enumerate() {
+        let separator = if k == 0 { "" } else { "," };
+        let _ = write!(text, "{separator}{}", column.as_ref());
+    }
+    text.push('\n');
+    for row in rows {
+        for (k, value) in row.iter().enumerate() {
+            let separator = if k == 0 { "" } else { "," };
+            let _ = write!(text, "{separator}{value:e}");
+        }
+        text.push('\n');
     }
     std::fs::write(path, text)
 }

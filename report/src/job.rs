@@ -8,20 +8,21 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use reference::SceneId;
 
-use crate::adaptive_report::{adaptive_section, FixedRuns};
-use crate::adaptive_sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
-use crate::anchors::Anchors;
-use crate::contacts_report::contacts_section;
+use crate::adaptive::figures::FixedRuns;
+use crate::adaptive::section::adaptive_section;
+use crate::adaptive::sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
+use crate::contacts::section::contacts_section;
 use crate::csv;
-use crate::figures::{self, showcase_step};
-use crate::limits_report::limits_section;
-use crate::markdown::{self, RunResult};
-use crate::mechanism_report::mechanism_section;
-use crate::mechanism_sweep::{run_mechanism, MechanismPlan, MechanismResult};
+use crate::limits::section::limits_section;
+use crate::measured_anchors::Anchors;
+use crate::mechanisms::section::mechanism_section;
+use crate::mechanisms::sweep::{run_mechanism, MechanismPlan, MechanismResult};
 use crate::plot::PlotError;
-use crate::robot_report::robot_section;
-use crate::robot_sweep::{robot_label, run_robot, RobotPlan, RobotResult};
-use crate::sweep::{run, Outcome, SweepPlan};
+use crate::robots::section::robot_section;
+use crate::robots::sweep::{robot_label, run_robot, RobotPlan, RobotResult};
+use crate::single_bodies::figures::{self, showcase_step};
+use crate::single_bodies::section;
+use crate::single_bodies::sweep::{run, Outcome, RunResult, SweepPlan};
 
 /// Why the job could not write its output.
 #[derive(Debug, thiserror::Error)]
@@ -132,17 +133,8 @@ pub fn run_job_with_robots(
     let trajectories = output.join("trajectories");
     std::fs::create_dir_all(&trajectories).map_err(io(&trajectories))?;
 
-    let progress = if show_progress {
-        ProgressBar::new(
-            (configs.len() + mechanism_configs.len() + robot_configs.len() + adaptive_configs.len()) as u64,
-        )
-    } else {
-        ProgressBar::hidden()
-    };
-    progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, about {eta} left  {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let runs = configs.len() + mechanism_configs.len() + robot_configs.len() + adaptive_configs.len();
+    let progress = progress_bar(runs, show_progress);
     // The slowest runs first (smallest steps; for mechanisms, most steps times most bodies), so the pool
     // stays busy to the end.
     let results: Vec<RunResult> = run_all(
@@ -175,6 +167,41 @@ pub fn run_job_with_robots(
     );
     progress.finish_and_clear();
 
+    let mut summary = JobSummary {
+        output: output.to_path_buf(),
+        results,
+        mechanisms: mechanism_results,
+        robots: robot_results,
+        adaptive: adaptive_results,
+        failures: Vec::new(),
+    };
+    let figure_files = single_body_figures(output, &trajectories, &summary.results)?;
+    write_report(&summary, &figure_files, anchors)?;
+    summary.failures = failures(&summary);
+    Ok(summary)
+}
+
+/// A progress bar over `runs` runs, drawn if `shown`.
+fn progress_bar(runs: usize, shown: bool) -> ProgressBar {
+    let progress = if shown {
+        ProgressBar::new(runs as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    progress.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} elapsed, about {eta} left  {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    progress
+}
+
+/// Draws each single-body scene's figures into `output` and writes its showcase step's trajectories into
+/// `trajectories`, one CSV per configuration; returns each scene's figure files.
+fn single_body_figures(
+    output: &Path,
+    trajectories: &Path,
+    results: &[RunResult],
+) -> Result<HashMap<SceneId, Vec<String>>, JobError> {
     let mut figure_files: HashMap<SceneId, Vec<String>> = HashMap::new();
     for scene in SceneId::ALL {
         let runs: Vec<&RunResult> = results.iter().filter(|(c, _)| c.scene == scene).collect();
@@ -202,30 +229,45 @@ pub fn run_job_with_robots(
             }
         }
     }
+    Ok(figure_files)
+}
+
+/// Writes `report.md` into the job's output folder: the single bodies' section (their figures `figure_files`), the
+/// mechanisms', the robots', the adaptive runs', the limits', the contacts', and the figures `anchors` measured.
+fn write_report(
+    job: &JobSummary,
+    figure_files: &HashMap<SceneId, Vec<String>>,
+    anchors: &Anchors,
+) -> Result<(), JobError> {
+    let output = &job.output;
     let threads = rayon::current_num_threads();
     let report_path = output.join("report.md");
-    let mut text = markdown::report(&results, threads, &figure_files);
-    text.push_str(&mechanism_section(output, &mechanism_results, anchors)?);
-    text.push_str(&robot_section(output, &robot_results, anchors)?);
+    let mut text = section::report(&job.results, threads, figure_files);
+    text.push_str(&mechanism_section(output, &job.mechanisms, anchors)?);
+    text.push_str(&robot_section(output, &job.robots, anchors)?);
     let fixed = FixedRuns {
-        single: &results,
-        mechanisms: &mechanism_results,
-        robots: &robot_results,
+        single: &job.results,
+        mechanisms: &job.mechanisms,
+        robots: &job.robots,
     };
-    text.push_str(&adaptive_section(output, &adaptive_results, &fixed)?);
+    text.push_str(&adaptive_section(output, &job.adaptive, &fixed)?);
     text.push_str(&limits_section(output)?);
     text.push_str(&contacts_section(output)?);
     text.push_str(&anchors.section());
-    std::fs::write(&report_path, text).map_err(io(&report_path))?;
-    let single_failures = results.iter().filter_map(|(config, result)| {
+    std::fs::write(&report_path, text).map_err(io(&report_path))
+}
+
+/// Every failed run of the job: its label and why it failed.
+fn failures(job: &JobSummary) -> Vec<String> {
+    let single_failures = job.results.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;
         Some(format!("{} {}: {error}", config.scene.label(), config.series_label()))
     });
-    let mechanism_failures = mechanism_results.iter().filter_map(|(config, result)| {
+    let mechanism_failures = job.mechanisms.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;
         Some(format!("{} {}: {error}", config.id.label(), config.series_label()))
     });
-    let robot_failures = robot_results.iter().filter_map(|(config, result)| {
+    let robot_failures = job.robots.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;
         Some(format!(
             "{} {}, dt = {:e}: {error}",
@@ -234,21 +276,13 @@ pub fn run_job_with_robots(
             config.dt
         ))
     });
-    let adaptive_failures = adaptive_results.iter().filter_map(|(config, result)| {
+    let adaptive_failures = job.adaptive.iter().filter_map(|(config, result)| {
         let error = result.as_ref().err()?;
         Some(format!("{} {}: {error}", config.case.label(), config.series_label()))
     });
-    let failures = single_failures
+    single_failures
         .chain(mechanism_failures)
         .chain(robot_failures)
         .chain(adaptive_failures)
-        .collect();
-    Ok(JobSummary {
-        output: output.to_path_buf(),
-        results,
-        mechanisms: mechanism_results,
-        robots: robot_results,
-        adaptive: adaptive_results,
-        failures,
-    })
+        .collect()
 }

@@ -1,44 +1,41 @@
-//! The main job: every reference scene in both algebras with each integrator over a sweep of step
-//! sizes; work-precision tables (`report.md`), PNG plots and trajectories as CSV.
+//! The main job: every reference scene in both algebras with each integrator over a sweep of step sizes;
+//! work-precision tables (`report.md`), PNG plots and trajectories as CSV; and scenes described in TOML files.
 //!
-//! The pipeline, one module per stage: [`sweep`] (configurations, running one) → [`measure`] (metrics
-//! against the `reference` crate) → [`markdown`] (the report), `figures` (the plots, drawn by
-//! [`plot`]) and [`csv`] (trajectories); [`job`] runs it all in parallel with a progress bar.
+//! Shared machinery first: `markdown` (escaping, numbers, row order), the charts of [`plot`] and their `panels`,
+//! [`csv`] trajectories, what the sweeps share about running ([`runs`]) and measuring ([`measure`]), and MuJoCo's and
+//! Pinocchio's figures: `recorded_anchors`, the constants, and [`measured_anchors`], those `--anchors FILE` measured
+//! beside the run.
 //!
-//! The mechanisms of docs/scenes.md (M1–M3) follow the same stages: [`mechanism_sweep`] (configurations, running
-//! one; measured by `scenarios::mechanism_measures`) → `mechanism_report` (their section and plots).
+//! Then the families, each its sweep, its section of `report.md` and its figures: [`single_bodies`] (docs/scenes.md
+//! scenes 1–4), [`mechanisms`] (M1–M3), [`robots`] (URDF robots against Pinocchio), [`adaptive`] (the embedded pairs
+//! over tolerances), `limits` and `contacts`.
 //!
-//! The adaptive runs (the embedded pairs over tolerances) follow them: [`adaptive_sweep`] → `adaptive_report`.
+//! A scene can also come from a TOML file (the `scene-file` crate), run by [`scene_job`] (`--scene-file`). [`job`]
+//! runs it all in parallel with a progress bar, and [`cli`] is the command line.
 //!
-//! A scene can also come from a TOML file ([`scene_file`]), run by [`scene_job`] (`--scene-file`).
-//!
-//! MuJoCo's and Pinocchio's times come from [`anchors`] where `--anchors FILE` measured them beside the run,
-//! else from the recorded constants.
-//!
-//! The command line is [`cli`]; the integrators and stabilisations by the names it and scene files use are in
-//! [`names`].
+//! Each module refers only to modules before it in the order declared below, children before their parent, so no
+//! import circle can form (`tests/integration/module_order.rs` checks it; docs/architecture.md).
 
 #![deny(missing_docs)]
 
-mod adaptive_report;
-pub mod adaptive_sweep;
-pub mod anchors;
-pub mod cli;
-mod contacts_report;
-pub mod csv;
-mod figures;
-pub mod job;
-mod limits_report;
-pub mod markdown;
-pub mod measure;
-mod mechanism_report;
-pub mod mechanism_sweep;
-mod mujoco;
-pub mod names;
+// Shared machinery: text, plots and CSV; running and measuring; MuJoCo's and Pinocchio's figures.
+mod markdown;
 pub mod plot;
-mod robot_figures;
-mod robot_report;
-pub mod robot_sweep;
-pub mod scene_file;
+mod panels;
+pub mod csv;
+pub mod runs;
+pub mod measure;
+mod recorded_anchors;
+pub mod measured_anchors;
+// The families, each its sweep, section and figures.
+pub mod single_bodies;
+pub mod mechanisms;
+pub mod robots;
+pub mod adaptive;
+mod limits;
+mod contacts;
+// Scene files, run and written out.
 pub mod scene_job;
-pub mod sweep;
+// The main job and its command line.
+pub mod job;
+pub mod cli;

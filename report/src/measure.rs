@@ -1,199 +1,101 @@
-//! The error metrics of docs/scenes.md for one run, against the reference trajectories and analytic values of
-//! the `reference` crate (independent of any GA code).
+//! What the families share about measuring runs: two runs' agreement, the energy drift net of impacts, the cost at
+//! which a series of runs reaches an error (interpolated), and whether a run's length compares with an error
+//! recorded at a scene's full length.
 
-use reference::metrics::{self, MetricError};
-use reference::scenes::{CUBOID_VALUES, HEAVY_TOP_VALUES, PENDULUM_VALUES, TOP_INITIAL_TILT};
-use reference::{Sample, SceneConstraint, SceneId, SceneParameters, Trajectory, TrajectoryError};
+use dynamics::limits::{energy_changed_by, LimitTransition};
+use dynamics::simulate::Sample;
 
-/// Why a run could not be measured.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub(crate) enum MeasureError {
-    #[error(transparent)]
-    Metric(#[from] MetricError),
-    #[error("reference trajectory: {0}")]
-    Reference(#[from] TrajectoryError),
+/// The largest orientation (rad) and position (m) difference over the samples of two runs.
+pub fn agreement(first: &[Sample], second: &[Sample]) -> (f64, f64) {
+    first
+        .iter()
+        .zip(second)
+        .fold((0.0f64, 0.0f64), |(angle, distance), (a, b)| {
+            (
+                angle.max(a.orientation.angle_to(&b.orientation)),
+                distance.max((a.position - b.position).norm()),
+            )
+        })
 }
 
-/// A scene's physical feature (flip time, period, precession rate…) measured on the run and on the
-/// reference.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Feature {
-    /// As the report names it: "period", "nutation period"….
-    pub name: &'static str,
-    pub(crate) unit: &'static str,
-    pub(crate) simulated: f64,
-    pub(crate) reference: f64,
+/// The largest |E(t) − E₀ − L(t)| (J) over `(t, E)` samples, L(t) what the `transitions` changed the energy by up to t.
+pub(crate) fn drift_net_of_impacts(samples: impl Iterator<Item = (f64, f64)>, transitions: &[LimitTransition]) -> f64 {
+    let mut start = None;
+    samples
+        .map(|(t, energy)| {
+            let start = *start.get_or_insert(energy);
+            (energy - start - energy_changed_by(transitions, t)).abs()
+        })
+        .fold(0.0, f64::max)
 }
 
-impl Feature {
-    /// |simulated − reference|, in the feature's unit.
-    pub fn error(&self) -> f64 {
-        (self.simulated - self.reference).abs()
+/// The CPU per simulated second at which a work-precision series first reaches `target` error: interpolated
+/// linearly in log–log between the two runs that bracket it (a fixed-step method's error is a power of its
+/// cost), the cheapest run's cost if that already reaches it, None if no run does. `points` are
+/// (CPU per simulated second, error).
+pub(crate) fn cost_at_error(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    let mut sorted: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(cost, error)| *cost > 0.0 && error.is_finite())
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = *sorted.first()?;
+    if first.1 <= target {
+        return Some(first.0);
     }
-}
-
-/// Everything the report states about one run.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Measurements {
-    /// Geodesic angle between simulated and reference orientation at T (rad).
-    pub orientation_end: f64,
-    /// The largest such angle over the run (rad).
-    pub orientation_max: f64,
-    /// Centre-of-mass distance from the reference (m), at T.
-    pub(crate) position_end: f64,
-    /// The largest such distance over the run (m).
-    pub position_max: f64,
-    /// |E(T) − E₀| / E_scale.
-    pub(crate) energy_drift_end: f64,
-    /// The largest |E(t) − E₀| / E_scale over the run.
-    pub energy_drift_max: f64,
-    /// The largest constraint violation over the run (m); `None` for the free body.
-    pub violation_max: Option<f64>,
-    /// The scene's features of docs/scenes.md (none for scene 4, nor for a cuboid run that ends before its
-    /// first flip).
-    pub features: Vec<Feature>,
-    /// Energy drift per sample (for the drift-over-time plot).
-    pub(crate) energy_drift: Vec<f64>,
-    /// Constraint violation per sample (empty for the free body).
-    pub(crate) violation: Vec<f64>,
-}
-
-/// The constraint violation of one sample (m): how far the constrained body point is from where it must be.
-pub(crate) fn violation(constraint: &SceneConstraint, sample: &Sample) -> Option<f64> {
-    match *constraint {
-        SceneConstraint::Free => None,
-        SceneConstraint::Hinge { pivot, body_anchor, .. } | SceneConstraint::BallJoint { pivot, body_anchor } => {
-            Some((sample.world_point(&body_anchor) - pivot).norm())
-        }
-        SceneConstraint::PointOnSphere {
-            body_anchor,
-            centre,
-            radius,
-        } => Some(((sample.world_point(&body_anchor) - centre).norm() - radius).abs()),
-        SceneConstraint::PointOnCircle {
-            body_anchor,
-            centre,
-            radius,
-            normal,
-        } => {
-            let offset = sample.world_point(&body_anchor) - centre;
-            Some(((offset.norm() - radius).abs()).max(offset.dot(&normal.normalize()).abs()))
-        }
-    }
-}
-
-/// The first `count` samples of a trajectory (the reference is cut to a shortened run's length).
-fn truncated(trajectory: &Trajectory, count: usize) -> Result<Trajectory, TrajectoryError> {
-    Trajectory::new(trajectory.samples()[..count.min(trajectory.samples().len())].to_vec())
-}
-
-fn features(
-    scene: SceneId,
-    parameters: &SceneParameters,
-    simulated: &Trajectory,
-    reference: &Trajectory,
-) -> Result<Vec<Feature>, MetricError> {
-    let duration = simulated.last().t;
-    Ok(match scene {
-        SceneId::Cuboid => {
-            let analytic: Vec<f64> = CUBOID_VALUES
-                .flip_instants
-                .iter()
-                .copied()
-                .filter(|&t| t < duration - 0.05)
-                .collect();
-            if analytic.is_empty() {
-                vec![]
-            } else {
-                let measured = metrics::flip_times(simulated, &parameters.principal_moments);
-                vec![Feature {
-                    name: "flip time (worst flip)",
-                    unit: "s",
-                    simulated: metrics::flip_time_error(&measured, &analytic)?,
-                    reference: 0.0,
-                }]
+    sorted.windows(2).find_map(|pair| {
+        let ((cheap, coarse), (dear, fine)) = (pair[0], pair[1]);
+        (coarse > target && fine <= target).then(|| {
+            if fine <= 0.0 {
+                return dear;
             }
-        }
-        SceneId::Pendulum => vec![Feature {
-            name: "period",
-            unit: "s",
-            simulated: metrics::pendulum_period(simulated)?,
-            reference: PENDULUM_VALUES.exact_period,
-        }],
-        SceneId::TopCusp => {
-            let (ours, theirs) = (
-                metrics::nutation_features(simulated)?,
-                metrics::nutation_features(reference)?,
-            );
-            vec![
-                Feature {
-                    name: "largest nutation angle θ",
-                    unit: "rad",
-                    simulated: ours.theta_max,
-                    reference: theirs.theta_max,
-                },
-                Feature {
-                    name: "nutation period",
-                    unit: "s",
-                    simulated: ours.nutation_period,
-                    reference: theirs.nutation_period,
-                },
-                Feature {
-                    name: "mean precession rate",
-                    unit: "rad/s",
-                    simulated: ours.mean_precession_rate,
-                    reference: theirs.mean_precession_rate,
-                },
-            ]
-        }
-        SceneId::TopSteady => {
-            let steady = metrics::steady_precession_features(simulated, TOP_INITIAL_TILT)?;
-            vec![
-                Feature {
-                    name: "spurious nutation",
-                    unit: "rad",
-                    simulated: steady.max_nutation,
-                    reference: 0.0,
-                },
-                Feature {
-                    name: "precession rate",
-                    unit: "rad/s",
-                    simulated: steady.precession_rate,
-                    reference: HEAVY_TOP_VALUES.slow_precession_rate,
-                },
-            ]
-        }
-        SceneId::RodOnSphere | SceneId::RodOnCircle => vec![],
+            let fraction = (coarse / target).ln() / (coarse / fine).ln();
+            (cheap.ln() + fraction * (dear / cheap).ln()).exp()
+        })
     })
 }
 
-/// All metrics of one run of `scene`.
-pub(crate) fn measure(scene: SceneId, simulated: &Trajectory) -> Result<Measurements, MeasureError> {
-    let parameters = scene.parameters();
-    let full_reference = scene.reference_trajectory()?;
-    let reference = truncated(&full_reference, simulated.samples().len())?;
-    let errors = metrics::trajectory_errors(&reference, simulated)?;
-    let energy_drift: Vec<f64> = simulated
-        .samples()
-        .iter()
-        .map(|s| (parameters.mechanical_energy(s) - parameters.initial_energy).abs() / parameters.energy_scale)
-        .collect();
-    let violation: Vec<f64> = simulated
-        .samples()
-        .iter()
-        .filter_map(|s| self::violation(&parameters.constraint, s))
-        .collect();
-    Ok(Measurements {
-        orientation_end: errors.end_orientation,
-        orientation_max: errors.max_orientation,
-        position_end: errors.end_position,
-        position_max: errors.max_position,
-        energy_drift_end: *energy_drift.last().unwrap_or(&0.0),
-        energy_drift_max: energy_drift.iter().copied().fold(0.0, f64::max),
-        violation_max: (!violation.is_empty()).then(|| violation.iter().copied().fold(0.0, f64::max)),
-        features: features(scene, &parameters, simulated, &reference)?,
-        energy_drift,
-        violation,
-    })
+/// Why runs of `duration` (s) cannot be compared with MuJoCo's error at the full length `full` (s), if they
+/// cannot: "n/a: shortened run (2 s of T = 10 s)". Errors grow with time, so a shorter run's error at its end is
+/// not comparable with MuJoCo's at T.
+pub(crate) fn length_mismatch(duration: f64, full: f64) -> Option<String> {
+    if (duration - full).abs() <= 1e-9 * full.abs() {
+        None
+    } else if duration < full {
+        Some(format!("n/a: shortened run ({duration} s of T = {full} s)"))
+    } else {
+        Some(format!("n/a: run of {duration} s, not T = {full} s"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recorded_anchors::{MECHANISMS_DATE, MECHANISMS_MEASURED, SINGLE_BODY_MEASURED, SINGLE_BODY_RECORDED};
+
+    #[test]
+    fn cost_at_error_interpolates_log_log() {
+        // error = cost⁻⁴: 1e-4 at cost 10, 1e-8 at cost 100; 1e-6 lies halfway in log, at cost √1000.
+        let points = [(100.0, 1e-8), (10.0, 1e-4)];
+        let cost = cost_at_error(&points, 1e-6).unwrap();
+        assert!((cost - 1000f64.sqrt()).abs() < 1e-9, "{cost}");
+        assert_eq!(cost_at_error(&points, 1e-3), Some(10.0));
+        assert_eq!(cost_at_error(&points, 1e-9), None);
+        // The first crossing from the cheap end counts, not a later one past a round-off floor.
+        let floored = [(10.0, 1e-4), (100.0, 1e-8), (1000.0, 2e-8)];
+        assert!((cost_at_error(&floored, 1e-6).unwrap() - 1000f64.sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn runs_of_another_length_are_not_compared() {
+        assert_eq!(length_mismatch(10.0, 10.0), None);
+        assert_eq!(
+            length_mismatch(2.0, 10.0).as_deref(),
+            Some("n/a: shortened run (2 s of T = 10 s)")
+        );
+        assert!(length_mismatch(20.0, 10.0).unwrap().starts_with("n/a"));
+        assert!(MECHANISMS_MEASURED.contains(MECHANISMS_DATE));
+        assert!(SINGLE_BODY_MEASURED.contains(SINGLE_BODY_RECORDED));
+    }
 }

@@ -3,7 +3,7 @@
 
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-use report::anchors::{Anchors, AnchorsError};
+use report::measured_anchors::{Anchors, AnchorsError};
 
 /// A file as the runner writes it: a MuJoCo step time with its errors, a Pinocchio evaluation (no step) and a robot.
 const VALID: &str = r#"{
@@ -190,9 +190,9 @@ fn the_report_says_which_figures_were_measured_in_this_run() {
     use dynamics::constraints::Stabilisation;
     use dynamics::integrate::{Integrator, Method};
     use report::job::run_job_with_robots;
-    use report::mechanism_sweep::{MechanismKind, MechanismPlan};
-    use report::robot_sweep::RobotPlan;
-    use report::sweep::SweepPlan;
+    use report::mechanisms::{MechanismKind, MechanismPlan};
+    use report::robots::RobotPlan;
+    use report::single_bodies::SweepPlan;
 
     // M1 measured with repeats 50 % apart; M2 left to its recorded constant.
     let busy = VALID.replace(
@@ -217,7 +217,7 @@ fn the_report_says_which_figures_were_measured_in_this_run() {
         &plan,
         &mechanisms,
         &RobotPlan::default(),
-        &report::adaptive_sweep::AdaptivePlan::default(),
+        &report::adaptive::AdaptivePlan::default(),
         &anchors,
         &output,
         false,

@@ -5,10 +5,11 @@ use dynamics::constraints::Stabilisation;
 use dynamics::integrate::{Integrator, Method};
 use reference::SceneId;
 use report::job::run_job;
-use report::markdown::agreement;
-use report::mechanism_sweep::{MechanismKind, MechanismPlan};
-use report::sweep::{AlgebraKind, SweepPlan};
+use report::measure::agreement;
+use report::mechanisms::{MechanismKind, MechanismPlan};
+use report::single_bodies::SweepPlan;
 use scenarios::MechanismId;
+use scene_file::AlgebraKind;
 
 #[test]
 fn shortened_job_matches_the_references() {
@@ -138,7 +139,7 @@ fn shortened_job_matches_the_references() {
 
 /// The mechanisms' runs: M1 and M2 in 2 algebras × 2 formulations, the chain at 7 lengths and the long run in
 /// each algebra.
-fn check_mechanisms(results: &[report::mechanism_sweep::MechanismResult]) {
+fn check_mechanisms(results: &[report::mechanisms::MechanismResult]) {
     assert_eq!(results.len(), 4 + 4 + 2 * 8);
     for (config, result) in results {
         let label = format!("{} {}", config.id.label(), config.series_label());
@@ -212,7 +213,7 @@ fn failed_runs_are_named_with_their_reason() {
 /// has the section, its three figures and a table row per run.
 #[test]
 fn adaptive_runs_are_reported_beside_the_fixed_steps() {
-    use report::adaptive_sweep::{AdaptiveCase, AdaptivePlan};
+    use report::adaptive::{AdaptiveCase, AdaptivePlan};
     let output = std::env::temp_dir().join("ga-dynamics-adaptive-job");
     let _ = std::fs::remove_dir_all(&output);
     let (plan, mechanisms) = cuboid_and_double_pendulum(Method::Rkmk8Body, (&[1e-2, 5e-3], &[2e-2, 1e-2]), 2.0);
@@ -228,9 +229,9 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
     let summary = report::job::run_job_with_robots(
         &plan,
         &mechanisms,
-        &report::robot_sweep::RobotPlan::default(),
+        &report::robots::RobotPlan::default(),
         &adaptive,
-        &report::anchors::Anchors::none(),
+        &report::measured_anchors::Anchors::none(),
         &output,
         false,
     )
@@ -289,7 +290,7 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
 /// duration is a failed run that names its reason, never a panic or a silent result.
 #[test]
 fn careless_adaptive_plans_fail_with_their_reasons() {
-    use report::adaptive_sweep::{AdaptiveCase, AdaptivePlan};
+    use report::adaptive::{AdaptiveCase, AdaptivePlan};
     let output = std::env::temp_dir().join("ga-dynamics-careless-adaptive-job");
     let _ = std::fs::remove_dir_all(&output);
     let empty = SweepPlan {
@@ -322,9 +323,9 @@ fn careless_adaptive_plans_fail_with_their_reasons() {
         let summary = report::job::run_job_with_robots(
             &empty,
             &MechanismPlan::default(),
-            &report::robot_sweep::RobotPlan::default(),
+            &report::robots::RobotPlan::default(),
             &adaptive,
-            &report::anchors::Anchors::none(),
+            &report::measured_anchors::Anchors::none(),
             &output,
             false,
         )

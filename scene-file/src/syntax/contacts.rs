@@ -1,0 +1,43 @@
+//! Scene files' contacts (docs/scene-files.md): `[[contact]]`, a body point kept above a world plane, exactly
+//! (`dynamics::contacts`).
+
+use serde::Deserialize;
+
+use super::arrays::exactly;
+
+/// `[[contact]]`: `point` (m) of `body` (a named body or robot link; the only body may go unnamed) kept on the side
+/// of the plane `normal · x = offset` (world) that the normal points to, meeting it with `restitution`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// The contact's name in messages and the summary (default "contact k").
+    #[serde(default)]
+    pub name: Option<String>,
+    /// A named body or robot link; the only body of a scene may go unnamed.
+    #[serde(default)]
+    pub body: Option<String>,
+    /// In the body's (or link's) coordinates (m).
+    #[serde(deserialize_with = "exactly")]
+    pub point: [f64; 3],
+    /// The plane's normal, world, any length (default +z, a floor).
+    #[serde(default = "up", deserialize_with = "exactly")]
+    pub normal: [f64; 3],
+    /// `normal · x` on the plane (m times the normal's length).
+    #[serde(default)]
+    pub offset: f64,
+    /// Newton's coefficient, in [0, 1] (default 0: the point stays on the plane).
+    #[serde(default)]
+    pub restitution: f64,
+}
+
+/// The default normal: world z, a floor.
+fn up() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+
+impl ContactSpec {
+    /// The contact's name: as written, else "contact k" (1-based).
+    pub fn name(&self, index: usize) -> String {
+        self.name.clone().unwrap_or_else(|| format!("contact {}", index + 1))
+    }
+}
