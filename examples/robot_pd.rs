@@ -16,7 +16,7 @@
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use dynamics::force_elements::{ForceElement, JointState};
+use dynamics::mechanism::force_elements::{ForceElement, JointState};
 use dynamics::simulate::Plan;
 use dynamics::{simulate, Method, Pga, Schedule, State};
 use nalgebra::DVector;

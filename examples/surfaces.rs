@@ -13,7 +13,7 @@
 mod output;
 
 use dynamics::constraints::{SurfacePin, VirtualPower};
-use dynamics::joints::{JointKind, JointModel};
+use dynamics::joint_models::{JointKind, JointModel};
 use dynamics::surfaces::Surface;
 use dynamics::{simulate, Body, Force, Mechanism, Method, Pga, Reference, Schedule, State, Tolerance};
 use nalgebra::{Isometry3, UnitQuaternion, Vector2, Vector3};

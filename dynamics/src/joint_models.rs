@@ -258,7 +258,7 @@ impl JointModel {
     /// along −x:
     ///
     /// ```
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use nalgebra::{Isometry3, Vector3};
     ///
     /// let elbow = JointModel::new(
@@ -338,7 +338,7 @@ impl JointModel {
     ///
     /// ```
     /// use dynamics::constraints::PathPoint;
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use nalgebra::{Isometry3, Vector3};
     ///
     /// let spin = |t: f64| PathPoint { value: 2.0 * t, rate: 2.0, acceleration: 0.0 }; // rad, rad/s, rad/s²
@@ -365,7 +365,7 @@ impl JointModel {
     /// enforces it exactly ([`crate::limits`]): impacts at the bounds, held there while the bound pushes.
     ///
     /// ```
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::limits::JointLimit;
     /// use nalgebra::{Isometry3, Vector3};
     ///

@@ -97,7 +97,7 @@ pub enum CompareError {
     Metric(#[from] reference::MetricError),
     /// The tolerance was refused.
     #[error(transparent)]
-    Tolerance(#[from] dynamics::step_control::ToleranceError),
+    Tolerance(#[from] dynamics::integrate::step_control::ToleranceError),
 }
 
 /// A scene's system and initial state, built once.

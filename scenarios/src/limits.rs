@@ -1,7 +1,7 @@
 //! Joint-limit scenes (docs/limits.md), as the report shows them: a pendulum released at rest that swings up onto a
 //! bound gravity then holds it against, and a double pendulum whose elbow bounces off ±0.3 rad.
 
-use dynamics::joints::{JointKind, JointModel};
+use dynamics::joint_models::{JointKind, JointModel};
 use dynamics::limits::JointLimit;
 use dynamics::{Algebra, Body, Force, Mechanism, MechanismError, Reference, State};
 use nalgebra::{Isometry3, Vector3};

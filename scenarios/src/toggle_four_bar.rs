@@ -9,7 +9,7 @@
 //! energy drift (J), as for the chain.
 
 use dynamics::constraints::{Stabilisation, VirtualPower};
-use dynamics::joints::{JointKind, JointModel};
+use dynamics::joint_models::{JointKind, JointModel};
 use dynamics::{Algebra, Body, Force, Mechanism, Reference, State};
 use nalgebra::{Isometry3, Vector3};
 use reference::multibody::FourBar;

@@ -11,6 +11,7 @@ fn sources_are_small_enough_to_read() {
             "ga-macros",
             "dynamics",
             "urdf-import",
+            "scene-file",
             "reference",
             "scenarios",
             "report",

@@ -51,7 +51,7 @@ impl Tolerance {
     /// A relative tolerance in [0, 1) and an absolute one of at least [`MIN_ABSOLUTE_TOLERANCE`], finite.
     ///
     /// ```
-    /// use dynamics::step_control::{Tolerance, ToleranceError};
+    /// use dynamics::integrate::step_control::{Tolerance, ToleranceError};
     ///
     /// let tight = Tolerance::new(1e-10, 1e-10)?; // relative, absolute
     /// assert_eq!((tight.relative(), tight.absolute()), (1e-10, 1e-10));

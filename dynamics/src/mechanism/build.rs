@@ -232,7 +232,7 @@ impl<A: Algebra> Mechanism<A> {
     /// link's top end, both about y.
     ///
     /// ```
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Force, Mechanism, Pga, Reference};
     /// use nalgebra::{Isometry3, Vector3};
     ///
@@ -322,7 +322,7 @@ impl<A: Algebra> Mechanism<A> {
     ///
     /// ```
     /// use dynamics::constraints::Stabilisation;
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Force, Mechanism, Pga, Reference};
     /// use nalgebra::{Isometry3, Vector3};
     ///

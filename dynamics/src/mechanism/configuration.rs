@@ -68,7 +68,7 @@ impl<A: Algebra> Mechanism<A> {
     /// A hinge turned 4 rad reads −2.28 rad alone, 4 rad next to a previous reading of 3.9:
     ///
     /// ```
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Mechanism, Pga, Reference};
     /// use nalgebra::{Isometry3, Vector3};
     ///

@@ -178,7 +178,7 @@ impl<A: Algebra> ForceElement<A> {
     /// A 1 kg ball hanging from a spring of 100 N/m and rest length 0.5 m rests 0.5981 m below its anchor:
     ///
     /// ```
-    /// use dynamics::force_elements::ForceElement;
+    /// use dynamics::mechanism::force_elements::ForceElement;
     /// use dynamics::{Algebra, Body, Force, Mechanism, Pga, Reference, State};
     /// use nalgebra::{UnitQuaternion, Vector3};
     ///
@@ -243,7 +243,7 @@ impl<A: Algebra> ForceElement<A> {
     /// Two balls, a couple between them: each one's angular momentum changes by the couple, in opposite senses.
     ///
     /// ```
-    /// use dynamics::force_elements::{ForceElement, OfTime};
+    /// use dynamics::mechanism::force_elements::{ForceElement, OfTime};
     /// use dynamics::{Algebra, Body, Mechanism, Pga, Reference, State};
     /// use nalgebra::{UnitQuaternion, Vector3};
     ///
@@ -277,8 +277,8 @@ impl<A: Algebra> ForceElement<A> {
     /// A ball on a vertical axle (moment of inertia 0.1 kg m²) under 0.5 N m turns up at 5 rad/s²:
     ///
     /// ```
-    /// use dynamics::force_elements::{ForceElement, OfTime};
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::mechanism::force_elements::{ForceElement, OfTime};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Mechanism, Pga, Reference};
     /// use nalgebra::{Isometry3, Vector3};
     ///
@@ -309,8 +309,8 @@ impl<A: Algebra> ForceElement<A> {
     /// The ball on its axle (0.1 kg m²) spinning at 2 rad/s, damped by 0.1 N m s/rad, slows at 2 rad/s²:
     ///
     /// ```
-    /// use dynamics::force_elements::ForceElement;
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::mechanism::force_elements::ForceElement;
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Mechanism, Pga, Reference};
     /// use nalgebra::{Isometry3, Vector3};
     ///
@@ -351,8 +351,8 @@ impl<A: Algebra> ForceElement<A> {
     ///
     /// ```
     /// use std::sync::Arc;
-    /// use dynamics::force_elements::{ForceElement, JointState};
-    /// use dynamics::joints::{JointKind, JointModel};
+    /// use dynamics::mechanism::force_elements::{ForceElement, JointState};
+    /// use dynamics::joint_models::{JointKind, JointModel};
     /// use dynamics::{Body, Force, Mechanism, Pga, Reference};
     /// use nalgebra::{DVector, Isometry3, Vector3};
     ///
@@ -386,7 +386,7 @@ impl<A: Algebra> ForceElement<A> {
     ///
     /// ```
     /// use std::sync::Arc;
-    /// use dynamics::force_elements::ForceElement;
+    /// use dynamics::mechanism::force_elements::ForceElement;
     /// use dynamics::{Algebra, Body, Mechanism, Pga, Reference, ScrewCoordinates, State};
     /// use nalgebra::{UnitQuaternion, Vector3};
     ///

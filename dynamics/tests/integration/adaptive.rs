@@ -1,12 +1,12 @@
-//! Adaptive schedules (`dynamics::step_control`, `Schedule::adaptive`) with the embedded pairs DP5(4)-body and
+//! Adaptive schedules (`dynamics::integrate::step_control`, `Schedule::adaptive`) with the embedded pairs DP5(4)-body and
 //! DOP853-body: exact motions followed to the tolerance, samples and events from the continuous extension (no step
 //! shortened; no evaluation added by DP5's, four per step by DOP853's, only in steps that hold a sample or an
 //! event), mechanisms' samples on their joints, the statistics, and every careless input refused with its reason.
 
 use std::sync::Arc;
 
+use dynamics::integrate::step_control::ToleranceError;
 use dynamics::simulate::{Event, Plan, Stop};
-use dynamics::step_control::ToleranceError;
 use dynamics::{
     simulate, Algebra, Body, Force, FreeBody, Method, Schedule, SimulationError, SplittingMethod, State, Tolerance,
 };

@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use dynamics::constraints::PathPoint;
-use dynamics::force_elements::{ForceElement, JointState, OfTime};
+use dynamics::mechanism::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::{
     simulate, Algebra, Body, Force, FreeBody, Integrator, JointKind, JointMethod, JointModel, Mechanism,
     MechanismError, Method, Reference, Schedule, Stabilisation, State,

@@ -7,7 +7,7 @@
 use std::sync::Arc;
 
 use dynamics::constraints::{Stabilisation, VirtualPower};
-use dynamics::force_elements::{ForceElement, OfTime};
+use dynamics::mechanism::force_elements::{ForceElement, OfTime};
 use dynamics::{
     simulate, Algebra, Body, Force, FreeBody, JointKind, JointMethod, JointModel, Mechanism, Method, Reference,
     Schedule, State, StepError, Stepper,

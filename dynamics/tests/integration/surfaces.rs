@@ -16,7 +16,7 @@
 use std::sync::Arc;
 
 use dynamics::constraints::{Constraint, Kinematics, RowBuffer, SurfacePin, VirtualPower};
-use dynamics::joints::{JointKind, JointModel};
+use dynamics::joint_models::{JointKind, JointModel};
 use dynamics::simulate::Sample;
 use dynamics::surfaces::{Sheets, Surface};
 use dynamics::{

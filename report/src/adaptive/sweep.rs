@@ -11,9 +11,9 @@
 use std::ops::ControlFlow;
 
 use dynamics::constraints::Stabilisation;
+use dynamics::integrate::step_control::Tolerance;
 use dynamics::integrate::Method;
 use dynamics::simulate::{simulate, Plan, Schedule, Simulation};
-use dynamics::step_control::Tolerance;
 use dynamics::{Algebra, Dynamics, Pga, State, StepStatistics};
 use reference::robots::RobotId;
 use reference::{SceneConstraint, SceneId};

@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use dynamics::integrate::Integrator;
-use dynamics::joint_integration::JointMethod;
+use dynamics::JointMethod;
 use nalgebra::Vector3;
 use plotters::coord::Shift;
 use plotters::prelude::*;

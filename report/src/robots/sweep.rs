@@ -11,8 +11,8 @@
 use std::collections::BTreeMap;
 
 use dynamics::integrate::{Integrator, Method};
-use dynamics::joint_integration::JointMethod;
 use dynamics::simulate::{simulate, Schedule};
+use dynamics::JointMethod;
 use dynamics::{Algebra, Cga, Pga};
 use reference::robots::RobotId;
 use scenarios::{build_robot, RobotScene};

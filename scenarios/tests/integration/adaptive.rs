@@ -1,4 +1,4 @@
-//! Adaptive steps (`dynamics::step_control`) against the references: the error achieved follows the tolerance
+//! Adaptive steps (`dynamics::integrate::step_control`) against the references: the error achieved follows the tolerance
 //! asked for on scene 1 (the free Dzhanibekov cuboid), on M1 (the double pendulum) and on M3 (the 64-link chain,
 //! over its first 2 s), the steps follow the chain's whip, and at equal error the adaptive runs of DOP853-body
 //! take no more steps' work than the best fixed step ([`scenarios::equal_error`]; the `adaptive` benchmark times

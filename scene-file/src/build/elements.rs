@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use dynamics::force_elements::{ForceElement, JointState, OfTime};
+use dynamics::mechanism::force_elements::{ForceElement, JointState, OfTime};
 use dynamics::{Algebra, BodyId, JointId, JointKind, Mechanism, Reference};
 use nalgebra::{DVector, Isometry3, Vector3};
 

@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use dynamics::constraints::Stabilisation;
+use dynamics::integrate::step_control::Tolerance;
 use dynamics::integrate::Integrator;
 use dynamics::simulate::Schedule;
-use dynamics::step_control::Tolerance;
 
 use super::layout::{Layout, Names};
 use super::robot::{CheckedRobot, LoadedRobot};

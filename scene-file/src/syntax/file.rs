@@ -32,7 +32,7 @@ pub struct SceneFile {
     #[serde(default)]
     pub dt: Option<f64>,
     /// The accuracy an adaptive run chooses its steps by, in place of `dt` (relative and absolute alike, in rad,
-    /// m, rad/s and m/s: `dynamics::step_control`); the integrator then defaults to `"dop853-body"`, the pair of
+    /// m, rad/s and m/s: `dynamics::integrate::step_control`); the integrator then defaults to `"dop853-body"`, the pair of
     /// order 8 (`"dp5-body"`, of order 5, is the other integrator with an error estimate).
     #[serde(default)]
     pub tolerance: Option<f64>,
