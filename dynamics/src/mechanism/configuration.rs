@@ -18,6 +18,7 @@ use crate::state::State;
 
 impl<A: Algebra> Mechanism<A> {
     /// The coordinates, built on first use after a change.
+    #[inline]
     pub(crate) fn coordinates(&self) -> Option<&JointSpace> {
         self.joint_space
             .get_or_init(|| JointSpace::new(&self.bodies, &self.joints))
@@ -45,6 +46,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(())
     }
 
+    #[inline]
     pub(super) fn world_body(&self, index: usize, state: &State<A>) -> WorldBody {
         let (position, rotation) = state.pose();
         let velocity = state.world_velocity(&self.bodies[index].body);
@@ -56,6 +58,7 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
+    #[inline]
     pub(super) fn parent_of(&self, group: &CoordinateGroup, bodies: &[WorldBody]) -> WorldBody {
         group.parent.map_or(WorldBody::world(), |p| bodies[p])
     }
@@ -104,6 +107,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(q)
     }
 
+    #[inline]
     pub(super) fn read_positions(
         &self,
         group: &CoordinateGroup,
@@ -132,6 +136,7 @@ impl<A: Algebra> Mechanism<A> {
         Ok(v)
     }
 
+    #[inline]
     pub(super) fn read_velocities(&self, group: &CoordinateGroup, bodies: &[WorldBody], out: &mut [f64]) {
         let parent = self.parent_of(group, bodies);
         let child = &bodies[group.body];
@@ -209,6 +214,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// [`Self::place`] at time `t`: a driven joint at its drive's value and rate then, whatever `q` and `v` hold
     /// (an integrator's copy of a driven coordinate carries its truncation error; the drive is exact).
+    #[inline]
     pub(super) fn place_at(
         &self,
         t: f64,
@@ -224,6 +230,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// The child of `group` placed by its joint positions and velocities relative to `parent`.
+    #[inline]
     fn place(
         &self,
         group: &CoordinateGroup,
@@ -342,6 +349,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The joint positions and velocities of `states` into the slices, angles unwrapped from `previous` (when it
     /// has the right length), which then holds these positions.
+    #[inline]
     pub(crate) fn read_joints_into(
         &self,
         states: &[State<A>],
@@ -370,6 +378,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The bodies' states at joint positions and velocities, the driven joints at their drives at `t`, into
     /// `states` (`placed` is scratch).
+    #[inline]
     pub(crate) fn write_joints_into(
         &self,
         t: f64,

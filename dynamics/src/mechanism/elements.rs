@@ -167,6 +167,7 @@ impl<A: Algebra> Mechanism<A> {
     /// Adds every force element's wrench on each body (body frame, moments about its centre of mass) into
     /// `external` and returns their non-conservative power (W); `actuators` includes the joint forces and
     /// controllers. `kinematics(i)` is body i's.
+    #[inline]
     pub(crate) fn apply_elements<'k>(
         &self,
         t: f64,
@@ -291,6 +292,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Applies generalised forces to joint `joint`'s coordinates: `+W` on the child, `−W` on the parent; returns
     /// their power `Σ τ q̇`.
+    #[inline]
     fn apply_joint<'k>(
         &self,
         joint: usize,
@@ -317,6 +319,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// A controller's generalised forces on every coordinate group, from the joint-space state at the bodies'
     /// kinematics; returns their power.
+    #[inline]
     fn apply_controller<'k>(
         &self,
         t: f64,

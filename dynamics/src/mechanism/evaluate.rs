@@ -51,6 +51,7 @@ impl<A: Algebra> Mechanism<A> {
     /// The world wrench of the external forces on body `index` (for world-momentum rates), at its kinematics:
     /// gravity acts along the line through the centre of mass the frame already holds (the image of the origin,
     /// the same point [`Force::wrench`] finds by moving the origin with the motor).
+    #[inline]
     pub(super) fn external_wrench(
         &self,
         index: usize,
@@ -72,6 +73,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The external wrench on body `index` in its own frame (gravity rotated into it directly), and the power of
     /// its forces other than gravity (gravity's is the rate of its potential, in the energy).
+    #[inline]
     pub(super) fn external_body_wrench(
         &self,
         index: usize,
@@ -108,6 +110,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The power of the joints' reactions in `workspace` (`Σ yᵢ·xᵢ`, body frames): a drive's work, and for the
     /// joints that prescribe nothing zero up to the constraint drift (docs/mechanisms.md §M8).
+    #[inline]
     pub(crate) fn reaction_power(&self, workspace: &MechanismWorkspace<A>) -> f64 {
         workspace
             .reactions
@@ -119,6 +122,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Every body's kinematics from its motor and body momentum; with `dynamics`, also its external wrench and
     /// free acceleration `H⁻¹(Ḃ × Ω_b + S_b)` (theory §5).
+    #[inline]
     pub(super) fn body_kinematics(
         &self,
         t: f64,
@@ -137,6 +141,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Every body's external wrench (its forces and the force elements'; `workspace.power` the elements' power) and,
     /// for the constraint-space solve, its free acceleration, at the kinematics in `workspace`.
+    #[inline]
     pub(super) fn body_forces(
         &self,
         t: f64,
@@ -185,6 +190,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Every joint's reduced rows at the bodies' kinematics.
     /// Every joint's rows for `purpose` at the bodies' kinematics in `workspace`.
+    #[inline]
     pub(super) fn joint_rows(
         &self,
         t: f64,
@@ -211,6 +217,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Assembles and factors `K`, solves it for `condition`'s right-hand sides and accumulates the reactions
     /// `Jᵀλ` per body (wrench coordinates, body frames) into `workspace.reactions`.
+    #[inline]
     pub(super) fn solve_reactions(
         &self,
         workspace: &mut MechanismWorkspace<A>,
@@ -222,6 +229,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Assembles and factors `K` at the joints' current rows.
+    #[inline]
     pub(super) fn factor_system(&self, workspace: &mut MechanismWorkspace<A>) -> Result<(), ConstraintError> {
         workspace.stage_factors = false;
         let MechanismWorkspace {
@@ -245,6 +253,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Solves the factored `K` for `condition`'s right-hand sides and accumulates the reactions `Jᵀλ` per body
     /// into `workspace.reactions`.
+    #[inline]
     pub(super) fn solve_factored(
         &self,
         workspace: &mut MechanismWorkspace<A>,
@@ -283,6 +292,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The equations of motion at the given motors and body momenta: every body's kinematics and reaction
     /// (docs/mechanisms.md §M4: `K λ = z`, reactions `Jᵀλ`).
+    #[inline]
     pub(super) fn evaluate(
         &self,
         t: f64,
@@ -329,6 +339,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// [`Mechanism::evaluate`] at the bodies' states.
+    #[inline]
     pub(super) fn evaluate_states(
         &self,
         t: f64,
@@ -354,6 +365,7 @@ impl<A: Algebra> Mechanism<A> {
     /// The articulated solve (docs/mechanisms.md §M7) on the workspace's body kinematics and external wrenches,
     /// with the joints' reactions when `reactions` is set; fails with the body whose articulated inertia is not
     /// positive definite.
+    #[inline]
     pub(super) fn solve_articulated(
         &self,
         articulation: &Articulation,
@@ -382,6 +394,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// An error naming the joints at the first body whose reaction is not finite.
+    #[inline]
     fn check_reactions(&self, t: f64, workspace: &MechanismWorkspace<A>) -> Result<(), ConstraintError> {
         for (i, reaction) in workspace.reactions.iter().enumerate() {
             if !reaction.iter().all(|y| y.is_finite()) {
@@ -393,6 +406,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Joint j's multipliers in the solved tree and loop vectors.
+    #[inline]
     fn multipliers<'v>(&self, joint: usize, rank: usize, tree: &'v [f64], loops: &'v [f64]) -> &'v [f64] {
         match self.topology.slots[joint] {
             Slot::Tree { offset, .. } => &tree[offset..offset + rank],
@@ -401,6 +415,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// An error unless `got` (the length of a slice of states) is the number of bodies.
+    #[inline]
     pub(super) fn check_count(&self, what: &'static str, got: usize) -> Result<(), ConstraintError> {
         if got == self.bodies.len() {
             Ok(())

@@ -74,6 +74,7 @@ impl<A: Algebra> Mechanism<A> {
     /// `t`: the bodies placed by forward kinematics, their forces, the articulated solve, and each joint's shares of
     /// the accelerations (docs/mechanisms.md §M7). The evaluation of the methods that step in joint coordinates;
     /// it needs the articulated solve. `workspace.power` gets the force elements' power.
+    #[inline]
     pub(crate) fn joint_rates_at(
         &self,
         t: f64,

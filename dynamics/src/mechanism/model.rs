@@ -161,6 +161,7 @@ pub(super) enum BodyTerms {
 }
 
 impl<A: Algebra> Mechanism<A> {
+    #[inline]
     pub(super) fn joint_rank(joint: &Joint<A>) -> usize {
         joint
             .reaction_basis

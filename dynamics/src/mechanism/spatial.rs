@@ -106,6 +106,7 @@ impl Inertia6 {
     }
 
     /// `I⁻¹ f` by Cholesky, or `None` if I is not positive definite.
+    #[inline]
     pub fn solve(&self, f: &Vector6<f64>) -> Option<Vector6<f64>> {
         self.matrix().cholesky().map(|factor| factor.solve(f))
     }

@@ -37,6 +37,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     /// In the body frames; the world momentum rate is the world external wrench (as for an unconstrained body)
     /// plus the reaction moved to the world.
+    #[inline]
     fn rates(
         &self,
         t: f64,
@@ -65,6 +66,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
 
     /// In the body frames throughout: no world momentum is built (unless a custom force asks for it) and the
     /// reactions are not moved to the world and back.
+    #[inline]
     fn body_rates(
         &self,
         t: f64,
@@ -100,6 +102,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         }
     }
 
+    #[inline]
     fn after_step(
         &self,
         t: f64,
@@ -120,10 +123,12 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         }
     }
 
+    #[inline]
     fn energy(&self, states: &[State<A>]) -> f64 {
         self.total_energy(states)
     }
 
+    #[inline]
     fn power(&self, workspace: &MechanismWorkspace<A>) -> f64 {
         workspace.power
     }
@@ -140,6 +145,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         self.coordinates().map(JointSpace::layout)
     }
 
+    #[inline]
     fn read_joints(
         &self,
         states: &[State<A>],
@@ -151,6 +157,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         self.read_joints_into(states, positions, velocities, &mut workspace.previous_positions)
     }
 
+    #[inline]
     fn write_joints(
         &self,
         t: f64,
@@ -163,6 +170,7 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         self.write_joints_into(t, positions, velocities, states, &mut workspace.placed)
     }
 
+    #[inline]
     fn joint_rates(
         &self,
         t: f64,
