@@ -9,20 +9,110 @@
 //! * a point that does not bounce away is **held** on the plane by a row `n · a_p = 0` of the articulated solve,
 //!   whose multiplier is the plane's push; it is released where that push would pull.
 //!
-//! Contacts are frictionless: the plane pushes along its normal only.
+//! The point may be a sphere's centre ([`PlaneContact::sphere`]): the sphere stays above the plane, touching it at
+//! its lowest point. With Coulomb friction ([`PlaneContact::with_friction`]) a held contact **slides**, the plane's
+//! friction opposing the slip of the touching point with μ times the push, or **sticks**, two more rows holding the
+//! slip at zero while the friction force stays inside the cone; the stop of a slide and the slip of a stick are
+//! located transitions as the impacts are (docs/contacts.md "Friction").
 
 use nalgebra::{Unit, Vector3};
 
 use crate::constraints::ConstraintError;
 pub use crate::state::LARGEST_COORDINATE;
 
-/// A plane below a body point: the point `p` (body coordinates) is kept where `n · p ≥ offset` (world, m).
+/// A plane below a body point: the point `p` (body coordinates) is kept where `n · p ≥ offset` (world, m); or below
+/// a sphere of radius r about that point, kept where `n · p ≥ offset + r`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaneContact {
     point: Vector3<f64>,
+    radius: f64,
     normal: Unit<Vector3<f64>>,
     offset: f64,
     restitution: f64,
+    friction: Friction,
+}
+
+/// Coulomb's friction between a contact and its plane: the force opposing a slip has `kinetic` times the push, and a
+/// contact at rest sticks while the force that holds it is at most `static` times the push (`static ≥ kinetic ≥
+/// 0`). Isotropic: the same in every direction of the plane.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Friction {
+    kinetic: f64,
+    stiction: f64,
+}
+
+/// The largest friction coefficient accepted: beyond it a contact sticks for any push the simulation can represent.
+pub const MAX_FRICTION: f64 = 1e6;
+
+impl Friction {
+    /// No friction: the plane pushes along its normal only.
+    pub const NONE: Friction = Friction {
+        kinetic: 0.0,
+        stiction: 0.0,
+    };
+
+    /// Kinetic coefficient `kinetic` and static coefficient `stiction`, each finite, in `[0, MAX_FRICTION]`, and
+    /// `stiction ≥ kinetic`.
+    ///
+    /// ```
+    /// use dynamics::contacts::Friction;
+    ///
+    /// let rubber = Friction::new(0.8, 1.0)?;
+    /// assert_eq!((rubber.kinetic(), rubber.stiction()), (0.8, 1.0));
+    /// assert!(Friction::new(0.5, 0.4).is_err()); // static below kinetic
+    /// assert!(Friction::new(f64::NAN, 0.4).is_err());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn new(kinetic: f64, stiction: f64) -> Result<Self, ConstraintError> {
+        let refuse = |reason: String| ConstraintError::InvalidParameter {
+            name: "friction".to_owned(),
+            reason,
+        };
+        for (what, value) in [("kinetic", kinetic), ("static", stiction)] {
+            if !(0.0..=MAX_FRICTION).contains(&value) {
+                return Err(refuse(format!(
+                    "the {what} coefficient must be finite and in [0, {MAX_FRICTION:e}], got {value}"
+                )));
+            }
+        }
+        if stiction < kinetic {
+            return Err(refuse(format!(
+                "the static coefficient {stiction} is below the kinetic one {kinetic}: a contact at rest would hold \
+                 less than a sliding one pulls"
+            )));
+        }
+        Ok(Friction { kinetic, stiction })
+    }
+
+    /// The same coefficient μ ≥ 0 for sliding and for sticking.
+    ///
+    /// ```
+    /// use dynamics::contacts::Friction;
+    ///
+    /// let steel_on_steel = Friction::coulomb(0.6)?;
+    /// assert_eq!((steel_on_steel.kinetic(), steel_on_steel.stiction()), (0.6, 0.6));
+    /// assert!(Friction::coulomb(-0.1).is_err());
+    /// assert!(!Friction::coulomb(0.0)?.is_some());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn coulomb(mu: f64) -> Result<Self, ConstraintError> {
+        Friction::new(mu, mu)
+    }
+
+    /// The kinetic coefficient: a slide's friction force over the push.
+    pub fn kinetic(&self) -> f64 {
+        self.kinetic
+    }
+
+    /// The static coefficient: the largest friction force over the push a sticking contact holds.
+    pub fn stiction(&self) -> f64 {
+        self.stiction
+    }
+
+    /// Whether there is any friction.
+    pub fn is_some(&self) -> bool {
+        self.stiction > 0.0
+    }
 }
 
 /// Contact points within this height (m) of their planes at an impact take part in it: a block landing flat meets
@@ -66,9 +156,46 @@ impl PlaneContact {
         }
         Ok(PlaneContact {
             point,
+            radius: 0.0,
             normal: Unit::new_unchecked(normal / length),
             offset: offset / length,
             restitution: 0.0,
+            friction: Friction::NONE,
+        })
+    }
+
+    /// A sphere of radius `radius` (m) about the body point `centre` (m, the body's frame), kept on the side of the
+    /// plane `normal · x = offset` that `normal` points to: it touches the plane at its lowest point, `centre − r n`,
+    /// where friction acts; the radius must be positive, finite and within [`LARGEST_COORDINATE`].
+    ///
+    /// ```
+    /// use dynamics::contacts::{Friction, PlaneContact};
+    /// use nalgebra::Vector3;
+    ///
+    /// // A foot: a 2 cm sphere at the end of a leg, on a floor with friction 0.8.
+    /// let foot = PlaneContact::sphere(Vector3::new(0.0, 0.0, -0.16), 0.02, Vector3::z(), 0.0)?
+    ///     .with_friction(Friction::coulomb(0.8)?);
+    /// assert!((foot.height(&Vector3::new(0.0, 0.0, 0.05)) - 0.03).abs() < 1e-15); // the centre 5 cm up: 3 cm clear
+    /// assert!(PlaneContact::sphere(Vector3::zeros(), -0.1, Vector3::z(), 0.0).is_err());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn sphere(
+        centre: Vector3<f64>,
+        radius: f64,
+        normal: Vector3<f64>,
+        offset: f64,
+    ) -> Result<Self, ConstraintError> {
+        if !(radius > 0.0 && radius <= LARGEST_COORDINATE) {
+            return Err(ConstraintError::InvalidParameter {
+                name: "plane contact".to_owned(),
+                reason: format!(
+                    "a sphere's radius must be positive, finite and within {LARGEST_COORDINATE:e} m, got {radius}"
+                ),
+            });
+        }
+        Ok(PlaneContact {
+            radius,
+            ..PlaneContact::new(centre, normal, offset)?
         })
     }
 
@@ -84,9 +211,24 @@ impl PlaneContact {
         Ok(PlaneContact { restitution, ..self })
     }
 
-    /// The body point (m, the body's frame).
+    /// The same contact with Coulomb friction ([`Friction`]).
+    pub fn with_friction(self, friction: Friction) -> Self {
+        PlaneContact { friction, ..self }
+    }
+
+    /// The body point (m, the body's frame): the point kept above the plane, or the sphere's centre.
     pub fn point(&self) -> Vector3<f64> {
         self.point
+    }
+
+    /// The sphere's radius (m); zero for a point.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The friction between the contact and its plane.
+    pub fn friction(&self) -> Friction {
+        self.friction
     }
 
     /// The plane's unit normal (world), pointing to the side the point is kept on.
@@ -104,8 +246,9 @@ impl PlaneContact {
         self.restitution
     }
 
-    /// The height `n · x − d` (m) of the world point `x` above the plane: negative below it.
+    /// The height (m) above the plane of the contact with its point at the world point `x`: `n · x − d` for a point,
+    /// `n · x − d − r` for a sphere about x (its lowest point's); negative below it.
     pub fn height(&self, x: &Vector3<f64>) -> f64 {
-        self.normal.dot(x) - self.offset
+        self.normal.dot(x) - self.offset - self.radius
     }
 }

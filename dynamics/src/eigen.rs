@@ -1,5 +1,13 @@
-//! The symmetric eigendecomposition by cyclic Jacobi rotations: a body's principal axes from its inertia tensor
-//! ([`crate::body`]), and the rank of a joint's rows (`mechanism::reduce`).
+//! Decompositions by Jacobi rotations: the symmetric eigendecomposition (a body's principal axes from its inertia
+//! tensor, [`crate::body`], and the rank of a joint's rows, `mechanism::reduce`) and the singular value decomposition
+//! (the least-norm multipliers of rows that repeat each other, and the loads they balance among themselves).
+//!
+//! Jacobi resolves small eigen- and singular values to high relative accuracy, which rank decisions need; nalgebra's
+//! `SymmetricEigen` mis-pairs eigenvalues and eigenvectors for some matrices (nalgebra issue #1109, open) and its
+//! `SVD` of some rank-deficient square matrices recomposes to a different matrix (issue #1172, open: a 4 × 4 Gram
+//! matrix of a box's corners with friction came back 2e-2 off).
+
+use nalgebra::{DMatrix, DVector};
 
 /// Eigenvalues and orthonormal eigenvectors (columns, column-major in `matrix`'s place) of a symmetric `n × n`
 /// matrix (column-major; `work` holds n² numbers), by cyclic Jacobi rotations until the off-diagonal part is below round-off of the
@@ -72,8 +80,90 @@ pub(crate) fn symmetric_eigen(matrix: &mut [f64], values: &mut [f64], work: &mut
     }
 }
 
-/// Sweeps after which [`symmetric_eigen`] stops even if not converged (it converges in well under 10).
+/// Sweeps after which [`symmetric_eigen`] and [`SingularValues::of`] stop even if not converged (they converge in
+/// well under 10).
 const JACOBI_SWEEPS: usize = 30;
+
+/// The singular value decomposition `A = U Σ Vᵀ` of an m × n matrix by one-sided Jacobi rotations (Hestenes): plane
+/// rotations V of A's columns until every two are orthogonal, so that `A V = U Σ` has columns `σ_j u_j`.
+pub(crate) struct SingularValues {
+    /// `A V`: column j is `σ_j u_j`.
+    scaled_left: DMatrix<f64>,
+    /// V (n × n, orthogonal): column j the right singular vector of `σ_j`.
+    right: DMatrix<f64>,
+    /// `σ_j`, in the order of the columns (not sorted).
+    values: DVector<f64>,
+}
+
+impl SingularValues {
+    /// The decomposition of `matrix`.
+    pub(crate) fn of(matrix: &DMatrix<f64>) -> Self {
+        let n = matrix.ncols();
+        let mut a = matrix.clone();
+        let mut v = DMatrix::identity(n, n);
+        for _ in 0..JACOBI_SWEEPS {
+            let mut rotated = false;
+            for p in 0..n {
+                for q in p + 1..n {
+                    let alpha = a.column(p).norm_squared();
+                    let beta = a.column(q).norm_squared();
+                    let gamma = a.column(p).dot(&a.column(q));
+                    if gamma == 0.0 || gamma.abs() <= f64::EPSILON * (alpha * beta).sqrt() {
+                        continue;
+                    }
+                    rotated = true;
+                    // The rotation by φ making columns p and q orthogonal: cot 2φ = (β − α)/(2γ), t = tan φ the
+                    // smaller root of t² + 2t cot 2φ − 1 = 0.
+                    let zeta = (beta - alpha) / (2.0 * gamma);
+                    let t = zeta.signum() / (zeta.abs() + (zeta * zeta + 1.0).sqrt());
+                    let c = 1.0 / (t * t + 1.0).sqrt();
+                    let s = c * t;
+                    for m in [&mut a, &mut v] {
+                        for r in 0..m.nrows() {
+                            let (x, y) = (m[(r, p)], m[(r, q)]);
+                            m[(r, p)] = c * x - s * y;
+                            m[(r, q)] = s * x + c * y;
+                        }
+                    }
+                }
+            }
+            if !rotated {
+                break;
+            }
+        }
+        let values = DVector::from_iterator(n, a.column_iter().map(|column| column.norm()));
+        Self {
+            scaled_left: a,
+            right: v,
+            values,
+        }
+    }
+
+    /// The largest singular value.
+    pub(crate) fn largest(&self) -> f64 {
+        self.values.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// The least-norm least-squares solution of `A x = b`, singular values at or below `threshold` taken as zero:
+    /// `x = Σ v_j (σ_j u_j · b) / σ_j²` over the others.
+    pub(crate) fn solve(&self, rhs: &DVector<f64>, threshold: f64) -> DVector<f64> {
+        let mut x = DVector::zeros(self.right.nrows());
+        for (j, &sigma) in self.values.iter().enumerate() {
+            if sigma > threshold {
+                x += self.right.column(j) * (self.scaled_left.column(j).dot(rhs) / (sigma * sigma));
+            }
+        }
+        x
+    }
+
+    /// The right singular vectors of singular values at or below `threshold`: the loads `A` does not see.
+    pub(crate) fn null_vectors(&self, threshold: f64) -> Vec<DVector<f64>> {
+        (self.values.iter().enumerate())
+            .filter(|&(_, &sigma)| sigma <= threshold)
+            .map(|(j, _)| self.right.column(j).into_owned())
+            .collect()
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -108,6 +198,57 @@ mod tests {
                         assert!((orthogonal - if i == j { 1.0 } else { 0.0 }).abs() < 1e-13);
                     }
                 }
+            }
+        }
+    }
+
+    /// One-sided Jacobi recomposes pseudo-random matrices, rank-deficient ones included, and its least-norm solution
+    /// solves consistent systems to round-off, where nalgebra's SVD of the same 4 × 4 matrix is 2e-2 off.
+    #[test]
+    fn jacobi_singular_values_solve_rank_deficient_systems() {
+        let gram = DMatrix::from_row_slice(
+            4,
+            4,
+            &[
+                4.299999999999998,
+                1.299999999999999,
+                -1.7000000000000015,
+                1.2999999999999967,
+                1.300000000000002,
+                4.300000000000001,
+                1.3000000000000023,
+                -1.6999999999999966,
+                -2.299999999999997,
+                0.7000000000000011,
+                3.700000000000001,
+                0.7000000000000028,
+                0.6999999999999981,
+                -2.3000000000000007,
+                0.6999999999999975,
+                3.6999999999999957,
+            ],
+        );
+        let rhs = DVector::from_element(4, 9.371850958322199);
+        let svd = SingularValues::of(&gram);
+        let x = svd.solve(&rhs, 1e-12 * svd.largest());
+        assert!((&gram * &x - &rhs).amax() < 1e-13, "{x}");
+        assert_eq!(svd.null_vectors(1e-12 * svd.largest()).len(), 1);
+        let mut uniform = crate::test_random::uniform(0x9e37_79b9_7f4a_7c15_u64);
+        for (m, n, rank) in [(3, 3, 3), (4, 4, 3), (6, 4, 2), (3, 7, 3), (9, 9, 5)] {
+            let left = DMatrix::from_fn(m, rank, |_, _| uniform() - 0.5);
+            let right = DMatrix::from_fn(rank, n, |_, _| uniform() - 0.5);
+            let matrix = left * right;
+            let svd = SingularValues::of(&matrix);
+            let recomposed = &svd.scaled_left * svd.right.transpose();
+            assert!((recomposed - &matrix).amax() < 1e-14, "{m} × {n}");
+            let threshold = 1e-12 * svd.largest();
+            assert_eq!(svd.null_vectors(threshold).len(), n - rank, "{m} × {n} of rank {rank}");
+            let consistent = &matrix * DVector::from_fn(n, |_, _| uniform() - 0.5);
+            let x = svd.solve(&consistent, threshold);
+            assert!((&matrix * &x - &consistent).amax() < 1e-13, "{m} × {n}");
+            // Least norm: no component along the null space.
+            for null in svd.null_vectors(threshold) {
+                assert!(null.dot(&x).abs() < 1e-12);
             }
         }
     }

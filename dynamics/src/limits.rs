@@ -154,6 +154,17 @@ pub enum LimitChange {
         /// The bound left.
         bound: Bound,
     },
+    /// A held contact's slide stopped and its friction holds it: it sticks (docs/contacts.md "Friction").
+    Stuck {
+        /// The slip left at the located stop (m/s), removed as the contact sticks.
+        slip_before: f64,
+    },
+    /// A held contact starts to slide (or a slide that stopped slides on), its slip along `direction` (world, unit):
+    /// the friction force it needed left the cone.
+    Slipped {
+        /// The direction of the slip, by maximal dissipation.
+        direction: nalgebra::Vector3<f64>,
+    },
 }
 
 /// What `transitions` changed the energy by up to and including time `t` (J): the sum of their

@@ -79,6 +79,11 @@ pub trait Dynamics<A: Algebra> {
         workspace: &mut Self::Workspace,
     ) -> Result<(), ConstraintError>;
 
+    /// Called before every step from `states` (each attempt and each partial step, all from the same start): by
+    /// default nothing. A mechanism renews the direction its sliding contacts' slips are watched along here
+    /// (docs/contacts.md "Friction").
+    fn begin_step(&self, _t: f64, _states: &[State<A>], _workspace: &mut Self::Workspace) {}
+
     /// Called after every step: by default, renormalise the motors (theory §2, §10). Constrained systems also
     /// project onto the constraint manifold here.
     fn after_step(

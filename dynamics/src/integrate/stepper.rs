@@ -251,6 +251,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         if dt * rate > MAX_FEEDBACK_STEP && matches!(self.integrator, Integrator::General(_)) {
             return Err(StepError::FeedbackStepTooLarge { t, dt, rate });
         }
+        self.dynamics.begin_step(t, states, &mut self.workspace);
         let result = match self.attempt(t, states, dt) {
             Err(StepError::Constraint { error, .. }) => Err(self.diagnose(t, states, dt, error)),
             result => result,

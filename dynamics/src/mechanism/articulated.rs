@@ -10,9 +10,10 @@
 //! `V = (ω; v_o)` (v_o the velocity of the body point at o), forces `F = (n_o; f)` (moment about o), the two paired
 //! by the power `V·F`: the (ω; v), (τ; f) coordinates of §M1 with the moments taken about o.
 
-use nalgebra::{Matrix3, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
+use crate::eigen::SingularValues;
 use crate::joint_models::{JointAxis, JointModel, Motion, Side};
 use crate::mechanism::joint_rows::{BodyKinematics, Joint};
 use crate::mechanism::parts::MechanismBody;
@@ -125,13 +126,17 @@ pub(crate) enum Row {
         leader: usize,
         multiplier: f64,
     },
-    /// `n · a_p = 0`: the acceleration along the world direction `normal` of the point `point` of `body` (body
-    /// coordinates, from its centre of mass): a contact held on its plane (docs/contacts.md). Its unit multiplier is
-    /// a unit force along n through the point.
+    /// `d · a = 0` for a contact held on its plane (docs/contacts.md): the acceleration along the world direction
+    /// `direction` of the point `point` of `body` (body coordinates, from its centre of mass; a sphere's centre), its
+    /// lever arm taken at the touching point `point + contact` (`contact` a world offset: `−r n` for a sphere, zero
+    /// for a vertex). Its unit multiplier is the force `force` (world) through the touching point: the direction
+    /// itself, or a sliding contact's `n − μ ŝ` (docs/contacts.md "Friction").
     Point {
         body: usize,
         point: Vector3<f64>,
-        normal: Vector3<f64>,
+        contact: Vector3<f64>,
+        direction: Vector3<f64>,
+        force: Vector3<f64>,
     },
 }
 
@@ -139,28 +144,34 @@ pub(crate) enum Row {
 /// contacts that repeat others: the least-norm multipliers share the load among them.
 pub(super) const REPEATED_ROW: f64 = 1e-12;
 
-/// A point row at one evaluation: its unit wrench `(r × n; n)` about o, and the point's offset r from o.
+/// A point row at one evaluation: the point's offset r from o, the touching point's (the lever arm), the direction
+/// held and the force of a unit multiplier.
 #[derive(Clone, Copy, Debug)]
 struct PointRow {
     body: usize,
     offset: Vector3<f64>,
-    normal: Vector3<f64>,
+    lever: Vector3<f64>,
+    direction: Vector3<f64>,
+    force: Vector3<f64>,
 }
 
 impl PointRow {
+    /// The unit multiplier's wrench `(l × f; f)` about o.
     fn wrench(&self) -> Vector6<f64> {
-        join(self.offset.cross(&self.normal), self.normal)
+        join(self.lever.cross(&self.force), self.force)
     }
 
-    /// `n · a_p` from the body's spatial acceleration `a` (about o), with the velocity product `ω × v_p` if the
-    /// body's spatial velocity is given (a response to a unit force has none).
+    /// `d · a` from the body's spatial acceleration `a` (about o) at the lever arm, with the velocity product
+    /// `ω × v_p` of the point if the body's spatial velocity is given (a response to a unit force has none). For a
+    /// sphere the touching point moves with the centre, not with the body, so its slip changes at `a_o + α × l + ω
+    /// × v_c` (docs/contacts.md "Friction"); for a vertex the two points are one.
     fn rate(&self, a: &Vector6<f64>, velocity: Option<&Vector6<f64>>) -> f64 {
-        let mut point = linear(a) + angular(a).cross(&self.offset);
+        let mut point = linear(a) + angular(a).cross(&self.lever);
         if let Some(v) = velocity {
             let omega = angular(v);
             point += omega.cross(&(linear(v) + omega.cross(&self.offset)));
         }
-        self.normal.dot(&point)
+        self.direction.dot(&point)
     }
 }
 
@@ -295,6 +306,22 @@ fn invert_positive_definite(m: &mut [f64; 36], n: usize) -> bool {
 }
 
 impl ArticulatedScratch {
+    /// The last solve's responses: column k every body's spatial acceleration (stacked) under row k's unit multiplier.
+    /// A combination of multipliers this maps to zero moves nothing: a load that the rows balance among themselves.
+    /// (Padded with zero rows to at least as many rows as columns, so that its SVD gives every right singular
+    /// vector.)
+    pub fn responses(&self) -> DMatrix<f64> {
+        let rows = self.multipliers.len();
+        let bodies = self.bodies.len();
+        DMatrix::from_fn((6 * bodies).max(rows), rows, |i, k| {
+            if i < 6 * bodies {
+                self.responses[k][i / 6][i % 6]
+            } else {
+                0.0
+            }
+        })
+    }
+
     /// The joint-space rows' multipliers of the last solve, in the rows' order.
     pub fn multipliers(&self) -> &[f64] {
         &self.multipliers
@@ -431,10 +458,22 @@ impl Articulation {
         scratch.points.clear();
         scratch.points.extend(rows.iter().map(|row| match *row {
             Row::Joints { .. } => None,
-            Row::Point { body, point, normal } => {
+            Row::Point {
+                body,
+                point,
+                contact,
+                direction,
+                force,
+            } => {
                 let frame = &bodies[body].kinematics.frame;
                 let offset = frame.position + frame.rotation * point - origin;
-                Some(PointRow { body, offset, normal })
+                Some(PointRow {
+                    body,
+                    offset,
+                    lever: offset + contact,
+                    direction,
+                    force,
+                })
             }
         }));
         for (k, row) in rows.iter().enumerate() {
@@ -495,8 +534,8 @@ impl Articulation {
                 scratch.responses[k][body] = acceleration;
             }
         }
-        let mut gram = nalgebra::DMatrix::zeros(r, r);
-        let mut rhs = nalgebra::DVector::zeros(r);
+        let mut gram = DMatrix::zeros(r, r);
+        let mut rhs = DVector::zeros(r);
         for (i, (row, point)) in rows.iter().zip(&scratch.points).enumerate() {
             // Row i's acceleration from joint accelerations `rates` or, for a point, a body's spatial acceleration.
             let joint_rate = |rates: &dyn Fn(usize) -> f64| match *row {
@@ -531,10 +570,9 @@ impl Articulation {
         let lambda = if scratch.points.iter().all(Option::is_none) {
             gram.cholesky().ok_or(())?.solve(&rhs)
         } else {
+            // Not symmetric once sliding friction tilts a row's force from its direction.
             let largest = gram.diagonal().amax();
-            gram.svd(true, true)
-                .solve(&rhs, REPEATED_ROW * largest)
-                .map_err(|_| ())?
+            SingularValues::of(&gram).solve(&rhs, REPEATED_ROW * largest)
         };
         if !lambda.iter().all(|x| x.is_finite()) {
             return Err(());

@@ -59,6 +59,7 @@ impl<A: Algebra> Mechanism<A> {
             joint_space: std::sync::OnceLock::new(),
             couplings: Vec::new(),
             coupling_rows: Vec::new(),
+            frictional: Vec::new(),
             limits: Vec::new(),
             contacts: Vec::new(),
             elements: Vec::new(),

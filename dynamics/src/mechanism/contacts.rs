@@ -6,7 +6,6 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::PlaneContact;
-use crate::mechanism::articulated::Row;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::Mechanism;
 use crate::mechanism::parts::{BodyId, Contact};
@@ -59,6 +58,9 @@ impl<A: Algebra> Mechanism<A> {
             .into());
         }
         let point = self.bodies[index].frame.transform_point(&contact.point().into()).coords;
+        if contact.friction().is_some() {
+            self.frictional.push(self.contacts.len());
+        }
         self.contacts.push(Contact {
             name,
             body: index,
@@ -113,16 +115,6 @@ impl<A: Algebra> Mechanism<A> {
         (contact.contact.height(&point), contact.contact.normal().dot(&speed))
     }
 
-    /// The articulated solve's row holding contact `index` on its plane.
-    pub(super) fn contact_row(&self, index: usize) -> Row {
-        let contact = &self.contacts[index];
-        Row::Point {
-            body: contact.body,
-            point: contact.point,
-            normal: contact.contact.normal(),
-        }
-    }
-
     /// The rows `c` of the contacts `indices` in joint space at `states`: `c · v` is the contact's normal speed at
     /// joint velocities v (the unit force along n through the point, as a generalised force).
     pub(super) fn contact_rows(&self, states: &[State<A>], indices: &[usize]) -> Result<DMatrix<f64>, ConstraintError> {
@@ -141,15 +133,15 @@ impl<A: Algebra> Mechanism<A> {
             })
     }
 
-    /// Contacts `indices` placed on their planes and, with `stop`, stopped there, the `equalities` rows (joint space)
-    /// kept (docs/contacts.md "Projection"): Newton steps `δ = M⁻¹Cᵀ(CM⁻¹Cᵀ)⁺(−h)` on the joint positions
-    /// (retracted onto the quaternions) until the heights h are within [`ON_PLANE`], then the normal speeds removed
-    /// by the same map.
+    /// Contacts `indices` placed on their planes and, with `stop`, stopped there, the slips of the `sticking` ones
+    /// with them, the `equalities` rows (joint space) kept (docs/contacts.md "Projection"): Newton steps
+    /// `δ = M⁻¹Cᵀ(CM⁻¹Cᵀ)⁺(−h)` on the joint positions (retracted onto the quaternions) until the heights h are within
+    /// [`ON_PLANE`], then the normal speeds and the sticking slips removed by the same map.
     pub(super) fn place_contacts(
         &self,
         t: f64,
         states: &mut [State<A>],
-        (indices, stop): (&[usize], bool),
+        (indices, sticking, stop): (&[usize], &[usize], bool),
         equalities: &DMatrix<f64>,
         previous: &mut Vec<f64>,
     ) -> Result<(), ConstraintError> {
@@ -180,9 +172,9 @@ impl<A: Algebra> Mechanism<A> {
             previous.clone_from(&q);
             return Ok(());
         }
-        let rows = self.contact_rows(states, indices)?;
+        let rows = stack(&[&self.contact_rows(states, indices)?, &self.slip_rows(states, sticking)?]);
         let speeds = &rows * DVector::from_column_slice(&v);
-        residual.fill(0.0);
+        let mut residual = DVector::zeros(rows.nrows() + equalities.nrows());
         speeds.iter().enumerate().for_each(|(k, u)| residual[k] = -u);
         let change = self.metric_correction(t, states, &rows, equalities, &residual)?;
         v.iter_mut().zip(change.iter()).for_each(|(v, dv)| *v += dv);
@@ -198,3 +190,20 @@ const NEWTON_STEPS: usize = 4;
 
 /// Heights (m) within this of the plane count as on it (or within a few ulps of the point's coordinates, if more).
 const ON_PLANE: f64 = 1e-14;
+
+/// Rows stacked one matrix above the next (all with the same columns).
+pub(super) fn stack(blocks: &[&DMatrix<f64>]) -> DMatrix<f64> {
+    let columns = blocks.iter().map(|b| b.ncols()).max().unwrap_or(0);
+    let total = blocks.iter().map(|b| b.nrows()).sum();
+    let mut stacked = DMatrix::zeros(total, columns);
+    let mut at = 0;
+    for block in blocks {
+        if block.nrows() > 0 {
+            stacked
+                .view_mut((at, 0), (block.nrows(), block.ncols()))
+                .copy_from(block);
+        }
+        at += block.nrows();
+    }
+    stacked
+}

@@ -306,7 +306,9 @@ impl<A: Algebra> Mechanism<A> {
             BodyTerms::FreeAccelerations
         };
         self.body_kinematics(t, motors, body_momenta, workspace, terms)?;
-        if self.joints.is_empty() && workspace.rows.is_empty() {
+        // Free bodies with nothing held need no solve; with contacts they get one all the same, as the transitions read
+        // the accelerations of touching points from it.
+        if self.joints.is_empty() && workspace.rows.is_empty() && self.contacts.is_empty() {
             workspace.reactions.iter_mut().for_each(|y| *y = [0.0; 6]);
             return Ok(());
         }
@@ -373,6 +375,7 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
         reactions: bool,
     ) -> Result<(), usize> {
+        self.tilt_sliding_rows(workspace);
         let MechanismWorkspace {
             bodies,
             external,

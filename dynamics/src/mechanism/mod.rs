@@ -16,6 +16,7 @@
 mod topology;
 mod solve;
 mod reduce;
+mod load_split;
 mod spatial;
 mod parts;
 mod error;
@@ -33,6 +34,8 @@ mod forward_dynamics;
 mod inverse_dynamics;
 mod projection;
 mod contacts;
+mod friction;
+mod contact_impacts;
 mod unilateral;
 mod system;
 

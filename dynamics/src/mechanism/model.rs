@@ -12,7 +12,7 @@ use crate::mechanism::articulated::{ArticulatedScratch, Articulation, Row};
 use crate::mechanism::force_elements::ForceElement;
 use crate::mechanism::joint_rows::{BodyKinematics, Joint, JointRows};
 use crate::mechanism::joint_space::{JointSpace, WorldBody};
-use crate::mechanism::parts::{BodyId, Contact, Coupling, JointId, Limit, MechanismBody, Reference};
+use crate::mechanism::parts::{BodyId, Contact, Coupling, JointId, Limit, MechanismBody, Reference, Slip};
 use crate::mechanism::solve::{SolverSettings, SystemMatrix};
 use crate::mechanism::topology::{Slot, Topology};
 use crate::motor;
@@ -78,6 +78,8 @@ pub struct Mechanism<A: Algebra> {
     pub(super) limits: Vec<Limit>,
     /// Body points kept above world planes (docs/contacts.md).
     pub(super) contacts: Vec<Contact>,
+    /// The contacts with friction, in order: each has a friction value after every limit and contact.
+    pub(super) frictional: Vec<usize>,
 }
 
 impl<A: Algebra> fmt::Debug for Mechanism<A> {
@@ -128,8 +130,14 @@ pub struct MechanismWorkspace<A: Algebra> {
     /// Per one-sided constraint (limits, then contacts), the bound it is held at, if it is (docs/limits.md; a
     /// contact's plane is its lower bound).
     pub(super) held: Vec<Option<Bound>>,
-    /// The articulated solve's rows: the couplings', then one per held limit and per held contact.
+    /// The articulated solve's rows: the couplings', then one per held limit and per held contact, and two more per
+    /// sticking contact.
     pub(super) rows: Vec<Row>,
+    /// Per contact, the tangential state it has while held (docs/contacts.md "Friction").
+    pub(super) slips: Vec<Slip>,
+    /// Per one-sided constraint (limits, then contacts), the index in `rows` of its row (a contact's normal row)
+    /// while it is held.
+    pub(super) held_rows: Vec<Option<usize>>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -262,14 +270,16 @@ impl<A: Algebra> Mechanism<A> {
             articulated: ArticulatedScratch::new(
                 self.bodies.len(),
                 self.joints.len(),
-                self.couplings.len() + self.limit_count(),
+                self.couplings.len() + self.limit_count() + self.frictional.len(),
             ),
             previous_positions: Vec::new(),
             power: 0.0,
             element_wrenches: vec![ScrewCoordinates::default(); self.bodies.len()],
             placed: Vec::new(),
-            held: vec![None; self.limit_count()],
+            held: vec![None; self.limits.len() + self.contacts.len()],
             rows: self.coupling_rows.clone(),
+            slips: vec![Slip::Sticking; self.contacts.len()],
+            held_rows: vec![None; self.limits.len() + self.contacts.len()],
         }
     }
 }

@@ -81,3 +81,14 @@ pub(super) struct Contact {
     pub point: Vector3<f64>,
     pub contact: PlaneContact,
 }
+
+/// The tangential state of a held contact with friction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Slip {
+    /// Sliding: the friction force `−μ N ŝ` opposes the slip ŝ. `reference` is the slip's direction at the start of
+    /// the step: the friction keeps the orientation it has along it, so that a slide that stops inside a step
+    /// continues smoothly past the stop, where the step is cut (docs/contacts.md "Friction").
+    Sliding { reference: Vector3<f64> },
+    /// Sticking: the slip held at zero by two tangential rows.
+    Sticking,
+}

@@ -2,32 +2,38 @@
 //! as [`crate::simulate()`] sees them: the values it watches, and the transitions it makes at their crossings (the
 //! impact through the kinetic metric, the hold by a row of the articulated solve, the release).
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::contacts::TOUCHING;
+use crate::eigen::SingularValues;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
+use crate::mechanism::contacts::stack;
+use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
 use crate::mechanism::joint_space::{JointSpace, WorldBody};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
+use crate::mechanism::parts::Slip;
 use crate::state::State;
 
-/// The relative size below which an impulse counts as zero in the contacts' complementarity (pushes are ≥ 0, speeds
-/// after an impact ≥ their targets).
-const COMPLEMENTARITY: f64 = 1e-12;
-
 impl<A: Algebra> Mechanism<A> {
-    /// The number of one-sided constraints: limited joints, then contacts.
+    /// The number of one-sided constraints [`crate::simulate()`] watches: limited joints, then contacts, then the
+    /// friction of each contact that has it.
     pub(crate) fn limit_count(&self) -> usize {
-        self.limits.len() + self.contacts.len()
+        self.limits.len() + self.contacts.len() + self.frictional.len()
     }
 
-    /// The name of one-sided constraint `index`: its joint's for a limit, the contact's.
+    /// The name of one-sided constraint `index`: its joint's for a limit, the contact's for a contact and for its
+    /// friction.
     pub(crate) fn limit_name(&self, index: usize) -> Option<&str> {
-        match index.checked_sub(self.limits.len()) {
-            None => Some(self.joints[self.limits[index].joint].name()),
-            Some(contact) => self.contacts.get(contact).map(|c| c.name.as_str()),
+        let bounded = self.limits.len() + self.contacts.len();
+        if index < self.limits.len() {
+            Some(self.joints[self.limits[index].joint].name())
+        } else if index < bounded {
+            Some(self.contacts[index - self.limits.len()].name.as_str())
+        } else {
+            let contact = *self.frictional.get(index - bounded)?;
+            Some(self.contacts[contact].name.as_str())
         }
     }
 
@@ -41,7 +47,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     fn unilateral_names(&self) -> String {
-        (0..self.limit_count())
+        (0..self.limits.len() + self.contacts.len())
             .filter_map(|index| self.limit_name(index))
             .collect::<Vec<_>>()
             .join(" + ")
@@ -73,12 +79,13 @@ impl<A: Algebra> Mechanism<A> {
         let bodies: Vec<WorldBody> = states.iter().enumerate().map(|(i, s)| self.world_body(i, s)).collect();
         let previous =
             (workspace.previous_positions.len() == space.position_count()).then_some(&workspace.previous_positions);
-        let mut row = self.coupling_rows.len();
-        for (index, (held, value)) in workspace.held.iter().zip(values.iter_mut()).enumerate() {
+        let multipliers = self.held_multipliers(workspace);
+        let (bounded, friction) = values.split_at_mut(workspace.held.len());
+        for (index, (held, value)) in workspace.held.iter().zip(bounded.iter_mut()).enumerate() {
             *value = match (held, index.checked_sub(self.limits.len())) {
                 (Some(bound), _) => {
-                    row += 1;
-                    bound.inward() * workspace.articulated.multipliers()[row - 1]
+                    let row = workspace.held_rows[index].expect("a held constraint has its row");
+                    bound.inward() * multipliers[row]
                 }
                 (None, None) => {
                     let limit = &self.limits[index];
@@ -92,6 +99,9 @@ impl<A: Algebra> Mechanism<A> {
                 }
                 (None, Some(contact)) => self.contact_motion(contact, states).0,
             };
+        }
+        for (&contact, value) in self.frictional.iter().zip(friction) {
+            *value = self.friction_value(contact, states, workspace, &multipliers);
         }
         Ok(())
     }
@@ -118,17 +128,38 @@ impl<A: Algebra> Mechanism<A> {
                 ),
             });
         }
-        if let Some(bound) = workspace.held[index].take() {
-            self.hold_rows(workspace);
-            return Ok(vec![(index, LimitChange::Released { bound })]);
-        }
-        let mut changes = match index.checked_sub(self.limits.len()) {
-            None => self.limit_impact(index, t, states, workspace)?,
-            Some(contact) => self.contact_impact(contact, t, states, workspace)?,
+        let bounded = workspace.held.len();
+        let mut changes = if index >= bounded {
+            self.friction_transition(self.frictional[index - bounded], t, states, workspace)?
+        } else if workspace.held[index].is_some() {
+            self.release(index, t, states, workspace)?
+        } else {
+            match index.checked_sub(self.limits.len()) {
+                None => self.limit_impact(index, t, states, workspace)?,
+                Some(contact) => self.contact_impact(contact, t, states, workspace)?,
+            }
         };
         self.hold_rows(workspace);
-        self.release_pulling(t, states, workspace, &mut changes)?;
+        self.settle(t, states, workspace, &mut changes)?;
         Ok(changes)
+    }
+
+    /// One-sided constraint `index`, held, released: its bound or plane stopped pushing. A sliding contact whose push
+    /// turned to a pull and that, released, would sink into its plane has no consistent state: Painlevé's paradox, an
+    /// error naming it (docs/contacts.md "Friction").
+    fn release(
+        &self,
+        index: usize,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        let bound = workspace.held[index].take().expect("a released constraint is held");
+        self.hold_rows(workspace);
+        if let Some(contact) = index.checked_sub(self.limits.len()) {
+            self.check_release(contact, t, states, workspace)?;
+        }
+        Ok(vec![(index, LimitChange::Released { bound })])
     }
 
     /// A limit's impact: the joint placed on its nearer bound and its rate reversed times the restitution by an
@@ -180,145 +211,11 @@ impl<A: Algebra> Mechanism<A> {
         Ok(vec![(index, LimitChange::Held { bound, speed_before })])
     }
 
-    /// A contact's impact (docs/contacts.md "Impact"): every free contact touching its plane ([`TOUCHING`]) and not
-    /// moving away from it, with contact `contact`, and every held contact, take impulses along their normals
-    /// through the kinetic metric, the other held relations kept: each pushes (≥ 0) and leaves at `e` times the speed
-    /// it met the plane with, or pushes nothing and leaves faster (complementarity, by active sets). Contacts leaving
-    /// slower than [`REST_SPEED`] are held; held ones that stop pushing are released.
-    fn contact_impact(
-        &self,
-        contact: usize,
-        t: f64,
-        states: &mut [State<A>],
-        workspace: &mut MechanismWorkspace<A>,
-    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
-        let first = self.limits.len();
-        if self.contact_motion(contact, states).1 > 0.0 {
-            return Ok(Vec::new());
-        }
-        // The contacts in the impact: (contact index, was held).
-        let mut involved = Vec::new();
-        for c in 0..self.contacts.len() {
-            let held = workspace.held[first + c].is_some();
-            let (height, speed) = self.contact_motion(c, states);
-            if held || c == contact || (height <= TOUCHING && speed <= 0.0) {
-                involved.push((c, held));
-            }
-        }
-        let indices: Vec<usize> = involved.iter().map(|&(c, _)| c).collect();
-        // On their planes first, as a limited joint is put on its bound: the crossing was located a round-off past it.
-        let equalities = self.equality_rows(&workspace.held);
-        self.place_contacts(
-            t,
-            states,
-            (&indices, false),
-            &equalities,
-            &mut workspace.previous_positions,
-        )?;
-        let space = self.limited_space()?;
-        let (mut q, mut v) = (vec![0.0; space.position_count()], vec![0.0; space.velocity_count()]);
-        self.read_joints_into(states, &mut q, &mut v, &mut workspace.previous_positions)?;
-        let rows = self.contact_rows(states, &indices)?;
-        let before = &rows * DVector::from_column_slice(&v);
-        // Each contact's target speed after the impact: e times its speed before, or 0 below REST_SPEED.
-        let targets: Vec<f64> = (indices.iter().zip(before.iter()))
-            .map(|(&c, &u)| {
-                let bounce = -self.contacts[c].contact.restitution() * u.min(0.0);
-                if bounce < REST_SPEED {
-                    0.0
-                } else {
-                    bounce
-                }
-            })
-            .collect();
-        let change = self.complementary_impulse(t, states, (&rows, &before), &targets, &equalities)?;
-        v.iter_mut().zip(change.iter()).for_each(|(v, dv)| *v += dv);
-        self.write_joints_into(t, &q, &v, states, &mut workspace.placed)?;
-        let after = &rows * DVector::from_column_slice(&v);
-        let mut changes = Vec::new();
-        for (k, &(c, was_held)) in involved.iter().enumerate() {
-            let (speed_before, speed_after) = (-before[k], after[k]);
-            let resting = speed_after < REST_SPEED;
-            let change = match (was_held, resting) {
-                (true, true) => continue,
-                (true, false) => {
-                    workspace.held[first + c] = None;
-                    LimitChange::Released { bound: Bound::Lower }
-                }
-                (false, true) => {
-                    workspace.held[first + c] = Some(Bound::Lower);
-                    LimitChange::Held {
-                        bound: Bound::Lower,
-                        speed_before,
-                    }
-                }
-                (false, false) => LimitChange::Bounced {
-                    bound: Bound::Lower,
-                    speed_before,
-                    speed_after,
-                },
-            };
-            changes.push((first + c, change));
-        }
-        self.place_held_contacts(t, states, workspace)?;
-        Ok(changes)
-    }
-
-    /// The velocity change of a contact impact: impulses p along the contact `rows` (speeds `before`) reaching the
-    /// `targets` on an active set — `p ≥ 0` on it, speeds at or above their targets off it — with the `equalities`
-    /// kept. The set starts with every contact; the most negative push leaves it, or the most violated speed joins
-    /// it, until both hold (at most 4 passes per contact).
-    fn complementary_impulse(
-        &self,
-        t: f64,
-        states: &[State<A>],
-        (rows, before): (&DMatrix<f64>, &DVector<f64>),
-        targets: &[f64],
-        equalities: &DMatrix<f64>,
-    ) -> Result<DVector<f64>, ConstraintError> {
-        let count = targets.len();
-        let scale = before.amax().max(targets.iter().fold(0.0, |m: f64, x| m.max(x.abs())));
-        // The responses of every contact and equality row, once: an active set takes its block of them.
-        let (response, gram) = self.responses(t, states, &stack(rows, equalities))?;
-        let equality_rows = count..count + equalities.nrows();
-        let mut active = vec![true; count];
-        for _ in 0..4 * count + 1 {
-            let chosen: Vec<usize> = (0..count).filter(|&k| active[k]).collect();
-            let block: Vec<usize> = chosen.iter().copied().chain(equality_rows.clone()).collect();
-            let mut residual = DVector::zeros(block.len());
-            for (r, &k) in chosen.iter().enumerate() {
-                residual[r] = targets[k] - before[k];
-            }
-            let sub_gram = gram.select_rows(&block).select_columns(&block);
-            let all = self.least_norm(t, &sub_gram, &residual)?;
-            let change = response.select_columns(&block) * &all;
-            let pushes = all.rows(0, chosen.len());
-            let after = before + rows * &change;
-            let pulling = (chosen.iter().zip(pushes.iter()))
-                .filter(|(_, &p)| p < -COMPLEMENTARITY * pushes.amax().max(f64::MIN_POSITIVE))
-                .min_by(|a, b| a.1.total_cmp(b.1));
-            if let Some((&k, _)) = pulling {
-                active[k] = false;
-                continue;
-            }
-            let sinking = (0..count)
-                .filter(|&k| !active[k] && after[k] < targets[k] - COMPLEMENTARITY * scale)
-                .min_by(|&a, &b| (after[a] - targets[a]).total_cmp(&(after[b] - targets[b])));
-            if let Some(k) = sinking {
-                active[k] = true;
-                continue;
-            }
-            return Ok(change);
-        }
-        Err(ConstraintError::InvalidParameter {
-            name: self.unilateral_names(),
-            reason: format!("the contact impact at t = {t}: no set of pushing contacts was found"),
-        })
-    }
-
-    /// Held contacts that pull are released, the most pulling first, until every held one pushes (a hold and its
-    /// release at the same instant: the constraint rests where its bound or plane does not press it).
-    fn release_pulling(
+    /// Every held constraint made consistent after a transition at `(t, states)`, one change at a time: a held one
+    /// that pulls is released (the most pulling first), else a sticking contact whose friction force has left its
+    /// cone starts to slide (the furthest out first), until every held one pushes and every sticking one holds (a hold
+    /// and its release at the same instant: the constraint rests where its bound or plane does not press it).
+    fn settle(
         &self,
         t: f64,
         states: &[State<A>],
@@ -326,37 +223,199 @@ impl<A: Algebra> Mechanism<A> {
         changes: &mut Vec<(usize, LimitChange)>,
     ) -> Result<(), ConstraintError> {
         let mut values = vec![0.0; self.limit_count()];
-        while workspace.held.iter().any(Option::is_some) {
+        let bounded = workspace.held.len();
+        for _ in 0..=2 * self.limit_count() {
+            if workspace.held.iter().all(Option::is_none) {
+                return Ok(());
+            }
             self.limit_values(t, states, workspace, &mut values)?;
             let pulling = (workspace.held.iter().zip(&values).enumerate())
                 .filter(|(_, (held, &value))| held.is_some() && value <= 0.0)
                 .min_by(|a, b| a.1 .1.total_cmp(b.1 .1));
-            let Some((index, _)) = pulling else {
-                break;
+            if let Some((index, _)) = pulling {
+                changes.extend(self.release(index, t, states, workspace)?);
+                continue;
+            }
+            let slipping = (self.frictional.iter().zip(&values[bounded..]))
+                .filter(|&(&c, &margin)| {
+                    workspace.held[self.limits.len() + c].is_some()
+                        && workspace.slips[c] == Slip::Sticking
+                        && margin < 0.0
+                })
+                .min_by(|a, b| a.1.total_cmp(b.1));
+            let Some((&contact, _)) = slipping else {
+                return Ok(());
             };
-            let bound = workspace.held[index].take().expect("chosen held");
-            self.hold_rows(workspace);
-            changes.push((index, LimitChange::Released { bound }));
+            changes.extend(self.start_slide(contact, t, states, workspace)?);
+        }
+        Err(ConstraintError::InvalidParameter {
+            name: self.unilateral_names(),
+            reason: format!("at t = {t} no consistent set of held, sliding and sticking constraints was found"),
+        })
+    }
+
+    /// A held contact with friction at a transition of its friction value (docs/contacts.md "Friction"): a slide
+    /// whose slip along its starting direction reached zero has stopped, and sticks if the cone can hold it, else
+    /// slides on in the direction of maximal dissipation (a slide that only turned renews its direction); a stick
+    /// whose friction force reached the cone starts to slide.
+    fn friction_transition(
+        &self,
+        contact: usize,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        if workspace.held[self.limits.len() + contact].is_none() {
+            return Ok(Vec::new());
+        }
+        if workspace.slips[contact] == Slip::Sticking {
+            return self.start_slide(contact, t, states, workspace);
+        }
+        let slip = self.contact_slip(contact, states);
+        let speed = slip.norm();
+        if speed > STOP_SPEED {
+            workspace.slips[contact] = Slip::Sliding {
+                reference: slip / speed,
+            };
+            return Ok(Vec::new());
+        }
+        // A slide just begun (from rest, at the slip's +0) speeds up along its direction: no stop.
+        let Slip::Sliding { reference } = workspace.slips[contact] else {
+            unreachable!("a sticking contact was handled above")
+        };
+        self.evaluate_states(t, states, workspace)?;
+        if self.touching_acceleration(contact, workspace).dot(&reference) > 0.0 {
+            return Ok(Vec::new());
+        }
+        // Every held slide with no slip left stops with it: the contacts of one rigid motion stop together (a block's
+        // corners), and a slide whose direction is round-off would push the others. Those the cone cannot hold slide
+        // on when the mechanism settles.
+        let mut changes = Vec::new();
+        for &c in &self.frictional {
+            let held = workspace.held[self.limits.len() + c].is_some();
+            if !held || workspace.slips[c] == Slip::Sticking {
+                continue;
+            }
+            let slip = self.contact_slip(c, states).norm();
+            if c == contact || slip <= STOP_SPEED {
+                workspace.slips[c] = Slip::Sticking;
+                let index = self.friction_index(c).expect("a contact with friction");
+                changes.push((index, LimitChange::Stuck { slip_before: slip }));
+            }
+        }
+        self.hold_rows(workspace);
+        self.place_held_contacts(t, states, workspace)?;
+        Ok(changes)
+    }
+
+    /// The sticking contacts that slide when sticking contact `contact`'s friction leaves its cone: those whose margin
+    /// at the widest split is at its least (within round-off of contact `contact`'s), which leave together (a block's
+    /// corners), each along the direction of maximal dissipation from the one opposite its sticking force.
+    fn start_slide(
+        &self,
+        contact: usize,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        self.evaluate_states(t, states, workspace)?;
+        let multipliers = self.held_multipliers(workspace);
+        let mut values = vec![0.0; self.limit_count()];
+        let bounded = workspace.held.len();
+        for (&c, value) in self.frictional.iter().zip(&mut values[bounded..]) {
+            *value = self.friction_value(c, states, workspace, &multipliers);
+        }
+        let margin = |c: usize| values[self.friction_index(c).expect("a contact with friction")];
+        let scale = multipliers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let leaving: Vec<usize> = (self.frictional.iter().copied())
+            .filter(|&c| {
+                workspace.held[self.limits.len() + c].is_some()
+                    && workspace.slips[c] == Slip::Sticking
+                    && (c == contact || margin(c) <= margin(contact) + SAME_MARGIN * scale)
+            })
+            .collect();
+        let guesses: Vec<Vector3<f64>> = leaving
+            .iter()
+            .map(|&c| {
+                let row = workspace.held_rows[self.limits.len() + c].expect("a sticking contact is held");
+                let [first, second] = tangent_basis(&self.contacts[c].contact.normal());
+                let force = first * multipliers[row + 1] + second * multipliers[row + 2];
+                if force.norm() > 0.0 {
+                    -force.normalize()
+                } else {
+                    first
+                }
+            })
+            .collect();
+        let directions = self.slide_from_rest(&leaving, t, states, workspace, &guesses)?;
+        Ok((leaving.iter().zip(directions))
+            .map(|(&c, direction)| {
+                let index = self.friction_index(c).expect("a contact with friction");
+                (index, LimitChange::Slipped { direction })
+            })
+            .collect())
+    }
+
+    /// An error unless contact `contact`, just released, moves off its plane or along it: one that sinks into it
+    /// (sliding with a friction that turned its push into a pull) has no consistent state, Painlevé's paradox.
+    fn check_release(
+        &self,
+        contact: usize,
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<(), ConstraintError> {
+        if !matches!(workspace.slips[contact], Slip::Sliding { .. })
+            || !self.contacts[contact].contact.friction().is_some()
+        {
+            return Ok(());
+        }
+        self.evaluate_states(t, states, workspace)?;
+        let normal = self.contacts[contact].contact.normal();
+        let acceleration = normal.dot(&self.touching_acceleration(contact, workspace));
+        let scale = self
+            .touching_acceleration(contact, workspace)
+            .norm()
+            .max(f64::MIN_POSITIVE);
+        if acceleration < -PAINLEVE_TOLERANCE * scale {
+            return Err(ConstraintError::InvalidParameter {
+                name: self.contacts[contact].name.clone(),
+                reason: format!(
+                    "at t = {t} the sliding contact has no consistent state (Painlevé's paradox): with friction {} its \
+                     plane would have to pull to hold it, and released it accelerates into the plane at {:e} m/s²",
+                    self.contacts[contact].contact.friction().kinetic(),
+                    -acceleration
+                ),
+            });
         }
         Ok(())
     }
 
     /// The workspace's rows of the articulated solve: the couplings', then one per held limit (`q̈ = 0`) and per
-    /// held contact (`n · a_p = 0`).
+    /// held contact (`n · a_p = 0`), with two tangential ones per sticking contact ([`Mechanism::contact_hold_rows`]).
     pub(super) fn hold_rows(&self, workspace: &mut MechanismWorkspace<A>) {
         workspace.rows.clone_from(&self.coupling_rows);
         for (index, held) in workspace.held.iter().enumerate() {
+            workspace.held_rows[index] = None;
             if held.is_none() {
                 continue;
             }
-            workspace.rows.push(match index.checked_sub(self.limits.len()) {
-                None => Row::Joints {
+            workspace.held_rows[index] = Some(workspace.rows.len());
+            match index.checked_sub(self.limits.len()) {
+                None => workspace.rows.push(Row::Joints {
                     follower: self.limits[index].joint,
                     leader: self.limits[index].joint,
                     multiplier: 0.0,
-                },
-                Some(contact) => self.contact_row(contact),
-            });
+                }),
+                Some(contact) => {
+                    let slip = self.contacts[contact]
+                        .contact
+                        .friction()
+                        .is_some()
+                        .then_some(workspace.slips[contact]);
+                    self.contact_hold_rows(contact, slip, &mut workspace.rows);
+                }
+            }
         }
     }
 
@@ -376,13 +435,22 @@ impl<A: Algebra> Mechanism<A> {
         let held: Vec<usize> = (0..self.contacts.len())
             .filter(|&c| workspace.held[first + c].is_some())
             .collect();
+        let sticking: Vec<usize> = (held.iter().copied())
+            .filter(|&c| self.contacts[c].contact.friction().is_some() && workspace.slips[c] == Slip::Sticking)
+            .collect();
         let equalities = self.equality_rows(&workspace.held);
-        self.place_contacts(t, states, (&held, true), &equalities, &mut workspace.previous_positions)
+        self.place_contacts(
+            t,
+            states,
+            (&held, &sticking, true),
+            &equalities,
+            &mut workspace.previous_positions,
+        )
     }
 
     /// The joint-space rows that an impact or a projection keeps at their values: the couplings `v_f − m v_l`, the
     /// driven joints' and the held limits' rates.
-    fn equality_rows(&self, held: &[Option<Bound>]) -> DMatrix<f64> {
+    pub(super) fn equality_rows(&self, held: &[Option<Bound>]) -> DMatrix<f64> {
         let Some(space) = self.coordinates() else {
             return DMatrix::zeros(0, 0);
         };
@@ -444,14 +512,14 @@ impl<A: Algebra> Mechanism<A> {
         equalities: &DMatrix<f64>,
         r: &DVector<f64>,
     ) -> Result<(DVector<f64>, DVector<f64>), ConstraintError> {
-        let (response, gram) = self.responses(t, states, &stack(rows, equalities))?;
+        let (response, gram) = self.responses(t, states, &stack(&[rows, equalities]))?;
         let p = self.least_norm(t, &gram, r)?;
         let change = &response * &p;
         Ok((change, p.rows(0, rows.nrows()).into_owned()))
     }
 
     /// For joint-space rows C at `states`: `M⁻¹Cᵀ` and the Gram matrix `C M⁻¹ Cᵀ`, M the joint-space mass matrix.
-    fn responses(
+    pub(super) fn responses(
         &self,
         t: f64,
         states: &[State<A>],
@@ -468,11 +536,14 @@ impl<A: Algebra> Mechanism<A> {
 
     /// The impulses `G⁺ r` of a Gram matrix G: rows that repeat others (a held limit on a coupled pair, a fourth corner
     /// on a plane) share by the least-norm solution.
-    fn least_norm(&self, t: f64, gram: &DMatrix<f64>, r: &DVector<f64>) -> Result<DVector<f64>, ConstraintError> {
+    pub(super) fn least_norm(
+        &self,
+        t: f64,
+        gram: &DMatrix<f64>,
+        r: &DVector<f64>,
+    ) -> Result<DVector<f64>, ConstraintError> {
         let largest = gram.diagonal().amax();
-        let p = (gram.clone().svd(true, true))
-            .solve(r, REPEATED_ROW * largest)
-            .map_err(|error| self.impact_failed(t, error.to_owned()))?;
+        let p = SingularValues::of(gram).solve(r, REPEATED_ROW * largest);
         if !p.iter().all(|x| x.is_finite()) {
             return Err(self.impact_failed(t, "the impulse is not finite".to_owned()));
         }
@@ -480,7 +551,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// An impact at `t` that could not be solved, naming the one-sided constraints.
-    fn impact_failed(&self, t: f64, reason: String) -> ConstraintError {
+    pub(super) fn impact_failed(&self, t: f64, reason: String) -> ConstraintError {
         ConstraintError::InvalidParameter {
             name: self.unilateral_names(),
             reason: format!("the impact at t = {t}: {reason}"),
@@ -488,12 +559,9 @@ impl<A: Algebra> Mechanism<A> {
     }
 }
 
-/// `rows` above `equalities`, one matrix.
-fn stack(rows: &DMatrix<f64>, equalities: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut stacked = DMatrix::zeros(rows.nrows() + equalities.nrows(), rows.ncols());
-    stacked.rows_mut(0, rows.nrows()).copy_from(rows);
-    if equalities.nrows() > 0 {
-        stacked.rows_mut(rows.nrows(), equalities.nrows()).copy_from(equalities);
-    }
-    stacked
-}
+/// Sticking contacts whose margins to their cones differ by less than this, relative to the loads, leave together.
+const SAME_MARGIN: f64 = 1e-9;
+
+/// A released sliding contact accelerating into its plane faster than this, relative to its touching point's whole
+/// acceleration, has no consistent state (Painlevé's paradox); below it the acceleration is round-off.
+const PAINLEVE_TOLERANCE: f64 = 1e-9;

@@ -15,6 +15,7 @@ mod errors;
 pub(crate) mod events;
 mod force_elements;
 mod force_line;
+mod friction;
 mod joint_integration;
 mod joint_space_errors;
 mod joints;

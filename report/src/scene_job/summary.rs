@@ -132,19 +132,32 @@ fn write_setup(out: &mut String, setup: &Setup, robot: bool) {
     );
 }
 
-/// The contacts, each a body point above a world plane.
+/// The contacts, each a body point or sphere above a world plane.
 fn write_contacts(out: &mut String, scene: &CheckedScene) {
     if !scene.contacts.is_empty() {
         let _ = writeln!(
             out,
-            "Contacts, each a body point kept above the world plane n · x = d (docs/contacts.md):\n"
+            "Contacts, each a body point or sphere kept above the world plane n · x = d (docs/contacts.md):\n"
         );
         for (k, contact) in scene.contacts.iter().enumerate() {
+            let what = match (&contact.sphere, contact.point) {
+                (Some(sphere), _) => format!(
+                    "the sphere of radius {} m centred at {:?} m",
+                    sphere.radius, sphere.centre
+                ),
+                (None, point) => format!("the point {:?} m", point.unwrap_or_default()),
+            };
+            let friction = match contact.static_friction {
+                Some(stiction) if stiction != contact.friction => {
+                    format!("friction {} (static {stiction})", contact.friction)
+                }
+                _ if contact.friction > 0.0 => format!("friction {}", contact.friction),
+                _ => "no friction".to_owned(),
+            };
             let _ = writeln!(
                 out,
-                "- {}: the point {:?} m of {}, n = {:?}, d = {} m, restitution {}",
+                "- {}: {what} of {}, n = {:?}, d = {} m, restitution {}, {friction}",
                 escape(&contact.name(k)),
-                contact.point,
                 escape(contact.body.as_deref().unwrap_or("the body")),
                 contact.normal,
                 contact.offset,
@@ -233,14 +246,15 @@ fn write_start_corrections(out: &mut String, scene: &CheckedScene, runs: &[Algeb
 /// The limits' and contacts' transitions per algebra, and whether there were any.
 fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) -> bool {
     let limited = runs.iter().any(|run| !run.transitions.is_empty());
+    let frictional = scene.contacts.iter().any(|c| c.friction > 0.0);
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
         let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
         let taken: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
         let _ =
             writeln!(
             out,
-            "{} ({}): {} bounces, {} holds, {} releases, the first at t = {:.6} s; the impacts changed the energy by \
-             {} J{}.",
+            "{} ({}): {} bounces, {} holds, {} releases, {} sticks, {} slips, the first at t = {:.6} s; the impacts \
+             changed the energy by {} J{}{}.",
             {
                 let contacts: Vec<String> = (scene.contacts.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
                 let on_contact = |t: &LimitTransition| contacts.contains(&t.constraint);
@@ -254,8 +268,17 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
             count(|c| matches!(c, LimitChange::Bounced { .. })),
             count(|c| matches!(c, LimitChange::Held { .. })),
             count(|c| matches!(c, LimitChange::Released { .. })),
+            count(|c| matches!(c, LimitChange::Stuck { .. })),
+            count(|c| matches!(c, LimitChange::Slipped { .. })),
             run.transitions[0].t,
             scientific(taken),
+            match (frictional, run.bodies[0].first().zip(run.bodies[0].last())) {
+                (true, Some((first, last))) => format!(
+                    ", sliding friction and the force elements by {} J in all",
+                    scientific(last.energy - first.energy - taken)
+                ),
+                _ => String::new(),
+            },
             if scene.contacts.is_empty() {
                 String::new()
             } else {
@@ -296,8 +319,8 @@ fn write_meanings(out: &mut String, setup: &Setup, limited: bool, robot: bool) {
     } else {
         let _ = writeln!(
             out,
-            "Forces without a potential (constant forces or couples, dampers, torques, controllers, drives) do work, \
-             so the energy change is physical, not only drift."
+            "Forces without a potential (constant forces or couples, dampers, torques, controllers, drives, sliding \
+             friction) do work, so the energy change is physical, not only drift."
         );
     }
     let _ = writeln!(
@@ -315,13 +338,20 @@ fn write_meanings(out: &mut String, setup: &Setup, limited: bool, robot: bool) {
     );
 }
 
-/// The work done by the forces without a potential against the energy change, per algebra.
+/// The work done by the forces without a potential against the energy change, less what the impacts took, per
+/// algebra.
 fn write_work(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) {
+    let impacts = runs.iter().any(|run| !run.transitions.is_empty());
+    let (minus, taken) = if impacts {
+        (" − L(T)", " L(T) (J) |")
+    } else {
+        ("", "")
+    };
     let _ = writeln!(
         out,
-        "| algebra | E(T) − E₀ (J) | work W(T) (J) | E(T) − E₀ − W(T) (J) |"
+        "| algebra | E(T) − E₀ (J) |{taken} work W(T) (J) | E(T) − E₀{minus} − W(T) (J) |"
     );
-    let _ = writeln!(out, "|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|{}", if impacts { "---|" } else { "" });
     for run in runs {
         let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
         let change = match (first, last) {
@@ -329,20 +359,31 @@ fn write_work(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) {
             _ => 0.0,
         };
         let work = run.work.last().copied().unwrap_or(0.0);
+        let lost: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} |",
+            "| {} | {} |{} {} | {} |",
             run.algebra.name(),
             scientific(change),
+            if impacts {
+                format!(" {} |", scientific(lost))
+            } else {
+                String::new()
+            },
             scientific(work),
-            scientific(change - work)
+            scientific(change - lost - work)
         );
     }
     let _ = writeln!(
         out,
-        "\nW is the work of the forces without a potential (force elements, drives, constant forces and couples) \
-         from the start, integrated with the method's own weights, so E(T) − E₀ − W(T) is the integration \
-         error.{}\n",
+        "\nW is the work of the forces without a potential (force elements, drives, constant forces and couples, \
+         sliding friction at contacts) from the start, integrated with the method's own weights{}, so \
+         E(T) − E₀{minus} − W(T) is the integration error.{}\n",
+        if impacts {
+            ", and L(T) what the impacts at limits and contacts changed the energy by"
+        } else {
+            ""
+        },
         if matches!(Integrator::from(scene.integrator), Integrator::Splitting(_)) {
             " The splitting methods integrate no power: here W stays 0."
         } else {

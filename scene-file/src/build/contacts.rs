@@ -1,8 +1,8 @@
-//! The file's contacts added to the mechanism, each point in its body's (or link's) frame, and a start below a contact's
-//! plane refused.
+//! The file's contacts added to the mechanism, each point or sphere in its body's (or link's) frame, and a start below
+//! a contact's plane refused.
 
-use dynamics::contacts::PlaneContact;
-use dynamics::{Algebra, Dynamics, Mechanism, Reference, State};
+use dynamics::contacts::{Friction, PlaneContact};
+use dynamics::{Algebra, Mechanism, Reference, State};
 use nalgebra::Vector3;
 
 use super::assembly::Assembly;
@@ -28,9 +28,23 @@ pub(crate) fn add_contacts<A: Algebra>(assembly: &mut Assembly<A>) -> Result<(),
                 "the world has no point to keep above a plane",
             ));
         };
-        let point = frame.transform_point(&Vector3::from(spec.point).into()).coords;
-        let contact = PlaneContact::new(point, Vector3::from(spec.normal), spec.offset)
+        let in_frame = |point: [f64; 3]| frame.transform_point(&Vector3::from(point).into()).coords;
+        let normal = Vector3::from(spec.normal);
+        let contact = match (spec.point, &spec.sphere) {
+            (Some(point), None) => PlaneContact::new(in_frame(point), normal, spec.offset),
+            (None, Some(sphere)) => PlaneContact::sphere(in_frame(sphere.centre), sphere.radius, normal, spec.offset),
+            (Some(_), Some(_)) => return Err(invalid(what, "give `point` or `sphere`, not both")),
+            (None, None) => {
+                return Err(invalid(
+                    what,
+                    "give the `point = [x, y, z]` or the `sphere = { centre = [x, y, z], radius = r }` kept above the plane",
+                ))
+            }
+        };
+        let friction = Friction::new(spec.friction, spec.static_friction.unwrap_or(spec.friction));
+        let contact = contact
             .and_then(|contact| contact.with_restitution(spec.restitution))
+            .and_then(|contact| Ok(contact.with_friction(friction?)))
             .map_err(|error| invalid(what.clone(), error.to_string()))?;
         (assembly.mechanism)
             .add_contact(spec.name(k), id, contact)
@@ -48,15 +62,13 @@ pub(crate) fn check_contact_start<A: Algebra>(
     if scene.contacts.is_empty() {
         return Ok(());
     }
-    let mut values = vec![0.0; mechanism.limit_count()];
-    mechanism.limit_values(0.0, initial, &mut mechanism.workspace(), &mut values)?;
-    let first = values.len() - scene.contacts.len();
-    for (k, spec) in scene.contacts.iter().enumerate() {
-        let height = values[first + k];
+    let heights = mechanism.contact_heights(initial)?;
+    for (k, (spec, height)) in scene.contacts.iter().zip(heights).enumerate() {
         if height < -dynamics::simulate::AT_BOUND {
+            let what = if spec.sphere.is_some() { "sphere" } else { "point" };
             return Err(invalid(
                 format!("contact {}", spec.name(k)),
-                format!("the start puts its point {height:e} m below its plane"),
+                format!("the start puts its {what} {:e} m below its plane", -height),
             ));
         }
     }

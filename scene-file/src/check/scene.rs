@@ -82,7 +82,7 @@ pub struct CheckedScene {
     /// (splittings included) runs.
     pub free_body: bool,
     /// Whether every force has a potential, so the energy is conserved and its change is drift: only gravity and
-    /// undamped springs, no drive.
+    /// undamped springs, no drive, no friction at contacts.
     pub conservative: bool,
 }
 
@@ -151,6 +151,10 @@ impl CheckedScene {
             && file.joint_torque.is_empty()
             && file.joint_damping.is_empty()
             && file.pd.is_empty()
+            && file
+                .contact
+                .iter()
+                .all(|c| c.friction == 0.0 && c.static_friction.unwrap_or(0.0) == 0.0)
             && !robot_damped;
         Ok(CheckedScene {
             title: file.title,

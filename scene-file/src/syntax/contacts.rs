@@ -1,12 +1,13 @@
-//! Scene files' contacts (docs/scene-files.md): `[[contact]]`, a body point kept above a world plane, exactly
-//! (`dynamics::contacts`).
+//! Scene files' contacts (docs/scene-files.md): `[[contact]]`, a body point or sphere kept above a world plane,
+//! exactly, with Coulomb friction (`dynamics::contacts`).
 
 use serde::Deserialize;
 
-use super::arrays::exactly;
+use super::arrays::{exactly, maybe_exactly};
 
-/// `[[contact]]`: `point` (m) of `body` (a named body or robot link; the only body may go unnamed) kept on the side
-/// of the plane `normal · x = offset` (world) that the normal points to, meeting it with `restitution`.
+/// `[[contact]]`: `point` (m) of `body` (a named body or robot link; the only body may go unnamed), or the sphere
+/// `sphere = { centre, radius }` in its frame, kept on the side of the plane `normal · x = offset` (world) that the
+/// normal points to, meeting it with `restitution`, rubbing it with Coulomb `friction` (and `static_friction`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
@@ -16,9 +17,12 @@ pub struct ContactSpec {
     /// A named body or robot link; the only body of a scene may go unnamed.
     #[serde(default)]
     pub body: Option<String>,
-    /// In the body's (or link's) coordinates (m).
-    #[serde(deserialize_with = "exactly")]
-    pub point: [f64; 3],
+    /// In the body's (or link's) coordinates (m); or `sphere`.
+    #[serde(default, deserialize_with = "maybe_exactly")]
+    pub point: Option<[f64; 3]>,
+    /// A sphere fixed in the body (centre in its coordinates, m) that rolls and slides on the plane; or `point`.
+    #[serde(default)]
+    pub sphere: Option<SphereSpec>,
     /// The plane's normal, world, any length (default +z, a floor).
     #[serde(default = "up", deserialize_with = "exactly")]
     pub normal: [f64; 3],
@@ -28,6 +32,23 @@ pub struct ContactSpec {
     /// Newton's coefficient, in [0, 1] (default 0: the point stays on the plane).
     #[serde(default)]
     pub restitution: f64,
+    /// Coulomb's kinetic coefficient μ ≥ 0 (default 0: no friction).
+    #[serde(default)]
+    pub friction: f64,
+    /// Coulomb's static coefficient μ_s ≥ μ, which a sticking contact's force stays within (default μ).
+    #[serde(default)]
+    pub static_friction: Option<f64>,
+}
+
+/// `sphere = { centre = [x, y, z], radius = r }` of a contact (m, body coordinates).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphereSpec {
+    /// The centre in the body's coordinates.
+    #[serde(deserialize_with = "exactly")]
+    pub centre: [f64; 3],
+    /// The radius, positive.
+    pub radius: f64,
 }
 
 /// The default normal: world z, a floor.

@@ -1,0 +1,458 @@
+//! A contact's impact (docs/contacts.md "Impact" and "Friction"): every contact touching its plane takes an impulse
+//! through the kinetic metric, the other held relations kept. Along the normal Newton's law with complementarity:
+//! each pushes (≥ 0) and leaves at `e` times the speed it met the plane with, or pushes nothing and leaves faster.
+//! Along the plane Coulomb's law on the speeds after: a contact sticks (its slip after is zero) while its friction
+//! impulse is inside the cone `|P_t| ≤ μ_s P_n`, else slides, its friction impulse `−μ P_n ŝ` opposing its slip ŝ
+//! after. The modes are found by active sets; an impact whose restitution with friction would add energy has its
+//! restitution lowered until it adds none.
+
+use nalgebra::{DMatrix, DVector, Vector3};
+
+use crate::algebra::Algebra;
+use crate::constraints::ConstraintError;
+use crate::contacts::{Friction, TOUCHING};
+use crate::limits::{Bound, LimitChange, REST_SPEED};
+use crate::mechanism::contacts::stack;
+use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
+use crate::mechanism::model::{Mechanism, MechanismWorkspace};
+use crate::mechanism::parts::Slip;
+use crate::state::State;
+
+/// The relative size below which an impulse counts as zero in the contacts' complementarity (pushes are ≥ 0, speeds
+/// after an impact ≥ their targets, friction inside its cone).
+const COMPLEMENTARITY: f64 = 1e-12;
+
+/// An impact may add energy up to this, relative to the energy its impulses move, before its restitution is lowered:
+/// round-off of an elastic impact.
+const ENERGY_ROUND_OFF: f64 = 1e-10;
+
+/// A contact on its plane moving off it slower than this (m/s) is at rest on it: round-off of a motion along the
+/// plane (a block started sliding on a floor).
+const AT_REST: f64 = 1e-12;
+
+/// Contacts in one impact at most: the active sets cost the cube of their number per pass.
+pub const MAX_CONTACTS_PER_IMPACT: usize = 256;
+
+/// A contact's mode in an impact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mode {
+    /// No impulse.
+    Out,
+    /// A normal impulse, and a friction impulse opposing the slip along `direction` (zero without friction).
+    Sliding { direction: Vector3<f64> },
+    /// A normal impulse and a friction impulse that stops the slip.
+    Sticking,
+}
+
+/// A contact's part in an impact: its normal row's index among the rows, its tangential rows' if it has friction, its
+/// friction, its plane's tangent basis and its speed target after.
+struct Participant {
+    normal: usize,
+    tangential: Option<usize>,
+    friction: Friction,
+    basis: [Vector3<f64>; 2],
+    target: f64,
+}
+
+/// An impact's rows: the Gram matrix `S M⁻¹ Sᵀ` and the speeds before, for the stacked rows S (normal rows,
+/// tangential rows, equalities).
+struct ImpactRows<'r> {
+    gram: &'r DMatrix<f64>,
+    before: &'r DVector<f64>,
+    /// The first equality row.
+    equalities: usize,
+}
+
+/// The impulses of an impact on every row and the speeds after.
+struct Outcome {
+    impulses: DVector<f64>,
+    after: DVector<f64>,
+}
+
+impl<A: Algebra> Mechanism<A> {
+    /// A contact's impact: contact `contact`, every free contact within [`TOUCHING`] of its plane and not moving away
+    /// from it, and every held contact take impulses (see the module docs). Contacts leaving slower than
+    /// [`REST_SPEED`] are held, sticking if their slip after is below the stop speed, else sliding; held ones that
+    /// leave are released.
+    pub(super) fn contact_impact(
+        &self,
+        contact: usize,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        let first = self.limits.len();
+        if self.contact_motion(contact, states).1 > AT_REST {
+            return Ok(Vec::new());
+        }
+        // The contacts in the impact: (contact index, was held).
+        let mut involved = Vec::new();
+        for c in 0..self.contacts.len() {
+            let held = workspace.held[first + c].is_some();
+            let (height, speed) = self.contact_motion(c, states);
+            if held || c == contact || (height <= TOUCHING && speed <= AT_REST) {
+                involved.push((c, held));
+            }
+        }
+        if involved.len() > MAX_CONTACTS_PER_IMPACT {
+            return Err(self.impact_failed(
+                t,
+                format!(
+                    "{} contacts meet at once, more than one impact takes ({MAX_CONTACTS_PER_IMPACT})",
+                    involved.len()
+                ),
+            ));
+        }
+        let indices: Vec<usize> = involved.iter().map(|&(c, _)| c).collect();
+        // On their planes first, as a limited joint is put on its bound: the crossing was located a round-off past it.
+        let equalities = self.equality_rows(&workspace.held);
+        self.place_contacts(
+            t,
+            states,
+            (&indices, &[], false),
+            &equalities,
+            &mut workspace.previous_positions,
+        )?;
+        let space = self.limited_space()?;
+        let (mut q, mut v) = (vec![0.0; space.position_count()], vec![0.0; space.velocity_count()]);
+        self.read_joints_into(states, &mut q, &mut v, &mut workspace.previous_positions)?;
+        let normals = self.contact_rows(states, &indices)?;
+        let frictional: Vec<usize> = (indices.iter().copied())
+            .filter(|&c| self.contacts[c].contact.friction().is_some())
+            .collect();
+        let tangential = self.slip_rows(states, &frictional)?;
+        let stacked = stack(&[&normals, &tangential, &equalities]);
+        let before = &stacked * DVector::from_column_slice(&v);
+        let participants: Vec<Participant> = (indices.iter().enumerate())
+            .map(|(k, &c)| {
+                let plane = &self.contacts[c].contact;
+                let bounce = -plane.restitution() * before[k].min(0.0);
+                Participant {
+                    normal: k,
+                    tangential: frictional.iter().position(|&f| f == c).map(|f| indices.len() + 2 * f),
+                    friction: plane.friction(),
+                    basis: tangent_basis(&plane.normal()),
+                    target: if bounce < REST_SPEED { 0.0 } else { bounce },
+                }
+            })
+            .collect();
+        let (response, gram) = self.responses(t, states, &stacked)?;
+        let rows = ImpactRows {
+            gram: &gram,
+            before: &before,
+            equalities: indices.len() + tangential.nrows(),
+        };
+        let outcome = self.dissipative_impulses(t, &rows, &participants)?;
+        let change = &response * &outcome.impulses;
+        v.iter_mut().zip(change.iter()).for_each(|(v, dv)| *v += dv);
+        self.write_joints_into(t, &q, &v, states, &mut workspace.placed)?;
+        let mut changes = Vec::new();
+        for (k, (&(c, was_held), participant)) in involved.iter().zip(&participants).enumerate() {
+            let (speed_before, speed_after) = (-before[k], outcome.after[k]);
+            let resting = speed_after < REST_SPEED;
+            if resting {
+                workspace.slips[c] = match participant.tangential {
+                    Some(row) => {
+                        let slip =
+                            participant.basis[0] * outcome.after[row] + participant.basis[1] * outcome.after[row + 1];
+                        let speed = slip.norm();
+                        if speed <= STOP_SPEED {
+                            Slip::Sticking
+                        } else {
+                            Slip::Sliding {
+                                reference: slip / speed,
+                            }
+                        }
+                    }
+                    None => Slip::Sticking,
+                };
+            }
+            let change = match (was_held, resting) {
+                (true, true) => continue,
+                (true, false) => {
+                    workspace.held[first + c] = None;
+                    LimitChange::Released { bound: Bound::Lower }
+                }
+                (false, true) => {
+                    workspace.held[first + c] = Some(Bound::Lower);
+                    LimitChange::Held {
+                        bound: Bound::Lower,
+                        speed_before,
+                    }
+                }
+                (false, false) => LimitChange::Bounced {
+                    bound: Bound::Lower,
+                    speed_before,
+                    speed_after,
+                },
+            };
+            changes.push((first + c, change));
+        }
+        self.hold_rows(workspace);
+        self.place_held_contacts(t, states, workspace)?;
+        Ok(changes)
+    }
+
+    /// The rows of the slips of contacts `indices` in joint space at `states`: per contact two rows, the speeds of its
+    /// touching point along its plane's tangent basis (the unit forces along the tangents through the touching point).
+    pub(super) fn slip_rows(&self, states: &[State<A>], indices: &[usize]) -> Result<DMatrix<f64>, ConstraintError> {
+        let points: Vec<(usize, Vector3<f64>, Vector3<f64>)> = indices
+            .iter()
+            .flat_map(|&i| {
+                let contact = &self.contacts[i];
+                let (position, rotation) = states[contact.body].pose();
+                let normal = contact.contact.normal();
+                let touching = position + rotation * contact.point - normal * contact.contact.radius();
+                tangent_basis(&normal).map(|tangent| (contact.body, touching, tangent))
+            })
+            .collect();
+        self.point_jacobian(states, &points)
+            .map_err(|error| ConstraintError::InvalidParameter {
+                name: self.contact_names().collect::<Vec<_>>().join(" + "),
+                reason: error.to_string(),
+            })
+    }
+
+    /// The impulses of an impact by Newton's law and Coulomb's (see the module docs). If they would add energy (a
+    /// restitution with friction can, where a slip reverses), the targets are scaled down, by bisection, to the
+    /// largest fraction of the restitution that adds none; at zero restitution an impact always dissipates.
+    fn dissipative_impulses(
+        &self,
+        t: f64,
+        rows: &ImpactRows<'_>,
+        participants: &[Participant],
+    ) -> Result<Outcome, ConstraintError> {
+        let full = self.impact_modes(t, rows, participants, 1.0)?;
+        if energy_added(rows, &full) <= 0.0 {
+            return Ok(full);
+        }
+        let (mut lower, mut upper) = (0.0, 1.0);
+        let mut best = self.impact_modes(t, rows, participants, 0.0)?;
+        for _ in 0..RESTITUTION_BISECTIONS {
+            let middle = 0.5 * (lower + upper);
+            let outcome = self.impact_modes(t, rows, participants, middle)?;
+            if energy_added(rows, &outcome) <= 0.0 {
+                (lower, best) = (middle, outcome);
+            } else {
+                upper = middle;
+            }
+        }
+        Ok(best)
+    }
+
+    /// The active sets of an impact whose speed targets are scaled by `fraction` (1 for the restitution asked): every
+    /// contact starts in, sliding along its slip before if it has friction and slips, else sticking; a pulling one
+    /// leaves, a free one sinking below its target joins, a sticking one whose friction leaves the cone slides, a
+    /// sliding one follows its slip after (or sticks when it reversed), until all hold.
+    fn impact_modes(
+        &self,
+        t: f64,
+        rows: &ImpactRows<'_>,
+        participants: &[Participant],
+        fraction: f64,
+    ) -> Result<Outcome, ConstraintError> {
+        let count = participants.len();
+        let scale = rows.before.amax().max(f64::MIN_POSITIVE);
+        // Friction opposes the slip the impact meets: a contact slipping before starts sliding along its slip, one
+        // at rest sticking. (Started sticking, a box landing flat while moving along the floor would need pulls to
+        // hold its corners' friction, and the pulling ones would leave first.)
+        let mut modes: Vec<Mode> = participants
+            .iter()
+            .map(|p| match p.tangential {
+                Some(row) => {
+                    let slip = p.basis[0] * rows.before[row] + p.basis[1] * rows.before[row + 1];
+                    let speed = slip.norm();
+                    if speed > STOP_SPEED {
+                        Mode::Sliding {
+                            direction: slip / speed,
+                        }
+                    } else {
+                        Mode::Sticking
+                    }
+                }
+                None => Mode::Sliding {
+                    direction: Vector3::zeros(),
+                },
+            })
+            .collect();
+        for _ in 0..MAX_IMPACT_PASSES * (count + 1) {
+            let outcome = self.impulses_for(t, rows, participants, &modes, fraction)?;
+            let (p, after) = (&outcome.impulses, &outcome.after);
+            let largest_push = participants.iter().fold(0.0f64, |m, q| m.max(p[q.normal].abs()));
+            let pulling = (0..count)
+                .filter(|&k| modes[k] != Mode::Out && p[participants[k].normal] < -COMPLEMENTARITY * largest_push)
+                .min_by(|&a, &b| p[participants[a].normal].total_cmp(&p[participants[b].normal]));
+            if let Some(k) = pulling {
+                modes[k] = Mode::Out;
+                continue;
+            }
+            let target = |k: usize| participants[k].target * fraction;
+            let sinking = (0..count)
+                .filter(|&k| {
+                    modes[k] == Mode::Out && after[participants[k].normal] < target(k) - COMPLEMENTARITY * scale
+                })
+                .min_by(|&a, &b| {
+                    (after[participants[a].normal] - target(a)).total_cmp(&(after[participants[b].normal] - target(b)))
+                });
+            if let Some(k) = sinking {
+                modes[k] = if participants[k].tangential.is_some() {
+                    Mode::Sticking
+                } else {
+                    Mode::Sliding {
+                        direction: Vector3::zeros(),
+                    }
+                };
+                continue;
+            }
+            if let Some(k) = self.friction_change(participants, &modes, &outcome) {
+                modes[k.0] = k.1;
+                continue;
+            }
+            return Ok(outcome);
+        }
+        Err(self.impact_failed(
+            t,
+            "no set of pushing, sticking and sliding contacts was found".to_owned(),
+        ))
+    }
+
+    /// The first contact whose friction mode does not hold with `outcome`, and the mode it takes: a sticking one whose
+    /// friction impulse leaves the cone slides against it; a sliding one whose slip after reversed sticks, one whose
+    /// slip after turned follows it (one with no slip after holds: its impulse is on the cone's edge).
+    fn friction_change(
+        &self,
+        participants: &[Participant],
+        modes: &[Mode],
+        outcome: &Outcome,
+    ) -> Option<(usize, Mode)> {
+        let (p, after) = (&outcome.impulses, &outcome.after);
+        for (k, (participant, mode)) in participants.iter().zip(modes).enumerate() {
+            let Some(row) = participant.tangential else {
+                continue;
+            };
+            let [first, second] = participant.basis;
+            let push = p[participant.normal];
+            match *mode {
+                Mode::Out => {}
+                Mode::Sticking => {
+                    let friction = first * p[row] + second * p[row + 1];
+                    let bound = participant.friction.stiction() * push;
+                    if friction.norm() > bound + COMPLEMENTARITY * push.abs().max(friction.norm()) {
+                        let direction = -friction.normalize();
+                        return Some((k, Mode::Sliding { direction }));
+                    }
+                }
+                Mode::Sliding { direction } => {
+                    let slip = first * after[row] + second * after[row + 1];
+                    let speed = slip.norm();
+                    // No slip after: the friction impulse on the cone's edge, as Coulomb's law allows (a corner held
+                    // still by the others of its body while they slide); sticking it would bring it back.
+                    if speed <= STOP_SPEED {
+                        continue;
+                    }
+                    let next = slip / speed;
+                    // A slip reversed: the friction assumed was more than the contact needs, it sticks.
+                    if next.dot(&direction) < 0.0 {
+                        return Some((k, Mode::Sticking));
+                    }
+                    if (next - direction).norm() > IMPACT_DIRECTION_TOLERANCE {
+                        return Some((k, Mode::Sliding { direction: next }));
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    /// The impulses for fixed modes: unknowns the pushes of the contacts in, the friction impulses of the sticking ones
+    /// and the equalities'; equations the normal speeds after at their targets (scaled by `fraction`), the sticking
+    /// slips after at zero, the equalities unchanged. A sliding contact's friction impulse is `−μ P_n ŝ`. Solved in
+    /// the least-norm sense, so that contacts repeating others share.
+    fn impulses_for(
+        &self,
+        t: f64,
+        rows: &ImpactRows<'_>,
+        participants: &[Participant],
+        modes: &[Mode],
+        fraction: f64,
+    ) -> Result<Outcome, ConstraintError> {
+        let total = rows.gram.nrows();
+        // Each unknown as a combination of row impulses, and each equation's row with its value.
+        let mut unknowns: Vec<Vec<(usize, f64)>> = Vec::new();
+        let mut equations: Vec<(usize, f64)> = Vec::new();
+        for (participant, mode) in participants.iter().zip(modes) {
+            let n = participant.normal;
+            match (*mode, participant.tangential) {
+                (Mode::Out, _) => continue,
+                (Mode::Sliding { direction }, Some(row)) => {
+                    let mu = participant.friction.kinetic();
+                    let [first, second] = participant.basis;
+                    unknowns.push(vec![
+                        (n, 1.0),
+                        (row, -mu * direction.dot(&first)),
+                        (row + 1, -mu * direction.dot(&second)),
+                    ]);
+                }
+                (Mode::Sticking, Some(row)) => {
+                    unknowns.push(vec![(n, 1.0)]);
+                    unknowns.push(vec![(row, 1.0)]);
+                    unknowns.push(vec![(row + 1, 1.0)]);
+                    equations.push((row, 0.0));
+                    equations.push((row + 1, 0.0));
+                }
+                (_, None) => unknowns.push(vec![(n, 1.0)]),
+            }
+            equations.push((n, participant.target * fraction));
+        }
+        for e in rows.equalities..total {
+            unknowns.push(vec![(e, 1.0)]);
+            equations.push((e, rows.before[e]));
+        }
+        if unknowns.is_empty() {
+            return Ok(Outcome {
+                impulses: DVector::zeros(total),
+                after: rows.before.clone(),
+            });
+        }
+        let mut matrix = DMatrix::zeros(equations.len(), unknowns.len());
+        let mut rhs = DVector::zeros(equations.len());
+        for (i, &(row, value)) in equations.iter().enumerate() {
+            rhs[i] = value - rows.before[row];
+            for (j, combination) in unknowns.iter().enumerate() {
+                matrix[(i, j)] = combination.iter().map(|&(r, w)| w * rows.gram[(row, r)]).sum();
+            }
+        }
+        let solution = self.least_norm(t, &matrix, &rhs)?;
+        let mut impulses = DVector::zeros(total);
+        for (combination, &x) in unknowns.iter().zip(solution.iter()) {
+            for &(r, w) in combination {
+                impulses[r] += w * x;
+            }
+        }
+        let after = rows.before + rows.gram * &impulses;
+        Ok(Outcome { impulses, after })
+    }
+}
+
+/// The kinetic energy an impact's contact impulses add (J), less round-off: `P·u⁺ − ½ PᵀGP` over the contact rows, the
+/// equalities' work (a drive's) left out. Positive means energy added.
+fn energy_added(rows: &ImpactRows<'_>, outcome: &Outcome) -> f64 {
+    let p = &outcome.impulses;
+    let quadratic = 0.5 * p.dot(&(rows.gram * p));
+    let equalities = rows.equalities..p.len();
+    let work: f64 = (0..p.len())
+        .filter(|r| !equalities.contains(r))
+        .map(|r| p[r] * outcome.after[r])
+        .sum();
+    let size = quadratic.abs() + (0..p.len()).map(|r| (p[r] * outcome.after[r]).abs()).sum::<f64>();
+    work - quadratic - ENERGY_ROUND_OFF * size
+}
+
+/// Passes of the active sets per contact at most (each contact may leave, join, stick and slide).
+const MAX_IMPACT_PASSES: usize = 8;
+
+/// Bisections of the restitution of an impact that would add energy: 2⁻⁴⁰ of it.
+const RESTITUTION_BISECTIONS: usize = 40;
+
+/// A sliding contact's slip direction after an impact, converged to this (rad).
+const IMPACT_DIRECTION_TOLERANCE: f64 = 1e-12;

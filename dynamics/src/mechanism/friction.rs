@@ -1,0 +1,298 @@
+//! Coulomb friction at a mechanism's held contacts (docs/contacts.md "Friction"): the slip of a contact's touching
+//! point, the direction a sliding contact's friction takes, the rows of the articulated solve that carry it (a sliding
+//! contact's push tilted by `−μ ŝ`, a sticking contact's two tangential rows), and the friction values
+//! [`crate::simulate()`] watches (the slip along the step's starting direction while sliding, the margin to the cone
+//! while sticking).
+
+use nalgebra::Vector3;
+
+use crate::algebra::Algebra;
+use crate::constraints::ConstraintError;
+use crate::eigen::SingularValues;
+use crate::mechanism::articulated::{Row, REPEATED_ROW};
+use crate::mechanism::load_split::{widest_split, Held};
+use crate::mechanism::model::{Mechanism, MechanismWorkspace};
+use crate::mechanism::parts::{Contact, Slip};
+use crate::state::State;
+
+/// The value a contact's friction shows while the contact is free: positive, so never a transition.
+pub(super) const NOT_WATCHED: f64 = 1.0;
+
+/// Slips below this (m/s) where a slide's slip along its starting direction reaches zero are a stop; a larger one
+/// is a slide that turned by a right angle within a step, which only renews the direction it is watched along. A
+/// located stop leaves a few ulps of the time times the slip's rate (1e-14 m/s under 10 m/s²).
+pub(super) const STOP_SPEED: f64 = 1e-9;
+
+/// Two unit vectors completing the unit `normal` to a right-handed frame `(t₁, t₂, n)`, the same for the same normal.
+pub(super) fn tangent_basis(normal: &Vector3<f64>) -> [Vector3<f64>; 2] {
+    // The coordinate axis least aligned with n, made orthogonal to it.
+    let axis = if normal.x.abs() <= normal.y.abs() && normal.x.abs() <= normal.z.abs() {
+        Vector3::x()
+    } else if normal.y.abs() <= normal.z.abs() {
+        Vector3::y()
+    } else {
+        Vector3::z()
+    };
+    let first = (axis - normal * normal.dot(&axis)).normalize();
+    [first, normal.cross(&first)]
+}
+
+/// The direction `±s/|s|` of a slide's friction: the slip's own direction while it points along `reference` (its
+/// direction at the step's start), the opposite once it has passed through zero, and the reference itself for a slip
+/// below [`STOP_SPEED`], whose direction is round-off (a slide just begun, or just stopped).
+pub(super) fn sliding_direction(slip: &Vector3<f64>, reference: &Vector3<f64>) -> Vector3<f64> {
+    let speed = slip.norm();
+    if speed <= STOP_SPEED {
+        return *reference;
+    }
+    if slip.dot(reference) >= 0.0 {
+        slip / speed
+    } else {
+        -slip / speed
+    }
+}
+
+/// A contact's touching point and its slip (world) for a body at `position` turned by `rotation` (as a matrix-free
+/// quaternion or rotation: anything that turns a body vector) moving with `(linear, angular)`.
+pub(super) fn touching_point_and_slip(
+    contact: &Contact,
+    (position, turned_point): (Vector3<f64>, Vector3<f64>),
+    (linear, angular): (Vector3<f64>, Vector3<f64>),
+) -> (Vector3<f64>, Vector3<f64>) {
+    let normal = contact.contact.normal();
+    let centre = position + turned_point;
+    let touching = centre - normal * contact.contact.radius();
+    let velocity = linear + angular.cross(&(touching - position));
+    (touching, velocity - normal * normal.dot(&velocity))
+}
+
+impl<A: Algebra> Mechanism<A> {
+    /// The one-sided index of contact `contact`'s friction value, if it has friction.
+    pub(super) fn friction_index(&self, contact: usize) -> Option<usize> {
+        let rank = self.frictional.iter().position(|&c| c == contact)?;
+        Some(self.limits.len() + self.contacts.len() + rank)
+    }
+
+    /// Contact `index`'s slip (world, m/s) at `states`.
+    pub(super) fn contact_slip(&self, index: usize, states: &[State<A>]) -> Vector3<f64> {
+        let contact = &self.contacts[index];
+        let state = &states[contact.body];
+        let (position, rotation) = state.pose();
+        let velocity = state.world_velocity(&self.bodies[contact.body].body);
+        let turned = rotation * contact.point;
+        touching_point_and_slip(contact, (position, turned), (velocity.linear, velocity.angular)).1
+    }
+
+    /// Contact `index`'s slip (world) at the kinematics the workspace holds.
+    fn workspace_slip(&self, index: usize, workspace: &MechanismWorkspace<A>) -> Vector3<f64> {
+        let contact = &self.contacts[index];
+        let kinematics = &workspace.bodies[contact.body].kinematics;
+        let position = kinematics.frame.position;
+        let turned = kinematics.frame.rotation * contact.point;
+        let motion = (kinematics.linear_velocity, kinematics.angular_velocity);
+        touching_point_and_slip(contact, (position, turned), motion).1
+    }
+
+    /// The rows that hold contact `index` (held, with slip mode `slip`): its normal row, whose unit multiplier is the
+    /// push, tilted to `n − μ ŝ` while sliding (the direction filled in at each evaluation), and while sticking two
+    /// tangential rows at the touching point, whose multipliers are the friction force's components.
+    pub(super) fn contact_hold_rows(&self, index: usize, slip: Option<Slip>, rows: &mut Vec<Row>) {
+        let contact = &self.contacts[index];
+        let normal = contact.contact.normal();
+        let touching = -normal * contact.contact.radius();
+        rows.push(Row::Point {
+            body: contact.body,
+            point: contact.point,
+            contact: touching,
+            direction: normal,
+            force: normal,
+        });
+        if slip == Some(Slip::Sticking) {
+            for tangent in tangent_basis(&normal) {
+                rows.push(Row::Point {
+                    body: contact.body,
+                    point: contact.point,
+                    contact: touching,
+                    direction: tangent,
+                    force: tangent,
+                });
+            }
+        }
+    }
+
+    /// Each sliding held contact's normal row gets the force of its push with the friction it brings, `n − μ ŝ`, ŝ the
+    /// slip's direction at the kinematics in the workspace (continued through a stop: [`sliding_direction`]).
+    pub(super) fn tilt_sliding_rows(&self, workspace: &mut MechanismWorkspace<A>) {
+        for &c in &self.frictional {
+            let Some(row) = workspace.held_rows[self.limits.len() + c] else {
+                continue;
+            };
+            let Slip::Sliding { reference } = workspace.slips[c] else {
+                continue;
+            };
+            let direction = sliding_direction(&self.workspace_slip(c, workspace), &reference);
+            let kinetic = self.contacts[c].contact.friction().kinetic();
+            if let Row::Point {
+                direction: normal,
+                force,
+                ..
+            } = &mut workspace.rows[row]
+            {
+                *force = *normal - direction * kinetic;
+            }
+        }
+    }
+
+    /// Every sliding held contact's reference direction renewed to its slip's at `states`, the start of a step
+    /// ([`crate::Dynamics::begin_step`]); a slip too small to have a direction keeps the one it has (that of a
+    /// slide just begun).
+    pub(super) fn renew_slip_references(&self, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) {
+        for &c in &self.frictional {
+            if workspace.held_rows[self.limits.len() + c].is_none() {
+                continue;
+            }
+            if let Slip::Sliding { reference } = &mut workspace.slips[c] {
+                let slip = self.contact_slip(c, states);
+                let speed = slip.norm();
+                if speed > STOP_SPEED {
+                    *reference = slip / speed;
+                }
+            }
+        }
+    }
+
+    /// The multipliers of the held rows at the last evaluation in `workspace`: the articulated solve's, moved by a
+    /// load the rows balance among themselves (one that changes no body's acceleration) to the split with the widest
+    /// margin ([`widest_split`]) where the held rows repeat each other.
+    pub(super) fn held_multipliers(&self, workspace: &MechanismWorkspace<A>) -> Vec<f64> {
+        let least_norm = workspace.articulated.multipliers();
+        if least_norm.is_empty() || workspace.held.iter().all(Option::is_none) {
+            return least_norm.to_vec();
+        }
+        let svd = SingularValues::of(&workspace.articulated.responses());
+        // The loads that move nothing: the right singular vectors of (near) zero singular values.
+        let null = svd.null_vectors(REPEATED_ROW * svd.largest());
+        if null.is_empty() {
+            return least_norm.to_vec();
+        }
+        let null = nalgebra::DMatrix::from_columns(&null);
+        let held: Vec<Held> = (workspace.held.iter().enumerate())
+            .filter_map(|(index, bound)| {
+                let (bound, row) = ((*bound)?, workspace.held_rows[index]?);
+                let friction = index.checked_sub(self.limits.len()).and_then(|c| {
+                    let friction = self.contacts[c].contact.friction();
+                    (friction.is_some() && workspace.slips[c] == Slip::Sticking)
+                        .then_some((row + 1, friction.stiction()))
+                });
+                Some(Held {
+                    push: (row, bound.inward()),
+                    friction,
+                })
+            })
+            .collect();
+        let base = nalgebra::DVector::from_column_slice(least_norm);
+        widest_split(&base, &null, &held).0.as_slice().to_vec()
+    }
+
+    /// Contact `index`'s friction value at `states` with the held rows' multipliers `multipliers`
+    /// ([`Mechanism::held_multipliers`]): while free [`NOT_WATCHED`]; while sliding the slip along the reference
+    /// direction (m/s); while sticking the margin `μ_s N − |F_t|` to the cone (N).
+    pub(super) fn friction_value(
+        &self,
+        index: usize,
+        states: &[State<A>],
+        workspace: &MechanismWorkspace<A>,
+        multipliers: &[f64],
+    ) -> f64 {
+        let Some(row) = workspace.held_rows[self.limits.len() + index] else {
+            return NOT_WATCHED;
+        };
+        match workspace.slips[index] {
+            Slip::Sliding { reference } => self.contact_slip(index, states).dot(&reference),
+            Slip::Sticking => {
+                let push = multipliers[row];
+                let tangential = multipliers[row + 1].hypot(multipliers[row + 2]);
+                self.contacts[index].contact.friction().stiction() * push - tangential
+            }
+        }
+    }
+
+    /// The directions held contacts at rest (no slip), `contacts`, start to slide in, by maximal dissipation: each
+    /// the direction ŝ of its slip's acceleration under the kinetic friction `−μ N ŝ` they all bring, found together
+    /// by fixed-point iteration from `guesses` (the directions opposite their sticking forces). They are left sliding
+    /// along them; `states` and the other constraints' modes are those of the transition.
+    pub(super) fn slide_from_rest(
+        &self,
+        contacts: &[usize],
+        t: f64,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+        guesses: &[Vector3<f64>],
+    ) -> Result<Vec<Vector3<f64>>, ConstraintError> {
+        let mut directions = guesses.to_vec();
+        for _ in 0..MAX_DIRECTION_ITERATIONS {
+            for (&c, &direction) in contacts.iter().zip(&directions) {
+                workspace.slips[c] = Slip::Sliding { reference: direction };
+            }
+            self.hold_rows(workspace);
+            self.evaluate_states(t, states, workspace)?;
+            let mut turned: f64 = 0.0;
+            for (&c, direction) in contacts.iter().zip(directions.iter_mut()) {
+                let acceleration = self.touching_acceleration(c, workspace);
+                let normal = self.contacts[c].contact.normal();
+                let tangential = acceleration - normal * normal.dot(&acceleration);
+                let size = tangential.norm();
+                // No tangential acceleration (the cone just reached with μ_s = μ, or the contact held in place by
+                // others still sticking): the slip starts along the guess.
+                if size > REST_ACCELERATION {
+                    let next = tangential / size;
+                    turned = turned.max((next - *direction).norm());
+                    *direction = next;
+                }
+            }
+            if turned <= DIRECTION_TOLERANCE {
+                for (&c, &direction) in contacts.iter().zip(&directions) {
+                    workspace.slips[c] = Slip::Sliding { reference: direction };
+                }
+                self.hold_rows(workspace);
+                return Ok(directions);
+            }
+        }
+        Err(ConstraintError::InvalidParameter {
+            name: contacts
+                .iter()
+                .map(|&c| self.contacts[c].name.as_str())
+                .collect::<Vec<_>>()
+                .join(" + "),
+            reason: format!(
+                "at t = {t} the contacts start to slide, but no directions of maximal dissipation were found in \
+                 {MAX_DIRECTION_ITERATIONS} iterations"
+            ),
+        })
+    }
+
+    /// The acceleration (world) of contact `index`'s touching point, as its slip and height change, from the last
+    /// articulated solve: `a_o + α × l + ω × v_c` with l the touching point's offset from o and v_c the velocity of the
+    /// point the contact holds (docs/contacts.md "Friction").
+    pub(super) fn touching_acceleration(&self, index: usize, workspace: &MechanismWorkspace<A>) -> Vector3<f64> {
+        let contact = &self.contacts[index];
+        let kinematics = &workspace.bodies[contact.body].kinematics;
+        let origin = workspace.articulated.origin();
+        let held = kinematics.frame.position + kinematics.frame.rotation * contact.point;
+        let lever = held - contact.contact.normal() * contact.contact.radius() - origin;
+        let a = workspace.articulated.acceleration(contact.body);
+        let (alpha, linear) = (a.fixed_rows::<3>(0).into_owned(), a.fixed_rows::<3>(3).into_owned());
+        let omega = kinematics.angular_velocity;
+        let velocity = kinematics.linear_velocity + omega.cross(&(held - kinematics.frame.position));
+        linear + alpha.cross(&lever) + omega.cross(&velocity)
+    }
+}
+
+/// A slip acceleration below this (m/s²) is none: round-off of a contact held in place.
+const REST_ACCELERATION: f64 = 1e-9;
+
+/// Fixed-point iterations at most for a slide's starting direction.
+const MAX_DIRECTION_ITERATIONS: usize = 50;
+
+/// Successive directions closer than this (rad) have converged.
+const DIRECTION_TOLERANCE: f64 = 1e-13;
