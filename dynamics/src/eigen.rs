@@ -101,6 +101,9 @@ impl SingularValues {
         let n = matrix.ncols();
         let mut a = matrix.clone();
         let mut v = DMatrix::identity(n, n);
+        // Columns below round-off of the whole matrix are null: their pairs are never orthogonal to relative
+        // precision (they are noise), so they are left as they are.
+        let negligible = (f64::EPSILON * matrix.norm()).powi(2);
         for _ in 0..JACOBI_SWEEPS {
             let mut rotated = false;
             for p in 0..n {
@@ -108,7 +111,11 @@ impl SingularValues {
                     let alpha = a.column(p).norm_squared();
                     let beta = a.column(q).norm_squared();
                     let gamma = a.column(p).dot(&a.column(q));
-                    if gamma == 0.0 || gamma.abs() <= f64::EPSILON * (alpha * beta).sqrt() {
+                    if gamma == 0.0
+                        || alpha <= negligible
+                        || beta <= negligible
+                        || gamma.abs() <= f64::EPSILON * (alpha * beta).sqrt()
+                    {
                         continue;
                     }
                     rotated = true;

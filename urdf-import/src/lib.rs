@@ -67,7 +67,7 @@ pub use build::{BaseStart, BuildError, BuildOptions, Limits, Robot, RobotStart, 
 pub use error::ImportError;
 pub use joint_kind::JointKind;
 pub use merge::{FrozenJoint, LinkPlacement, Mimic, MovingJoint, RigidBody, RobotModel};
-pub use parse::Limit;
+pub use parse::{Collision, Geometry, Limit};
 pub use validate::{ImportOptions, MasslessSubtrees, MimicMode, Repair};
 
 /// Imports URDF text: parse, validate, merge fixed joints, check the bodies.

@@ -11,7 +11,7 @@ use std::collections::BinaryHeap;
 
 use nalgebra::{Isometry3, Matrix3, Unit, Vector3};
 
-use crate::parse::{JointKind, Limit};
+use crate::parse::{Collision, JointKind, Limit};
 use crate::validate::{principal_axes, MimicMode, Repair, Validated};
 
 /// A link's place in its rigid body.
@@ -150,6 +150,8 @@ pub struct RobotModel {
     pub root_fixed_only: bool,
     /// Top-level elements ignored (visual-only, simulator-specific, ...), by tag, with their counts.
     pub ignored: Vec<(String, usize)>,
+    /// Every link's `<collision>` elements, by link name (in the link's frame), file order.
+    pub collisions: Vec<(String, Collision)>,
 }
 
 impl RobotModel {
@@ -354,5 +356,8 @@ pub fn merge(validated: Validated) -> RobotModel {
         mimic: options.mimic,
         root_fixed_only: false,
         ignored: raw.ignored,
+        collisions: (raw.links.iter())
+            .flat_map(|link| link.collisions.iter().map(|c| (link.name.clone(), c.clone())))
+            .collect(),
     }
 }

@@ -45,6 +45,46 @@ pub struct Inertial {
     pub inertia_line: u32,
 }
 
+/// A `<collision>` element's geometry as written (m).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// `<sphere radius>`.
+    Sphere {
+        /// m.
+        radius: f64,
+    },
+    /// `<box size>`: edge lengths along the collision frame's axes.
+    Box {
+        /// m.
+        size: [f64; 3],
+    },
+    /// `<cylinder radius length>`, its axis the collision frame's z.
+    Cylinder {
+        /// m.
+        radius: f64,
+        /// m.
+        length: f64,
+    },
+    /// `<mesh filename scale>`.
+    Mesh {
+        /// As written, often a `package://` address.
+        filename: String,
+        /// Per axis (default 1).
+        scale: [f64; 3],
+    },
+}
+
+/// A link's `<collision>`: its geometry in the collision frame `origin` (in the link frame).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Collision {
+    /// The collision frame in the link frame.
+    pub origin: Isometry3<f64>,
+    /// The shape.
+    pub geometry: Geometry,
+    /// The `<collision>` element's line.
+    pub line: u32,
+}
+
 /// A `<link>` as written.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RawLink {
@@ -54,6 +94,9 @@ pub struct RawLink {
     pub line: u32,
     /// Its mass properties; `None` when the link has no `<inertial>` (a massless frame).
     pub inertial: Option<Inertial>,
+    /// Its well-formed `<collision>` elements, in file order (malformed ones are noted in [`RawModel::warnings`]: the
+    /// dynamics does not need them, and a robot that loads without them should not fail for them).
+    pub collisions: Vec<Collision>,
 }
 
 /// A joint's `<mimic>` as written.
@@ -185,7 +228,9 @@ pub fn parse(text: &str) -> Result<RawModel, ImportError> {
     let mut xacro = 0;
     for node in robot.children().filter(Node::is_element) {
         match urdf_tag(node) {
-            Some("link") => model.links.push(parse_link(node, &model.name, &at)?),
+            Some("link") => model
+                .links
+                .push(parse_link(node, &model.name, &at, &mut model.warnings)?),
             Some("joint") => model.joints.push(parse_joint(node, &model.name, &at)?),
             _ => {
                 let tag = qualified_name(node);
@@ -315,7 +360,12 @@ fn element_name(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<St
     Ok(site.required(node, "name")?.to_owned())
 }
 
-fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawLink, ImportError> {
+fn parse_link(
+    node: Node,
+    robot: &str,
+    at: &impl Fn(Node) -> u32,
+    warnings: &mut Vec<String>,
+) -> Result<RawLink, ImportError> {
     let name = element_name(node, robot, at)?;
     let owner = format!("link `{name}`");
     let site = Site { owner: &owner, at };
@@ -344,10 +394,65 @@ fn parse_link(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<RawL
             })
         }
     };
+    let mut collisions = Vec::new();
+    for element in node.children().filter(|c| urdf_tag(*c) == Some("collision")) {
+        match parse_collision(element, &site) {
+            Ok(collision) => collisions.push(collision),
+            Err(reason) => warnings.push(format!(
+                "link `{name}`: the <collision> at line {} is skipped: {reason}",
+                at(element)
+            )),
+        }
+    }
     Ok(RawLink {
         name,
         line: at(node),
         inertial,
+        collisions,
+    })
+}
+
+/// A `<collision>`'s origin and geometry, or why it cannot be read.
+fn parse_collision(element: Node, site: &Site<'_, impl Fn(Node) -> u32>) -> Result<Collision, String> {
+    let geometry = child(element, "geometry").ok_or("it has no <geometry>")?;
+    let shape = geometry
+        .children()
+        .find(|c| c.is_element())
+        .ok_or("its <geometry> is empty")?;
+    let number = |attribute: &str| {
+        site.required_number(shape, attribute)
+            .map_err(|error| error.to_string())
+    };
+    let geometry = match urdf_tag(shape) {
+        Some("sphere") => Geometry::Sphere {
+            radius: number("radius")?,
+        },
+        Some("box") => Geometry::Box {
+            size: site
+                .numbers::<3>(shape, "size")
+                .map_err(|error| error.to_string())?
+                .ok_or("its <box> has no size")?,
+        },
+        Some("cylinder") => Geometry::Cylinder {
+            radius: number("radius")?,
+            length: number("length")?,
+        },
+        Some("mesh") => Geometry::Mesh {
+            filename: site
+                .required(shape, "filename")
+                .map_err(|error| error.to_string())?
+                .to_owned(),
+            scale: site
+                .numbers::<3>(shape, "scale")
+                .map_err(|error| error.to_string())?
+                .unwrap_or([1.0; 3]),
+        },
+        _ => return Err(format!("<{}> is not a URDF geometry", qualified_name(shape))),
+    };
+    Ok(Collision {
+        origin: site.origin(element).map_err(|error| error.to_string())?,
+        geometry,
+        line: (site.at)(element),
     })
 }
 

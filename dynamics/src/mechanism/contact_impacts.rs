@@ -1,10 +1,11 @@
 //! A contact's impact (docs/contacts.md "Impact" and "Friction"): every contact touching its plane takes an impulse
 //! through the kinetic metric, the other held relations kept. Along the normal Newton's law with complementarity:
 //! each pushes (≥ 0) and leaves at `e` times the speed it met the plane with, or pushes nothing and leaves faster.
-//! Along the plane Coulomb's law on the speeds after: a contact sticks (its slip after is zero) while its friction
-//! impulse is inside the cone `|P_t| ≤ μ_s P_n`, else slides, its friction impulse `−μ P_n ŝ` opposing its slip ŝ
-//! after. The modes are found by active sets; an impact whose restitution with friction would add energy has its
-//! restitution lowered until it adds none.
+//! Along the plane Coulomb's law: a contact sticks (its slip after is zero) while its friction impulse is inside the
+//! cone `|P_t| ≤ μ_s P_n`, else slides, its friction impulse `−μ P_n ŝ` opposing the slip ŝ the impact meets (or,
+//! for a contact that meets the plane without slip, the sticking impulse the cone could not hold), and sticks if that
+//! would reverse its slip. The modes are found by active sets; an impact whose restitution with friction would add
+//! energy has its restitution lowered until it adds none.
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
@@ -52,6 +53,50 @@ struct Participant {
     friction: Friction,
     basis: [Vector3<f64>; 2],
     target: f64,
+}
+
+impl Participant {
+    /// The mode impulses `p` show: none pushing, out; inside the cone, sticking; on it, sliding against its friction.
+    fn mode_of(&self, p: &DVector<f64>) -> Mode {
+        let push = p[self.normal];
+        if push <= 0.0 {
+            return Mode::Out;
+        }
+        let Some(row) = self.tangential else {
+            return Mode::Sliding {
+                direction: Vector3::zeros(),
+            };
+        };
+        let friction = self.basis[0] * p[row] + self.basis[1] * p[row + 1];
+        if friction.norm() < self.friction.stiction() * push * (1.0 - CONE_EDGE) {
+            Mode::Sticking
+        } else {
+            Mode::Sliding {
+                direction: -friction.normalize(),
+            }
+        }
+    }
+
+    /// The mode a contact takes when it enters the impact's active set. Friction opposes the slip the impact meets: a
+    /// contact slipping before slides along its slip, one at rest sticks. (Started sticking, a box landing flat while
+    /// moving along the floor would need pulls to hold its corners' friction, and the pulling ones would leave first;
+    /// a corner joining a tumbling box's impact sticking can pull where sliding it pushes.)
+    fn entering(&self, rows: &ImpactRows<'_>) -> Mode {
+        let Some(row) = self.tangential else {
+            return Mode::Sliding {
+                direction: Vector3::zeros(),
+            };
+        };
+        let slip = self.basis[0] * rows.before[row] + self.basis[1] * rows.before[row + 1];
+        let speed = slip.norm();
+        if speed > STOP_SPEED {
+            Mode::Sliding {
+                direction: slip / speed,
+            }
+        } else {
+            Mode::Sticking
+        }
+    }
 }
 
 /// An impact's rows: the Gram matrix `S M⁻¹ Sᵀ` and the speeds before, for the stacked rows S (normal rows,
@@ -222,15 +267,15 @@ impl<A: Algebra> Mechanism<A> {
         rows: &ImpactRows<'_>,
         participants: &[Participant],
     ) -> Result<Outcome, ConstraintError> {
-        let full = self.impact_modes(t, rows, participants, 1.0)?;
+        let full = self.impact_outcome(t, rows, participants, 1.0)?;
         if energy_added(rows, &full) <= 0.0 {
             return Ok(full);
         }
         let (mut lower, mut upper) = (0.0, 1.0);
-        let mut best = self.impact_modes(t, rows, participants, 0.0)?;
+        let mut best = self.impact_outcome(t, rows, participants, 0.0)?;
         for _ in 0..RESTITUTION_BISECTIONS {
             let middle = 0.5 * (lower + upper);
-            let outcome = self.impact_modes(t, rows, participants, middle)?;
+            let outcome = self.impact_outcome(t, rows, participants, middle)?;
             if energy_added(rows, &outcome) <= 0.0 {
                 (lower, best) = (middle, outcome);
             } else {
@@ -240,10 +285,35 @@ impl<A: Algebra> Mechanism<A> {
         Ok(best)
     }
 
+    /// The impulses of an impact whose speed targets are scaled by `fraction`: by active sets ([`Mechanism::impact_modes`])
+    /// where they settle; where they cycle (a contact that pulls while sticking, sinks while out and reverses its slip
+    /// while sliding), by Gauss–Seidel iteration on Coulomb's law with each slide opposing its slip after
+    /// ([`coulomb_iteration`]), whose modes, where consistent, are solved again exactly.
+    fn impact_outcome(
+        &self,
+        t: f64,
+        rows: &ImpactRows<'_>,
+        participants: &[Participant],
+        fraction: f64,
+    ) -> Result<Outcome, ConstraintError> {
+        let error = match self.impact_modes(t, rows, participants, fraction) {
+            Ok(outcome) => return Ok(outcome),
+            Err(error) => error,
+        };
+        let iterated = coulomb_iteration(rows, participants, fraction).ok_or(error)?;
+        let modes: Vec<Mode> = participants.iter().map(|p| p.mode_of(&iterated.impulses)).collect();
+        let exact = self.impulses_for(t, rows, participants, &modes, fraction)?;
+        Ok(if consistent(rows, participants, &modes, &exact, fraction) {
+            exact
+        } else {
+            iterated
+        })
+    }
+
     /// The active sets of an impact whose speed targets are scaled by `fraction` (1 for the restitution asked): every
     /// contact starts in, sliding along its slip before if it has friction and slips, else sticking; a pulling one
     /// leaves, a free one sinking below its target joins, a sticking one whose friction leaves the cone slides, a
-    /// sliding one follows its slip after (or sticks when it reversed), until all hold.
+    /// sliding one whose slip would reverse sticks, until all hold; an error naming the contacts if the sets cycle.
     fn impact_modes(
         &self,
         t: f64,
@@ -253,28 +323,7 @@ impl<A: Algebra> Mechanism<A> {
     ) -> Result<Outcome, ConstraintError> {
         let count = participants.len();
         let scale = rows.before.amax().max(f64::MIN_POSITIVE);
-        // Friction opposes the slip the impact meets: a contact slipping before starts sliding along its slip, one
-        // at rest sticking. (Started sticking, a box landing flat while moving along the floor would need pulls to
-        // hold its corners' friction, and the pulling ones would leave first.)
-        let mut modes: Vec<Mode> = participants
-            .iter()
-            .map(|p| match p.tangential {
-                Some(row) => {
-                    let slip = p.basis[0] * rows.before[row] + p.basis[1] * rows.before[row + 1];
-                    let speed = slip.norm();
-                    if speed > STOP_SPEED {
-                        Mode::Sliding {
-                            direction: slip / speed,
-                        }
-                    } else {
-                        Mode::Sticking
-                    }
-                }
-                None => Mode::Sliding {
-                    direction: Vector3::zeros(),
-                },
-            })
-            .collect();
+        let mut modes: Vec<Mode> = participants.iter().map(|p| p.entering(rows)).collect();
         for _ in 0..MAX_IMPACT_PASSES * (count + 1) {
             let outcome = self.impulses_for(t, rows, participants, &modes, fraction)?;
             let (p, after) = (&outcome.impulses, &outcome.after);
@@ -295,17 +344,11 @@ impl<A: Algebra> Mechanism<A> {
                     (after[participants[a].normal] - target(a)).total_cmp(&(after[participants[b].normal] - target(b)))
                 });
             if let Some(k) = sinking {
-                modes[k] = if participants[k].tangential.is_some() {
-                    Mode::Sticking
-                } else {
-                    Mode::Sliding {
-                        direction: Vector3::zeros(),
-                    }
-                };
+                modes[k] = participants[k].entering(rows);
                 continue;
             }
-            if let Some(k) = self.friction_change(participants, &modes, &outcome) {
-                modes[k.0] = k.1;
+            if let Some((k, mode)) = friction_change(participants, &modes, &outcome) {
+                modes[k] = mode;
                 continue;
             }
             return Ok(outcome);
@@ -314,54 +357,6 @@ impl<A: Algebra> Mechanism<A> {
             t,
             "no set of pushing, sticking and sliding contacts was found".to_owned(),
         ))
-    }
-
-    /// The first contact whose friction mode does not hold with `outcome`, and the mode it takes: a sticking one whose
-    /// friction impulse leaves the cone slides against it; a sliding one whose slip after reversed sticks, one whose
-    /// slip after turned follows it (one with no slip after holds: its impulse is on the cone's edge).
-    fn friction_change(
-        &self,
-        participants: &[Participant],
-        modes: &[Mode],
-        outcome: &Outcome,
-    ) -> Option<(usize, Mode)> {
-        let (p, after) = (&outcome.impulses, &outcome.after);
-        for (k, (participant, mode)) in participants.iter().zip(modes).enumerate() {
-            let Some(row) = participant.tangential else {
-                continue;
-            };
-            let [first, second] = participant.basis;
-            let push = p[participant.normal];
-            match *mode {
-                Mode::Out => {}
-                Mode::Sticking => {
-                    let friction = first * p[row] + second * p[row + 1];
-                    let bound = participant.friction.stiction() * push;
-                    if friction.norm() > bound + COMPLEMENTARITY * push.abs().max(friction.norm()) {
-                        let direction = -friction.normalize();
-                        return Some((k, Mode::Sliding { direction }));
-                    }
-                }
-                Mode::Sliding { direction } => {
-                    let slip = first * after[row] + second * after[row + 1];
-                    let speed = slip.norm();
-                    // No slip after: the friction impulse on the cone's edge, as Coulomb's law allows (a corner held
-                    // still by the others of its body while they slide); sticking it would bring it back.
-                    if speed <= STOP_SPEED {
-                        continue;
-                    }
-                    let next = slip / speed;
-                    // A slip reversed: the friction assumed was more than the contact needs, it sticks.
-                    if next.dot(&direction) < 0.0 {
-                        return Some((k, Mode::Sticking));
-                    }
-                    if (next - direction).norm() > IMPACT_DIRECTION_TOLERANCE {
-                        return Some((k, Mode::Sliding { direction: next }));
-                    }
-                }
-            }
-        }
-        None
     }
 
     /// The impulses for fixed modes: unknowns the pushes of the contacts in, the friction impulses of the sticking ones
@@ -434,6 +429,205 @@ impl<A: Algebra> Mechanism<A> {
     }
 }
 
+/// The first contact whose friction mode does not hold with `outcome`, and the mode it takes: a sticking one whose
+/// friction impulse leaves the cone slides against it; a sliding one whose slip after reversed sticks.
+fn friction_change(participants: &[Participant], modes: &[Mode], outcome: &Outcome) -> Option<(usize, Mode)> {
+    let (p, after) = (&outcome.impulses, &outcome.after);
+    for (k, (participant, mode)) in participants.iter().zip(modes).enumerate() {
+        let Some(row) = participant.tangential else {
+            continue;
+        };
+        let [first, second] = participant.basis;
+        let push = p[participant.normal];
+        match *mode {
+            Mode::Out => {}
+            Mode::Sticking => {
+                let friction = first * p[row] + second * p[row + 1];
+                let bound = participant.friction.stiction() * push;
+                if friction.norm() > bound + COMPLEMENTARITY * push.abs().max(friction.norm()) {
+                    let direction = -friction.normalize();
+                    return Some((k, Mode::Sliding { direction }));
+                }
+            }
+            Mode::Sliding { direction } => {
+                // The slide keeps its direction through the impact; one whose slip it would reverse (beyond
+                // round-off) needed less than the cone's friction: it sticks.
+                let slip = first * after[row] + second * after[row + 1];
+                if slip.dot(&direction) < -STOP_SPEED {
+                    return Some((k, Mode::Sticking));
+                }
+            }
+        }
+    }
+    None
+}
+
+/// Whether `outcome`, solved for `modes`, satisfies Newton's and Coulomb's laws: every contact in pushes, every one
+/// out leaves at its target or faster, every sticking one's friction is inside its cone, every sliding one slips along
+/// its friction's opposite (or not at all).
+fn consistent(
+    rows: &ImpactRows<'_>,
+    participants: &[Participant],
+    modes: &[Mode],
+    outcome: &Outcome,
+    fraction: f64,
+) -> bool {
+    let (p, after) = (&outcome.impulses, &outcome.after);
+    let largest_push = participants.iter().fold(0.0f64, |m, q| m.max(p[q.normal].abs()));
+    let scale = rows.before.amax().max(f64::MIN_POSITIVE);
+    participants.iter().zip(modes).all(|(participant, mode)| {
+        let push = p[participant.normal];
+        match (*mode, participant.tangential) {
+            (Mode::Out, _) => after[participant.normal] >= participant.target * fraction - COMPLEMENTARITY * scale,
+            (_, None) => push >= -COMPLEMENTARITY * largest_push,
+            (Mode::Sticking, Some(row)) => {
+                let friction = participant.basis[0] * p[row] + participant.basis[1] * p[row + 1];
+                push >= -COMPLEMENTARITY * largest_push
+                    && friction.norm() <= participant.friction.stiction() * push + COMPLEMENTARITY * largest_push
+            }
+            (Mode::Sliding { direction }, Some(row)) => {
+                let slip = participant.basis[0] * after[row] + participant.basis[1] * after[row + 1];
+                push >= -COMPLEMENTARITY * largest_push
+                    && slip.dot(&direction) >= -STOP_SPEED
+                    && slip.cross(&direction).norm() <= STOP_SPEED.max(COMPLEMENTARITY * scale)
+            }
+        }
+    })
+}
+
+/// Coulomb's and Newton's laws on an impact by projected Gauss–Seidel: each contact's impulse in turn solved exactly
+/// against the others' (out; sticking if its sticking impulse pushes and is inside the cone; else sliding, its
+/// friction `−μ P_n ŝ` opposing its slip after, ŝ found on the circle of directions), the equalities' in turn held,
+/// sweeping until no impulse changes by more than round-off. `None` if it does not settle in [`MAX_SWEEPS`].
+fn coulomb_iteration(rows: &ImpactRows<'_>, participants: &[Participant], fraction: f64) -> Option<Outcome> {
+    let gram = rows.gram;
+    let total = gram.nrows();
+    let mut p = DVector::zeros(total);
+    let mut after = rows.before.clone();
+    // The rows' speeds after with the impulses of the other rows of a block only: u − G[:, own] p_own.
+    let without = |after: &DVector<f64>, p: &DVector<f64>, own: &[usize], of: usize| {
+        after[of] - own.iter().map(|&j| gram[(of, j)] * p[j]).sum::<f64>()
+    };
+    for _ in 0..MAX_SWEEPS {
+        let mut change: f64 = 0.0;
+        let mut size: f64 = 0.0;
+        for participant in participants {
+            let n = participant.normal;
+            let own: Vec<usize> = match participant.tangential {
+                Some(row) => vec![n, row, row + 1],
+                None => vec![n],
+            };
+            let local: Vec<f64> = own.iter().map(|&i| without(&after, &p, &own, i)).collect();
+            let block = DMatrix::from_fn(own.len(), own.len(), |i, j| gram[(own[i], own[j])]);
+            let target = participant.target * fraction;
+            let next = local_coulomb(&block, &local, target, participant.friction);
+            for (k, &i) in own.iter().enumerate() {
+                let delta = next[k] - p[i];
+                if delta != 0.0 {
+                    after.axpy(delta, &gram.column(i), 1.0);
+                    p[i] = next[k];
+                }
+                change = change.max(delta.abs());
+                size = size.max(next[k].abs());
+            }
+        }
+        for e in rows.equalities..total {
+            if gram[(e, e)] > 0.0 {
+                let delta = (rows.before[e] - after[e]) / gram[(e, e)];
+                after.axpy(delta, &gram.column(e), 1.0);
+                p[e] += delta;
+                change = change.max(delta.abs());
+                size = size.max(p[e].abs());
+            }
+        }
+        if change <= SWEEP_TOLERANCE * size.max(f64::MIN_POSITIVE) {
+            let after = rows.before + gram * &p;
+            return Some(Outcome { impulses: p, after });
+        }
+    }
+    None
+}
+
+/// One contact's impulse `(P_n, P_t₁, P_t₂)` (or `(P_n)` without friction) against the speeds `local` its rows have
+/// without it, `block` its rows' Gram block: out if it leaves at `target` or faster without one; else sticking if the
+/// sticking impulse pushes and is inside the static cone; else sliding, the direction ŝ (angle θ on the plane) the
+/// root of `ŝ × u_t(θ) = 0` with `ŝ · u_t ≥ 0`, u_t the slip after with the friction `−μ P_n ŝ` and P_n holding the
+/// normal speed at `target`; on no root (a slide at the cone's edge), the sticking impulse moved onto the cone.
+fn local_coulomb(block: &DMatrix<f64>, local: &[f64], target: f64, friction: Friction) -> Vec<f64> {
+    if local[0] >= target {
+        return vec![0.0; local.len()];
+    }
+    if local.len() == 1 || !friction.is_some() {
+        let mut out = vec![0.0; local.len()];
+        out[0] = if block[(0, 0)] > 0.0 {
+            (target - local[0]) / block[(0, 0)]
+        } else {
+            0.0
+        };
+        return out;
+    }
+    let rhs = nalgebra::Vector3::new(target - local[0], -local[1], -local[2]);
+    let block3 = nalgebra::Matrix3::from_fn(|i, j| block[(i, j)]);
+    let stick = block3.lu().solve(&rhs);
+    if let Some(stick) = stick {
+        let tangential = stick[1].hypot(stick[2]);
+        if stick[0] >= 0.0 && tangential <= friction.stiction() * stick[0] {
+            return vec![stick[0], stick[1], stick[2]];
+        }
+    }
+    let mu = friction.kinetic();
+    // The slide at angle θ: its push, its slip after, and the slip's turn from ŝ (zero at a solution).
+    let slide = |theta: f64| {
+        let (d1, d2) = (theta.cos(), theta.sin());
+        let denominator = block[(0, 0)] - mu * (block[(0, 1)] * d1 + block[(0, 2)] * d2);
+        let push = if denominator > 0.0 {
+            (target - local[0]) / denominator
+        } else {
+            f64::NAN
+        };
+        let slip = |k: usize| local[k] + block[(k, 0)] * push - mu * push * (block[(k, 1)] * d1 + block[(k, 2)] * d2);
+        let (s1, s2) = (slip(1), slip(2));
+        (push, d1 * s2 - d2 * s1, d1 * s1 + d2 * s2)
+    };
+    let mut best: Option<(f64, f64)> = None;
+    let steps = DIRECTION_SAMPLES;
+    for k in 0..steps {
+        let (a, b) = (
+            std::f64::consts::TAU * k as f64 / steps as f64,
+            std::f64::consts::TAU * (k + 1) as f64 / steps as f64,
+        );
+        let (fa, fb) = (slide(a).1, slide(b).1);
+        if !(fa.is_finite() && fb.is_finite()) || fa.signum() == fb.signum() {
+            continue;
+        }
+        let (mut low, mut high, mut f_low) = (a, b, fa);
+        for _ in 0..BISECTIONS {
+            let middle = 0.5 * (low + high);
+            let f_middle = slide(middle).1;
+            if f_middle.signum() == f_low.signum() {
+                (low, f_low) = (middle, f_middle);
+            } else {
+                high = middle;
+            }
+        }
+        let theta = 0.5 * (low + high);
+        let (push, _, along) = slide(theta);
+        if push >= 0.0 && along >= 0.0 && best.is_none_or(|(_, p)| push < p) {
+            best = Some((theta, push));
+        }
+    }
+    match best {
+        Some((theta, push)) => vec![push, -mu * push * theta.cos(), -mu * push * theta.sin()],
+        None => {
+            let stick = stick.unwrap_or_else(|| nalgebra::Vector3::new(0.0, 0.0, 0.0));
+            let push = stick[0].max(0.0);
+            let tangential = stick[1].hypot(stick[2]);
+            let scale = if tangential > 0.0 { mu * push / tangential } else { 0.0 };
+            vec![push, stick[1] * scale, stick[2] * scale]
+        }
+    }
+}
+
 /// The kinetic energy an impact's contact impulses add (J), less round-off: `P·u⁺ − ½ PᵀGP` over the contact rows, the
 /// equalities' work (a drive's) left out. Positive means energy added.
 fn energy_added(rows: &ImpactRows<'_>, outcome: &Outcome) -> f64 {
@@ -448,11 +642,23 @@ fn energy_added(rows: &ImpactRows<'_>, outcome: &Outcome) -> f64 {
     work - quadratic - ENERGY_ROUND_OFF * size
 }
 
+/// Gauss–Seidel sweeps at most for an impact the active sets do not settle.
+const MAX_SWEEPS: usize = 100_000;
+
+/// A sweep that changes no impulse by more than this, relative to the largest, has converged.
+const SWEEP_TOLERANCE: f64 = 1e-15;
+
+/// Directions sampled on the circle for a slide's root, each bracket then bisected.
+const DIRECTION_SAMPLES: usize = 256;
+
+/// Bisections of a slide's direction: to the double's resolution of an angle.
+const BISECTIONS: usize = 60;
+
+/// A friction impulse within this of its cone's edge (relative) counts as on it: sliding.
+const CONE_EDGE: f64 = 1e-9;
+
 /// Passes of the active sets per contact at most (each contact may leave, join, stick and slide).
 const MAX_IMPACT_PASSES: usize = 8;
 
 /// Bisections of the restitution of an impact that would add energy: 2⁻⁴⁰ of it.
 const RESTITUTION_BISECTIONS: usize = 40;
-
-/// A sliding contact's slip direction after an impact, converged to this (rad).
-const IMPACT_DIRECTION_TOLERANCE: f64 = 1e-12;

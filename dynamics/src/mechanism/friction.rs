@@ -230,14 +230,32 @@ impl<A: Algebra> Mechanism<A> {
         guesses: &[Vector3<f64>],
     ) -> Result<Vec<Vector3<f64>>, ConstraintError> {
         let mut directions = guesses.to_vec();
+        // With μ_s = μ the friction force is continuous at the onset: the slip starts from zero acceleration, opposite
+        // the sticking force (the guess); the tangential acceleration there is the round-off of the located time,
+        // whose direction means nothing.
+        let continuous = (contacts.iter()).all(|&c| {
+            let friction = self.contacts[c].contact.friction();
+            friction.stiction() == friction.kinetic()
+        });
+        if continuous {
+            for (&c, &direction) in contacts.iter().zip(&directions) {
+                workspace.slips[c] = Slip::Sliding { reference: direction };
+            }
+            self.hold_rows(workspace);
+            return Ok(directions);
+        }
+        // Damped where it does not contract: each direction moves a fraction of the way to its acceleration's, the
+        // fraction halved whenever the largest turn fails to shrink.
+        let (mut damping, mut previous_turn): (f64, f64) = (1.0, f64::INFINITY);
         for _ in 0..MAX_DIRECTION_ITERATIONS {
             for (&c, &direction) in contacts.iter().zip(&directions) {
                 workspace.slips[c] = Slip::Sliding { reference: direction };
             }
             self.hold_rows(workspace);
             self.evaluate_states(t, states, workspace)?;
+            let mut targets = directions.clone();
             let mut turned: f64 = 0.0;
-            for (&c, direction) in contacts.iter().zip(directions.iter_mut()) {
+            for (&c, (direction, target)) in contacts.iter().zip(directions.iter().zip(targets.iter_mut())) {
                 let acceleration = self.touching_acceleration(c, workspace);
                 let normal = self.contacts[c].contact.normal();
                 let tangential = acceleration - normal * normal.dot(&acceleration);
@@ -245,9 +263,8 @@ impl<A: Algebra> Mechanism<A> {
                 // No tangential acceleration (the cone just reached with μ_s = μ, or the contact held in place by
                 // others still sticking): the slip starts along the guess.
                 if size > REST_ACCELERATION {
-                    let next = tangential / size;
-                    turned = turned.max((next - *direction).norm());
-                    *direction = next;
+                    *target = tangential / size;
+                    turned = turned.max((*target - *direction).norm());
                 }
             }
             if turned <= DIRECTION_TOLERANCE {
@@ -256,6 +273,14 @@ impl<A: Algebra> Mechanism<A> {
                 }
                 self.hold_rows(workspace);
                 return Ok(directions);
+            }
+            if turned >= previous_turn {
+                damping = (0.5 * damping).max(MIN_DAMPING);
+            }
+            previous_turn = turned;
+            for (direction, target) in directions.iter_mut().zip(&targets) {
+                let moved = *direction + (target - *direction) * damping;
+                *direction = if moved.norm() > 0.0 { moved.normalize() } else { *target };
             }
         }
         Err(ConstraintError::InvalidParameter {
@@ -292,7 +317,10 @@ impl<A: Algebra> Mechanism<A> {
 const REST_ACCELERATION: f64 = 1e-9;
 
 /// Fixed-point iterations at most for a slide's starting direction.
-const MAX_DIRECTION_ITERATIONS: usize = 50;
+const MAX_DIRECTION_ITERATIONS: usize = 400;
+
+/// The smallest fraction of the way to its acceleration's direction a slide's direction moves in one iteration.
+const MIN_DAMPING: f64 = 1.0 / 64.0;
 
 /// Successive directions closer than this (rad) have converged.
 const DIRECTION_TOLERANCE: f64 = 1e-13;

@@ -64,14 +64,15 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         Ok(())
     }
 
-    /// In the body frames throughout: no world momentum is built (unless a custom force asks for it) and the
-    /// reactions are not moved to the world and back.
+    /// Renews the directions the sliding contacts' slips are watched along.
     fn begin_step(&self, _t: f64, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) {
         if !self.frictional.is_empty() {
             self.renew_slip_references(states, workspace);
         }
     }
 
+    /// In the body frames throughout: no world momentum is built (unless a custom force asks for it) and the
+    /// reactions are not moved to the world and back.
     #[inline]
     fn body_rates(
         &self,

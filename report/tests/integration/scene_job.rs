@@ -190,6 +190,108 @@ fn the_shipped_rolling_ball_ends_rolling_at_the_closed_form_speed() {
     );
 }
 
+/// The shipped crate, pill and gem (scenes/shapes_on_a_floor.toml): a `[[plane]]` keeps their box, capsule and convex
+/// hull above it through their corners, end spheres and hull vertices. No sample is below the floor by 1e-12 m, both
+/// algebras make the same transitions, the energy less the impacts' and friction's work is the integration error, and
+/// each ends at rest where geometry puts it: the crate on a face (centre 0.1 m up), the pill on its side (0.05 m, its
+/// capsule's radius), the gem on a face of its hull, the octahedron with half-axes (0.1, 0.1, 0.15), whose faces are
+/// `1/√(2/0.1² + 1/0.15²)` = 0.06396 m from its centre.
+#[test]
+fn the_shipped_shapes_come_to_rest_on_the_floor() {
+    let (_, [pga, cga]) = shipped_runs("shapes_on_a_floor.toml", "report-scene-file-shapes");
+    let (pga, cga) = (&pga, &cga);
+    assert_same_transitions(pga, cga);
+    let gem_height = 1.0 / (2.0 / 0.01 + 1.0 / 0.0225f64).sqrt();
+    for run in [pga, cga] {
+        assert!(run.deepest < 1e-12, "{:e} m below the floor", run.deepest);
+        let (first, last) = (run.bodies[0].first().unwrap(), run.bodies[0].last().unwrap());
+        let impacts: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+        let error = last.energy - first.energy - impacts - run.work.last().unwrap();
+        assert!(error.abs() < 1e-8, "E − E₀ − L − W = {error:e} J");
+        for (body, height) in [(0, 0.1), (1, 0.05), (2, gem_height)] {
+            let end = run.bodies[body].last().unwrap();
+            assert!(
+                (end.position.z - height).abs() < 1e-12,
+                "{}: {} m, {height} m",
+                run.names[body],
+                end.position.z
+            );
+            assert!(end.velocity.z.abs() < 1e-12, "{}", run.names[body]);
+        }
+        for body in [0, 2] {
+            let end = run.bodies[body].last().unwrap();
+            assert!(
+                end.velocity.norm() < 1e-12 && end.angular_velocity.norm() < 1e-12,
+                "{}: {end:?}",
+                run.names[body]
+            );
+        }
+    }
+}
+
+/// A box's collision shape on a `[[plane]]` is its eight corners as `[[contact]]`s: the same file written both ways
+/// runs to the same trajectory, bit for bit. A convex hull from an STL mesh (a tetrahedron with a point inside) keeps
+/// its four vertices.
+#[test]
+fn plane_contacts_are_the_shapes_corners_and_vertices() {
+    let dir = fresh_dir("report-scene-file-plane-corners");
+    let head = "title = \"box\"\nalgebra = \"pga\"\ntolerance = 1e-10\nduration = 1.0\n\n[body]\nmass = 1.0\nshape = { kind = \"cuboid\", size = [0.2, 0.2, 0.2] }\n";
+    let tail = "\n[initial]\nposition = [0.0, 0.0, 0.4]\norientation = { axis = [1.0, 0.3, 0.0], degrees = 30.0 }\nvelocity = [1.0, 0.0, 0.0]\n\n[[forces]]\nkind = \"gravity\"\n";
+    let shaped = format!("{head}collision = [{{ kind = \"box\", size = [0.2, 0.2, 0.2] }}]\n{tail}\n[[plane]]\nname = \"floor\"\nfriction = 0.4\nrestitution = 0.5\n");
+    let mut listed = format!("{head}{tail}");
+    for c in 0..8 {
+        let sign = |bit: usize| if c & (1 << bit) == 0 { -0.1 } else { 0.1 };
+        listed += &format!(
+            "\n[[contact]]\nname = \"floor: body box 1 corner {}\"\npoint = [{:?}, {:?}, {:?}]\nfriction = 0.4\nrestitution = 0.5\n",
+            c + 1,
+            sign(0),
+            sign(1),
+            sign(2)
+        );
+    }
+    let mut csvs = Vec::new();
+    for (name, text) in [("shaped", &shaped), ("listed", &listed)] {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let summary = run_scene_file(&file, &dir.join(name)).expect("the scene runs");
+        assert!(summary.runs[0].transitions.len() > 4);
+        csvs.push(std::fs::read_to_string(dir.join(name).join(format!("{name}_pga.csv"))).unwrap());
+    }
+    assert_eq!(csvs[0], csvs[1]);
+    let stl = "solid tetra\n".to_owned()
+        + &[[[0.0, 0.0, 0.0], [0.2, 0.0, 0.0], [0.0, 0.2, 0.0]], [[0.0, 0.0, 0.0], [0.0, 0.0, 0.2], [0.2, 0.0, 0.0]], [[0.0, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.2]], [[0.2, 0.0, 0.0], [0.0, 0.0, 0.2], [0.0, 0.2, 0.0]], [[0.05, 0.05, 0.05], [0.06, 0.05, 0.05], [0.05, 0.06, 0.05]]]
+            .iter()
+            .map(|[a, b, c]| {
+                format!(
+                    "facet normal 0 0 0\nouter loop\nvertex {} {} {}\nvertex {} {} {}\nvertex {} {} {}\nendloop\nendfacet\n",
+                    a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]
+                )
+            })
+            .collect::<String>()
+        + "endsolid tetra\n";
+    std::fs::write(dir.join("tetra.stl"), stl).unwrap();
+    let meshed = shaped.replace(
+        "{ kind = \"box\", size = [0.2, 0.2, 0.2] }",
+        "{ kind = \"convex\", mesh = \"tetra.stl\" }",
+    );
+    let scene = Scene::parse_in(&meshed, &dir).expect("the mesh is read");
+    let names: Vec<&str> = scene
+        .checked()
+        .contacts
+        .iter()
+        .filter_map(|c| c.name.as_deref())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "floor: body convex 1 vertex 1",
+            "floor: body convex 1 vertex 2",
+            "floor: body convex 1 vertex 3",
+            "floor: body convex 1 vertex 4"
+        ]
+    );
+}
+
 /// The shipped surface scenes (docs/surfaces.md): each keeps its body point on its surface at every sample, checked
 /// with the surface's classical implicit equation (not the algebra the run used) to 1e-12 m; both algebras give one
 /// path (1e-12 m); the passive bead and rod keep their energy to 1e-10 (relative), and the turntable's energy changes

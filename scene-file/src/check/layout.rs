@@ -247,6 +247,7 @@ impl<'f> Names<'f> {
                     mass: entry.mass,
                     shape: entry.shape.clone(),
                     principal_moments: entry.principal_moments,
+                    collision: entry.collision.clone(),
                 },
                 initial: entry.initial.as_ref(),
                 forces: &entry.forces,

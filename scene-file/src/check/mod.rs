@@ -7,4 +7,5 @@ pub mod geometry;
 pub mod elements;
 pub mod robot;
 pub mod layout;
+pub mod collisions;
 pub mod scene;

@@ -9,14 +9,16 @@ use dynamics::integrate::step_control::Tolerance;
 use dynamics::integrate::Integrator;
 use dynamics::simulate::Schedule;
 
+use super::collisions::{plane_contacts, urdf_shapes, ShapedBody};
 use super::layout::{Layout, Names};
 use super::robot::{CheckedRobot, LoadedRobot};
 use crate::error::{invalid, SceneFileError};
 use crate::names::{AlgebraChoice, IntegratorName, StabilisationName};
+use crate::syntax::bodies::Bodies;
 use crate::syntax::contacts::ContactSpec;
 use crate::syntax::elements::{CoupleSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec};
 use crate::syntax::file::{BaumgarteGains, SceneFile};
-use crate::syntax::robot::JointDynamicsName;
+use crate::syntax::robot::{CollisionsName, JointDynamicsName};
 
 /// The most steps a scene file's run takes (per algebra): about a minute for a single body, several for a
 /// chain; a longer run is more likely a typo (`duration = 99990`, `dt = 1e-15`) than a plan.
@@ -89,7 +91,7 @@ pub struct CheckedScene {
 impl CheckedScene {
     /// Checks `file`, reading its robot's URDF relative to `folder` (the scene file's).
     pub fn new(file: SceneFile, folder: &Path) -> Result<CheckedScene, SceneFileError> {
-        let robot = (file.robot.as_ref())
+        let mut robot = (file.robot.as_ref())
             .map(|spec| LoadedRobot::load(spec, folder))
             .transpose()?;
         let integrator = file.integrator.unwrap_or(if file.tolerance.is_some() {
@@ -104,6 +106,7 @@ impl CheckedScene {
         let bodies = names.body_count() + robot.as_ref().map_or(0, LoadedRobot::body_count);
         check_samples(&schedule, bodies, &file)?;
         check_error_estimate(integrator, stepping)?;
+        let contacts = contacts_with_planes(&file, folder, robot.as_mut())?;
         let free_body = names.joint_count() == 0
             && names.body_count() == 1
             && robot.is_none()
@@ -112,7 +115,7 @@ impl CheckedScene {
             && file.joint_torque.is_empty()
             && file.joint_damping.is_empty()
             && file.pd.is_empty()
-            && file.contact.is_empty();
+            && contacts.is_empty();
         let method = Integrator::from(integrator);
         if matches!(method, Integrator::Splitting(_)) && !free_body {
             return Err(invalid(
@@ -151,10 +154,7 @@ impl CheckedScene {
             && file.joint_torque.is_empty()
             && file.joint_damping.is_empty()
             && file.pd.is_empty()
-            && file
-                .contact
-                .iter()
-                .all(|c| c.friction == 0.0 && c.static_friction.unwrap_or(0.0) == 0.0)
+            && (contacts.iter()).all(|c| c.friction == 0.0 && c.static_friction.unwrap_or(0.0) == 0.0)
             && !robot_damped;
         Ok(CheckedScene {
             title: file.title,
@@ -173,7 +173,7 @@ impl CheckedScene {
             joint_torques: file.joint_torque,
             joint_dampings: file.joint_damping,
             pds: file.pd,
-            contacts: file.contact,
+            contacts,
             free_body,
             conservative,
         })
@@ -269,4 +269,75 @@ fn stabilisation(name: StabilisationName, gains: Option<BaumgarteGains>) -> Resu
         )),
         (name, None) => Ok(name.into()),
     }
+}
+
+/// The file's `[[contact]]`s, then every `[[plane]]`'s contacts with the bodies' collision shapes; a `[[plane]]` with no
+/// shape to keep above it is refused (it would do nothing), as is a shape with no plane.
+fn contacts_with_planes(
+    file: &SceneFile,
+    folder: &Path,
+    robot: Option<&mut LoadedRobot>,
+) -> Result<Vec<ContactSpec>, SceneFileError> {
+    let mut bodies: Vec<ShapedBody<'_>> = match &file.body {
+        None => Vec::new(),
+        Some(Bodies::One(spec)) => vec![ShapedBody {
+            name: None,
+            shapes: spec.collision.clone(),
+        }],
+        Some(Bodies::Named(entries)) => (entries.iter())
+            .map(|entry| ShapedBody {
+                name: Some(entry.name.as_str()),
+                shapes: entry.collision.clone(),
+            })
+            .collect(),
+    };
+    // The robot's links' shapes, with a warning in the model for each URDF shape that cannot be one.
+    let mut links = Vec::new();
+    let mut skipped = Vec::new();
+    let urdf = robot.filter(|robot| robot.spec.collisions == CollisionsName::Urdf);
+    let asked = urdf.is_some();
+    if let Some(robot) = urdf {
+        links = urdf_shapes(&robot.model.collisions, &robot.path, &mut skipped)
+            .into_iter()
+            .map(|body| (body.name.map(str::to_owned), body.shapes))
+            .collect();
+        robot.model.warnings.extend(skipped.iter().cloned());
+    }
+    bodies.extend(links.iter().map(|(name, shapes)| ShapedBody {
+        name: name.as_deref(),
+        shapes: shapes.clone(),
+    }));
+    let shaped = bodies.iter().any(|b| !b.shapes.is_empty());
+    match (file.plane.is_empty(), shaped) {
+        (false, false) => {
+            let why = if asked {
+                format!("; the robot's URDF shapes could not be used: {}", skipped.join("; "))
+            } else {
+                String::new()
+            };
+            return Err(invalid(
+                "plane 1",
+                format!(
+                    "no body has a collision shape to keep above it: give a body `collision = [{{ kind = \"sphere\", \
+                     radius = 0.1 }}]` (or a box, capsule or convex hull){why}"
+                ),
+            ));
+        }
+        (true, _) if asked => {
+            return Err(invalid(
+                "robot.collisions",
+                "\"urdf\" keeps the links' shapes above the [[plane]]s, and the file has no [[plane]]: add one",
+            ))
+        }
+        (true, true) => {
+            return Err(invalid(
+                "collision",
+                "no [[plane]] for the collision shapes to stay above: add one (`[[plane]]` with `normal` and `offset`)",
+            ))
+        }
+        _ => {}
+    }
+    let mut contacts = file.contact.clone();
+    contacts.extend(plane_contacts(&file.plane, &bodies, folder)?);
+    Ok(contacts)
 }

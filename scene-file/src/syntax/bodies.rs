@@ -51,6 +51,9 @@ pub struct NamedBody {
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
     pub principal_moments: Option<[f64; 3]>,
+    /// Collision shapes in the body's frame, which every `[[plane]]` keeps above it (docs/contacts.md).
+    #[serde(default)]
+    pub collision: Vec<CollisionShape>,
     /// Its state at t = 0; where absent, its joint places it.
     #[serde(default)]
     pub initial: Option<InitialSpec>,
@@ -73,6 +76,9 @@ pub struct BodySpec {
     #[serde(default)]
     #[serde(deserialize_with = "maybe_exactly")]
     pub principal_moments: Option<[f64; 3]>,
+    /// Collision shapes in the body's frame, which every `[[plane]]` keeps above it (docs/contacts.md).
+    #[serde(default)]
+    pub collision: Vec<CollisionShape>,
 }
 
 /// A solid of uniform density, centred on its centre of mass; lengths in metres.
@@ -103,6 +109,79 @@ pub enum Shape {
     Sphere {
         /// m.
         radius: f64,
+    },
+}
+
+/// A collision shape in its body's frame (m): at `position`, turned by `orientation`; a capsule's and a cylinder's
+/// axis along the shape's z (as URDF's cylinders). `[[plane]]`s keep each above them through contacts: a sphere's
+/// own, a box's eight corners, a capsule's two end spheres, a convex hull's vertices.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CollisionShape {
+    /// A ball of `radius`.
+    Sphere {
+        /// m.
+        radius: f64,
+        /// Its centre in the body's frame (m; default the origin).
+        #[serde(default, deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        /// Body ← shape (default none).
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
+    },
+    /// A box of edge lengths `size` along the shape's axes.
+    Box {
+        /// m.
+        #[serde(deserialize_with = "exactly")]
+        size: [f64; 3],
+        /// Its centre in the body's frame (m; default the origin).
+        #[serde(default, deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        /// Body ← shape (default none).
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
+    },
+    /// The points within `radius` of a segment of `length` along the shape's z, centred.
+    Capsule {
+        /// m.
+        radius: f64,
+        /// Of the segment, between the end spheres' centres (m).
+        length: f64,
+        /// Its centre in the body's frame (m; default the origin).
+        #[serde(default, deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        /// Body ← shape (default none).
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
+    },
+    /// A solid cylinder of `radius` and `length` along the shape's z, centred.
+    Cylinder {
+        /// m.
+        radius: f64,
+        /// m.
+        length: f64,
+        /// Its centre in the body's frame (m; default the origin).
+        #[serde(default, deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        /// Body ← shape (default none).
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
+    },
+    /// The convex hull of `points` (m, the shape's frame), or of the vertices of the STL file `mesh` (relative to the
+    /// scene file's folder).
+    Convex {
+        /// At least four points, not all in one plane.
+        #[serde(default)]
+        points: Option<Vec<Vec<f64>>>,
+        /// An STL file (ASCII or binary).
+        #[serde(default)]
+        mesh: Option<String>,
+        /// The shape's origin in the body's frame (m; default the body's origin).
+        #[serde(default, deserialize_with = "maybe_exactly")]
+        position: Option<[f64; 3]>,
+        /// Body ← shape (default none).
+        #[serde(default)]
+        orientation: Option<OrientationSpec>,
     },
 }
 

@@ -62,3 +62,35 @@ impl ContactSpec {
         self.name.clone().unwrap_or_else(|| format!("contact {}", index + 1))
     }
 }
+
+/// `[[plane]]`: a world half-space `normal · x ≥ offset` that every collision shape stays above (as `[[contact]]`s of
+/// its sphere, corners or vertices), with Coulomb `friction` and Newton's `restitution`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSpec {
+    /// The plane's name, which heads its contacts' names (default "plane k").
+    #[serde(default)]
+    pub name: Option<String>,
+    /// World, any length (default +z, a floor).
+    #[serde(default = "up", deserialize_with = "exactly")]
+    pub normal: [f64; 3],
+    /// `normal · x` on the plane (m times the normal's length).
+    #[serde(default)]
+    pub offset: f64,
+    /// Coulomb's kinetic coefficient μ ≥ 0 (default 0).
+    #[serde(default)]
+    pub friction: f64,
+    /// Coulomb's static coefficient μ_s ≥ μ (default μ).
+    #[serde(default)]
+    pub static_friction: Option<f64>,
+    /// Newton's coefficient, in [0, 1] (default 0).
+    #[serde(default)]
+    pub restitution: f64,
+}
+
+impl PlaneSpec {
+    /// The plane's name: as written, else "plane k" (1-based).
+    pub fn name(&self, index: usize) -> String {
+        self.name.clone().unwrap_or_else(|| format!("plane {}", index + 1))
+    }
+}

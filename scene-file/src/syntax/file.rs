@@ -8,7 +8,7 @@ use dynamics::simulate::SAMPLE_INTERVAL;
 use serde::Deserialize;
 
 use super::bodies::{Bodies, ForceSpec, InitialSpec};
-use super::contacts::ContactSpec;
+use super::contacts::{ContactSpec, PlaneSpec};
 use super::elements::{CoupleSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec};
 use super::joints::{ConstraintSpec, JointSpec};
 use super::robot::RobotSpec;
@@ -87,6 +87,9 @@ pub struct SceneFile {
     /// Body points kept above world planes.
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
+    /// World planes every collision shape stays above.
+    #[serde(default)]
+    pub plane: Vec<PlaneSpec>,
 }
 
 impl SceneFile {

@@ -19,6 +19,17 @@ pub enum RootName {
     Free,
 }
 
+/// `collisions = "urdf" | "none"`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CollisionsName {
+    /// The links touch nothing but through the file's `[[contact]]`s.
+    #[default]
+    None,
+    /// The links' URDF `<collision>` shapes stay above every `[[plane]]`.
+    Urdf,
+}
+
 /// `mimic = "constraint" | "independent"`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -95,6 +106,9 @@ pub struct RobotSpec {
     /// Whether the URDF's position limits are enforced.
     #[serde(default)]
     pub limits: LimitsName,
+    /// Whether the links' URDF `<collision>` shapes take part in the `[[plane]]`s (default "none").
+    #[serde(default)]
+    pub collisions: CollisionsName,
     /// The restitution of every enforced bound, in [0, 1] (default 0: a joint stops at its bound).
     #[serde(default)]
     pub limit_restitution: Option<f64>,

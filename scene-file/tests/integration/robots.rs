@@ -911,3 +911,102 @@ fn differences(first: &[Sample], second: &[Sample]) -> (f64, f64) {
     let errors = reference::metrics::trajectory_errors(&first, &second).unwrap();
     (errors.max_orientation, errors.max_position)
 }
+
+/// Collision shapes and `[[plane]]`s with their careless inputs (the shipped shapes scene edited): sizes zero,
+/// negative, NaN or huge, wrong lengths, unknown kinds and keys, a cylinder (not modelled), hulls of too few,
+/// coplanar, malformed or too many points, a missing or malformed mesh, a plane with no shape or shapes with no
+/// plane, a plane's careless coefficients and normal, a start where a shape is below the plane.
+#[test]
+fn careless_collision_shapes_and_planes_fail_naming_the_entry_and_the_value() {
+    let dir = fresh("careless-shapes");
+    std::fs::write(dir.join("not_a_mesh.stl"), "solid nothing\nthis is not STL").unwrap();
+    let missing = dir.join("missing.stl").display().to_string();
+    let malformed = dir.join("not_a_mesh.stl").display().to_string();
+    let many: Vec<String> = (0..300)
+        .map(|k| {
+            let (a, b) = (k as f64 * 0.7, k as f64 * 1.3);
+            format!(
+                "[{}, {}, {}]",
+                0.1 * a.cos() * b.sin(),
+                0.1 * a.sin() * b.sin(),
+                0.1 * b.cos()
+            )
+        })
+        .collect();
+    let many = format!("collision = [{{ kind = \"convex\", points = [{}] }}]", many.join(", "));
+    let scene = shipped("shapes_on_a_floor.toml");
+    let crate_box = "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]";
+    let pill = "collision = [{ kind = \"capsule\", radius = 0.05, length = 0.2,";
+    let gem = "collision = [{ kind = \"convex\", points = [[0.1, 0.0, 0.0], [-0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.0, -0.1, 0.0], [0.0, 0.0, 0.15], [0.0, 0.0, -0.15], [0.0, 0.0, 0.0]] }]";
+    let floor = "[[plane]]\nname = \"floor\"";
+    let missing_mesh = format!("collision = [{{ kind = \"convex\", mesh = {missing:?} }}]");
+    let malformed_mesh = format!("collision = [{{ kind = \"convex\", mesh = {malformed:?} }}]");
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.0, 0.2] }]", &["body crate: collision 1: size", "positive", "got 0"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, -0.2, 0.2] }]", &["body crate: collision 1: size", "-0.2"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, nan, 0.2] }]", &["body crate: collision 1: size", "NaN"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 2e6, 0.2] }]", &["body crate: collision 1: size", "1e6"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2] }]", &["invalid length 2"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2], position = [1e7, 0.0, 0.0] }]", &["body crate: collision 1: position", "within 1e6"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2], position = [inf, 0.0, 0.0] }]", &["body crate: collision 1: position", "not finite"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2], orientation = { axis = [0.0, 0.0, 0.0], degrees = 3.0 } }]", &["body crate: collision 1: orientation", "no direction"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2], colour = 1 }]", &["unknown field `colour`"]),
+        (&scene, crate_box, "collision = [{ kind = \"blob\", size = [0.2, 0.2, 0.2] }]", &["unknown variant `blob`", "`sphere`", "`convex`"]),
+        (&scene, crate_box, "collision = [{ kind = \"sphere\", radius = 0.0 }]", &["body crate: collision 1: radius", "positive"]),
+        (&scene, crate_box, "collision = [{ kind = \"sphere\", radius = -1.0 }]", &["body crate: collision 1: radius", "-1"]),
+        (&scene, crate_box, "collision = [{ kind = \"sphere\", radius = 1e300 }]", &["body crate: collision 1: radius", "1e6"]),
+        (&scene, crate_box, "collision = [{ kind = \"sphere\" }]", &["missing field `radius`"]),
+        (&scene, crate_box, "collision = { kind = \"sphere\", radius = 0.1 }", &["invalid type: map", "expected a sequence"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = 0.2 }]", &["body crate: collision 1", "cylinder", "not modelled", "capsule"]),
+        (&scene, pill, "collision = [{ kind = \"capsule\", radius = 0.05, length = 0.0,", &["body pill: collision 1: length", "positive", "got 0"]),
+        (&scene, pill, "collision = [{ kind = \"capsule\", radius = nan, length = 0.2,", &["body pill: collision 1: radius", "NaN"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0]] }]", &["body gem: collision 1", "span no volume"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0], [0.0, -0.1, 0.0], [0.05, 0.05, 0.0]] }]", &["body gem: collision 1", "span no volume", "one plane"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0], [0.0, 0.0, 0.1]] }]", &["body gem: collision 1: points", "point 1 has 2 numbers"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0, nan], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0], [0.0, 0.0, 0.1]] }]", &["body gem: collision 1: points", "not finite"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[2e6, 0.0, 0.0], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0], [0.0, 0.0, 0.1]] }]", &["body gem: collision 1: points", "point 1 is beyond 1e6 m"]),
+        (&scene, gem, "collision = [{ kind = \"convex\" }]", &["body gem: collision 1", "give the hull's `points` or a `mesh`"]),
+        (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0, 0.0]], mesh = \"gem.stl\" }]", &["body gem: collision 1", "not both"]),
+        (&scene, gem, &missing_mesh, &["body gem: collision 1: mesh", "cannot read the mesh", "missing.stl"]),
+        (&scene, gem, &malformed_mesh, &["body gem: collision 1: mesh", "not_a_mesh.stl"]),
+        (&scene, gem, &many, &["body gem: collision 1", "more than 256"]),
+        (&scene, floor, "[[plane]]\nname = \"floor\"\ncolour = 1", &["unknown field `colour`"]),
+        (&scene, "friction = 0.5", "friction = -0.5", &["contact floor: crate box 1 corner 1", "kinetic coefficient", "-0.5"]),
+        (&scene, "restitution = 0.3", "restitution = 2.0", &["contact floor: crate box 1 corner 1", "restitution", "2"]),
+        (&scene, floor, "[[plane]]\nname = \"floor\"\nstatic_friction = 0.1", &["contact floor: crate box 1 corner 1", "static coefficient 0.1 is below the kinetic one 0.5"]),
+        (&scene, "normal = [0.0, 0.0, 1.0]\noffset = 0.0", "normal = [0.0, 0.0, 0.0]\noffset = 0.0", &["contact floor: crate box 1 corner 1", "the normal"]),
+        (&scene, "normal = [0.0, 0.0, 1.0]\noffset = 0.0", "normal = [0.0, 0.0, 1.0]\noffset = 0.25", &["contact floor: crate box 1 corner", "the start puts its point", "below its plane"]),
+        (&scene, crate_box, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.7] }]", &["contact floor: crate box 1 corner", "below its plane"]),
+        // A robot's `collisions`: an unknown value; URDF shapes with no plane; a plane where every URDF shape is a
+        // mesh whose file is not there (Solo-12's, package:// addresses), so no shape is left to keep above it.
+        (FREE, "root = \"free\"", "root = \"free\"\ncollisions = \"all\"", &["unknown variant `all`", "`none`", "`urdf`"]),
+        (FREE, "root = \"free\"", "root = \"free\"\ncollisions = \"urdf\"", &["robot.collisions", "no [[plane]]"]),
+        (FREE, "q = { FL_KFE = -0.5 }", "q = { FL_KFE = -0.5 }\ncollisions = \"urdf\"\n[[plane]]", &["plane 1", "no body has a collision shape", "could not be used", "solo_12_base.stl is not found"]),
+        (&scene, floor, "[[not_a_plane]]\nname = \"floor\"", &["unknown field `not_a_plane`"]),
+    ];
+    assert_each_refused(rows);
+    // A plane with no shape, and shapes with no plane.
+    let bare = scene
+        .replace(crate_box, "")
+        .replace(
+            &format!("{pill} orientation = {{ axis = [0.0, 1.0, 0.0], degrees = 60.0 }} }}]"),
+            "",
+        )
+        .replace(gem, "");
+    assert!(!bare.contains("collision = ["), "{bare}");
+    let message = Scene::parse_in(&bare, &robots())
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        message.contains("plane 1") && message.contains("no body has a collision shape"),
+        "{message}"
+    );
+    let planeless = scene[..scene.find(floor).unwrap()].to_owned();
+    let message = Scene::parse_in(&planeless, &robots())
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(message.contains("no [[plane]]"), "{message}");
+}

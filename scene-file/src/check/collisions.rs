@@ -1,0 +1,371 @@
+//! Collision shapes against `[[plane]]`s, as contacts (docs/contacts.md "Shapes on planes"): every shape of every
+//! body stays above every plane through the contacts that keep a convex shape above a plane exactly: its lowest point
+//! is always one of them. A sphere is one sphere contact, a box its eight corners, a capsule the spheres at its
+//! segment's ends, a convex hull its vertices. The expanded contacts are ordinary `[[contact]]` entries, so the
+//! summary, the start check and the transitions treat them as any other.
+
+use std::path::Path;
+
+use nalgebra::{UnitQuaternion, Vector3};
+
+use super::values::finite;
+use crate::error::{invalid, SceneFileError};
+use urdf_import::Geometry;
+
+use crate::syntax::bodies::{CollisionShape, OrientationSpec};
+use crate::syntax::contacts::{ContactSpec, PlaneSpec, SphereSpec};
+
+/// The largest size or coordinate of a collision shape (m), as for contact points.
+const LARGEST: f64 = 1e6;
+
+/// The most vertices a convex hull may bring (each is a contact with each plane, watched at every step).
+pub const MAX_HULL_VERTICES: usize = 256;
+
+/// A body's collision shapes: its name (`None` for the single `[body]`; a link's name for a robot's) and the shapes.
+pub(crate) struct ShapedBody<'f> {
+    pub name: Option<&'f str>,
+    pub shapes: Vec<CollisionShape>,
+}
+
+/// A robot's links' URDF `<collision>` shapes as the file's collision shapes (each in its link's frame, placed by its
+/// origin), one [`ShapedBody`] per link that has any, and a warning for each that cannot be one: a cylinder (not
+/// modelled against planes), a mesh whose file is not found or not STL. Meshes are looked up as written, relative to
+/// the URDF's folder, and for `package://package/path` as `path` and `package/path` under the URDF's folder and each
+/// folder above it.
+pub(crate) fn urdf_shapes<'m>(
+    collisions: &'m [(String, urdf_import::Collision)],
+    urdf: &Path,
+    warnings: &mut Vec<String>,
+) -> Vec<ShapedBody<'m>> {
+    let folder = urdf.parent().unwrap_or(Path::new("."));
+    let mut bodies: Vec<ShapedBody<'m>> = Vec::new();
+    for (link, collision) in collisions {
+        let rotation = collision.origin.rotation;
+        let orientation = Some(OrientationSpec {
+            quaternion: Some([rotation.w, rotation.i, rotation.j, rotation.k]),
+            ..OrientationSpec::default()
+        });
+        let position = Some(collision.origin.translation.vector.into());
+        let shape = match &collision.geometry {
+            Geometry::Sphere { radius } => CollisionShape::Sphere {
+                radius: *radius,
+                position,
+                orientation,
+            },
+            Geometry::Box { size } => CollisionShape::Box {
+                size: *size,
+                position,
+                orientation,
+            },
+            Geometry::Cylinder { .. } => {
+                warnings.push(format!(
+                    "link `{link}`: the cylinder <collision> at line {} is not modelled against planes (its touching \
+                     point runs along the rim); add [[contact]]s on the link instead",
+                    collision.line
+                ));
+                continue;
+            }
+            Geometry::Mesh { filename, scale } => match mesh_file(folder, filename) {
+                Some(path) => match mesh_vertices("mesh", &path) {
+                    Ok(vertices) => CollisionShape::Convex {
+                        points: Some(
+                            (vertices.iter())
+                                .map(|v| vec![v.x * scale[0], v.y * scale[1], v.z * scale[2]])
+                                .collect(),
+                        ),
+                        mesh: None,
+                        position,
+                        orientation,
+                    },
+                    Err(error) => {
+                        warnings.push(format!(
+                            "link `{link}`: the mesh <collision> at line {} is skipped: {error}",
+                            collision.line
+                        ));
+                        continue;
+                    }
+                },
+                None => {
+                    warnings.push(format!(
+                        "link `{link}`: the mesh <collision> at line {} is skipped: {filename} is not found",
+                        collision.line
+                    ));
+                    continue;
+                }
+            },
+        };
+        match bodies.iter_mut().find(|b| b.name == Some(link.as_str())) {
+            Some(body) => body.shapes.push(shape),
+            None => bodies.push(ShapedBody {
+                name: Some(link.as_str()),
+                shapes: vec![shape],
+            }),
+        }
+    }
+    bodies
+}
+
+/// Where a URDF mesh address points: as written relative to `folder`, or a `package://package/path` as `path` or
+/// `package/path` under `folder` and each folder above it; `None` if no such file exists.
+fn mesh_file(folder: &Path, filename: &str) -> Option<std::path::PathBuf> {
+    let address = filename.strip_prefix("file://").unwrap_or(filename);
+    let Some(packaged) = address.strip_prefix("package://") else {
+        let path = folder.join(address);
+        return path.is_file().then_some(path);
+    };
+    let inside = packaged.split_once('/').map_or(packaged, |(_, rest)| rest);
+    folder
+        .ancestors()
+        .flat_map(|dir| [dir.join(inside), dir.join(packaged)])
+        .find(|path| path.is_file())
+}
+
+/// One point or sphere of a shape, in its body's frame, with the feature's name ("corner 3").
+struct Feature {
+    name: String,
+    centre: Vector3<f64>,
+    radius: f64,
+}
+
+/// Every plane's contacts with every body's shapes: named "`plane`: `body` `kind` `j` `feature`", with the plane's
+/// normal, offset, friction and restitution. Relative mesh paths are read from `folder`.
+pub(crate) fn plane_contacts(
+    planes: &[PlaneSpec],
+    bodies: &[ShapedBody<'_>],
+    folder: &Path,
+) -> Result<Vec<ContactSpec>, SceneFileError> {
+    let mut features = Vec::new();
+    for body in bodies {
+        let label = body.name.unwrap_or("body");
+        for (j, shape) in body.shapes.iter().enumerate() {
+            let what = format!("body {label}: collision {}", j + 1);
+            for feature in shape_features(shape, &what, folder)? {
+                let name = format!("{label} {} {}{}", kind(shape), j + 1, feature.name);
+                features.push((body.name, name, feature));
+            }
+        }
+    }
+    let mut contacts = Vec::new();
+    for (k, plane) in planes.iter().enumerate() {
+        for (body, name, feature) in &features {
+            let centre: [f64; 3] = feature.centre.into();
+            let (point, sphere) = if feature.radius > 0.0 {
+                (
+                    None,
+                    Some(SphereSpec {
+                        centre,
+                        radius: feature.radius,
+                    }),
+                )
+            } else {
+                (Some(centre), None)
+            };
+            contacts.push(ContactSpec {
+                name: Some(format!("{}: {name}", plane.name(k))),
+                body: body.map(str::to_owned),
+                point,
+                sphere,
+                normal: plane.normal,
+                offset: plane.offset,
+                restitution: plane.restitution,
+                friction: plane.friction,
+                static_friction: plane.static_friction,
+            });
+        }
+    }
+    Ok(contacts)
+}
+
+/// The shape's kind as its key names it.
+fn kind(shape: &CollisionShape) -> &'static str {
+    match shape {
+        CollisionShape::Sphere { .. } => "sphere",
+        CollisionShape::Box { .. } => "box",
+        CollisionShape::Capsule { .. } => "capsule",
+        CollisionShape::Cylinder { .. } => "cylinder",
+        CollisionShape::Convex { .. } => "convex",
+    }
+}
+
+/// A size: positive, finite and at most [`LARGEST`].
+fn size(what: &str, value: f64) -> Result<f64, SceneFileError> {
+    if value > 0.0 && value <= LARGEST {
+        Ok(value)
+    } else {
+        Err(invalid(
+            what,
+            format!("must be positive and at most 1e6 m, got {value}"),
+        ))
+    }
+}
+
+/// The points and spheres that keep `shape` above a plane, in its body's frame.
+fn shape_features(shape: &CollisionShape, what: &str, folder: &Path) -> Result<Vec<Feature>, SceneFileError> {
+    let (position, orientation) = match shape {
+        CollisionShape::Sphere {
+            position, orientation, ..
+        }
+        | CollisionShape::Box {
+            position, orientation, ..
+        }
+        | CollisionShape::Capsule {
+            position, orientation, ..
+        }
+        | CollisionShape::Cylinder {
+            position, orientation, ..
+        }
+        | CollisionShape::Convex {
+            position, orientation, ..
+        } => (position, orientation),
+    };
+    let origin = finite(&format!("{what}: position"), position.unwrap_or_default())?;
+    if origin.amax() > LARGEST {
+        return Err(invalid(
+            format!("{what}: position"),
+            "must be within 1e6 m of the body's origin",
+        ));
+    }
+    let turn = match orientation {
+        Some(spec) => spec.rotation_of(&format!("{what}: orientation"))?,
+        None => UnitQuaternion::identity(),
+    };
+    let place = |local: Vector3<f64>| origin + turn * local;
+    let feature = |name: String, local: Vector3<f64>, radius: f64| Feature {
+        name,
+        centre: place(local),
+        radius,
+    };
+    Ok(match shape {
+        CollisionShape::Sphere { radius, .. } => {
+            vec![feature(
+                String::new(),
+                Vector3::zeros(),
+                size(&format!("{what}: radius"), *radius)?,
+            )]
+        }
+        CollisionShape::Box { size: edges, .. } => {
+            let half: Vec<f64> = (0..3)
+                .map(|k| size(&format!("{what}: size"), edges[k]).map(|e| 0.5 * e))
+                .collect::<Result<_, _>>()?;
+            (0..8)
+                .map(|c| {
+                    let sign = |bit: usize| if c & (1 << bit) == 0 { -1.0 } else { 1.0 };
+                    let corner = Vector3::new(sign(0) * half[0], sign(1) * half[1], sign(2) * half[2]);
+                    feature(format!(" corner {}", c + 1), corner, 0.0)
+                })
+                .collect()
+        }
+        CollisionShape::Capsule { radius, length, .. } => {
+            let radius = size(&format!("{what}: radius"), *radius)?;
+            let half = 0.5 * size(&format!("{what}: length"), *length)?;
+            vec![
+                feature(" end 1".to_owned(), Vector3::z() * -half, radius),
+                feature(" end 2".to_owned(), Vector3::z() * half, radius),
+            ]
+        }
+        CollisionShape::Cylinder { .. } => {
+            return Err(invalid(
+                what,
+                "a cylinder's rim against a plane is not modelled (its touching point moves along the rim): use a \
+                 capsule, or a `convex` shape of points on its two rims",
+            ))
+        }
+        CollisionShape::Convex { points, mesh, .. } => {
+            let vertices = match (points, mesh) {
+                (Some(points), None) => listed_points(&format!("{what}: points"), points)?,
+                (None, Some(file)) => mesh_vertices(&format!("{what}: mesh"), &folder.join(file))?,
+                (Some(_), Some(_)) => return Err(invalid(what, "give `points` or `mesh`, not both")),
+                (None, None) => return Err(invalid(what, "give the hull's `points` or a `mesh` file")),
+            };
+            hull_vertices(what, &vertices)?
+                .into_iter()
+                .enumerate()
+                .map(|(k, vertex)| feature(format!(" vertex {}", k + 1), vertex, 0.0))
+                .collect()
+        }
+    })
+}
+
+/// The listed points, each of three finite coordinates within [`LARGEST`].
+fn listed_points(what: &str, points: &[Vec<f64>]) -> Result<Vec<Vector3<f64>>, SceneFileError> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(k, point)| {
+            let &[x, y, z] = point.as_slice() else {
+                return Err(invalid(
+                    what,
+                    format!("point {} has {} numbers, not 3", k + 1, point.len()),
+                ));
+            };
+            let point = finite(what, [x, y, z])?;
+            if point.amax() > LARGEST {
+                return Err(invalid(what, format!("point {} is beyond 1e6 m", k + 1)));
+            }
+            Ok(point)
+        })
+        .collect()
+}
+
+/// The vertices of an STL file (ASCII or binary).
+fn mesh_vertices(what: &str, path: &Path) -> Result<Vec<Vector3<f64>>, SceneFileError> {
+    let mut file = std::fs::File::open(path)
+        .map_err(|error| invalid(what, format!("cannot read the mesh {}: {error}", path.display())))?;
+    let mesh = stl_io::read_stl(&mut file)
+        .map_err(|error| invalid(what, format!("{} is not an STL mesh: {error}", path.display())))?;
+    let points: Vec<Vec<f64>> = mesh
+        .vertices
+        .iter()
+        .map(|v| v.0.iter().map(|&x| f64::from(x)).collect())
+        .collect();
+    listed_points(what, &points)
+}
+
+/// The vertices of the convex hull of `points` (parry3d's quickhull), refused if the points span no volume (fewer
+/// than four, or all in one plane: a hull of no thickness would let the plane through between its vertices only by
+/// round-off, and is more likely a typo) or bring more than [`MAX_HULL_VERTICES`].
+fn hull_vertices(what: &str, points: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>>, SceneFileError> {
+    let extent = points.iter().fold(0.0f64, |m, p| m.max(p.amax()));
+    let centre = points.iter().sum::<Vector3<f64>>() / points.len().max(1) as f64;
+    let flat = || {
+        invalid(
+            what,
+            format!(
+                "the {} points span no volume (fewer than four, or all in one plane or line)",
+                points.len()
+            ),
+        )
+    };
+    if points.len() < 4 {
+        return Err(flat());
+    }
+    let input: Vec<parry3d_f64::math::Vector3> = (points.iter())
+        .map(|p| parry3d_f64::math::Vector3::new(p.x, p.y, p.z))
+        .collect();
+    let (vertices, triangles) = parry3d_f64::transformation::try_convex_hull(&input).map_err(|_| flat())?;
+    let at = |i: u32| {
+        let v = vertices[i as usize];
+        Vector3::new(v.x, v.y, v.z) - centre
+    };
+    let volume: f64 = (triangles.iter())
+        .map(|t| at(t[0]).dot(&at(t[1]).cross(&at(t[2]))) / 6.0)
+        .sum();
+    // NaN (a degenerate hull) counts as no volume.
+    let thick = volume.abs() > 1e-12 * extent.max(f64::MIN_POSITIVE).powi(3);
+    if !thick {
+        return Err(flat());
+    }
+    let mut used: Vec<u32> = triangles.iter().flatten().copied().collect();
+    used.sort_unstable();
+    used.dedup();
+    if used.len() > MAX_HULL_VERTICES {
+        return Err(invalid(
+            what,
+            format!(
+                "the hull has {} vertices, more than {MAX_HULL_VERTICES} contacts per plane: simplify the mesh",
+                used.len()
+            ),
+        ));
+    }
+    Ok(used.into_iter().map(|i| at(i) + centre).collect())
+}

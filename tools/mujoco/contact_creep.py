@@ -1,0 +1,84 @@
+"""MuJoCo's soft contact on the closed-form friction scenes of dynamics/tests/integration/friction.rs, for
+docs/contacts.md "Against soft contact": how far a box that should stick creeps, how deep it sinks, and when a struck
+ball starts rolling.
+
+Run in a throwaway virtual environment (MuJoCo is never a dependency of this project):
+
+    python3 -m venv /tmp/mj && /tmp/mj/bin/pip install mujoco
+    /tmp/mj/bin/python tools/mujoco/contact_creep.py
+"""
+
+import math
+
+import mujoco
+
+G = 9.81
+
+
+def box_on_incline(slope, mu, timestep, duration):
+    """A 0.2 m cube of 1 kg at rest on an incline of `slope` rad (gravity tilted), friction `mu` (> tan slope: it
+    should stick). Returns the distance it moved along the incline and the deepest its bottom went below the plane."""
+    gx, gz = G * math.sin(slope), -G * math.cos(slope)
+    xml = f"""
+    <mujoco>
+      <option timestep="{timestep}" gravity="{gx} 0 {gz}"/>
+      <worldbody>
+        <geom type="plane" size="10 10 0.1" friction="{mu} 0 0"/>
+        <body pos="0 0 0.1">
+          <freejoint/>
+          <geom type="box" size="0.1 0.1 0.1" mass="1" friction="{mu} 0 0"/>
+        </body>
+      </worldbody>
+    </mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    deepest = 0.0
+    steps = int(round(duration / timestep))
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+        deepest = max(deepest, 0.1 - data.qpos[2])
+    return abs(data.qpos[0]), deepest
+
+
+def struck_ball(v0, mu, timestep):
+    """A ball (2 kg, radius 0.1 m) struck without spin along a floor with friction `mu`: the time its contact point's
+    slip first falls below 1e-3 m/s and its speed at 1 s, against 2v0/(7 mu g) and 5v0/7."""
+    xml = f"""
+    <mujoco>
+      <option timestep="{timestep}"/>
+      <worldbody>
+        <geom type="plane" size="10 10 0.1" friction="{mu} 0 0"/>
+        <body pos="0 0 0.1">
+          <freejoint/>
+          <geom type="sphere" size="0.1" mass="2" friction="{mu} 0 0"/>
+        </body>
+      </worldbody>
+    </mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    data.qvel[0] = v0
+    rolling = None
+    for step in range(int(round(1.0 / timestep))):
+        mujoco.mj_step(model, data)
+        slip = data.qvel[0] - data.qvel[4] * 0.1
+        if rolling is None and abs(slip) < 1e-3:
+            rolling = (step + 1) * timestep
+    return rolling, data.qvel[0]
+
+
+def main():
+    print("MuJoCo", mujoco.__version__)
+    for timestep in (1e-3, 2e-3):
+        moved, deepest = box_on_incline(0.3, 0.35, timestep, 10.0)
+        print(f"box on a 0.3 rad incline, mu 0.35, dt {timestep:g}: crept {moved:.3e} m in 10 s, sank {deepest:.3e} m")
+        moved, deepest = box_on_incline(0.0, 0.35, timestep, 10.0)
+        print(f"box on a level floor, dt {timestep:g}: moved {moved:.3e} m in 10 s, sank {deepest:.3e} m")
+        rolling, speed = struck_ball(2.0, 0.3, timestep)
+        print(
+            f"struck ball, dt {timestep:g}: rolling from {rolling} s (exact {2 * 2.0 / (7 * 0.3 * G):.6f} s), "
+            f"speed {speed:.6f} m/s (exact {5 * 2.0 / 7:.6f})"
+        )
+
+
+if __name__ == "__main__":
+    main()
