@@ -13,7 +13,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::eigen::SingularValues;
+use crate::eigen::{symmetric_least_norm, SingularValues};
 use crate::joint_models::{JointAxis, JointModel, Motion, Side};
 use crate::mechanism::joint_rows::{BodyKinematics, Joint};
 use crate::mechanism::parts::MechanismBody;
@@ -570,9 +570,14 @@ impl Articulation {
         let lambda = if scratch.points.iter().all(Option::is_none) {
             gram.cholesky().ok_or(())?.solve(&rhs)
         } else {
-            // Not symmetric once sliding friction tilts a row's force from its direction.
             let largest = gram.diagonal().amax();
-            SingularValues::of(&gram).solve(&rhs, REPEATED_ROW * largest)
+            let tilted = (scratch.points.iter().flatten()).any(|point| point.force != point.direction);
+            if tilted {
+                // Not symmetric once sliding friction tilts a row's force from its direction.
+                SingularValues::of(&gram).solve(&rhs, REPEATED_ROW * largest)
+            } else {
+                symmetric_least_norm(&gram, &rhs, REPEATED_ROW * largest)
+            }
         };
         if !lambda.iter().all(|x| x.is_finite()) {
             return Err(());

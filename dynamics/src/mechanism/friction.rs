@@ -10,7 +10,7 @@ use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::eigen::SingularValues;
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
-use crate::mechanism::load_split::{widest_split, Held};
+use crate::mechanism::load_split::{least_margin, widest_split, Held};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{Contact, Slip};
 use crate::state::State;
@@ -169,13 +169,6 @@ impl<A: Algebra> Mechanism<A> {
         if least_norm.is_empty() || workspace.held.iter().all(Option::is_none) {
             return least_norm.to_vec();
         }
-        let svd = SingularValues::of(&workspace.articulated.responses());
-        // The loads that move nothing: the right singular vectors of (near) zero singular values.
-        let null = svd.null_vectors(REPEATED_ROW * svd.largest());
-        if null.is_empty() {
-            return least_norm.to_vec();
-        }
-        let null = nalgebra::DMatrix::from_columns(&null);
         let held: Vec<Held> = (workspace.held.iter().enumerate())
             .filter_map(|(index, bound)| {
                 let (bound, row) = ((*bound)?, workspace.held_rows[index]?);
@@ -190,6 +183,19 @@ impl<A: Algebra> Mechanism<A> {
                 })
             })
             .collect();
+        let base = nalgebra::DVector::from_column_slice(least_norm);
+        // Every push and stick inside its cone at the least-norm split already (a body at rest on its corners):
+        // no other split is needed, nor the null space that would give it.
+        if least_margin(&base, &held) > 0.0 {
+            return least_norm.to_vec();
+        }
+        let svd = SingularValues::of(&workspace.articulated.responses());
+        // The loads that move nothing: the right singular vectors of (near) zero singular values.
+        let null = svd.null_vectors(REPEATED_ROW * svd.largest());
+        if null.is_empty() {
+            return least_norm.to_vec();
+        }
+        let null = nalgebra::DMatrix::from_columns(&null);
         let base = nalgebra::DVector::from_column_slice(least_norm);
         widest_split(&base, &null, &held).0.as_slice().to_vec()
     }

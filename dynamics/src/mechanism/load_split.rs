@@ -27,7 +27,7 @@ pub(super) struct Held {
 /// transitions only need the sign of the least margin, and a positive one at some split means a positive widest).
 /// Unbounded margins (a jammed set, whose pushes grow without end) are capped at `CAP` times the loads' size.
 pub(super) fn widest_split(least_norm: &DVector<f64>, null: &DMatrix<f64>, held: &[Held]) -> (DVector<f64>, f64) {
-    let margin_at = |lambda: &DVector<f64>| margins(lambda, held).fold(f64::INFINITY, f64::min);
+    let margin_at = |lambda: &DVector<f64>| least_margin(lambda, held);
     let least = margin_at(least_norm);
     if null.ncols() == 0 || held.is_empty() || least > 0.0 {
         return (least_norm.clone(), least);
@@ -62,6 +62,11 @@ pub(super) fn widest_split(least_norm: &DVector<f64>, null: &DMatrix<f64>, held:
     let lambda = problem.lambda(&x);
     let margin = margin_at(&lambda);
     (lambda, margin)
+}
+
+/// The least of the held constraints' margins at the multipliers `lambda` (infinite with none held).
+pub(super) fn least_margin(lambda: &DVector<f64>, held: &[Held]) -> f64 {
+    margins(lambda, held).fold(f64::INFINITY, f64::min)
 }
 
 /// Each held constraint's margin at the multipliers `lambda`: its push, or its cone's `μ N − |F_t|`.
