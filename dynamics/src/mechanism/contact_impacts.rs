@@ -288,7 +288,8 @@ impl<A: Algebra> Mechanism<A> {
     /// The impulses of an impact whose speed targets are scaled by `fraction`: by active sets ([`Mechanism::impact_modes`])
     /// where they settle; where they cycle (a contact that pulls while sticking, sinks while out and reverses its slip
     /// while sliding), by Gauss–Seidel iteration on Coulomb's law with each slide opposing its slip after
-    /// ([`coulomb_iteration`]), whose modes, where consistent, are solved again exactly.
+    /// ([`coulomb_iteration`]), whose modes, where consistent, are solved again exactly; an error naming the contacts
+    /// if neither the exact solve nor the iterated impulses satisfy both laws.
     fn impact_outcome(
         &self,
         t: f64,
@@ -300,14 +301,18 @@ impl<A: Algebra> Mechanism<A> {
             Ok(outcome) => return Ok(outcome),
             Err(error) => error,
         };
-        let iterated = coulomb_iteration(rows, participants, fraction).ok_or(error)?;
+        let Some(iterated) = coulomb_iteration(rows, participants, fraction) else {
+            return Err(error);
+        };
         let modes: Vec<Mode> = participants.iter().map(|p| p.mode_of(&iterated.impulses)).collect();
         let exact = self.impulses_for(t, rows, participants, &modes, fraction)?;
-        Ok(if consistent(rows, participants, &modes, &exact, fraction) {
-            exact
+        if consistent(rows, participants, &modes, &exact, fraction) {
+            Ok(exact)
+        } else if consistent(rows, participants, &modes, &iterated, fraction) {
+            Ok(iterated)
         } else {
-            iterated
-        })
+            Err(error)
+        }
     }
 
     /// The active sets of an impact whose speed targets are scaled by `fraction` (1 for the restitution asked): every
