@@ -450,6 +450,36 @@ fn careless_contacts_are_refused() {
             .to_string();
         assert!(error.contains("restitution"), "{e}: {error}");
     }
+    // Friction: coefficients negative, NaN, infinite or beyond 1e6, static below kinetic.
+    use dynamics::contacts::{Friction, MAX_FRICTION};
+    for (kinetic, stiction) in [
+        (-0.1, 0.5),
+        (nan, 0.5),
+        (0.3, nan),
+        (inf, inf),
+        (0.3, 2.0 * MAX_FRICTION),
+        (0.5, 0.4),
+    ] {
+        let error = Friction::new(kinetic, stiction).unwrap_err().to_string();
+        assert!(
+            error.contains("friction") && error.contains("coefficient"),
+            "{kinetic} {stiction}: {error}"
+        );
+    }
+    assert!(Friction::coulomb(-1e-300).is_err() && Friction::coulomb(MAX_FRICTION).is_ok());
+    // Spheres: radii zero, negative, NaN, infinite or huge; centres NaN or far away.
+    for radius in [0.0, -0.1, nan, inf, 2e6] {
+        let error = PlaneContact::sphere(point, radius, Vector3::z(), 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("radius"), "{radius}: {error}");
+    }
+    for centre in [Vector3::new(nan, 0.0, 0.0), Vector3::new(0.0, 0.0, -2e6)] {
+        let error = PlaneContact::sphere(centre, 0.1, Vector3::z(), 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("must be finite and within"), "{centre:?}: {error}");
+    }
     // A plane given by a non-unit normal is scaled to a unit one: 2z = 1 is z = 0.5.
     let scaled = PlaneContact::new(point, Vector3::z() * 2.0, 1.0).unwrap();
     assert_eq!((scaled.normal(), scaled.offset()), (Vector3::z(), 0.5));

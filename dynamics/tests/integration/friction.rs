@@ -114,6 +114,37 @@ fn a_struck_ball_slides_then_rolls<A: Algebra>() {
     }
 }
 
+/// Far from the origin (a floor 1e4 m away in x and z): the struck ball's slip still stops at `2v₀/(7μg)`, within
+/// 1e-10 s, and it rolls on at `5v₀/7` (1e-10 m/s): the round-off of coordinates 1e4 large, not of the method.
+fn a_struck_ball_far_from_the_origin_slides_then_rolls<A: Algebra>() {
+    let (v0, mu, far) = (2.0, 0.3, 1e4);
+    let mut system = Mechanism::<A>::new();
+    let id = system.add_body("ball", ball()).unwrap();
+    system.add_force(id, Force::gravity()).unwrap();
+    let contact = PlaneContact::sphere(Vector3::zeros(), RADIUS, Vector3::z(), far)
+        .unwrap()
+        .with_friction(Friction::coulomb(mu).unwrap());
+    system.add_contact("ball", id, contact).unwrap();
+    let start = [State::<A>::from_world_twist(
+        &ball(),
+        Vector3::new(far, 0.0, far + RADIUS),
+        &UnitQuaternion::identity(),
+        Vector3::zeros(),
+        Vector3::x() * v0,
+    )];
+    let run = simulate(&system, &start, Method::Dop853Body, &adaptive(1e-12, 0.5)).unwrap();
+    let changes = friction_changes(&run);
+    assert_eq!(changes.len(), 1, "{:?}", run.transitions);
+    let stop = 2.0 * v0 / (7.0 * mu * G);
+    assert!(
+        (changes[0].0 - stop).abs() < 1e-10,
+        "stopped slipping at {} s, {stop} s exact",
+        changes[0].0
+    );
+    let end = run.body(0).last().unwrap();
+    assert!((end.velocity.x - 5.0 * v0 / 7.0).abs() < 1e-10, "{}", end.velocity.x);
+}
+
 /// Released at rest on an incline of 0.3 rad with enough friction to roll (`tan α < 7μ/2`), the ball sticks at its
 /// contact point and rolls down at `(5/7) g sin α`.
 fn a_ball_rolls_down_an_incline<A: Algebra>() {
@@ -491,6 +522,7 @@ for_both_algebras!(
     a_ball_thrown_at_the_floor_leaves_rolling_or_sliding,
     a_cube_landing_flat_slides_on,
     a_struck_ball_slides_then_rolls,
+    a_struck_ball_far_from_the_origin_slides_then_rolls,
     a_ball_rolls_down_an_incline,
     a_block_sticks_or_slides_on_an_incline,
     a_block_thrown_up_an_incline_stops,
