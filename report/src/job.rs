@@ -13,6 +13,7 @@ use crate::adaptive::section::adaptive_section;
 use crate::adaptive::sweep::{run_adaptive, AdaptivePlan, AdaptiveResult};
 use crate::contacts::section::contacts_section;
 use crate::csv;
+use crate::ground::section::ground_section;
 use crate::limits::section::limits_section;
 use crate::measured_anchors::Anchors;
 use crate::mechanisms::section::mechanism_section;
@@ -253,6 +254,7 @@ fn write_report(
     text.push_str(&adaptive_section(output, &job.adaptive, &fixed)?);
     text.push_str(&limits_section(output)?);
     text.push_str(&contacts_section(output)?);
+    text.push_str(&ground_section(output)?);
     text.push_str(&anchors.section());
     std::fs::write(&report_path, text).map_err(io(&report_path))
 }

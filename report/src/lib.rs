@@ -36,6 +36,8 @@ mod limits;
 mod contacts;
 // Scene files, run and written out.
 pub mod scene_job;
+// Bodies on the ground: shipped scene files with friction and collision shapes, run as the scene job runs them.
+mod ground;
 // The main job and its command line.
 pub mod job;
 pub mod cli;

@@ -1,0 +1,95 @@
+//! The report's section on bodies on the ground (docs/contacts.md): `scenes/solo12_standing.toml` and
+//! `scenes/shapes_on_a_floor.toml` run as the scene job runs them (written under `ground/`), a figure, and a table of
+//! their transitions, the deepest any contact went below its plane, the energy balance and the cost.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::figures;
+use crate::markdown::scientific;
+use crate::plot::PlotError;
+use crate::scene_job::{run_scene_file, AlgebraRun};
+use dynamics::limits::LimitChange;
+
+/// The shipped scene files the section runs.
+const SCENES: [&str; 2] = ["solo12_standing.toml", "shapes_on_a_floor.toml"];
+
+/// The repository's `scenes/` folder (the section runs the files shipped there).
+fn scenes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes")
+}
+
+/// The section: both scene files in both algebras, a figure and a table.
+pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "## Bodies on the ground (docs/contacts.md)\n\nCoulomb friction at exact contacts: a sliding contact's \
+         push carries μN against its slip, a sticking one holds two more rows while its force stays in the cone, and \
+         every stop and slip is located as impacts are. Collision shapes (boxes, capsules, convex hulls) stay above \
+         `[[plane]]`s through their corners, end spheres and vertices. The shipped scene files below run as \
+         `cargo run --release -- --scene-file scenes/<name>` runs them (written under `ground/`).\n"
+    );
+    let mut runs: Vec<(&str, Vec<AlgebraRun>)> = Vec::new();
+    for file in SCENES {
+        let stem = file.trim_end_matches(".toml");
+        match run_scene_file(&scenes().join(file), &dir.join("ground").join(stem)) {
+            Ok(summary) => runs.push((stem, summary.runs)),
+            Err(error) => {
+                let _ = writeln!(out, "{file}: failed: {error}\n");
+            }
+        }
+    }
+    let of = |stem: &str| {
+        runs.iter()
+            .find(|(s, _)| *s == stem)
+            .map_or(&[][..], |(_, r)| r.as_slice())
+    };
+    if let Some(name) = figures::draw(dir, of("solo12_standing"), of("shapes_on_a_floor"))? {
+        let _ = writeln!(out, "![{name}]({name})\n");
+    }
+    let _ = writeln!(
+        out,
+        "| scene | algebra | bounces | holds | releases | sticks | slips | deepest below a plane (m) | E − E₀ − L − W \
+         (J) | CPU per simulated second (s) |\n|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for (stem, algebra_runs) in &runs {
+        for run in algebra_runs {
+            let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
+            let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
+            let impacts: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+            let balance = match (first, last) {
+                (Some(a), Some(b)) => b.energy - a.energy - impacts - run.work.last().copied().unwrap_or(0.0),
+                _ => f64::NAN,
+            };
+            let _ = writeln!(
+                out,
+                "| {stem} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                run.algebra.name(),
+                count(|c| matches!(c, LimitChange::Bounced { .. })),
+                count(|c| matches!(c, LimitChange::Held { .. })),
+                count(|c| matches!(c, LimitChange::Released { .. })),
+                count(|c| matches!(c, LimitChange::Stuck { .. })),
+                count(|c| matches!(c, LimitChange::Slipped { .. })),
+                scientific(run.deepest),
+                scientific(balance),
+                scientific(run.cpu_per_simulated_second),
+            );
+        }
+    }
+    if let Some(run) = of("solo12_standing").first() {
+        let base = &run.bodies[0];
+        let settled = base.iter().find(|s| s.t >= 2.0).map(|s| s.position);
+        let moved = settled.map_or(f64::NAN, |p| {
+            (base.iter().filter(|s| s.t >= 2.0)).fold(0.0, |m, s| f64::max(m, (s.position - p).norm()))
+        });
+        let _ = writeln!(
+            out,
+            "\nSolo-12 stands on its sticking feet: from t = 2 s to the end its base moves {} m ({}).",
+            scientific(moved),
+            run.algebra.name()
+        );
+    }
+    let _ = writeln!(out);
+    Ok(out)
+}
