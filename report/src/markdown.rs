@@ -66,14 +66,32 @@ pub(crate) fn compare_rows(a: &RowKey, b: &RowKey) -> Ordering {
     (a.0, a.1, a.2).cmp(&(b.0, b.1, b.2)).then_with(|| b.3.total_cmp(&a.3))
 }
 
+/// How many of each one-sided transition a run made.
+pub(crate) struct TransitionCounts {
+    pub(crate) bounces: usize,
+    pub(crate) holds: usize,
+    pub(crate) releases: usize,
+    pub(crate) sticks: usize,
+    pub(crate) slips: usize,
+}
+
+impl TransitionCounts {
+    /// The counts of `transitions`.
+    pub(crate) fn of(transitions: &[LimitTransition]) -> Self {
+        let count = |kind: fn(&LimitChange) -> bool| transitions.iter().filter(|t| kind(&t.change)).count();
+        TransitionCounts {
+            bounces: count(|c| matches!(c, LimitChange::Bounced { .. })),
+            holds: count(|c| matches!(c, LimitChange::Held { .. })),
+            releases: count(|c| matches!(c, LimitChange::Released { .. })),
+            sticks: count(|c| matches!(c, LimitChange::Stuck { .. })),
+            slips: count(|c| matches!(c, LimitChange::Slipped { .. })),
+        }
+    }
+}
+
 /// The table cells of a run's transitions: bounces, holds, releases and the first transition's time (s).
 pub(crate) fn transition_cells(transitions: &[LimitTransition]) -> String {
-    let count = |kind: fn(&LimitChange) -> bool| transitions.iter().filter(|t| kind(&t.change)).count();
+    let counts = TransitionCounts::of(transitions);
     let first = transitions.first().map_or("–".to_owned(), |t| format!("{:.15}", t.t));
-    format!(
-        "{} | {} | {} | {first}",
-        count(|c| matches!(c, LimitChange::Bounced { .. })),
-        count(|c| matches!(c, LimitChange::Held { .. })),
-        count(|c| matches!(c, LimitChange::Released { .. })),
-    )
+    format!("{} | {} | {} | {first}", counts.bounces, counts.holds, counts.releases)
 }

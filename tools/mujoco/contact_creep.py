@@ -15,23 +15,29 @@ import mujoco
 G = 9.81
 
 
-def box_on_incline(slope, mu, timestep, duration):
-    """A 0.2 m cube of 1 kg at rest on an incline of `slope` rad (gravity tilted), friction `mu` (> tan slope: it
-    should stick). Returns the distance it moved along the incline and the deepest its bottom went below the plane."""
-    gx, gz = G * math.sin(slope), -G * math.cos(slope)
+def body_on_floor(body_geom, mu, timestep, gravity=(0.0, 0.0, -G)):
+    """A model of one free body (its geom's XML) starting with its centre 0.1 m above a floor, friction `mu` on both."""
     xml = f"""
     <mujoco>
-      <option timestep="{timestep}" gravity="{gx} 0 {gz}"/>
+      <option timestep="{timestep}" gravity="{gravity[0]} {gravity[1]} {gravity[2]}"/>
       <worldbody>
         <geom type="plane" size="10 10 0.1" friction="{mu} 0 0"/>
         <body pos="0 0 0.1">
           <freejoint/>
-          <geom type="box" size="0.1 0.1 0.1" mass="1" friction="{mu} 0 0"/>
+          {body_geom.format(mu=mu)}
         </body>
       </worldbody>
     </mujoco>"""
     model = mujoco.MjModel.from_xml_string(xml)
-    data = mujoco.MjData(model)
+    return model, mujoco.MjData(model)
+
+
+def box_on_incline(slope, mu, timestep, duration):
+    """A 0.2 m cube of 1 kg at rest on an incline of `slope` rad (gravity tilted), friction `mu` (> tan slope: it
+    should stick). Returns the distance it moved along the incline and the deepest its bottom went below the plane."""
+    gravity = (G * math.sin(slope), 0.0, -G * math.cos(slope))
+    box = '<geom type="box" size="0.1 0.1 0.1" mass="1" friction="{mu} 0 0"/>'
+    model, data = body_on_floor(box, mu, timestep, gravity)
     deepest = 0.0
     steps = int(round(duration / timestep))
     for _ in range(steps):
@@ -43,19 +49,8 @@ def box_on_incline(slope, mu, timestep, duration):
 def struck_ball(v0, mu, timestep):
     """A ball (2 kg, radius 0.1 m) struck without spin along a floor with friction `mu`: the time its contact point's
     slip first falls below 1e-3 m/s and its speed at 1 s, against 2v0/(7 mu g) and 5v0/7."""
-    xml = f"""
-    <mujoco>
-      <option timestep="{timestep}"/>
-      <worldbody>
-        <geom type="plane" size="10 10 0.1" friction="{mu} 0 0"/>
-        <body pos="0 0 0.1">
-          <freejoint/>
-          <geom type="sphere" size="0.1" mass="2" friction="{mu} 0 0"/>
-        </body>
-      </worldbody>
-    </mujoco>"""
-    model = mujoco.MjModel.from_xml_string(xml)
-    data = mujoco.MjData(model)
+    ball = '<geom type="sphere" size="0.1" mass="2" friction="{mu} 0 0"/>'
+    model, data = body_on_floor(ball, mu, timestep)
     data.qvel[0] = v0
     rolling = None
     for step in range(int(round(1.0 / timestep))):

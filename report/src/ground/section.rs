@@ -6,10 +6,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::figures;
-use crate::markdown::scientific;
+use crate::markdown::{scientific, TransitionCounts};
 use crate::plot::PlotError;
 use crate::scene_job::{run_scene_file, AlgebraRun};
-use dynamics::limits::LimitChange;
 
 /// The shipped scene files the section runs.
 const SCENES: [&str; 2] = ["solo12_standing.toml", "shapes_on_a_floor.toml"];
@@ -55,24 +54,18 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
     );
     for (stem, algebra_runs) in &runs {
         for run in algebra_runs {
-            let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
-            let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
-            let impacts: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
-            let balance = match (first, last) {
-                (Some(a), Some(b)) => b.energy - a.energy - impacts - run.work.last().copied().unwrap_or(0.0),
-                _ => f64::NAN,
-            };
+            let counts = TransitionCounts::of(&run.transitions);
             let _ = writeln!(
                 out,
                 "| {stem} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                 run.algebra.name(),
-                count(|c| matches!(c, LimitChange::Bounced { .. })),
-                count(|c| matches!(c, LimitChange::Held { .. })),
-                count(|c| matches!(c, LimitChange::Released { .. })),
-                count(|c| matches!(c, LimitChange::Stuck { .. })),
-                count(|c| matches!(c, LimitChange::Slipped { .. })),
+                counts.bounces,
+                counts.holds,
+                counts.releases,
+                counts.sticks,
+                counts.slips,
                 scientific(run.deepest),
-                scientific(balance),
+                scientific(run.unexplained_energy()),
                 scientific(run.cpu_per_simulated_second),
             );
         }

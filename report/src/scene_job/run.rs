@@ -48,6 +48,25 @@ impl AlgebraRun {
         self.energy_change.iter().copied().fold(0.0, f64::max)
     }
 
+    /// E(T) − E₀ over the run (J; 0 without samples).
+    pub fn total_energy_change(&self) -> f64 {
+        match (self.bodies[0].first(), self.bodies[0].last()) {
+            (Some(first), Some(last)) => last.energy - first.energy,
+            _ => 0.0,
+        }
+    }
+
+    /// L(T): what the impacts at limits and contacts changed the energy by over the run (J).
+    pub fn impact_energy(&self) -> f64 {
+        self.transitions.iter().map(|t| t.energy_change).sum()
+    }
+
+    /// E(T) − E₀ − L(T) − W(T) (J): the energy change the impacts and the work of the forces without a potential
+    /// (sliding friction's included) do not explain, the integration error.
+    pub fn unexplained_energy(&self) -> f64 {
+        self.total_energy_change() - self.impact_energy() - self.work.last().copied().unwrap_or(0.0)
+    }
+
     /// The largest joint violation over the run (m); 0 without joints.
     pub fn max_violation(&self) -> f64 {
         self.violation.iter().copied().fold(0.0, f64::max)

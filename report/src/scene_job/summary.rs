@@ -7,13 +7,13 @@ use std::path::Path;
 
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::Integrator;
-use dynamics::limits::{LimitChange, LimitTransition};
+use dynamics::limits::LimitTransition;
 use scene_file::{CheckedScene, End};
 
 use super::describe::{element_list, robot_summary, stepping};
 use super::run::AlgebraRun;
 use crate::csv;
-use crate::markdown::{escape, scientific};
+use crate::markdown::{escape, scientific, TransitionCounts};
 use crate::measure::agreement;
 
 /// What `summary.md` says about the scene besides the runs.
@@ -248,8 +248,8 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
     let limited = runs.iter().any(|run| !run.transitions.is_empty());
     let frictional = scene.contacts.iter().any(|c| c.friction > 0.0);
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
-        let count = |kind: fn(&LimitChange) -> bool| run.transitions.iter().filter(|t| kind(&t.change)).count();
-        let taken: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+        let counts = TransitionCounts::of(&run.transitions);
+        let taken = run.impact_energy();
         let _ =
             writeln!(
             out,
@@ -265,19 +265,20 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
                 }
             },
             run.algebra.name(),
-            count(|c| matches!(c, LimitChange::Bounced { .. })),
-            count(|c| matches!(c, LimitChange::Held { .. })),
-            count(|c| matches!(c, LimitChange::Released { .. })),
-            count(|c| matches!(c, LimitChange::Stuck { .. })),
-            count(|c| matches!(c, LimitChange::Slipped { .. })),
+            counts.bounces,
+            counts.holds,
+            counts.releases,
+            counts.sticks,
+            counts.slips,
             run.transitions[0].t,
             scientific(taken),
-            match (frictional, run.bodies[0].first().zip(run.bodies[0].last())) {
-                (true, Some((first, last))) => format!(
+            if frictional {
+                format!(
                     ", sliding friction and the force elements by {} J in all",
-                    scientific(last.energy - first.energy - taken)
-                ),
-                _ => String::new(),
+                    scientific(run.total_energy_change() - taken)
+                )
+            } else {
+                String::new()
             },
             if scene.contacts.is_empty() {
                 String::new()
@@ -353,25 +354,18 @@ fn write_work(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) {
     );
     let _ = writeln!(out, "|---|---|---|---|{}", if impacts { "---|" } else { "" });
     for run in runs {
-        let (first, last) = (run.bodies[0].first(), run.bodies[0].last());
-        let change = match (first, last) {
-            (Some(a), Some(b)) => b.energy - a.energy,
-            _ => 0.0,
-        };
-        let work = run.work.last().copied().unwrap_or(0.0);
-        let lost: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
         let _ = writeln!(
             out,
             "| {} | {} |{} {} | {} |",
             run.algebra.name(),
-            scientific(change),
+            scientific(run.total_energy_change()),
             if impacts {
-                format!(" {} |", scientific(lost))
+                format!(" {} |", scientific(run.impact_energy()))
             } else {
                 String::new()
             },
-            scientific(work),
-            scientific(change - lost - work)
+            scientific(run.work.last().copied().unwrap_or(0.0)),
+            scientific(run.unexplained_energy())
         );
     }
     let _ = writeln!(

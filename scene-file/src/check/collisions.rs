@@ -22,8 +22,8 @@ const LARGEST: f64 = 1e6;
 pub const MAX_HULL_VERTICES: usize = 256;
 
 /// A body's collision shapes: its name (`None` for the single `[body]`; a link's name for a robot's) and the shapes.
-pub(crate) struct ShapedBody<'f> {
-    pub name: Option<&'f str>,
+pub(crate) struct ShapedBody {
+    pub name: Option<String>,
     pub shapes: Vec<CollisionShape>,
 }
 
@@ -32,13 +32,13 @@ pub(crate) struct ShapedBody<'f> {
 /// modelled against planes), a mesh whose file is not found or not STL. Meshes are looked up as written, relative to
 /// the URDF's folder, and for `package://package/path` as `path` and `package/path` under the URDF's folder and each
 /// folder above it.
-pub(crate) fn urdf_shapes<'m>(
-    collisions: &'m [(String, urdf_import::Collision)],
+pub(crate) fn urdf_shapes(
+    collisions: &[(String, urdf_import::Collision)],
     urdf: &Path,
     warnings: &mut Vec<String>,
-) -> Vec<ShapedBody<'m>> {
+) -> Vec<ShapedBody> {
     let folder = urdf.parent().unwrap_or(Path::new("."));
-    let mut bodies: Vec<ShapedBody<'m>> = Vec::new();
+    let mut bodies: Vec<ShapedBody> = Vec::new();
     for (link, collision) in collisions {
         let rotation = collision.origin.rotation;
         let orientation = Some(OrientationSpec {
@@ -94,10 +94,10 @@ pub(crate) fn urdf_shapes<'m>(
                 }
             },
         };
-        match bodies.iter_mut().find(|b| b.name == Some(link.as_str())) {
+        match bodies.iter_mut().find(|b| b.name.as_deref() == Some(link.as_str())) {
             Some(body) => body.shapes.push(shape),
             None => bodies.push(ShapedBody {
-                name: Some(link.as_str()),
+                name: Some(link.clone()),
                 shapes: vec![shape],
             }),
         }
@@ -131,17 +131,17 @@ struct Feature {
 /// normal, offset, friction and restitution. Relative mesh paths are read from `folder`.
 pub(crate) fn plane_contacts(
     planes: &[PlaneSpec],
-    bodies: &[ShapedBody<'_>],
+    bodies: &[ShapedBody],
     folder: &Path,
 ) -> Result<Vec<ContactSpec>, SceneFileError> {
     let mut features = Vec::new();
     for body in bodies {
-        let label = body.name.unwrap_or("body");
+        let label = body.name.as_deref().unwrap_or("body");
         for (j, shape) in body.shapes.iter().enumerate() {
             let what = format!("body {label}: collision {}", j + 1);
             for feature in shape_features(shape, &what, folder)? {
                 let name = format!("{label} {} {}{}", kind(shape), j + 1, feature.name);
-                features.push((body.name, name, feature));
+                features.push((body.name.as_deref(), name, feature));
             }
         }
     }

@@ -278,7 +278,7 @@ fn contacts_with_planes(
     folder: &Path,
     robot: Option<&mut LoadedRobot>,
 ) -> Result<Vec<ContactSpec>, SceneFileError> {
-    let mut bodies: Vec<ShapedBody<'_>> = match &file.body {
+    let mut bodies: Vec<ShapedBody> = match &file.body {
         None => Vec::new(),
         Some(Bodies::One(spec)) => vec![ShapedBody {
             name: None,
@@ -286,27 +286,19 @@ fn contacts_with_planes(
         }],
         Some(Bodies::Named(entries)) => (entries.iter())
             .map(|entry| ShapedBody {
-                name: Some(entry.name.as_str()),
+                name: Some(entry.name.clone()),
                 shapes: entry.collision.clone(),
             })
             .collect(),
     };
     // The robot's links' shapes, with a warning in the model for each URDF shape that cannot be one.
-    let mut links = Vec::new();
     let mut skipped = Vec::new();
     let urdf = robot.filter(|robot| robot.spec.collisions == CollisionsName::Urdf);
     let asked = urdf.is_some();
     if let Some(robot) = urdf {
-        links = urdf_shapes(&robot.model.collisions, &robot.path, &mut skipped)
-            .into_iter()
-            .map(|body| (body.name.map(str::to_owned), body.shapes))
-            .collect();
+        bodies.extend(urdf_shapes(&robot.model.collisions, &robot.path, &mut skipped));
         robot.model.warnings.extend(skipped.iter().cloned());
     }
-    bodies.extend(links.iter().map(|(name, shapes)| ShapedBody {
-        name: name.as_deref(),
-        shapes: shapes.clone(),
-    }));
     let shaped = bodies.iter().any(|b| !b.shapes.is_empty());
     match (file.plane.is_empty(), shaped) {
         (false, false) => {
