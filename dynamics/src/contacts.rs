@@ -14,6 +14,11 @@
 //! friction opposing the slip of the touching point with μ times the push, or **sticks**, two more rows holding the
 //! slip at zero while the friction force stays inside the cone; the stop of a slide and the slip of a stick are
 //! located transitions as the impacts are (docs/contacts.md "Friction").
+//!
+//! Between two bodies the plane may be fixed in the second body, a face of it
+//! ([`crate::Mechanism::add_contact_on`]), or a sphere of one body kept outside a sphere of the other
+//! ([`BallContact`]); the gap, its rate and the rows are then those of the relative motion (docs/contacts.md
+//! "Between bodies").
 
 use nalgebra::{Unit, Vector3};
 
@@ -115,6 +120,17 @@ impl Friction {
     }
 }
 
+/// A restitution coefficient, refused outside [0, 1] with an error naming `what`.
+fn checked_restitution(what: &str, restitution: f64) -> Result<f64, ConstraintError> {
+    if !(0.0..=1.0).contains(&restitution) {
+        return Err(ConstraintError::InvalidParameter {
+            name: what.to_owned(),
+            reason: format!("a restitution coefficient is in [0, 1], got {restitution}"),
+        });
+    }
+    Ok(restitution)
+}
+
 /// Contact points within this height (m) of their planes at an impact take part in it: a block landing flat meets
 /// the floor with four corners at once, whose heights differ by round-off at the located time.
 pub const TOUCHING: f64 = 1e-9;
@@ -202,12 +218,7 @@ impl PlaneContact {
     /// The same contact with Newton's restitution coefficient `restitution` in [0, 1]: the point leaves the plane at
     /// `restitution` times the normal speed it met it with (1: elastic; 0: it stays).
     pub fn with_restitution(self, restitution: f64) -> Result<Self, ConstraintError> {
-        if !(0.0..=1.0).contains(&restitution) {
-            return Err(ConstraintError::InvalidParameter {
-                name: "plane contact".to_owned(),
-                reason: format!("a restitution coefficient is in [0, 1], got {restitution}"),
-            });
-        }
+        let restitution = checked_restitution("plane contact", restitution)?;
         Ok(PlaneContact { restitution, ..self })
     }
 
@@ -250,5 +261,104 @@ impl PlaneContact {
     /// `n · x − d − r` for a sphere about x (its lowest point's); negative below it.
     pub fn height(&self, x: &Vector3<f64>) -> f64 {
         self.normal.dot(x) - self.offset - self.radius
+    }
+}
+
+/// A sphere fixed in one body kept outside a sphere fixed in another ([`crate::Mechanism::add_ball_contact`]):
+/// their centres stay at least the sum of the radii apart. They touch on the line between the centres, where the
+/// impact, the push and the friction act.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallContact {
+    centre: Vector3<f64>,
+    radius: f64,
+    other_centre: Vector3<f64>,
+    other_radius: f64,
+    restitution: f64,
+    friction: Friction,
+}
+
+impl BallContact {
+    /// The sphere of radius `radius` about `centre` (m, the first body's frame) outside the sphere of radius
+    /// `other_radius` about `other_centre` (m, the second body's frame); inelastic and frictionless. Centres finite
+    /// and within [`LARGEST_COORDINATE`], radii positive and within it.
+    ///
+    /// ```
+    /// use dynamics::contacts::{BallContact, Friction};
+    /// use nalgebra::Vector3;
+    ///
+    /// // Two billiard balls of 28.5 mm radius about their centres of mass, elastic.
+    /// let balls = BallContact::new(Vector3::zeros(), 0.0285, Vector3::zeros(), 0.0285)?
+    ///     .with_restitution(1.0)?
+    ///     .with_friction(Friction::coulomb(0.05)?);
+    /// assert_eq!(balls.radii(), (0.0285, 0.0285));
+    /// assert!(BallContact::new(Vector3::zeros(), 0.0, Vector3::zeros(), 0.1).is_err());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn new(
+        centre: Vector3<f64>,
+        radius: f64,
+        other_centre: Vector3<f64>,
+        other_radius: f64,
+    ) -> Result<Self, ConstraintError> {
+        let within = |x: f64| x.is_finite() && x.abs() <= LARGEST_COORDINATE;
+        if !(centre.iter().chain(other_centre.iter()).all(|&x| within(x))) {
+            return Err(ConstraintError::InvalidParameter {
+                name: "ball contact".to_owned(),
+                reason: format!(
+                    "the centres {:?} and {:?} must be finite and within {LARGEST_COORDINATE:e} m",
+                    centre.as_slice(),
+                    other_centre.as_slice()
+                ),
+            });
+        }
+        for value in [radius, other_radius] {
+            if !(value > 0.0 && value <= LARGEST_COORDINATE) {
+                return Err(ConstraintError::InvalidParameter {
+                    name: "ball contact".to_owned(),
+                    reason: format!(
+                        "a sphere's radius must be positive, finite and within {LARGEST_COORDINATE:e} m, got {value}"
+                    ),
+                });
+            }
+        }
+        Ok(BallContact {
+            centre,
+            radius,
+            other_centre,
+            other_radius,
+            restitution: 0.0,
+            friction: Friction::NONE,
+        })
+    }
+
+    /// The same contact with Newton's restitution coefficient in [0, 1] (1: elastic; 0: the spheres stay touching).
+    pub fn with_restitution(self, restitution: f64) -> Result<Self, ConstraintError> {
+        let restitution = checked_restitution("ball contact", restitution)?;
+        Ok(BallContact { restitution, ..self })
+    }
+
+    /// The same contact with Coulomb friction between the spheres.
+    pub fn with_friction(self, friction: Friction) -> Self {
+        BallContact { friction, ..self }
+    }
+
+    /// The centres (m), each in its body's frame.
+    pub fn centres(&self) -> (Vector3<f64>, Vector3<f64>) {
+        (self.centre, self.other_centre)
+    }
+
+    /// The radii (m).
+    pub fn radii(&self) -> (f64, f64) {
+        (self.radius, self.other_radius)
+    }
+
+    /// The restitution coefficient.
+    pub fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    /// The friction between the spheres.
+    pub fn friction(&self) -> Friction {
+        self.friction
     }
 }

@@ -126,17 +126,20 @@ pub(crate) enum Row {
         leader: usize,
         multiplier: f64,
     },
-    /// `d · a = 0` for a contact held on its plane (docs/contacts.md): the acceleration along the world direction
-    /// `direction` of the point `point` of `body` (body coordinates, from its centre of mass; a sphere's centre), its
-    /// lever arm taken at the touching point `point + contact` (`contact` a world offset: `−r n` for a sphere, zero
-    /// for a vertex). Its unit multiplier is the force `force` (world) through the touching point: the direction
-    /// itself, or a sliding contact's `n − μ ŝ` (docs/contacts.md "Friction").
+    /// `d · a = 0` for a contact held (docs/contacts.md): the rate along the world direction `direction` of the
+    /// relative velocity w = v_body(p) − v_other(p) at the touching point p (`lever`: p − o, world), the other body the
+    /// world where there is none. Its unit multiplier is the force `force` (world) through p on `body`, and its
+    /// opposite on `other`: the direction itself, or a sliding contact's `n − μ ŝ` (docs/contacts.md "Friction").
+    /// `moving` is ṗ, the velocity of the touching point as the contact moves, and `extra` the rate the direction's
+    /// own turning adds, `ḋ · w` (docs/contacts.md "Between bodies"); both are filled in at each evaluation.
     Point {
         body: usize,
-        point: Vector3<f64>,
-        contact: Vector3<f64>,
+        other: Option<usize>,
+        lever: Vector3<f64>,
+        moving: Vector3<f64>,
         direction: Vector3<f64>,
         force: Vector3<f64>,
+        extra: f64,
     },
 }
 
@@ -144,34 +147,42 @@ pub(crate) enum Row {
 /// contacts that repeat others: the least-norm multipliers share the load among them.
 pub(super) const REPEATED_ROW: f64 = 1e-12;
 
-/// A point row at one evaluation: the point's offset r from o, the touching point's (the lever arm), the direction
-/// held and the force of a unit multiplier.
-#[derive(Clone, Copy, Debug)]
-struct PointRow {
-    body: usize,
-    offset: Vector3<f64>,
-    lever: Vector3<f64>,
-    direction: Vector3<f64>,
-    force: Vector3<f64>,
-}
-
-impl PointRow {
-    /// The unit multiplier's wrench `(l × f; f)` about o.
-    fn wrench(&self) -> Vector6<f64> {
-        join(self.lever.cross(&self.force), self.force)
-    }
-
-    /// `d · a` from the body's spatial acceleration `a` (about o) at the lever arm, with the velocity product
-    /// `ω × v_p` of the point if the body's spatial velocity is given (a response to a unit force has none). For a
-    /// sphere the touching point moves with the centre, not with the body, so its slip changes at `a_o + α × l + ω
-    /// × v_c` (docs/contacts.md "Friction"); for a vertex the two points are one.
-    fn rate(&self, a: &Vector6<f64>, velocity: Option<&Vector6<f64>>) -> f64 {
-        let mut point = linear(a) + angular(a).cross(&self.lever);
-        if let Some(v) = velocity {
-            let omega = angular(v);
-            point += omega.cross(&(linear(v) + omega.cross(&self.offset)));
+impl Row {
+    /// A point row's rate from the bodies' spatial accelerations about o, `accelerations(b)`: `d · (a_o + α × l)` of
+    /// `body` less the other's, with (`velocities` given: the solve's right-hand side, not a response to a unit force)
+    /// the velocity products `ω × ṗ` of each and `extra`. A material point's acceleration is `a_o + α × l + ω × v_p`;
+    /// a touching point that moves at ṗ sees the relative velocity change at `a_o + α × l + ω × ṗ` on each body
+    /// (docs/contacts.md "Between bodies").
+    fn point_rate(
+        &self,
+        accelerations: &dyn Fn(usize) -> Vector6<f64>,
+        velocities: Option<&dyn Fn(usize) -> Vector6<f64>>,
+    ) -> f64 {
+        let Row::Point {
+            body,
+            other,
+            lever,
+            moving,
+            direction,
+            extra,
+            ..
+        } = *self
+        else {
+            return 0.0;
+        };
+        let side = |b: usize| {
+            let a = accelerations(b);
+            let mut point = linear(&a) + angular(&a).cross(&lever);
+            if let Some(v) = velocities {
+                point += angular(&v(b)).cross(&moving);
+            }
+            point
+        };
+        let mut relative = side(body);
+        if let Some(other) = other {
+            relative -= side(other);
         }
-        self.direction.dot(&point)
+        direction.dot(&relative) + if velocities.is_some() { extra } else { 0.0 }
     }
 }
 
@@ -193,8 +204,6 @@ pub(crate) struct ArticulatedScratch {
     /// The rows' multipliers of the last solve: the generalised force (N m or N) each joint row put on its follower,
     /// the force (N) each point row put through its point.
     multipliers: Vec<f64>,
-    /// Per row of the last solve: a point row's wrench and offset, resolved at that evaluation.
-    points: Vec<Option<PointRow>>,
 }
 
 impl ArticulatedScratch {
@@ -217,7 +226,6 @@ impl ArticulatedScratch {
             response_bias: vec![Vector6::zeros(); bodies],
             response_force: vec![0.0; joints],
             multipliers: Vec::with_capacity(rows),
-            points: Vec::with_capacity(rows),
         }
     }
 }
@@ -447,53 +455,35 @@ impl Articulation {
     /// solve so far and G the responses' (`C M⁻¹ Cᵀ`, symmetric), and each body's acceleration gains `Σ λ a⁽ᵏ⁾`.
     /// Joint rows are independent (G positive definite, Cholesky); contacts may repeat each other (a block resting
     /// on four corners: four rows of rank 3), so with point rows λ is G's least-squares, least-norm solution.
-    fn couple<A: Algebra>(
-        &self,
-        rows: &[Row],
-        bodies: &[BodyKinematics<A>],
-        scratch: &mut ArticulatedScratch,
-    ) -> Result<(), ()> {
+    fn couple(&self, rows: &[Row], scratch: &mut ArticulatedScratch) -> Result<(), ()> {
         let r = rows.len();
-        let origin = scratch.origin;
-        scratch.points.clear();
-        scratch.points.extend(rows.iter().map(|row| match *row {
-            Row::Joints { .. } => None,
-            Row::Point {
-                body,
-                point,
-                contact,
-                direction,
-                force,
-            } => {
-                let frame = &bodies[body].kinematics.frame;
-                let offset = frame.position + frame.rotation * point - origin;
-                Some(PointRow {
-                    body,
-                    offset,
-                    lever: offset + contact,
-                    direction,
-                    force,
-                })
-            }
-        }));
         for (k, row) in rows.iter().enumerate() {
             scratch.response_force.iter_mut().for_each(|f| *f = 0.0);
             scratch.response_bias.iter_mut().for_each(|b| *b = Vector6::zeros());
-            match (*row, scratch.points[k]) {
-                (
-                    Row::Joints {
-                        follower,
-                        leader,
-                        multiplier,
-                    },
-                    _,
-                ) => {
+            match *row {
+                Row::Joints {
+                    follower,
+                    leader,
+                    multiplier,
+                } => {
                     scratch.response_force[follower] = 1.0;
                     scratch.response_force[leader] -= multiplier;
                 }
-                // The bias is the velocity terms less the applied wrench.
-                (Row::Point { .. }, Some(point)) => scratch.response_bias[point.body] = -point.wrench(),
-                (Row::Point { .. }, None) => unreachable!("every point row was resolved above"),
+                // The bias is the velocity terms less the applied wrench: the force on the body, its opposite on
+                // the other.
+                Row::Point {
+                    body,
+                    other,
+                    lever,
+                    force,
+                    ..
+                } => {
+                    let wrench = join(lever.cross(&force), force);
+                    scratch.response_bias[body] = -wrench;
+                    if let Some(other) = other {
+                        scratch.response_bias[other] = wrench;
+                    }
+                }
             }
             for &body in self.order.iter().rev() {
                 let Some(j) = self.parent_joint[body] else {
@@ -536,8 +526,8 @@ impl Articulation {
         }
         let mut gram = DMatrix::zeros(r, r);
         let mut rhs = DVector::zeros(r);
-        for (i, (row, point)) in rows.iter().zip(&scratch.points).enumerate() {
-            // Row i's acceleration from joint accelerations `rates` or, for a point, a body's spatial acceleration.
+        for (i, row) in rows.iter().enumerate() {
+            // Row i's acceleration from joint accelerations `rates` or, for a point, the bodies' spatial accelerations.
             let joint_rate = |rates: &dyn Fn(usize) -> f64| match *row {
                 Row::Joints {
                     follower,
@@ -546,32 +536,37 @@ impl Articulation {
                 } => rates(follower) - multiplier * rates(leader),
                 Row::Point { .. } => 0.0,
             };
-            rhs[i] = -match point {
-                None => joint_rate(&|j| {
+            let point = matches!(row, Row::Point { .. });
+            rhs[i] = -if point {
+                row.point_rate(
+                    &|b| scratch.bodies[b].acceleration,
+                    Some(&|b| scratch.bodies[b].velocity),
+                )
+            } else {
+                joint_rate(&|j| {
                     let terms = &scratch.joints[j];
                     if terms.free > 0 {
                         terms.rates[0]
                     } else {
                         terms.prescribed
                     }
-                }),
-                Some(point) => {
-                    let body = &scratch.bodies[point.body];
-                    point.rate(&body.acceleration, Some(&body.velocity))
-                }
+                })
             };
             for k in 0..r {
-                gram[(i, k)] = match point {
-                    None => joint_rate(&|j| scratch.response_rates[k][j]),
-                    Some(point) => point.rate(&scratch.responses[k][point.body], None),
+                gram[(i, k)] = if point {
+                    row.point_rate(&|b| scratch.responses[k][b], None)
+                } else {
+                    joint_rate(&|j| scratch.response_rates[k][j])
                 };
             }
         }
-        let lambda = if scratch.points.iter().all(Option::is_none) {
+        let lambda = if rows.iter().all(|row| matches!(row, Row::Joints { .. })) {
             gram.cholesky().ok_or(())?.solve(&rhs)
         } else {
             let largest = gram.diagonal().amax();
-            let tilted = (scratch.points.iter().flatten()).any(|point| point.force != point.direction);
+            let tilted = rows
+                .iter()
+                .any(|row| matches!(row, Row::Point { direction, force, .. } if force != direction));
             if tilted {
                 // Not symmetric once sliding friction tilts a row's force from its direction.
                 SingularValues::of(&gram).solve(&rhs, REPEATED_ROW * largest)
@@ -724,7 +719,7 @@ impl Articulation {
         scratch.coupled = !rows.is_empty();
         scratch.multipliers.clear();
         if scratch.coupled {
-            self.couple(rows, bodies, scratch).map_err(|_| self.order[0])?;
+            self.couple(rows, scratch).map_err(|_| self.order[0])?;
         }
         let Some(reactions) = reactions else {
             return Ok(());

@@ -16,7 +16,7 @@ use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::contacts::stack;
 use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
-use crate::mechanism::parts::Slip;
+use crate::mechanism::parts::{PointDirection, Slip};
 use crate::state::State;
 
 /// The relative size below which an impulse counts as zero in the contacts' complementarity (pushes are ≥ 0, speeds
@@ -163,20 +163,20 @@ impl<A: Algebra> Mechanism<A> {
         self.read_joints_into(states, &mut q, &mut v, &mut workspace.previous_positions)?;
         let normals = self.contact_rows(states, &indices)?;
         let frictional: Vec<usize> = (indices.iter().copied())
-            .filter(|&c| self.contacts[c].contact.friction().is_some())
+            .filter(|&c| self.contacts[c].friction.is_some())
             .collect();
         let tangential = self.slip_rows(states, &frictional)?;
         let stacked = stack(&[&normals, &tangential, &equalities]);
         let before = &stacked * DVector::from_column_slice(&v);
         let participants: Vec<Participant> = (indices.iter().enumerate())
             .map(|(k, &c)| {
-                let plane = &self.contacts[c].contact;
-                let bounce = -plane.restitution() * before[k].min(0.0);
+                let contact = &self.contacts[c];
+                let bounce = -contact.restitution * before[k].min(0.0);
                 Participant {
                     normal: k,
                     tangential: frictional.iter().position(|&f| f == c).map(|f| indices.len() + 2 * f),
-                    friction: plane.friction(),
-                    basis: tangent_basis(&plane.normal()),
+                    friction: contact.friction,
+                    basis: tangent_basis(&self.contact_frame(c, states).normal),
                     target: if bounce < REST_SPEED { 0.0 } else { bounce },
                 }
             })
@@ -241,21 +241,14 @@ impl<A: Algebra> Mechanism<A> {
     /// The rows of the slips of contacts `indices` in joint space at `states`: per contact two rows, the speeds of its
     /// touching point along its plane's tangent basis (the unit forces along the tangents through the touching point).
     pub(super) fn slip_rows(&self, states: &[State<A>], indices: &[usize]) -> Result<DMatrix<f64>, ConstraintError> {
-        let points: Vec<(usize, Vector3<f64>, Vector3<f64>)> = indices
+        let points: Vec<PointDirection> = indices
             .iter()
             .flat_map(|&i| {
-                let contact = &self.contacts[i];
-                let (position, rotation) = states[contact.body].pose();
-                let normal = contact.contact.normal();
-                let touching = position + rotation * contact.point - normal * contact.contact.radius();
-                tangent_basis(&normal).map(|tangent| (contact.body, touching, tangent))
+                let frame = self.contact_frame(i, states);
+                tangent_basis(&frame.normal).map(|tangent| self.point_direction(i, frame.touching, tangent))
             })
             .collect();
-        self.point_jacobian(states, &points)
-            .map_err(|error| ConstraintError::InvalidParameter {
-                name: self.contact_names().collect::<Vec<_>>().join(" + "),
-                reason: error.to_string(),
-            })
+        self.contact_jacobian(states, &points)
     }
 
     /// The impulses of an impact by Newton's law and Coulomb's (see the module docs). If they would add energy (a

@@ -1,14 +1,15 @@
-//! A mechanism's contacts (docs/contacts.md): body points kept above world planes, their heights and normal
-//! speeds, their rows in joint space, and the Newton projection that keeps a held contact on its plane.
+//! A mechanism's contacts (docs/contacts.md): body points or spheres kept above world planes, above planes fixed in
+//! other bodies, or outside other bodies' spheres; their gaps, normals and relative velocities, their rows in joint
+//! space, and the Newton projection that keeps a held contact touching.
 
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::contacts::PlaneContact;
+use crate::contacts::{BallContact, Friction, PlaneContact};
 use crate::mechanism::error::MechanismError;
-use crate::mechanism::model::Mechanism;
-use crate::mechanism::parts::{BodyId, Contact};
+use crate::mechanism::model::{Mechanism, MechanismWorkspace};
+use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
 use crate::state::State;
 
 impl<A: Algebra> Mechanism<A> {
@@ -40,7 +41,129 @@ impl<A: Algebra> Mechanism<A> {
         body: BodyId,
         contact: PlaneContact,
     ) -> Result<(), MechanismError> {
-        let name = name.into();
+        let against = Against::World {
+            normal: contact.normal(),
+            offset: contact.offset(),
+        };
+        let contact = (
+            contact.point(),
+            contact.radius(),
+            contact.restitution(),
+            contact.friction(),
+        );
+        self.push_contact(name.into(), body, contact, |_| Ok(against))
+    }
+
+    /// Keeps the point or sphere of `contact` (in `body`'s frame) above the contact's plane fixed in `surface`'s
+    /// frame (normal and offset in that body's coordinates, as `body`'s point is in its own): a vertex or a sphere of
+    /// one body on a face of another, exactly as [`Mechanism::add_contact`] keeps it on a world plane, the impacts,
+    /// the push and the friction acting on both bodies (docs/contacts.md "Between bodies"). The plane is unbounded:
+    /// the contact holds wherever the point meets it.
+    ///
+    /// ```
+    /// use dynamics::{contacts::PlaneContact, Body, Force, Mechanism, Pga};
+    /// use nalgebra::Vector3;
+    ///
+    /// // A small block whose bottom corners rest on the top face (z = 0.1) of a larger one.
+    /// let mut scene = Mechanism::<Pga>::new();
+    /// let lower = scene.add_body("lower", Body::cuboid(4.0, Vector3::new(0.4, 0.4, 0.2))?)?;
+    /// let upper = scene.add_body("upper", Body::cuboid(1.0, Vector3::new(0.2, 0.2, 0.2))?)?;
+    /// scene.add_force(upper, Force::gravity())?;
+    /// for (k, (x, y)) in [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)].into_iter().enumerate() {
+    ///     let corner = PlaneContact::new(Vector3::new(x, y, -0.1), Vector3::z(), 0.1)?;
+    ///     scene.add_contact_on(format!("corner {k}"), upper, lower, corner)?;
+    /// }
+    /// assert!(scene.add_contact_on("self", upper, upper, PlaneContact::new(Vector3::zeros(), Vector3::z(), 0.0)?).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_contact_on(
+        &mut self,
+        name: impl Into<String>,
+        body: BodyId,
+        surface: BodyId,
+        contact: PlaneContact,
+    ) -> Result<(), MechanismError> {
+        let (normal, offset) = (contact.normal(), contact.offset());
+        let parts = (
+            contact.point(),
+            contact.radius(),
+            contact.restitution(),
+            contact.friction(),
+        );
+        self.push_contact(name.into(), body, parts, |mechanism| {
+            let other = mechanism.other_body(body, surface)?;
+            // n · y = d in the body's frame F is (R n) · x = d + (R n) · t in principal coordinates x = F y.
+            let frame = &mechanism.bodies[other].frame;
+            let normal = frame.rotation * normal;
+            Ok(Against::Face {
+                body: other,
+                normal,
+                offset: offset + normal.dot(&frame.translation.vector),
+            })
+        })
+    }
+
+    /// Keeps the sphere of `contact` fixed in `body` outside its sphere fixed in `other` (centres in each body's
+    /// frame): two balls meeting, exactly, with Newton's restitution and Coulomb's friction at the point where they
+    /// touch (docs/contacts.md "Between bodies").
+    ///
+    /// ```
+    /// use dynamics::{contacts::BallContact, Body, Mechanism, Pga};
+    /// use nalgebra::Vector3;
+    ///
+    /// let ball = Body::new(0.17, Vector3::repeat(0.4 * 0.17 * 0.0285f64.powi(2)))?;
+    /// let mut table = Mechanism::<Pga>::new();
+    /// let (cue, red) = (table.add_body("cue", ball)?, table.add_body("red", ball)?);
+    /// let touching = BallContact::new(Vector3::zeros(), 0.0285, Vector3::zeros(), 0.0285)?.with_restitution(1.0)?;
+    /// table.add_ball_contact("cue on red", cue, red, touching)?;
+    /// assert_eq!(table.contact_names().collect::<Vec<_>>(), ["cue on red"]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_ball_contact(
+        &mut self,
+        name: impl Into<String>,
+        body: BodyId,
+        other: BodyId,
+        contact: BallContact,
+    ) -> Result<(), MechanismError> {
+        let (centre, other_centre) = contact.centres();
+        let (radius, other_radius) = contact.radii();
+        let parts = (centre, radius, contact.restitution(), contact.friction());
+        self.push_contact(name.into(), body, parts, |mechanism| {
+            let other = mechanism.other_body(body, other)?;
+            Ok(Against::Ball {
+                body: other,
+                centre: mechanism.bodies[other]
+                    .frame
+                    .transform_point(&other_centre.into())
+                    .coords,
+                radius: other_radius,
+            })
+        })
+    }
+
+    /// The index of `other`, the second body of a contact of `body`: an error if it is unknown or the same body.
+    fn other_body(&self, body: BodyId, other: BodyId) -> Result<usize, MechanismError> {
+        let index = self.check_body(other)?;
+        if other == body {
+            return Err(crate::ConstraintError::InvalidParameter {
+                name: self.bodies[index].name.clone(),
+                reason: "a contact between bodies needs two different bodies".to_owned(),
+            }
+            .into());
+        }
+        Ok(index)
+    }
+
+    /// A contact of `body` (its point, radius, restitution and friction, the point in the body's frame) kept outside
+    /// what `against` gives, once the name and the solve are checked.
+    fn push_contact(
+        &mut self,
+        name: String,
+        body: BodyId,
+        (point, radius, restitution, friction): (Vector3<f64>, f64, f64, Friction),
+        against: impl FnOnce(&Self) -> Result<Against, MechanismError>,
+    ) -> Result<(), MechanismError> {
         if name.is_empty() {
             return Err(MechanismError::EmptyName("contact"));
         }
@@ -57,15 +180,19 @@ impl<A: Algebra> Mechanism<A> {
             }
             .into());
         }
-        let point = self.bodies[index].frame.transform_point(&contact.point().into()).coords;
-        if contact.friction().is_some() {
+        let against = against(self)?;
+        let point = self.bodies[index].frame.transform_point(&point.into()).coords;
+        if friction.is_some() {
             self.frictional.push(self.contacts.len());
         }
         self.contacts.push(Contact {
             name,
             body: index,
             point,
-            contact,
+            radius,
+            restitution,
+            friction,
+            against,
         });
         Ok(())
     }
@@ -97,40 +224,129 @@ impl<A: Algebra> Mechanism<A> {
         self.contacts.iter().map(|c| c.name.as_str())
     }
 
-    /// Contact `index`'s point (world) in `state`, its body's.
-    fn contact_point(&self, contact: &Contact, state: &State<A>) -> Vector3<f64> {
-        let (position, rotation) = state.pose();
-        position + rotation * contact.point
+    /// Contact `index`'s frame at `states` (docs/contacts.md "Between bodies").
+    pub(super) fn contact_frame(&self, index: usize, states: &[State<A>]) -> ContactFrame {
+        self.frame_of(index, &|b| {
+            let (position, rotation) = states[b].pose();
+            let velocity = states[b].world_velocity(&self.bodies[b].body);
+            BodyMotion {
+                position,
+                rotation: rotation.to_rotation_matrix().into_inner(),
+                linear: velocity.linear,
+                angular: velocity.angular,
+            }
+        })
+    }
+
+    /// Contact `index`'s frame at the kinematics the workspace holds (an evaluation's).
+    pub(super) fn workspace_frame(&self, index: usize, workspace: &MechanismWorkspace<A>) -> ContactFrame {
+        self.frame_of(index, &|b| {
+            let kinematics = &workspace.bodies[b].kinematics;
+            BodyMotion {
+                position: kinematics.frame.position,
+                rotation: *kinematics.frame.rotation.matrix(),
+                linear: kinematics.linear_velocity,
+                angular: kinematics.angular_velocity,
+            }
+        })
+    }
+
+    /// Contact `index`'s gap, normal, touching point and their rates with the bodies moving as `motion` gives
+    /// (docs/contacts.md "Between bodies"): for a plane fixed in a body, n turns with it (`ṅ = ω × n`); for two
+    /// balls n is along the line of centres d, `ṅ = (ḋ − n (n · ḋ)) / |d|`. The touching point is `c − r n` of the
+    /// contact's sphere (its point c, for r = 0), moving at `ṗ = ċ − r ṅ`.
+    fn frame_of(&self, index: usize, motion: &dyn Fn(usize) -> BodyMotion) -> ContactFrame {
+        let contact = &self.contacts[index];
+        let own = motion(contact.body);
+        let centre = own.position + own.rotation * contact.point;
+        let centre_velocity = own.velocity_at(&centre);
+        let (other, gap_to_centre, normal, normal_rate) = match contact.against {
+            Against::World { normal, offset } => (None, normal.dot(&centre) - offset, normal, Vector3::zeros()),
+            Against::Face { body, normal, offset } => {
+                let surface = motion(body);
+                let normal = surface.rotation * normal;
+                let height = normal.dot(&(centre - surface.position)) - offset;
+                (Some(surface), height, normal, surface.angular.cross(&normal))
+            }
+            Against::Ball {
+                body,
+                centre: other_centre,
+                radius,
+            } => {
+                let ball = motion(body);
+                let other_centre = ball.position + ball.rotation * other_centre;
+                let between = centre - other_centre;
+                let distance = between.norm();
+                // Coincident centres have no line between them: any direction serves a gap of −(r₁ + r₂).
+                let normal = if distance > 0.0 {
+                    between / distance
+                } else {
+                    Vector3::z()
+                };
+                let rate = centre_velocity - ball.velocity_at(&other_centre);
+                let normal_rate = if distance > 0.0 {
+                    (rate - normal * normal.dot(&rate)) / distance
+                } else {
+                    Vector3::zeros()
+                };
+                (Some(ball), distance - radius, normal, normal_rate)
+            }
+        };
+        let touching = centre - normal * contact.radius;
+        let surface_velocity = other.map_or_else(Vector3::zeros, |o| o.velocity_at(&touching));
+        ContactFrame {
+            gap: gap_to_centre - contact.radius,
+            normal,
+            touching,
+            relative: own.velocity_at(&touching) - surface_velocity,
+            normal_rate,
+            touching_rate: centre_velocity - normal_rate * contact.radius,
+        }
     }
 
     /// Contact `index`'s height above its plane (m) and its point's speed along the normal (m/s), at `states`.
     pub(super) fn contact_motion(&self, index: usize, states: &[State<A>]) -> (f64, f64) {
-        let contact = &self.contacts[index];
-        let state = &states[contact.body];
-        let (position, rotation) = state.pose();
-        let offset = rotation * contact.point;
-        let point = position + offset;
-        let velocity = state.world_velocity(&self.bodies[contact.body].body);
-        let speed = velocity.linear + velocity.angular.cross(&offset);
-        (contact.contact.height(&point), contact.contact.normal().dot(&speed))
+        let frame = self.contact_frame(index, states);
+        (frame.gap, frame.normal_speed())
     }
 
     /// The rows `c` of the contacts `indices` in joint space at `states`: `c · v` is the contact's normal speed at
-    /// joint velocities v (the unit force along n through the point, as a generalised force).
+    /// joint velocities v (the unit force along n through the touching point on its body and its opposite on the
+    /// other, as a generalised force).
     pub(super) fn contact_rows(&self, states: &[State<A>], indices: &[usize]) -> Result<DMatrix<f64>, ConstraintError> {
-        let points: Vec<(usize, Vector3<f64>, Vector3<f64>)> = indices
+        let points: Vec<PointDirection> = indices
             .iter()
             .map(|&i| {
-                let contact = &self.contacts[i];
-                let point = self.contact_point(contact, &states[contact.body]);
-                (contact.body, point, contact.contact.normal())
+                let frame = self.contact_frame(i, states);
+                self.point_direction(i, frame.touching, frame.normal)
             })
             .collect();
-        self.point_jacobian(states, &points)
+        self.contact_jacobian(states, &points)
+    }
+
+    /// The joint-space rows of `points` (contacts' touching points along directions), with an error naming the
+    /// contacts.
+    pub(super) fn contact_jacobian(
+        &self,
+        states: &[State<A>],
+        points: &[PointDirection],
+    ) -> Result<DMatrix<f64>, ConstraintError> {
+        self.point_jacobian(states, points)
             .map_err(|error| ConstraintError::InvalidParameter {
                 name: self.contact_names().collect::<Vec<_>>().join(" + "),
                 reason: error.to_string(),
             })
+    }
+
+    /// Contact `index`'s world point and direction, on its body and (negated) on the other.
+    pub(super) fn point_direction(&self, index: usize, point: Vector3<f64>, direction: Vector3<f64>) -> PointDirection {
+        let contact = &self.contacts[index];
+        PointDirection {
+            body: contact.body,
+            other: contact.against.body(),
+            point,
+            direction,
+        }
     }
 
     /// Contacts `indices` placed on their planes and, with `stop`, stopped there, the slips of the `sticking` ones
@@ -154,8 +370,7 @@ impl<A: Algebra> Mechanism<A> {
             let heights: Vec<f64> = indices.iter().map(|&i| self.contact_motion(i, states).0).collect();
             // Far from the origin a height cannot be closer to zero than a few ulps of the point's coordinates.
             let within = |(&i, h): (&usize, &f64)| {
-                let contact = &self.contacts[i];
-                let reach = self.contact_point(contact, &states[contact.body]).amax().abs();
+                let reach = self.contact_frame(i, states).touching.amax().abs();
                 h.abs() <= ON_PLANE.max(4.0 * f64::EPSILON * reach)
             };
             if indices.iter().zip(&heights).all(within) {
@@ -181,6 +396,48 @@ impl<A: Algebra> Mechanism<A> {
         self.write_joints_into(t, &q, &v, states, &mut Vec::new())?;
         previous.clone_from(&q);
         Ok(())
+    }
+}
+
+/// A body's pose and velocity (world): its centre of mass, its rotation, the centre's velocity and the angular one.
+#[derive(Clone, Copy, Debug)]
+struct BodyMotion {
+    position: Vector3<f64>,
+    rotation: Matrix3<f64>,
+    linear: Vector3<f64>,
+    angular: Vector3<f64>,
+}
+
+impl BodyMotion {
+    /// The velocity of the body's material point at `point` (world).
+    fn velocity_at(&self, point: &Vector3<f64>) -> Vector3<f64> {
+        self.linear + self.angular.cross(&(point - self.position))
+    }
+}
+
+/// A contact at one configuration (world): its gap (m, negative where the shapes overlap), the unit normal from the
+/// other body (or the world) towards the contact's own, the touching point p, the relative velocity `w = v(p) −
+/// v_other(p)` of the two bodies' material points at p, and the rates ṅ of the normal and ṗ of the touching point.
+/// The gap changes at `n · w` (docs/contacts.md "Between bodies").
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ContactFrame {
+    pub gap: f64,
+    pub normal: Vector3<f64>,
+    pub touching: Vector3<f64>,
+    pub relative: Vector3<f64>,
+    pub normal_rate: Vector3<f64>,
+    pub touching_rate: Vector3<f64>,
+}
+
+impl ContactFrame {
+    /// The gap's rate `n · w` (m/s).
+    pub fn normal_speed(&self) -> f64 {
+        self.normal.dot(&self.relative)
+    }
+
+    /// The slip: the relative velocity's part along the tangent plane (m/s).
+    pub fn slip(&self) -> Vector3<f64> {
+        self.relative - self.normal * self.normal_speed()
     }
 }
 

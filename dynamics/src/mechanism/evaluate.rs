@@ -375,7 +375,10 @@ impl<A: Algebra> Mechanism<A> {
         workspace: &mut MechanismWorkspace<A>,
         reactions: bool,
     ) -> Result<(), usize> {
-        self.tilt_sliding_rows(workspace);
+        if !self.contacts.is_empty() {
+            let origin = articulation.origin(&workspace.bodies);
+            self.resolve_contact_rows(&origin, workspace);
+        }
         let MechanismWorkspace {
             bodies,
             external,

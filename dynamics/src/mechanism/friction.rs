@@ -12,7 +12,7 @@ use crate::eigen::SingularValues;
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
 use crate::mechanism::load_split::{least_margin, widest_split, Held};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
-use crate::mechanism::parts::{Contact, Slip};
+use crate::mechanism::parts::Slip;
 use crate::state::State;
 
 /// The value a contact's friction shows while the contact is free: positive, so never a transition.
@@ -52,20 +52,6 @@ pub(super) fn sliding_direction(slip: &Vector3<f64>, reference: &Vector3<f64>) -
     }
 }
 
-/// A contact's touching point and its slip (world) for a body at `position` turned by `rotation` (as a matrix-free
-/// quaternion or rotation: anything that turns a body vector) moving with `(linear, angular)`.
-pub(super) fn touching_point_and_slip(
-    contact: &Contact,
-    (position, turned_point): (Vector3<f64>, Vector3<f64>),
-    (linear, angular): (Vector3<f64>, Vector3<f64>),
-) -> (Vector3<f64>, Vector3<f64>) {
-    let normal = contact.contact.normal();
-    let centre = position + turned_point;
-    let touching = centre - normal * contact.contact.radius();
-    let velocity = linear + angular.cross(&(touching - position));
-    (touching, velocity - normal * normal.dot(&velocity))
-}
-
 impl<A: Algebra> Mechanism<A> {
     /// The one-sided index of contact `contact`'s friction value, if it has friction.
     pub(super) fn friction_index(&self, contact: usize) -> Option<usize> {
@@ -75,22 +61,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Contact `index`'s slip (world, m/s) at `states`.
     pub(super) fn contact_slip(&self, index: usize, states: &[State<A>]) -> Vector3<f64> {
-        let contact = &self.contacts[index];
-        let state = &states[contact.body];
-        let (position, rotation) = state.pose();
-        let velocity = state.world_velocity(&self.bodies[contact.body].body);
-        let turned = rotation * contact.point;
-        touching_point_and_slip(contact, (position, turned), (velocity.linear, velocity.angular)).1
-    }
-
-    /// Contact `index`'s slip (world) at the kinematics the workspace holds.
-    fn workspace_slip(&self, index: usize, workspace: &MechanismWorkspace<A>) -> Vector3<f64> {
-        let contact = &self.contacts[index];
-        let kinematics = &workspace.bodies[contact.body].kinematics;
-        let position = kinematics.frame.position;
-        let turned = kinematics.frame.rotation * contact.point;
-        let motion = (kinematics.linear_velocity, kinematics.angular_velocity);
-        touching_point_and_slip(contact, (position, turned), motion).1
+        self.contact_frame(index, states).slip()
     }
 
     /// The rows that hold contact `index` (held, with slip mode `slip`): its normal row, whose unit multiplier is the
@@ -98,47 +69,61 @@ impl<A: Algebra> Mechanism<A> {
     /// tangential rows at the touching point, whose multipliers are the friction force's components.
     pub(super) fn contact_hold_rows(&self, index: usize, slip: Option<Slip>, rows: &mut Vec<Row>) {
         let contact = &self.contacts[index];
-        let normal = contact.contact.normal();
-        let touching = -normal * contact.contact.radius();
-        rows.push(Row::Point {
+        let count = if slip == Some(Slip::Sticking) { 3 } else { 1 };
+        rows.extend((0..count).map(|_| Row::Point {
             body: contact.body,
-            point: contact.point,
-            contact: touching,
-            direction: normal,
-            force: normal,
-        });
-        if slip == Some(Slip::Sticking) {
-            for tangent in tangent_basis(&normal) {
-                rows.push(Row::Point {
-                    body: contact.body,
-                    point: contact.point,
-                    contact: touching,
-                    direction: tangent,
-                    force: tangent,
-                });
-            }
-        }
+            other: contact.against.body(),
+            lever: Vector3::zeros(),
+            moving: Vector3::zeros(),
+            direction: Vector3::zeros(),
+            force: Vector3::zeros(),
+            extra: 0.0,
+        }));
     }
 
-    /// Each sliding held contact's normal row gets the force of its push with the friction it brings, `n − μ ŝ`, ŝ the
-    /// slip's direction at the kinematics in the workspace (continued through a stop: [`sliding_direction`]).
-    pub(super) fn tilt_sliding_rows(&self, workspace: &mut MechanismWorkspace<A>) {
-        for &c in &self.frictional {
+    /// Every held contact's rows filled in at the kinematics in the workspace, with `origin` the solve's reference
+    /// point: the normal row along n with the rate `ṅ · w` of its turning, its force the push with the friction a
+    /// slide brings, `n − μ ŝ`, ŝ the slip's direction (continued through a stop: [`sliding_direction`]); a sticking
+    /// contact's tangential rows along the tangent basis of n, whose `ṫ · w` vanishes while the slip is held at zero
+    /// (docs/contacts.md "Friction" and "Between bodies").
+    pub(super) fn resolve_contact_rows(&self, origin: &Vector3<f64>, workspace: &mut MechanismWorkspace<A>) {
+        for c in 0..self.contacts.len() {
             let Some(row) = workspace.held_rows[self.limits.len() + c] else {
                 continue;
             };
-            let Slip::Sliding { reference } = workspace.slips[c] else {
-                continue;
+            let frame = self.workspace_frame(c, workspace);
+            let lever = frame.touching - origin;
+            let moving = frame.touching_rate;
+            let force = match (self.contacts[c].friction.is_some(), workspace.slips[c]) {
+                (true, Slip::Sliding { reference }) => {
+                    let direction = sliding_direction(&frame.slip(), &reference);
+                    frame.normal - direction * self.contacts[c].friction.kinetic()
+                }
+                _ => frame.normal,
             };
-            let direction = sliding_direction(&self.workspace_slip(c, workspace), &reference);
-            let kinetic = self.contacts[c].contact.friction().kinetic();
-            if let Row::Point {
-                direction: normal,
+            let fill = |row: &mut Row, along: Vector3<f64>, pushed: Vector3<f64>, turning: f64| {
+                if let Row::Point {
+                    lever: l,
+                    moving: m,
+                    direction,
+                    force,
+                    extra,
+                    ..
+                } = row
+                {
+                    (*l, *m, *direction, *force, *extra) = (lever, moving, along, pushed, turning);
+                }
+            };
+            fill(
+                &mut workspace.rows[row],
+                frame.normal,
                 force,
-                ..
-            } = &mut workspace.rows[row]
-            {
-                *force = *normal - direction * kinetic;
+                frame.normal_rate.dot(&frame.relative),
+            );
+            if self.contacts[c].friction.is_some() && workspace.slips[c] == Slip::Sticking {
+                for (k, tangent) in tangent_basis(&frame.normal).into_iter().enumerate() {
+                    fill(&mut workspace.rows[row + 1 + k], tangent, tangent, 0.0);
+                }
             }
         }
     }
@@ -173,7 +158,7 @@ impl<A: Algebra> Mechanism<A> {
             .filter_map(|(index, bound)| {
                 let (bound, row) = ((*bound)?, workspace.held_rows[index]?);
                 let friction = index.checked_sub(self.limits.len()).and_then(|c| {
-                    let friction = self.contacts[c].contact.friction();
+                    let friction = self.contacts[c].friction;
                     (friction.is_some() && workspace.slips[c] == Slip::Sticking)
                         .then_some((row + 1, friction.stiction()))
                 });
@@ -218,7 +203,7 @@ impl<A: Algebra> Mechanism<A> {
             Slip::Sticking => {
                 let push = multipliers[row];
                 let tangential = multipliers[row + 1].hypot(multipliers[row + 2]);
-                self.contacts[index].contact.friction().stiction() * push - tangential
+                self.contacts[index].friction.stiction() * push - tangential
             }
         }
     }
@@ -240,7 +225,7 @@ impl<A: Algebra> Mechanism<A> {
         // the sticking force (the guess); the tangential acceleration there is the round-off of the located time,
         // whose direction means nothing.
         let continuous = (contacts.iter()).all(|&c| {
-            let friction = self.contacts[c].contact.friction();
+            let friction = self.contacts[c].friction;
             friction.stiction() == friction.kinetic()
         });
         if continuous {
@@ -263,7 +248,7 @@ impl<A: Algebra> Mechanism<A> {
             let mut turned: f64 = 0.0;
             for (&c, (direction, target)) in contacts.iter().zip(directions.iter().zip(targets.iter_mut())) {
                 let acceleration = self.touching_acceleration(c, workspace);
-                let normal = self.contacts[c].contact.normal();
+                let normal = self.workspace_frame(c, workspace).normal;
                 let tangential = acceleration - normal * normal.dot(&acceleration);
                 let size = tangential.norm();
                 // No tangential acceleration (the cone just reached with μ_s = μ, or the contact held in place by
@@ -302,20 +287,23 @@ impl<A: Algebra> Mechanism<A> {
         })
     }
 
-    /// The acceleration (world) of contact `index`'s touching point, as its slip and height change, from the last
-    /// articulated solve: `a_o + α × l + ω × v_c` with l the touching point's offset from o and v_c the velocity of the
-    /// point the contact holds (docs/contacts.md "Friction").
+    /// The rate of contact `index`'s relative velocity at its touching point, from the last articulated solve: `ẇ`
+    /// with the normal's turning added along n, so that its normal part is the gap's acceleration and its tangential
+    /// part the slip's (at zero slip). Each body's part is `a_o + α × l + ω × ṗ`, l the touching point's offset from
+    /// o and ṗ its velocity (docs/contacts.md "Friction" and "Between bodies").
     pub(super) fn touching_acceleration(&self, index: usize, workspace: &MechanismWorkspace<A>) -> Vector3<f64> {
+        let frame = self.workspace_frame(index, workspace);
+        let lever = frame.touching - workspace.articulated.origin();
+        let side = |body: usize| {
+            let a = workspace.articulated.acceleration(body);
+            let (alpha, linear) = (a.fixed_rows::<3>(0).into_owned(), a.fixed_rows::<3>(3).into_owned());
+            let omega = workspace.bodies[body].kinematics.angular_velocity;
+            linear + alpha.cross(&lever) + omega.cross(&frame.touching_rate)
+        };
         let contact = &self.contacts[index];
-        let kinematics = &workspace.bodies[contact.body].kinematics;
-        let origin = workspace.articulated.origin();
-        let held = kinematics.frame.position + kinematics.frame.rotation * contact.point;
-        let lever = held - contact.contact.normal() * contact.contact.radius() - origin;
-        let a = workspace.articulated.acceleration(contact.body);
-        let (alpha, linear) = (a.fixed_rows::<3>(0).into_owned(), a.fixed_rows::<3>(3).into_owned());
-        let omega = kinematics.angular_velocity;
-        let velocity = kinematics.linear_velocity + omega.cross(&(held - kinematics.frame.position));
-        linear + alpha.cross(&lever) + omega.cross(&velocity)
+        let own = side(contact.body);
+        let other = contact.against.body().map_or_else(Vector3::zeros, side);
+        own - other + frame.normal * frame.normal_rate.dot(&frame.relative)
     }
 }
 

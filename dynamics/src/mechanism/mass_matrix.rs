@@ -10,6 +10,7 @@ use crate::mechanism::articulated::axis_column;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::joint_space::JointSpace;
 use crate::mechanism::model::Mechanism;
+use crate::mechanism::parts::PointDirection;
 use crate::mechanism::spatial::{join, spatial_body, Inertia6, SpatialBody};
 use crate::state::State;
 
@@ -71,26 +72,30 @@ impl<A: Algebra> Mechanism<A> {
         Ok(mass)
     }
 
-    /// Per `(body, world point, world direction n)`: the joint-space row c with `c · v = n · v_p` at joint velocities
-    /// v, the point's velocity along n: each column S on the way from the body to its root paired with the unit
-    /// force along n through the point, `c_k = S_k · (r × n; n)` (docs/contacts.md "Rows").
+    /// Per point: the joint-space row c with `c · v = n · (v_p − v'_p)` at joint velocities v, the speed along the
+    /// direction n of the body's material point at the world point p less the other body's (if any): each column S on
+    /// the way from the body to its root paired with the unit force along n through p, `c_k = S_k · (r × n; n)`, less
+    /// the same on the other body's way (docs/contacts.md "Rows").
     pub(crate) fn point_jacobian(
         &self,
         states: &[State<A>],
-        points: &[(usize, Vector3<f64>, Vector3<f64>)],
+        points: &[PointDirection],
     ) -> Result<DMatrix<f64>, MechanismError> {
         let space = self.joint_space()?;
         self.check_states(states)?;
         let WorldTerms { columns, origin, .. } = self.world_terms(space, 0.0, states);
         let mut rows = DMatrix::zeros(points.len(), space.velocities);
-        for (r, (body, point, normal)) in points.iter().enumerate() {
-            let wrench = join((point - origin).cross(normal), *normal);
-            let mut group = Some(&space.groups[space.group_of_body[*body]]);
-            while let Some(g) = group {
-                for (k, column) in columns[g.velocities()].iter().enumerate() {
-                    rows[(r, g.velocity_offset + k)] = column.dot(&wrench);
+        for (r, point) in points.iter().enumerate() {
+            let wrench = join((point.point - origin).cross(&point.direction), point.direction);
+            let sides = [(Some(point.body), 1.0), (point.other, -1.0)];
+            for (body, sign) in sides {
+                let mut group = body.map(|b| &space.groups[space.group_of_body[b]]);
+                while let Some(g) = group {
+                    for (k, column) in columns[g.velocities()].iter().enumerate() {
+                        rows[(r, g.velocity_offset + k)] += sign * column.dot(&wrench);
+                    }
+                    group = g.parent.map(|p| &space.groups[space.group_of_body[p]]);
                 }
-                group = g.parent.map(|p| &space.groups[space.group_of_body[p]]);
             }
         }
         Ok(rows)

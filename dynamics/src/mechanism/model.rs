@@ -192,6 +192,29 @@ impl<A: Algebra> Mechanism<A> {
         self.bodies.iter().position(|b| b.name == name).map(BodyId)
     }
 
+    /// Where a body's reference frame (the frame its joint models, contacts and points use: the one given to
+    /// [`Mechanism::add_body_with_frame`], else the principal frame) is in its principal frame, whose pose a
+    /// [`State`](crate::State) gives: a point `x` of the reference frame is at `position + rotation · (frame · x)` in
+    /// the world. An error for a body of another mechanism.
+    ///
+    /// ```
+    /// use dynamics::{Body, Mechanism, Pga};
+    /// use nalgebra::{Matrix3, Vector3};
+    ///
+    /// // A link whose centre of mass is 0.2 m along its frame's z axis: the frame's origin is 0.2 m below it.
+    /// let inertia = Matrix3::from_diagonal(&Vector3::new(0.02, 0.02, 0.01));
+    /// let (link, frame) = Body::from_inertia_tensor(2.0, inertia, Vector3::z() * 0.2, Vector3::z() * 0.2)?;
+    /// let mut robot = Mechanism::<Pga>::new();
+    /// let id = robot.add_body_with_frame("link", link, frame)?;
+    /// let origin = robot.reference_frame(id)? * nalgebra::Point3::origin();
+    /// assert!((origin.coords - Vector3::z() * -0.2).norm() < 1e-15);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn reference_frame(&self, body: BodyId) -> Result<nalgebra::Isometry3<f64>, crate::MechanismError> {
+        let index = self.check_body(body)?;
+        Ok(self.bodies[index].frame)
+    }
+
     /// The forces on a body.
     pub fn forces(&self, body: BodyId) -> &[Force<A>] {
         self.bodies.get(body.0).map_or(&[], |b| &b.forces)

@@ -5,7 +5,7 @@ use nalgebra::{Isometry3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::body::Body;
-use crate::contacts::PlaneContact;
+use crate::contacts::Friction;
 use crate::forces::Force;
 use crate::limits::JointLimit;
 
@@ -72,14 +72,56 @@ pub(super) struct Coupling {
     pub(super) offset: f64,
 }
 
-/// A contact of a mechanism: `point` (principal body coordinates: from the centre of mass) of `body` above the
-/// plane of `contact`.
+/// A contact of a mechanism: `point` (principal body coordinates: from the centre of mass) of `body`, or a sphere of
+/// radius `radius` about it, kept outside what `against` describes.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Contact {
     pub name: String,
     pub body: usize,
     pub point: Vector3<f64>,
-    pub contact: PlaneContact,
+    pub radius: f64,
+    pub restitution: f64,
+    pub friction: Friction,
+    pub against: Against,
+}
+
+/// What a contact's point or sphere stays outside of (docs/contacts.md "Between bodies").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Against {
+    /// The world half-space `normal · x ≥ offset` (normal unit).
+    World { normal: Vector3<f64>, offset: f64 },
+    /// The half-space `normal · y ≥ offset` fixed in body `body` (its principal coordinates y; normal unit): a face.
+    Face {
+        body: usize,
+        normal: Vector3<f64>,
+        offset: f64,
+    },
+    /// The ball of radius `radius` about `centre` fixed in body `body` (its principal coordinates).
+    Ball {
+        body: usize,
+        centre: Vector3<f64>,
+        radius: f64,
+    },
+}
+
+impl Against {
+    /// The body the half-space or ball is fixed in, if not the world.
+    pub fn body(&self) -> Option<usize> {
+        match *self {
+            Against::World { .. } => None,
+            Against::Face { body, .. } | Against::Ball { body, .. } => Some(body),
+        }
+    }
+}
+
+/// A row of a contact in joint space: the speed along `direction` of the body's material point at `point` (world)
+/// less the other body's there.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PointDirection {
+    pub body: usize,
+    pub other: Option<usize>,
+    pub point: Vector3<f64>,
+    pub direction: Vector3<f64>,
 }
 
 /// The tangential state of a held contact with friction.

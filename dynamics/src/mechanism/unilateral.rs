@@ -338,7 +338,7 @@ impl<A: Algebra> Mechanism<A> {
             .iter()
             .map(|&c| {
                 let row = workspace.held_rows[self.limits.len() + c].expect("a sticking contact is held");
-                let [first, second] = tangent_basis(&self.contacts[c].contact.normal());
+                let [first, second] = tangent_basis(&self.contact_frame(c, states).normal);
                 let force = first * multipliers[row + 1] + second * multipliers[row + 2];
                 if force.norm() > 0.0 {
                     -force.normalize()
@@ -365,13 +365,11 @@ impl<A: Algebra> Mechanism<A> {
         states: &[State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<(), ConstraintError> {
-        if !matches!(workspace.slips[contact], Slip::Sliding { .. })
-            || !self.contacts[contact].contact.friction().is_some()
-        {
+        if !matches!(workspace.slips[contact], Slip::Sliding { .. }) || !self.contacts[contact].friction.is_some() {
             return Ok(());
         }
         self.evaluate_states(t, states, workspace)?;
-        let normal = self.contacts[contact].contact.normal();
+        let normal = self.workspace_frame(contact, workspace).normal;
         let acceleration = normal.dot(&self.touching_acceleration(contact, workspace));
         let scale = self
             .touching_acceleration(contact, workspace)
@@ -383,7 +381,7 @@ impl<A: Algebra> Mechanism<A> {
                 reason: format!(
                     "at t = {t} the sliding contact has no consistent state (Painlevé's paradox): with friction {} its \
                      plane would have to pull to hold it, and released it accelerates into the plane at {:e} m/s²",
-                    self.contacts[contact].contact.friction().kinetic(),
+                    self.contacts[contact].friction.kinetic(),
                     -acceleration
                 ),
             });
@@ -409,8 +407,7 @@ impl<A: Algebra> Mechanism<A> {
                 }),
                 Some(contact) => {
                     let slip = self.contacts[contact]
-                        .contact
-                        .friction()
+                        .friction
                         .is_some()
                         .then_some(workspace.slips[contact]);
                     self.contact_hold_rows(contact, slip, &mut workspace.rows);
@@ -436,7 +433,7 @@ impl<A: Algebra> Mechanism<A> {
             .filter(|&c| workspace.held[first + c].is_some())
             .collect();
         let sticking: Vec<usize> = (held.iter().copied())
-            .filter(|&c| self.contacts[c].contact.friction().is_some() && workspace.slips[c] == Slip::Sticking)
+            .filter(|&c| self.contacts[c].friction.is_some() && workspace.slips[c] == Slip::Sticking)
             .collect();
         let equalities = self.equality_rows(&workspace.held);
         self.place_contacts(

@@ -8,6 +8,7 @@ mod common;
 mod adaptive;
 mod algebra_layer;
 mod bodies_and_states;
+mod bodies_meeting;
 mod constraint_machinery;
 mod contacts;
 mod convert;
