@@ -416,6 +416,69 @@ fn a_block_on_a_turntable_turns_with_it<A: Algebra>() {
     }
 }
 
+/// Careless contacts between bodies are refused naming the cause: ball radii zero, negative, NaN, infinite or huge;
+/// centres NaN, infinite or far away; restitution outside [0, 1]; a body in contact with itself; a body of another
+/// mechanism.
+#[test]
+fn careless_contacts_between_bodies_are_refused() {
+    use dynamics::{MechanismError, Pga};
+    let (nan, inf) = (f64::NAN, f64::INFINITY);
+    let point = Vector3::new(0.0, 0.0, -0.1);
+    let block = || Body::cuboid(1.0, Vector3::repeat(0.2)).unwrap();
+    // Balls between bodies: radii zero, negative, NaN, infinite or huge; centres NaN, infinite or far away;
+    // restitution outside [0, 1].
+    for (a, b) in [(0.0, 0.1), (0.1, -0.1), (nan, 0.1), (0.1, inf), (2e6, 0.1)] {
+        let error = BallContact::new(point, a, point, b).unwrap_err().to_string();
+        assert!(error.contains("radius"), "{a} {b}: {error}");
+    }
+    for (c, d) in [
+        (Vector3::new(nan, 0.0, 0.0), point),
+        (point, Vector3::new(0.0, -inf, 0.0)),
+        (point, Vector3::new(0.0, 0.0, 2e6)),
+    ] {
+        let error = BallContact::new(c, 0.1, d, 0.1).unwrap_err().to_string();
+        assert!(error.contains("must be finite and within"), "{c:?} {d:?}: {error}");
+    }
+    for e in [nan, -0.1, 1.5] {
+        let error = BallContact::new(point, 0.1, point, 0.1)
+            .unwrap()
+            .with_restitution(e)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("restitution"), "{e}: {error}");
+    }
+    // Between bodies: a body with itself, or a body of another mechanism.
+    {
+        let ball = BallContact::new(Vector3::zeros(), 0.1, Vector3::zeros(), 0.1).unwrap();
+        let face = PlaneContact::new(point, Vector3::z(), 0.0).unwrap();
+        let mut pair = Mechanism::<Pga>::new();
+        let a = pair.add_body("a", block()).unwrap();
+        let error = pair.add_ball_contact("c", a, a, ball).unwrap_err().to_string();
+        assert!(error.contains("two different bodies"), "{error}");
+        let error = pair.add_contact_on("c", a, a, face).unwrap_err().to_string();
+        assert!(error.contains("two different bodies"), "{error}");
+        let stranger = {
+            let mut m = Mechanism::<Pga>::new();
+            m.add_body("a", block()).unwrap();
+            m.add_body("b", block()).unwrap()
+        };
+        assert!(matches!(
+            pair.add_ball_contact("c", a, stranger, ball),
+            Err(MechanismError::UnknownBody(1))
+        ));
+        assert!(matches!(
+            pair.add_contact_on("c", stranger, a, face),
+            Err(MechanismError::UnknownBody(1))
+        ));
+        assert_eq!(pair.contact_names().count(), 0);
+        assert!(matches!(
+            pair.reference_frame(stranger),
+            Err(MechanismError::UnknownBody(1))
+        ));
+        assert_eq!(pair.reference_frame(a), Ok(nalgebra::Isometry3::identity()));
+    }
+}
+
 for_both_algebras!(
     a_ball_leaves_a_ball_at_the_classical_angle,
     a_block_on_a_turntable_turns_with_it,

@@ -82,7 +82,7 @@ pub const ENERGY_WARNING: f64 = 1e-6;
 pub(crate) fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &Scene) -> Result<AlgebraRun, SceneFileError> {
     let system = scene.system::<A>()?;
     let simulation = scene.simulate::<A>()?;
-    let contacts = !scene.checked().contacts.is_empty();
+    let contacts = !(scene.checked().contacts.is_empty() && scene.checked().pairs.is_empty());
     let bodies = simulation.bodies;
     let samples = &bodies[0];
     let duration = scene.checked().schedule.duration();

@@ -166,6 +166,28 @@ fn write_contacts(out: &mut String, scene: &CheckedScene) {
         }
         let _ = writeln!(out);
     }
+    if !scene.pairs.is_empty() {
+        let _ = writeln!(
+            out,
+            "Pairs of bodies whose collision shapes stay apart (docs/contacts.md \"Between bodies\"):\n"
+        );
+        for pair in &scene.pairs {
+            let friction = match (pair.friction.kinetic(), pair.friction.stiction()) {
+                (_, 0.0) => "no friction".to_owned(),
+                (kinetic, stiction) if kinetic == stiction => format!("friction {kinetic}"),
+                (kinetic, stiction) => format!("friction {kinetic} (static {stiction})"),
+            };
+            let _ = writeln!(
+                out,
+                "- {}: `{}` and `{}`, restitution {}, {friction}",
+                escape(&pair.name),
+                escape(&pair.sides[0].body),
+                escape(&pair.sides[1].body),
+                pair.restitution
+            );
+        }
+        let _ = writeln!(out);
+    }
 }
 
 /// The force elements and drives, described.
@@ -246,7 +268,8 @@ fn write_start_corrections(out: &mut String, scene: &CheckedScene, runs: &[Algeb
 /// The limits' and contacts' transitions per algebra, and whether there were any.
 fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) -> bool {
     let limited = runs.iter().any(|run| !run.transitions.is_empty());
-    let frictional = scene.contacts.iter().any(|c| c.friction > 0.0);
+    let frictional =
+        scene.contacts.iter().any(|c| c.friction > 0.0) || scene.pairs.iter().any(|p| p.friction.is_some());
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
         let counts = TransitionCounts::of(&run.transitions);
         let taken = run.impact_energy();
@@ -257,7 +280,9 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
              changed the energy by {} J{}{}.",
             {
                 let contacts: Vec<String> = (scene.contacts.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
-                let on_contact = |t: &LimitTransition| contacts.contains(&t.constraint);
+                let on_contact = |t: &LimitTransition| {
+                    contacts.contains(&t.constraint) || scene.pairs.iter().any(|pair| pair.owns(&t.constraint))
+                };
                 match (run.transitions.iter().any(on_contact), run.transitions.iter().all(on_contact)) {
                     (false, _) => "Joint limits",
                     (true, true) => "Contacts",
@@ -280,11 +305,12 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
             } else {
                 String::new()
             },
-            if scene.contacts.is_empty() {
+            if scene.contacts.is_empty() && scene.pairs.is_empty() {
                 String::new()
             } else {
                 format!(
-                    "; the deepest a contact point went below its plane at the samples: {} m",
+                    "; the deepest a contact point went below its plane, or two shapes into each other, at the \
+                     samples: {} m",
                     scientific(run.deepest)
                 )
             },

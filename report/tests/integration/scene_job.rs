@@ -229,6 +229,59 @@ fn the_shipped_shapes_come_to_rest_on_the_floor() {
     }
 }
 
+/// The shipped stack and billiard balls (scenes/stack_and_billiards.toml): three boxes resting on each other by
+/// `[[collision]]` pairs (each box's bottom corners on the top face of the one below) stay where they started, to
+/// 1e-12 m, for the whole run; the cue ball, struck without spin on a floor with μ = 0.5, rolls at `5v₀/7` before it
+/// meets the red ball, once, off centre; the red ball leaves with a speed along the line of centres; nothing sinks
+/// by 1e-12 m, and the energy less the impacts' and friction's work is the integration error.
+#[test]
+fn the_shipped_stack_rests_and_the_billiard_balls_meet() {
+    let (dir, [pga, cga]) = shipped_runs("stack_and_billiards.toml", "report-scene-file-stack");
+    let (pga, cga) = (&pga, &cga);
+    assert_same_transitions(pga, cga);
+    let starts = [0.15, 0.4, 0.6];
+    for run in [pga, cga] {
+        assert!(run.deepest < 1e-12, "{:e} m into a plane or a shape", run.deepest);
+        for (body, height) in starts.iter().enumerate() {
+            for sample in &run.bodies[body] {
+                let moved = (sample.position - nalgebra::Vector3::new(0.0, 0.0, *height)).norm();
+                assert!(
+                    moved < 1e-12,
+                    "{} moved {moved:e} m by t = {}",
+                    run.names[body],
+                    sample.t
+                );
+            }
+        }
+        let meeting: Vec<f64> = (run.transitions.iter())
+            .filter(|t| t.constraint == "balls: cue sphere 1 on red sphere 1")
+            .map(|t| t.t)
+            .collect();
+        assert_eq!(meeting.len(), 1, "{:?}", run.transitions);
+        let rolling = run.bodies[3].iter().rfind(|s| s.t < meeting[0] && s.t > 0.2).unwrap();
+        assert!(
+            (rolling.velocity.x - 2.0 * 5.0 / 7.0).abs() < 1e-9,
+            "{}",
+            rolling.velocity
+        );
+        let red = run.bodies[4].last().unwrap();
+        assert!(red.velocity.norm() > 0.5, "{}", red.velocity);
+        let (first, last) = (run.bodies[0].first().unwrap(), run.bodies[0].last().unwrap());
+        let impacts: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+        let error = last.energy - first.energy - impacts - run.work.last().unwrap();
+        assert!(error.abs() < 1e-8, "E − E₀ − L − W = {error:e} J");
+    }
+    let text = std::fs::read_to_string(dir.join("summary.md")).unwrap();
+    assert_mentions(
+        &text,
+        &[
+            "Pairs of bodies whose collision shapes stay apart",
+            "- top / middle: `top` and `middle`, restitution 0, friction 0.5",
+            "- balls: `cue` and `red`, restitution 0.9, friction 0.05",
+        ],
+    );
+}
+
 /// A box's collision shape on a `[[plane]]` is its eight corners as `[[contact]]`s: the same file written both ways
 /// runs to the same trajectory, bit for bit. A convex hull from an STL mesh (a tetrahedron with a point inside) keeps
 /// its four vertices.

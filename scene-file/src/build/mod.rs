@@ -6,4 +6,5 @@ pub mod robot;
 pub mod assembly;
 pub mod elements;
 pub mod contacts;
+pub mod pairs;
 pub mod system;

@@ -10,6 +10,7 @@ use super::assembly::Assembly;
 use super::constraints::RoundPins;
 use super::contacts::{add_contacts, check_contact_start};
 use super::elements::add_elements;
+use super::pairs::add_pair_contacts;
 use super::robot::{RobotColumns, RobotJoint};
 use crate::check::bodies::Pose;
 use crate::check::geometry::{joint_violations, JointGeometry};
@@ -144,6 +145,7 @@ pub(crate) fn build<A: RoundPins>(scene: &CheckedScene) -> Result<SceneSystem<A>
     assembly.mechanism.set_stabilisation(scene.stabilisation)?;
     add_elements(&mut assembly)?;
     add_contacts(&mut assembly)?;
+    add_pair_contacts(&mut assembly)?;
     let (initial, start_correction) = start(&assembly)?;
     let Assembly {
         mechanism,

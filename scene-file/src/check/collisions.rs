@@ -120,11 +120,41 @@ fn mesh_file(folder: &Path, filename: &str) -> Option<std::path::PathBuf> {
         .find(|path| path.is_file())
 }
 
-/// One point or sphere of a shape, in its body's frame, with the feature's name ("corner 3").
-struct Feature {
-    name: String,
-    centre: Vector3<f64>,
-    radius: f64,
+/// One point or sphere of a shape, in its body's frame, with the feature's name (" corner 3").
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Feature {
+    pub name: String,
+    pub centre: Vector3<f64>,
+    pub radius: f64,
+}
+
+/// A face's plane `normal · x = offset` (its body's frame, normal unit and outward) and its area (m²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Face {
+    pub normal: Vector3<f64>,
+    pub offset: f64,
+    pub area: f64,
+}
+
+/// What a shape is against another shape (docs/contacts.md "Between bodies").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Solid {
+    /// A sphere: one feature, its centre and radius.
+    Ball,
+    /// A capsule: the spheres at its segment's ends, which are its lowest points against a plane only.
+    Capsule,
+    /// A box or convex hull: its vertices and its faces.
+    Polytope,
+}
+
+/// A collision shape, checked: its label ("box 2"), what it is, the features that keep it above a plane, and (for a
+/// polytope) its faces, all in its body's frame.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ShapeGeometry {
+    pub label: String,
+    pub solid: Solid,
+    pub features: Vec<Feature>,
+    pub faces: Vec<Face>,
 }
 
 /// Every plane's contacts with every body's shapes: named "`plane`: `body` `kind` `j` `feature`", with the plane's
@@ -137,10 +167,9 @@ pub(crate) fn plane_contacts(
     let mut features = Vec::new();
     for body in bodies {
         let label = body.name.as_deref().unwrap_or("body");
-        for (j, shape) in body.shapes.iter().enumerate() {
-            let what = format!("body {label}: collision {}", j + 1);
-            for feature in shape_features(shape, &what, folder)? {
-                let name = format!("{label} {} {}{}", kind(shape), j + 1, feature.name);
+        for shape in body_geometry(body, folder)? {
+            for feature in shape.features {
+                let name = format!("{label} {}{}", shape.label, feature.name);
                 features.push((body.name.as_deref(), name, feature));
             }
         }
@@ -199,8 +228,22 @@ fn size(what: &str, value: f64) -> Result<f64, SceneFileError> {
     }
 }
 
-/// The points and spheres that keep `shape` above a plane, in its body's frame.
-fn shape_features(shape: &CollisionShape, what: &str, folder: &Path) -> Result<Vec<Feature>, SceneFileError> {
+/// Every shape of `body` checked, in order (relative mesh paths read from `folder`).
+pub(crate) fn body_geometry(body: &ShapedBody, folder: &Path) -> Result<Vec<ShapeGeometry>, SceneFileError> {
+    let label = body.name.as_deref().unwrap_or("body");
+    (body.shapes.iter().enumerate())
+        .map(|(j, shape)| shape_geometry(shape, &format!("body {label}: collision {}", j + 1), j, folder))
+        .collect()
+}
+
+/// `shape` (the `index`th of its body) checked: the points and spheres that keep it above a plane and its faces, in
+/// its body's frame.
+fn shape_geometry(
+    shape: &CollisionShape,
+    what: &str,
+    index: usize,
+    folder: &Path,
+) -> Result<ShapeGeometry, SceneFileError> {
     let (position, orientation) = match shape {
         CollisionShape::Sphere {
             position, orientation, ..
@@ -235,33 +278,53 @@ fn shape_features(shape: &CollisionShape, what: &str, folder: &Path) -> Result<V
         centre: place(local),
         radius,
     };
-    Ok(match shape {
+    // A face of the shape's own frame, placed: `n · x = d` becomes `(R n) · x = d + (R n) · o`.
+    let face = |normal: Vector3<f64>, offset: f64, area: f64| {
+        let normal = turn * normal;
+        Face {
+            normal,
+            offset: offset + normal.dot(&origin),
+            area,
+        }
+    };
+    let label = format!("{} {}", kind(shape), index + 1);
+    let (solid, features, faces) = match shape {
         CollisionShape::Sphere { radius, .. } => {
-            vec![feature(
-                String::new(),
-                Vector3::zeros(),
-                size(&format!("{what}: radius"), *radius)?,
-            )]
+            let radius = size(&format!("{what}: radius"), *radius)?;
+            (
+                Solid::Ball,
+                vec![feature(String::new(), Vector3::zeros(), radius)],
+                Vec::new(),
+            )
         }
         CollisionShape::Box { size: edges, .. } => {
             let half: Vec<f64> = (0..3)
                 .map(|k| size(&format!("{what}: size"), edges[k]).map(|e| 0.5 * e))
                 .collect::<Result<_, _>>()?;
-            (0..8)
+            let corners = (0..8)
                 .map(|c| {
                     let sign = |bit: usize| if c & (1 << bit) == 0 { -1.0 } else { 1.0 };
                     let corner = Vector3::new(sign(0) * half[0], sign(1) * half[1], sign(2) * half[2]);
                     feature(format!(" corner {}", c + 1), corner, 0.0)
                 })
-                .collect()
+                .collect();
+            let faces = (0..6)
+                .map(|f| {
+                    let sign = if f % 2 == 0 { -1.0 } else { 1.0 };
+                    let (j, k) = ((f / 2 + 1) % 3, (f / 2 + 2) % 3);
+                    face(Vector3::ith(f / 2, sign), half[f / 2], 4.0 * half[j] * half[k])
+                })
+                .collect();
+            (Solid::Polytope, corners, faces)
         }
         CollisionShape::Capsule { radius, length, .. } => {
             let radius = size(&format!("{what}: radius"), *radius)?;
             let half = 0.5 * size(&format!("{what}: length"), *length)?;
-            vec![
+            let ends = vec![
                 feature(" end 1".to_owned(), Vector3::z() * -half, radius),
                 feature(" end 2".to_owned(), Vector3::z() * half, radius),
-            ]
+            ];
+            (Solid::Capsule, ends, Vec::new())
         }
         CollisionShape::Cylinder { .. } => {
             return Err(invalid(
@@ -277,12 +340,19 @@ fn shape_features(shape: &CollisionShape, what: &str, folder: &Path) -> Result<V
                 (Some(_), Some(_)) => return Err(invalid(what, "give `points` or `mesh`, not both")),
                 (None, None) => return Err(invalid(what, "give the hull's `points` or a `mesh` file")),
             };
-            hull_vertices(what, &vertices)?
-                .into_iter()
-                .enumerate()
+            let (vertices, planes) = hull(what, &vertices)?;
+            let features = (vertices.into_iter().enumerate())
                 .map(|(k, vertex)| feature(format!(" vertex {}", k + 1), vertex, 0.0))
-                .collect()
+                .collect();
+            let faces = planes.into_iter().map(|(n, d, area)| face(n, d, area)).collect();
+            (Solid::Polytope, features, faces)
         }
+    };
+    Ok(ShapeGeometry {
+        label,
+        solid,
+        features,
+        faces,
     })
 }
 
@@ -321,10 +391,15 @@ fn mesh_vertices(what: &str, path: &Path) -> Result<Vec<Vector3<f64>>, SceneFile
     listed_points(what, &points)
 }
 
-/// The vertices of the convex hull of `points` (parry3d's quickhull), refused if the points span no volume (fewer
-/// than four, or all in one plane: a hull of no thickness would let the plane through between its vertices only by
-/// round-off, and is more likely a typo) or bring more than [`MAX_HULL_VERTICES`].
-fn hull_vertices(what: &str, points: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>>, SceneFileError> {
+/// The vertices of the convex hull of `points` (parry3d's quickhull) and its faces' planes and areas `(n, d, A)` (n
+/// unit and outward, coplanar triangles merged), refused if the points span no volume (fewer than four, or all in one plane: a
+/// hull of no thickness would let the plane through between its vertices only by round-off, and is more likely a
+/// typo) or bring more than [`MAX_HULL_VERTICES`].
+#[allow(clippy::type_complexity)]
+fn hull(
+    what: &str,
+    points: &[Vector3<f64>],
+) -> Result<(Vec<Vector3<f64>>, Vec<(Vector3<f64>, f64, f64)>), SceneFileError> {
     let extent = points.iter().fold(0.0f64, |m, p| m.max(p.amax()));
     let centre = points.iter().sum::<Vector3<f64>>() / points.len().max(1) as f64;
     let flat = || {
@@ -367,5 +442,24 @@ fn hull_vertices(what: &str, points: &[Vector3<f64>]) -> Result<Vec<Vector3<f64>
             ),
         ));
     }
-    Ok(used.into_iter().map(|i| at(i) + centre).collect())
+    let mut planes: Vec<(Vector3<f64>, f64, f64)> = Vec::new();
+    for t in &triangles {
+        let (a, b, c) = (at(t[0]), at(t[1]), at(t[2]));
+        let normal = (b - a).cross(&(c - a));
+        if normal.norm() <= f64::EPSILON * extent * extent {
+            continue;
+        }
+        // Outward: away from the centre of the points, which is inside the hull.
+        let normal = normal.normalize() * if normal.dot(&a) < 0.0 { -1.0 } else { 1.0 };
+        let offset = normal.dot(&(a + centre));
+        let area = 0.5 * (b - a).cross(&(c - a)).norm();
+        let same = |(n, d, _): &&mut (Vector3<f64>, f64, f64)| {
+            (*n - normal).norm() < 1e-9 && (*d - offset).abs() < 1e-9 * extent
+        };
+        match planes.iter_mut().find(same) {
+            Some(plane) => plane.2 += area,
+            None => planes.push((normal, offset, area)),
+        }
+    }
+    Ok((used.into_iter().map(|i| at(i) + centre).collect(), planes))
 }

@@ -8,4 +8,5 @@ pub mod elements;
 pub mod robot;
 pub mod layout;
 pub mod collisions;
+pub mod pairs;
 pub mod scene;

@@ -11,6 +11,7 @@ use dynamics::simulate::Schedule;
 
 use super::collisions::{plane_contacts, urdf_shapes, ShapedBody};
 use super::layout::{Layout, Names};
+use super::pairs::{collision_pairs, CheckedPair};
 use super::robot::{CheckedRobot, LoadedRobot};
 use crate::error::{invalid, SceneFileError};
 use crate::names::{AlgebraChoice, IntegratorName, StabilisationName};
@@ -78,8 +79,10 @@ pub struct CheckedScene {
     pub joint_dampings: Vec<JointDampingSpec>,
     /// PD controllers on joints by name, as written.
     pub pds: Vec<PdSpec>,
-    /// Body points kept above world planes, as written.
+    /// Body points kept above world planes, as written, and the `[[plane]]`s' contacts with the collision shapes.
     pub contacts: Vec<ContactSpec>,
+    /// Pairs of bodies whose collision shapes stay apart.
+    pub pairs: Vec<CheckedPair>,
     /// One body alone, without joints, a robot, force elements or contacts: a free body, which every integrator
     /// (splittings included) runs.
     pub free_body: bool,
@@ -106,7 +109,7 @@ impl CheckedScene {
         let bodies = names.body_count() + robot.as_ref().map_or(0, LoadedRobot::body_count);
         check_samples(&schedule, bodies, &file)?;
         check_error_estimate(integrator, stepping)?;
-        let contacts = contacts_with_planes(&file, folder, robot.as_mut())?;
+        let (contacts, pairs) = contacts_with_planes(&file, folder, robot.as_mut())?;
         let free_body = names.joint_count() == 0
             && names.body_count() == 1
             && robot.is_none()
@@ -115,7 +118,8 @@ impl CheckedScene {
             && file.joint_torque.is_empty()
             && file.joint_damping.is_empty()
             && file.pd.is_empty()
-            && contacts.is_empty();
+            && contacts.is_empty()
+            && pairs.is_empty();
         let method = Integrator::from(integrator);
         if matches!(method, Integrator::Splitting(_)) && !free_body {
             return Err(invalid(
@@ -155,6 +159,7 @@ impl CheckedScene {
             && file.joint_damping.is_empty()
             && file.pd.is_empty()
             && (contacts.iter()).all(|c| c.friction == 0.0 && c.static_friction.unwrap_or(0.0) == 0.0)
+            && pairs.iter().all(|p| !p.friction.is_some())
             && !robot_damped;
         Ok(CheckedScene {
             title: file.title,
@@ -173,6 +178,7 @@ impl CheckedScene {
             joint_torques: file.joint_torque,
             joint_dampings: file.joint_damping,
             pds: file.pd,
+            pairs,
             contacts,
             free_body,
             conservative,
@@ -271,13 +277,14 @@ fn stabilisation(name: StabilisationName, gains: Option<BaumgarteGains>) -> Resu
     }
 }
 
-/// The file's `[[contact]]`s, then every `[[plane]]`'s contacts with the bodies' collision shapes; a `[[plane]]` with no
-/// shape to keep above it is refused (it would do nothing), as is a shape with no plane.
+/// The file's `[[contact]]`s, then every `[[plane]]`'s contacts with the bodies' collision shapes, and the
+/// `[[collision]]` pairs; a `[[plane]]` with no shape to keep above it is refused (it would do nothing), as is a shape
+/// with neither a plane nor a pair.
 fn contacts_with_planes(
     file: &SceneFile,
     folder: &Path,
     robot: Option<&mut LoadedRobot>,
-) -> Result<Vec<ContactSpec>, SceneFileError> {
+) -> Result<(Vec<ContactSpec>, Vec<CheckedPair>), SceneFileError> {
     let mut bodies: Vec<ShapedBody> = match &file.body {
         None => Vec::new(),
         Some(Bodies::One(spec)) => vec![ShapedBody {
@@ -315,21 +322,23 @@ fn contacts_with_planes(
                 ),
             ));
         }
-        (true, _) if asked => {
+        (true, _) if asked && file.collision.is_empty() => {
             return Err(invalid(
                 "robot.collisions",
-                "\"urdf\" keeps the links' shapes above the [[plane]]s, and the file has no [[plane]]: add one",
+                "\"urdf\" keeps the links' shapes above the [[plane]]s and apart in [[collision]] pairs, and the file \
+                 has no [[plane]] and no [[collision]]: add one",
             ))
         }
-        (true, true) => {
+        (true, true) if file.collision.is_empty() => {
             return Err(invalid(
                 "collision",
-                "no [[plane]] for the collision shapes to stay above: add one (`[[plane]]` with `normal` and `offset`)",
+                "no [[plane]] for the collision shapes to stay above and no [[collision]] pair: add one (`[[plane]]` \
+                 with `normal` and `offset`, or `[[collision]]` with `bodies = [\"a\", \"b\"]`)",
             ))
         }
         _ => {}
     }
     let mut contacts = file.contact.clone();
     contacts.extend(plane_contacts(&file.plane, &bodies, folder)?);
-    Ok(contacts)
+    Ok((contacts, collision_pairs(&file.collision, &bodies, folder)?))
 }

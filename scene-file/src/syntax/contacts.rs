@@ -1,5 +1,6 @@
 //! Scene files' contacts (docs/scene-files.md): `[[contact]]`, a body point or sphere kept above a world plane,
-//! exactly, with Coulomb friction (`dynamics::contacts`).
+//! exactly, with Coulomb friction (`dynamics::contacts`); `[[plane]]`, a world plane every collision shape stays
+//! above; `[[collision]]`, two bodies whose shapes stay apart.
 
 use serde::Deserialize;
 
@@ -93,4 +94,36 @@ impl PlaneSpec {
     pub fn name(&self, index: usize) -> String {
         self.name.clone().unwrap_or_else(|| format!("plane {}", index + 1))
     }
+}
+
+/// `[[collision]]`: the collision shapes of two bodies (or robot links) never interpenetrate, meeting with
+/// `restitution` and rubbing with Coulomb `friction` (and `static_friction`); `bodies = "all"` for every pair of bodies
+/// with shapes, but for links joined by a joint.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSpec {
+    /// The pair's name, which heads its contacts' names (default "`a` / `b`").
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Two body or link names, or `"all"`.
+    pub bodies: PairBodies,
+    /// Coulomb's kinetic coefficient μ ≥ 0 (default 0).
+    #[serde(default)]
+    pub friction: f64,
+    /// Coulomb's static coefficient μ_s ≥ μ (default μ).
+    #[serde(default)]
+    pub static_friction: Option<f64>,
+    /// Newton's coefficient, in [0, 1] (default 0).
+    #[serde(default)]
+    pub restitution: f64,
+}
+
+/// The bodies of a `[[collision]]`: two names, or `"all"`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum PairBodies {
+    /// Two bodies or links by name.
+    Named(Vec<String>),
+    /// `"all"`: every pair of bodies with collision shapes.
+    Every(String),
 }

@@ -8,7 +8,7 @@ use dynamics::simulate::SAMPLE_INTERVAL;
 use serde::Deserialize;
 
 use super::bodies::{Bodies, ForceSpec, InitialSpec};
-use super::contacts::{ContactSpec, PlaneSpec};
+use super::contacts::{CollisionSpec, ContactSpec, PlaneSpec};
 use super::elements::{CoupleSpec, JointDampingSpec, JointTorqueSpec, PdSpec, SpringSpec};
 use super::joints::{ConstraintSpec, JointSpec};
 use super::robot::RobotSpec;
@@ -90,6 +90,9 @@ pub struct SceneFile {
     /// World planes every collision shape stays above.
     #[serde(default)]
     pub plane: Vec<PlaneSpec>,
+    /// Pairs of bodies whose collision shapes stay apart.
+    #[serde(default)]
+    pub collision: Vec<CollisionSpec>,
 }
 
 impl SceneFile {

@@ -15,7 +15,7 @@ use proptest::prelude::*;
 use scene_file::{joint_violations, AlgebraKind, CheckedScene, FileAlgebra, JointGeometry, Pose, Scene, SceneFile};
 
 /// The shipped scene files, read when the test is compiled.
-const SCENES: [(&str, &str); 8] = [
+const SCENES: [(&str, &str); 9] = [
     ("heavy_top.toml", include_str!("../../../scenes/heavy_top.toml")),
     (
         "limited_double_pendulum.toml",
@@ -35,6 +35,10 @@ const SCENES: [(&str, &str); 8] = [
     (
         "turntable_pendulum.toml",
         include_str!("../../../scenes/turntable_pendulum.toml"),
+    ),
+    (
+        "stack_and_billiards.toml",
+        include_str!("../../../scenes/stack_and_billiards.toml"),
     ),
 ];
 

@@ -822,6 +822,44 @@ fn careless_contacts_fail_naming_the_entry_and_the_value() {
     assert_each_refused(rows);
 }
 
+/// `[[collision]]` pairs with their careless inputs (the shipped stack and billiards scene edited): the wrong number of
+/// bodies, one body twice, an unknown body or one without shapes, a word other than "all", coefficients out of range,
+/// unknown keys, a start where two shapes interpenetrate (naming the pair, the shapes and the depth), a capsule
+/// against a sphere.
+#[test]
+fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
+    let scene = shipped("stack_and_billiards.toml");
+    let pair = "bodies = [\"top\", \"middle\"]\nfriction = 0.5";
+    let balls = "bodies = [\"cue\", \"red\"]";
+    let top_shape =
+        "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]\ninitial = { position = [0.0, 0.0, 0.6] }";
+    #[rustfmt::skip]
+    let rows: &[Row] = &[
+        (&scene, pair, "bodies = [\"top\"]", &["collision 2: bodies", "name two bodies", "got 1 names"]),
+        (&scene, pair, "bodies = [\"top\", \"middle\", \"base\"]", &["collision 2: bodies", "got 3 names"]),
+        (&scene, pair, "bodies = [\"top\", \"top\"]", &["collision 2: bodies", "`top` twice"]),
+        (&scene, balls, "bodies = [\"cue\", \"cue\"]", &["balls: bodies", "`cue` twice"]),
+        (&scene, pair, "bodies = [\"top\", \"moon\"]", &["collision 2: bodies", "no body or robot link named `moon`"]),
+        (&scene, pair, "bodies = [\"top\", \"world\"]", &["collision 2: bodies", "named `world`"]),
+        (&scene, pair, "bodies = \"everything\"", &["collision 2: bodies", "\"all\"", "everything"]),
+        (&scene, pair, "bodies = 3", &["did not match any variant"]),
+        (&scene, pair, "friction = 0.5", &["missing field `bodies`"]),
+        (&scene, pair, &format!("{pair}\nfriction = -0.5"), &["duplicate key"]),
+        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = -0.5", &["collision 2: friction", "kinetic coefficient", "-0.5"]),
+        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = nan", &["collision 2: friction", "NaN"]),
+        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = 1e300", &["collision 2: friction", "1e6"]),
+        (&scene, pair, &format!("{pair}\nstatic_friction = 0.1"), &["collision 2: friction", "static coefficient 0.1 is below the kinetic one 0.5"]),
+        (&scene, pair, &format!("{pair}\nrestitution = 1.5"), &["collision 2: restitution", "1.5"]),
+        (&scene, pair, &format!("{pair}\nrestitution = nan"), &["collision 2: restitution", "NaN"]),
+        (&scene, pair, &format!("{pair}\ncolour = 1"), &["unknown field `colour`"]),
+        (&scene, top_shape, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]\ninitial = { position = [0.0, 0.0, 0.55] }", &["collision top / middle: `top` box 1 and `middle` box 1", "5.000e-2 m into each other"]),
+        (&scene, "position = [0.0, 1.03, 0.0285]", "position = [-0.98, 1.0, 0.0285]", &["collision balls: `cue` sphere 1 and `red` sphere 1", "into each other"]),
+        (&scene, top_shape, "initial = { position = [0.0, 0.0, 0.6] }", &["collision 2: bodies", "no body or robot link named `top` has collision shapes"]),
+        (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"capsule\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` capsule 1 against `red` sphere 1", "not modelled"]),
+    ];
+    assert_each_refused(rows);
+}
+
 /// Points on surfaces and curves with their careless inputs (the shipped surface scenes edited).
 #[test]
 fn careless_surfaces_fail_naming_the_entry_and_the_value() {

@@ -1,0 +1,204 @@
+//! The `[[collision]]` pairs' contacts (docs/contacts.md "Between bodies"): for each shape of one body and each of
+//! the other, the features that meet, chosen at the start. Two spheres are one ball contact. Otherwise the face, of
+//! either shape, that separates them most at the start (the largest least distance of the other's vertices or sphere
+//! centres less their radii; of faces separating as much, the largest) becomes a plane fixed in its body, and each
+//! vertex or sphere of the other shape is a contact on it: a box resting on a wider box rests on its corners on the
+//! other's top face. A start where no face
+//! separates the shapes (they interpenetrate, or meet edge on edge) is refused, naming the pair and the depth.
+
+use dynamics::contacts::{BallContact, PlaneContact, TOUCHING};
+use dynamics::{Algebra, BodyId, Mechanism, Reference, State};
+use nalgebra::{Isometry3, Point3};
+
+use super::assembly::Assembly;
+use crate::check::collisions::{Face, Feature, ShapeGeometry, Solid};
+use crate::check::pairs::CheckedPair;
+use crate::error::{invalid, SceneFileError};
+
+/// One body of a pair in the mechanism: its id, the map from its shapes' frame (the body's or the link's) to the
+/// body's reference frame, and from that to the world at the start.
+struct Placed<'p> {
+    name: &'p str,
+    id: BodyId,
+    to_body: Isometry3<f64>,
+    to_world: Isometry3<f64>,
+}
+
+/// Adds every pair's contacts to the mechanism.
+pub(crate) fn add_pair_contacts<A: Algebra>(assembly: &mut Assembly<A>) -> Result<(), SceneFileError> {
+    let scene = assembly.scene;
+    let joined = joined_bodies(&assembly.mechanism);
+    for pair in &scene.pairs {
+        let what = format!("collision {}", pair.name);
+        let [first, second] = [0, 1].map(|k| place(assembly, &pair.sides[k].body, &what));
+        let (first, second) = (first?, second?);
+        if first.id == second.id || joined.contains(&(first.id, second.id)) || joined.contains(&(second.id, first.id)) {
+            if pair.among_all {
+                continue;
+            }
+            if first.id == second.id {
+                return Err(invalid(
+                    format!("{what}: bodies"),
+                    format!(
+                        "`{}` and `{}` are one body (joined by fixed joints)",
+                        first.name, second.name
+                    ),
+                ));
+            }
+        }
+        for a in &pair.sides[0].shapes {
+            for b in &pair.sides[1].shapes {
+                add_shape_pair(&mut assembly.mechanism, pair, (&first, a), (&second, b))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Every pair of bodies a joint model joins (child, parent), which `"all"` skips: a link's shapes touch its
+/// neighbours' at the joint by design.
+fn joined_bodies<A: Algebra>(mechanism: &Mechanism<A>) -> Vec<(BodyId, BodyId)> {
+    mechanism.joint_space().map_or_else(
+        |_| Vec::new(),
+        |space| {
+            (space.groups().iter())
+                .filter_map(|group| Some((group.body(), group.parent()?)))
+                .collect()
+        },
+    )
+}
+
+/// Where the body or link `name` is: its id, its frame in the body's reference frame, and the start's pose.
+fn place<'p, A: Algebra>(assembly: &Assembly<A>, name: &'p str, what: &str) -> Result<Placed<'p>, SceneFileError> {
+    let scene = assembly.scene;
+    let robot = scene.robot.as_ref().map(|robot| &robot.loaded);
+    let end = scene.layout.end(robot, &format!("{what}: bodies"), name)?;
+    let (Reference::Body(id), to_body) = assembly.places.place(&end)? else {
+        return Err(invalid(
+            format!("{what}: bodies"),
+            "the world has no shapes: use a [[plane]]",
+        ));
+    };
+    let reference = assembly.mechanism.reference_frame(id)?;
+    let state: &State<A> = &assembly.states[id.index()];
+    let (position, rotation) = state.pose();
+    let pose = Isometry3::from_parts(position.into(), rotation);
+    Ok(Placed {
+        name,
+        id,
+        to_body,
+        to_world: pose * reference * to_body,
+    })
+}
+
+/// The contacts between shape `a` of one body and shape `b` of the other (module docs), named "`pair`: `body` `shape`
+/// `feature` on `body` `shape` `face k`".
+fn add_shape_pair<A: Algebra>(
+    mechanism: &mut Mechanism<A>,
+    pair: &CheckedPair,
+    (first, a): (&Placed<'_>, &ShapeGeometry),
+    (second, b): (&Placed<'_>, &ShapeGeometry),
+) -> Result<(), SceneFileError> {
+    let what = format!(
+        "collision {}: `{}` {} and `{}` {}",
+        pair.name, first.name, a.label, second.name, b.label
+    );
+    let failed = |error: &dyn std::fmt::Display| invalid(what.clone(), error.to_string());
+    let refuse_depth = |depth: f64| {
+        invalid(
+            what.clone(),
+            format!("the start puts the two shapes {depth:.3e} m into each other (no face of either separates them)"),
+        )
+    };
+    if a.solid == Solid::Ball && b.solid == Solid::Ball {
+        let (centre, other) = (&a.features[0], &b.features[0]);
+        let gap = (first.to_world * Point3::from(centre.centre) - second.to_world * Point3::from(other.centre)).norm()
+            - centre.radius
+            - other.radius;
+        if gap < -TOUCHING {
+            return Err(refuse_depth(-gap));
+        }
+        let contact = BallContact::new(
+            first.to_body * centre.centre,
+            centre.radius,
+            second.to_body * other.centre,
+            other.radius,
+        )
+        .and_then(|c| c.with_restitution(pair.restitution))
+        .map_err(|e| failed(&e))?
+        .with_friction(pair.friction);
+        let name = format!(
+            "{}: {} {} on {} {}",
+            pair.name, first.name, a.label, second.name, b.label
+        );
+        return mechanism
+            .add_ball_contact(name, first.id, second.id, contact)
+            .map_err(|e| failed(&e));
+    }
+    // The face that separates most: of b against a's features, or of a against b's; of faces that separate as much
+    // (within round-off: a box resting on a wider one, whose top face and the box's bottom face are one plane) the
+    // largest, so that the smaller shape's vertices rest on it.
+    let mut candidates = Vec::new();
+    for (faces_of_b, (faced, shape), (other, features)) in
+        [(true, (second, b), (first, a)), (false, (first, a), (second, b))]
+    {
+        for (k, face) in shape.faces.iter().enumerate() {
+            let separation = least_distance(faced, face, other, &features.features);
+            candidates.push((separation, face.area, faces_of_b, k));
+        }
+    }
+    let most = candidates.iter().fold(f64::NEG_INFINITY, |m, c| m.max(c.0));
+    let Some(&(separation, _, faces_of_b, k)) = (candidates.iter())
+        .filter(|c| c.0 >= most - TOUCHING)
+        .max_by(|x, y| x.1.total_cmp(&y.1))
+    else {
+        unreachable!("a pair of shapes not both balls has a polytope, with faces")
+    };
+    if separation < -TOUCHING {
+        return Err(refuse_depth(-separation));
+    }
+    let ((faced, shape), (other, features)) = if faces_of_b {
+        ((second, b), (first, a))
+    } else {
+        ((first, a), (second, b))
+    };
+    let face = shape.faces[k];
+    // The face's plane in its body's reference frame: `(R n) · x = d + (R n) · t`.
+    let normal = faced.to_body.rotation * face.normal;
+    let offset = face.offset + normal.dot(&faced.to_body.translation.vector);
+    for feature in &features.features {
+        let point = other.to_body * Point3::from(feature.centre);
+        let contact = if feature.radius > 0.0 {
+            PlaneContact::sphere(point.coords, feature.radius, normal, offset)
+        } else {
+            PlaneContact::new(point.coords, normal, offset)
+        }
+        .and_then(|c| c.with_restitution(pair.restitution))
+        .map_err(|e| failed(&e))?
+        .with_friction(pair.friction);
+        let name = format!(
+            "{}: {} {}{} on {} {} face {}",
+            pair.name,
+            other.name,
+            features.label,
+            feature.name,
+            faced.name,
+            shape.label,
+            k + 1
+        );
+        mechanism
+            .add_contact_on(name, other.id, faced.id, contact)
+            .map_err(|e| failed(&e))?;
+    }
+    Ok(())
+}
+
+/// The least height, at the start, of `features` of the body `other` above `face` of the body `faced` (less each
+/// feature's radius).
+fn least_distance(faced: &Placed<'_>, face: &Face, other: &Placed<'_>, features: &[Feature]) -> f64 {
+    let normal = faced.to_world.rotation * face.normal;
+    let offset = face.offset + normal.dot(&faced.to_world.translation.vector);
+    (features.iter())
+        .map(|f| normal.dot(&(other.to_world * Point3::from(f.centre)).coords) - offset - f.radius)
+        .fold(f64::INFINITY, f64::min)
+}

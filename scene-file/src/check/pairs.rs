@@ -1,0 +1,154 @@
+//! `[[collision]]`s checked: the pairs of bodies (or robot links) whose collision shapes stay apart, each with its
+//! friction and restitution and both bodies' shapes (docs/contacts.md "Between bodies", docs/scene-files.md). Which
+//! features of the shapes meet is chosen where the start is known, when the system is built.
+
+use std::path::Path;
+
+use dynamics::contacts::Friction;
+
+use super::collisions::{body_geometry, ShapeGeometry, ShapedBody, Solid};
+use crate::error::{invalid, SceneFileError};
+use crate::syntax::contacts::{CollisionSpec, PairBodies};
+
+/// A `[[collision]]`'s pair of bodies, checked.
+#[derive(Clone, Debug)]
+pub struct CheckedPair {
+    /// The pair's name, heading its contacts' names: as written, else "`a` / `b`".
+    pub name: String,
+    /// The two bodies and their shapes.
+    pub sides: [PairSide; 2],
+    pub friction: Friction,
+    pub restitution: f64,
+    /// Whether the pair came from `bodies = "all"`: then links joined by a joint, or merged into one body, are
+    /// skipped rather than refused.
+    pub among_all: bool,
+}
+
+/// One body of a pair: its name ("body" for the single `[body]`) and its shapes.
+#[derive(Clone, Debug)]
+pub struct PairSide {
+    pub body: String,
+    pub(crate) shapes: Vec<ShapeGeometry>,
+}
+
+impl CheckedPair {
+    /// Whether a transition's constraint name is one of this pair's contacts.
+    pub fn owns(&self, constraint: &str) -> bool {
+        constraint
+            .strip_prefix(self.name.as_str())
+            .is_some_and(|rest| rest.starts_with(": "))
+    }
+}
+
+/// The file's `[[collision]]`s, each between two of `bodies` (those with shapes; relative mesh paths from `folder`):
+/// the names known and different, friction and restitution in range, and no capsule against a sphere or a capsule
+/// (their touching point runs along the segment, which the contacts, fixed features, do not model).
+pub(crate) fn collision_pairs(
+    specs: &[CollisionSpec],
+    bodies: &[ShapedBody],
+    folder: &Path,
+) -> Result<Vec<CheckedPair>, SceneFileError> {
+    let shaped: Vec<(String, Vec<ShapeGeometry>)> = (bodies.iter())
+        .filter(|b| !b.shapes.is_empty())
+        .map(|b| {
+            Ok((
+                b.name.clone().unwrap_or_else(|| "body".to_owned()),
+                body_geometry(b, folder)?,
+            ))
+        })
+        .collect::<Result<_, SceneFileError>>()?;
+    let mut pairs = Vec::new();
+    for (k, spec) in specs.iter().enumerate() {
+        let what = spec.name.clone().unwrap_or_else(|| format!("collision {}", k + 1));
+        let find = |name: &str| {
+            (shaped.iter()).find(|(n, _)| n == name).ok_or_else(|| {
+                invalid(
+                    format!("{what}: bodies"),
+                    format!("no body or robot link named `{name}` has collision shapes"),
+                )
+            })
+        };
+        let friction = Friction::new(spec.friction, spec.static_friction.unwrap_or(spec.friction))
+            .map_err(|error| invalid(format!("{what}: friction"), error.to_string()))?;
+        if !(0.0..=1.0).contains(&spec.restitution) {
+            return Err(invalid(
+                format!("{what}: restitution"),
+                format!("must be in [0, 1], got {}", spec.restitution),
+            ));
+        }
+        let chosen: Vec<[usize; 2]> = match &spec.bodies {
+            PairBodies::Named(names) => {
+                let [first, second] = names.as_slice() else {
+                    return Err(invalid(
+                        format!("{what}: bodies"),
+                        format!("name two bodies, or give \"all\"; got {} names", names.len()),
+                    ));
+                };
+                if first == second {
+                    return Err(invalid(
+                        format!("{what}: bodies"),
+                        format!("`{first}` twice: a body's shapes do not collide with each other"),
+                    ));
+                }
+                let index =
+                    |name: &str| find(name).map(|found| shaped.iter().position(|s| s.0 == found.0).unwrap_or(0));
+                vec![[index(first)?, index(second)?]]
+            }
+            PairBodies::Every(all) if all == "all" => {
+                if shaped.len() < 2 {
+                    return Err(invalid(
+                        format!("{what}: bodies"),
+                        format!(
+                            "\"all\" pairs the bodies with collision shapes, and {} has them",
+                            shaped.len()
+                        ),
+                    ));
+                }
+                (0..shaped.len())
+                    .flat_map(|a| (a + 1..shaped.len()).map(move |b| [a, b]))
+                    .collect()
+            }
+            PairBodies::Every(other) => {
+                return Err(invalid(
+                    format!("{what}: bodies"),
+                    format!("give two names, `bodies = [\"a\", \"b\"]`, or \"all\"; got \"{other}\""),
+                ))
+            }
+        };
+        for [a, b] in chosen {
+            let sides = [a, b].map(|i| PairSide {
+                body: shaped[i].0.clone(),
+                shapes: shaped[i].1.clone(),
+            });
+            for first in &sides[0].shapes {
+                for second in &sides[1].shapes {
+                    let curved = |s: &ShapeGeometry| s.solid != Solid::Polytope;
+                    let capsule = first.solid == Solid::Capsule || second.solid == Solid::Capsule;
+                    if capsule && curved(first) && curved(second) {
+                        return Err(invalid(
+                            format!("{what}: bodies"),
+                            format!(
+                                "`{}` {} against `{}` {}: a capsule against a sphere or a capsule is not modelled \
+                                 (their touching point runs along the segment); use spheres, boxes or convex hulls",
+                                sides[0].body, first.label, sides[1].body, second.label
+                            ),
+                        ));
+                    }
+                }
+            }
+            let name = match (&spec.name, &spec.bodies) {
+                (Some(name), PairBodies::Named(_)) => name.clone(),
+                (Some(name), PairBodies::Every(_)) => format!("{name}: {} / {}", sides[0].body, sides[1].body),
+                (None, _) => format!("{} / {}", sides[0].body, sides[1].body),
+            };
+            pairs.push(CheckedPair {
+                name,
+                sides,
+                friction,
+                restitution: spec.restitution,
+                among_all: matches!(spec.bodies, PairBodies::Every(_)),
+            });
+        }
+    }
+    Ok(pairs)
+}
