@@ -1,6 +1,6 @@
 """MuJoCo's soft contact on the closed-form friction scenes of dynamics/tests/integration/friction.rs, for
-docs/contacts.md "Against soft contact": how far a box that should stick creeps, how deep it sinks, and when a struck
-ball starts rolling.
+docs/contacts.md "Against soft contact": how far a box that should stick creeps, how deep it sinks, how a stack of
+three boxes settles, and when a struck ball starts rolling.
 
 Run in a throwaway virtual environment (MuJoCo is never a dependency of this project):
 
@@ -61,6 +61,40 @@ def struck_ball(v0, mu, timestep):
     return rolling, data.qvel[0]
 
 
+def stack(timestep, duration, mu=0.5):
+    """Three boxes stacked on a floor at rest (3 kg 0.6 x 0.6 x 0.3 m, 2 kg 0.4 x 0.4 x 0.2 m, 1 kg 0.2 m cube, friction
+    `mu`), as dynamics/tests/integration/bodies_meeting.rs stacks them: the most any box moves from its start in
+    `duration`, and the deepest any box sinks into the one below it (or the floor)."""
+    boxes = [(3.0, (0.6, 0.6, 0.3)), (2.0, (0.4, 0.4, 0.2)), (1.0, (0.2, 0.2, 0.2))]
+    bodies, height, centres = "", 0.0, []
+    for k, (mass, (a, b, c)) in enumerate(boxes):
+        centre = height + c / 2
+        centres.append(centre)
+        bodies += f"""
+        <body pos="0 0 {centre}">
+          <freejoint/>
+          <geom type="box" size="{a / 2} {b / 2} {c / 2}" mass="{mass}" friction="{mu} 0 0"/>
+        </body>"""
+        height += c
+    xml = f"""
+    <mujoco>
+      <option timestep="{timestep}"/>
+      <worldbody>
+        <geom type="plane" size="10 10 0.1" friction="{mu} 0 0"/>{bodies}
+      </worldbody>
+    </mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    moved, sunk = 0.0, 0.0
+    for _ in range(int(round(duration / timestep))):
+        mujoco.mj_step(model, data)
+        for k, centre in enumerate(centres):
+            position = data.qpos[7 * k : 7 * k + 3]
+            moved = max(moved, math.dist(position, (0.0, 0.0, centre)))
+            sunk = max(sunk, centre - position[2])
+    return moved, sunk
+
+
 def main():
     print("MuJoCo", mujoco.__version__)
     for timestep in (1e-3, 2e-3):
@@ -68,6 +102,8 @@ def main():
         print(f"box on a 0.3 rad incline, mu 0.35, dt {timestep:g}: crept {moved:.3e} m in 10 s, sank {deepest:.3e} m")
         moved, deepest = box_on_incline(0.0, 0.35, timestep, 10.0)
         print(f"box on a level floor, dt {timestep:g}: moved {moved:.3e} m in 10 s, sank {deepest:.3e} m")
+        moved, sunk = stack(timestep, 10.0)
+        print(f"stack of three boxes at rest, dt {timestep:g}: a box moved {moved:.3e} m in 10 s, sank {sunk:.3e} m")
         rolling, speed = struck_ball(2.0, 0.3, timestep)
         print(
             f"struck ball, dt {timestep:g}: rolling from {rolling} s (exact {2 * 2.0 / (7 * 0.3 * G):.6f} s), "

@@ -1,5 +1,5 @@
-//! The ground figure: Solo-12's base height as it lands on its feet and stands, and the crate's, pill's and gem's
-//! centres as they bounce and come to rest on the floor.
+//! The ground figure: Solo-12's base height as it lands on its feet and stands; the crate's, pill's and gem's centres
+//! as they bounce and come to rest on the floor; how far the billiard balls and the box a UR5 pushes travel.
 
 use std::path::Path;
 
@@ -17,9 +17,36 @@ fn heights(run: &AlgebraRun, body: usize, label: &str) -> Series {
     }
 }
 
-/// Draws the figure of the standing robot's runs and the shapes' runs into `dir`; returns its file name, or `None`
-/// without runs.
-pub(crate) fn draw(dir: &Path, robot: &[AlgebraRun], shapes: &[AlgebraRun]) -> Result<Option<&'static str>, PlotError> {
+/// A body's horizontal distance from where it started, over a run's samples (dashed for CGA).
+fn travel(run: &AlgebraRun, body: usize, label: &str) -> Series {
+    let start = run.bodies[body][0].position.xy();
+    Series {
+        dashed: run.algebra == scene_file::AlgebraKind::Cga,
+        ..Series::line(
+            format!("{label}, {}", run.algebra.name()),
+            (run.bodies[body].iter())
+                .map(|s| (s.t, (s.position.xy() - start).norm()))
+                .collect(),
+        )
+    }
+}
+
+/// The runs the figure draws, each empty if its scene failed.
+pub(crate) struct Scenes<'r> {
+    pub robot: &'r [AlgebraRun],
+    pub shapes: &'r [AlgebraRun],
+    pub billiards: &'r [AlgebraRun],
+    pub push: &'r [AlgebraRun],
+}
+
+/// Draws the figure of the scenes' runs into `dir`; returns its file name, or `None` without runs.
+pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Option<&'static str>, PlotError> {
+    let Scenes {
+        robot,
+        shapes,
+        billiards,
+        push,
+    } = *scenes;
     let mut panels = Vec::new();
     if !robot.is_empty() {
         let series = robot.iter().map(|run| heights(run, 0, "base")).collect();
@@ -44,6 +71,23 @@ pub(crate) fn draw(dir: &Path, robot: &[AlgebraRun], shapes: &[AlgebraRun]) -> R
             series,
         ));
     }
+    let mut series = Vec::new();
+    for run in billiards {
+        for (body, name) in run.names.iter().enumerate().filter(|(_, n)| *n == "cue" || *n == "red") {
+            series.push(travel(run, body, &format!("{name} ball")));
+        }
+    }
+    for run in push {
+        if let Some(body) = run.names.iter().position(|n| n == "box") {
+            series.push(travel(run, body, "box pushed by the UR5"));
+        }
+    }
+    if !series.is_empty() {
+        panels.push(Panel::new(
+            Labels::new("Bodies meeting bodies", "time (s)", "distance travelled (m)"),
+            series,
+        ));
+    }
     if panels.is_empty() {
         return Ok(None);
     }
@@ -52,8 +96,11 @@ pub(crate) fn draw(dir: &Path, robot: &[AlgebraRun], shapes: &[AlgebraRun]) -> R
         "Bodies on the ground: Coulomb friction and collision shapes",
         &panels,
         "Top: Solo-12's base (foot spheres, friction 0.8, a PD stance) lands 3 cm below its start, its feet stick and \
-         it settles and stands still. Bottom: a box, a capsule and a convex hull dropped onto a floor with friction 0.5 \
-         bounce on their corners, ends and vertices and come to rest on a face, on a side and on a face of the hull.",
+         it settles and stands still. Middle: a box, a capsule and a convex hull dropped onto a floor with friction 0.5 \
+         bounce on their corners, ends and vertices and come to rest on a face, on a side and on a face of the hull. \
+         Bottom: a cue ball slides, rolls and meets a red ball off centre, the red ball rolling off; a ball welded to a \
+         UR5's flange sweeps into a box on a table, which slides on and stops (scenes/stack_and_billiards.toml, \
+         scenes/ur5_pushes_a_box.toml).",
     )?;
     Ok(Some("ground.png"))
 }

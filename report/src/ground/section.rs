@@ -1,6 +1,7 @@
-//! The report's section on bodies on the ground (docs/contacts.md): `scenes/solo12_standing.toml` and
-//! `scenes/shapes_on_a_floor.toml` run as the scene job runs them (written under `ground/`), a figure, and a table of
-//! their transitions, the deepest any contact went below its plane, the energy balance and the cost.
+//! The report's section on bodies on the ground (docs/contacts.md): `scenes/solo12_standing.toml`,
+//! `scenes/shapes_on_a_floor.toml`, `scenes/stack_and_billiards.toml` and `scenes/ur5_pushes_a_box.toml` run as the
+//! scene job runs them (written under `ground/`), a figure, and a table of their transitions, the deepest any contact
+//! went below its plane or into another shape, the energy balance and the cost.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -11,7 +12,12 @@ use crate::plot::PlotError;
 use crate::scene_job::{run_scene_file, AlgebraRun};
 
 /// The shipped scene files the section runs.
-const SCENES: [&str; 2] = ["solo12_standing.toml", "shapes_on_a_floor.toml"];
+const SCENES: [&str; 4] = [
+    "solo12_standing.toml",
+    "shapes_on_a_floor.toml",
+    "stack_and_billiards.toml",
+    "ur5_pushes_a_box.toml",
+];
 
 /// The repository's `scenes/` folder (the section runs the files shipped there).
 fn scenes() -> PathBuf {
@@ -26,7 +32,8 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
         "## Bodies on the ground (docs/contacts.md)\n\nCoulomb friction at exact contacts: a sliding contact's \
          push carries μN against its slip, a sticking one holds two more rows while its force stays in the cone, and \
          every stop and slip is located as impacts are. Collision shapes (boxes, capsules, convex hulls) stay above \
-         `[[plane]]`s through their corners, end spheres and vertices. The shipped scene files below run as \
+         `[[plane]]`s through their corners, end spheres and vertices, and apart in `[[collision]]` pairs: a vertex \
+         or sphere of one body on a face of another, or two balls. The shipped scene files below run as \
          `cargo run --release -- --scene-file scenes/<name>` runs them (written under `ground/`).\n"
     );
     let mut runs: Vec<(&str, Vec<AlgebraRun>)> = Vec::new();
@@ -44,12 +51,18 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
             .find(|(s, _)| *s == stem)
             .map_or(&[][..], |(_, r)| r.as_slice())
     };
-    if let Some(name) = figures::draw(dir, of("solo12_standing"), of("shapes_on_a_floor"))? {
+    let scenes = figures::Scenes {
+        robot: of("solo12_standing"),
+        shapes: of("shapes_on_a_floor"),
+        billiards: of("stack_and_billiards"),
+        push: of("ur5_pushes_a_box"),
+    };
+    if let Some(name) = figures::draw(dir, &scenes)? {
         let _ = writeln!(out, "![{name}]({name})\n");
     }
     let _ = writeln!(
         out,
-        "| scene | algebra | bounces | holds | releases | sticks | slips | deepest below a plane (m) | E − E₀ − L − W \
+        "| scene | algebra | bounces | holds | releases | sticks | slips | deepest into a plane or shape (m) | E − E₀ − L − W \
          (J) | CPU per simulated second (s) |\n|---|---|---|---|---|---|---|---|---|---|"
     );
     for (stem, algebra_runs) in &runs {

@@ -28,6 +28,9 @@ pub(crate) fn add_contacts<A: Algebra>(assembly: &mut Assembly<A>) -> Result<(),
                 "the world has no point to keep above a plane",
             ));
         };
+        // The end's frame in the body's reference frame, the frame `Mechanism::add_contact` takes points in (a robot
+        // link's pose in its body's first link's frame; the place is in principal coordinates).
+        let frame = assembly.mechanism.reference_frame(id)?.inverse() * frame;
         let in_frame = |point: [f64; 3]| frame.transform_point(&Vector3::from(point).into()).coords;
         let normal = Vector3::from(spec.normal);
         let contact = match (spec.point, &spec.sphere) {

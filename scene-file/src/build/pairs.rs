@@ -15,8 +15,8 @@ use crate::check::collisions::{Face, Feature, ShapeGeometry, Solid};
 use crate::check::pairs::CheckedPair;
 use crate::error::{invalid, SceneFileError};
 
-/// One body of a pair in the mechanism: its id, the map from its shapes' frame (the body's or the link's) to the
-/// body's reference frame, and from that to the world at the start.
+/// One body of a pair in the mechanism: its id, the maps from its shapes' frame (the body's or the link's) to the
+/// body's reference frame (where contacts take their points) and to the world at the start.
 struct Placed<'p> {
     name: &'p str,
     id: BodyId,
@@ -79,6 +79,7 @@ fn place<'p, A: Algebra>(assembly: &Assembly<A>, name: &'p str, what: &str) -> R
             "the world has no shapes: use a [[plane]]",
         ));
     };
+    // The place is in principal coordinates; contacts take points in the body's reference frame.
     let reference = assembly.mechanism.reference_frame(id)?;
     let state: &State<A> = &assembly.states[id.index()];
     let (position, rotation) = state.pose();
@@ -86,8 +87,8 @@ fn place<'p, A: Algebra>(assembly: &Assembly<A>, name: &'p str, what: &str) -> R
     Ok(Placed {
         name,
         id,
-        to_body,
-        to_world: pose * reference * to_body,
+        to_body: reference.inverse() * to_body,
+        to_world: pose * to_body,
     })
 }
 

@@ -1048,3 +1048,80 @@ fn careless_collision_shapes_and_planes_fail_naming_the_entry_and_the_value() {
         .unwrap_or_default();
     assert!(message.contains("no [[plane]]"), "{message}");
 }
+
+/// Contacts and collision shapes on robot links sit where the URDF's kinematics put them, also on a link whose centre
+/// of mass is off its frame's origin (its body's principal frame is not the link frame): a hopper with a free base at
+/// (0, 0, 0.4) turned 10° about x, its leg on a hip 0.3 rad about y at (0.05, 0, −0.05), a foot sphere of 3 cm at
+/// (0, 0, −0.2) in the leg's frame (whose centre of mass is at (0, 0, −0.1), its principal axes turned about y), and a
+/// free ball of 5 cm beside it in a
+/// `[[collision]]` pair with the leg. At the start the foot's height above the floor is its centre's z less 3 cm, and
+/// the pair's gap the distance of the centres less 8 cm, each to 1e-12 m, in both algebras.
+#[test]
+fn contacts_on_robot_links_sit_where_the_kinematics_put_them() {
+    let dir = fresh("link-contacts");
+    let urdf = r#"<robot name="hopper">
+  <link name="base">
+    <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <link name="leg">
+    <inertial><origin xyz="0 0 -0.1"/><mass value="0.2"/><inertia ixx="0.002" iyy="0.002" izz="0.0005" ixy="0" ixz="0.0003" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 -0.2"/><geometry><sphere radius="0.03"/></geometry></collision>
+  </link>
+  <joint name="hip" type="revolute">
+    <parent link="base"/><child link="leg"/><origin xyz="0.05 0 -0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="10"/>
+  </joint>
+</robot>"#;
+    std::fs::write(dir.join("hopper.urdf"), urdf).unwrap();
+    let scene = r#"title = "hopper"
+algebra = "both"
+tolerance = 1e-10
+duration = 0.1
+
+[robot]
+urdf = "hopper.urdf"
+root = "free"
+collisions = "urdf"
+base_position = [0.0, 0.0, 0.4]
+base_orientation = { axis = [1.0, 0.0, 0.0], degrees = 10.0 }
+q = { hip = 0.3 }
+
+[[body]]
+name = "ball"
+mass = 0.1
+shape = { kind = "sphere", radius = 0.05 }
+collision = [{ kind = "sphere", radius = 0.05 }]
+initial = { position = [0.3, 0.1, 0.2] }
+
+[[plane]]
+name = "floor"
+
+[[collision]]
+bodies = ["leg", "ball"]
+"#;
+    let parsed = Scene::parse_in(scene, &dir).unwrap();
+    let base = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 10f64.to_radians());
+    let hip = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 0.3);
+    let foot =
+        Vector3::new(0.0, 0.0, 0.4) + base * (Vector3::new(0.05, 0.0, -0.05) + hip * Vector3::new(0.0, 0.0, -0.2));
+    let ball = Vector3::new(0.3, 0.1, 0.2);
+    let expected = [
+        ("floor: ball sphere 1", ball.z - 0.05),
+        ("floor: leg sphere 1", foot.z - 0.03),
+        ("leg / ball: leg sphere 1 on ball sphere 1", (foot - ball).norm() - 0.08),
+    ];
+    fn check<A: FileAlgebra>(parsed: &Scene, expected: &[(&str, f64)]) {
+        let system = parsed.system::<A>().unwrap();
+        let heights = system.mechanism().contact_heights(system.initial()).unwrap();
+        let names: Vec<&str> = system.mechanism().contact_names().collect();
+        assert_eq!(names, expected.iter().map(|e| e.0).collect::<Vec<_>>());
+        for ((name, exact), height) in expected.iter().zip(heights) {
+            assert!(
+                (height - exact).abs() < 1e-12,
+                "{name}: {height} m, {exact} m from the kinematics"
+            );
+        }
+    }
+    check::<Pga>(&parsed, &expected);
+    check::<Cga>(&parsed, &expected);
+}
