@@ -1,5 +1,6 @@
 //! The ground figure: Solo-12's base height as it lands on its feet and stands; the crate's, pill's and gem's centres
-//! as they bounce and come to rest on the floor; how far the billiard balls and the box a UR5 pushes travel.
+//! as they bounce and come to rest on the floor; and, on their own axes, how far the billiard balls and the box a UR5
+//! pushes travel.
 
 use std::path::Path;
 
@@ -39,8 +40,9 @@ pub(crate) struct Scenes<'r> {
     pub push: &'r [AlgebraRun],
 }
 
-/// Draws the figure of the scenes' runs into `dir`; returns its file name, or `None` without runs.
-pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Option<&'static str>, PlotError> {
+/// Draws the figures of the scenes' runs into `dir`: heights (the robot and the shapes), and distances travelled (the
+/// bodies meeting bodies), each on its own axes; returns the files drawn.
+pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Vec<&'static str>, PlotError> {
     let Scenes {
         robot,
         shapes,
@@ -71,6 +73,19 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Option<&'static st
             series,
         ));
     }
+    let mut drawn = Vec::new();
+    if !panels.is_empty() {
+        figure_with_caption(
+            &dir.join("ground.png"),
+            "Bodies on the ground: Coulomb friction and collision shapes",
+            &panels,
+            "Top: Solo-12's base (foot spheres, friction 0.8, a PD stance) lands 3 cm below its start, its feet stick \
+             and it settles and stands still. Bottom: a box, a capsule and a convex hull dropped onto a floor with \
+             friction 0.5 bounce on their corners, ends and vertices and come to rest on a face, on a side and on a \
+             face of the hull.",
+        )?;
+        drawn.push("ground.png");
+    }
     let mut series = Vec::new();
     for run in billiards {
         for (body, name) in run.names.iter().enumerate().filter(|(_, n)| *n == "cue" || *n == "red") {
@@ -83,24 +98,19 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Option<&'static st
         }
     }
     if !series.is_empty() {
-        panels.push(Panel::new(
+        let panel = Panel::new(
             Labels::new("Bodies meeting bodies", "time (s)", "distance travelled (m)"),
             series,
-        ));
+        );
+        figure_with_caption(
+            &dir.join("bodies_meeting.png"),
+            "Bodies meeting bodies: [[collision]] pairs",
+            &[panel],
+            "A cue ball slides, rolls and meets a red ball off centre, and the red ball rolls off \
+             (scenes/stack_and_billiards.toml, where a stack of three boxes rests beside them); a ball welded to a \
+             UR5's flange sweeps into a box on a table, which slides on and stops (scenes/ur5_pushes_a_box.toml).",
+        )?;
+        drawn.push("bodies_meeting.png");
     }
-    if panels.is_empty() {
-        return Ok(None);
-    }
-    figure_with_caption(
-        &dir.join("ground.png"),
-        "Bodies on the ground: Coulomb friction and collision shapes",
-        &panels,
-        "Top: Solo-12's base (foot spheres, friction 0.8, a PD stance) lands 3 cm below its start, its feet stick and \
-         it settles and stands still. Middle: a box, a capsule and a convex hull dropped onto a floor with friction 0.5 \
-         bounce on their corners, ends and vertices and come to rest on a face, on a side and on a face of the hull. \
-         Bottom: a cue ball slides, rolls and meets a red ball off centre, the red ball rolling off; a ball welded to a \
-         UR5's flange sweeps into a box on a table, which slides on and stops (scenes/stack_and_billiards.toml, \
-         scenes/ur5_pushes_a_box.toml).",
-    )?;
-    Ok(Some("ground.png"))
+    Ok(drawn)
 }

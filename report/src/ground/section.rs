@@ -57,7 +57,7 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
         billiards: of("stack_and_billiards"),
         push: of("ur5_pushes_a_box"),
     };
-    if let Some(name) = figures::draw(dir, &scenes)? {
+    for name in figures::draw(dir, &scenes)? {
         let _ = writeln!(out, "![{name}]({name})\n");
     }
     let _ = writeln!(

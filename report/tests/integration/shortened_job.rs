@@ -102,6 +102,7 @@ fn shortened_job_matches_the_references() {
     for part in [
         "## Bodies on the ground",
         "![ground.png](ground.png)",
+        "![bodies_meeting.png](bodies_meeting.png)",
         "| solo12_standing | PGA |",
         "| shapes_on_a_floor | CGA |",
         "| stack_and_billiards | PGA |",
