@@ -60,14 +60,21 @@ pub(crate) fn collision_pairs(
     let mut pairs = Vec::new();
     for (k, spec) in specs.iter().enumerate() {
         let what = spec.name.clone().unwrap_or_else(|| format!("collision {}", k + 1));
-        let find = |name: &str| {
-            (shaped.iter()).find(|(n, _)| n == name).ok_or_else(|| {
+        // A body's index among those with shapes.
+        let index = |name: &str| {
+            (shaped.iter()).position(|(n, _)| n == name).ok_or_else(|| {
                 invalid(
                     format!("{what}: bodies"),
                     format!("no body or robot link named `{name}` has collision shapes"),
                 )
             })
         };
+        if !spec.except.is_empty() && matches!(spec.bodies, PairBodies::Named(_)) {
+            return Err(invalid(
+                format!("{what}: except"),
+                "leaves pairs out of `bodies = \"all\"`; a pair named by its two bodies has none to leave out",
+            ));
+        }
         let friction = Friction::new(spec.friction, spec.static_friction.unwrap_or(spec.friction))
             .map_err(|error| invalid(format!("{what}: friction"), error.to_string()))?;
         if !(0.0..=1.0).contains(&spec.restitution) {
@@ -90,8 +97,6 @@ pub(crate) fn collision_pairs(
                         format!("`{first}` twice: a body's shapes do not collide with each other"),
                     ));
                 }
-                let index =
-                    |name: &str| find(name).map(|found| shaped.iter().position(|s| s.0 == found.0).unwrap_or(0));
                 vec![[index(first)?, index(second)?]]
             }
             PairBodies::Every(all) if all == "all" => {
@@ -104,8 +109,20 @@ pub(crate) fn collision_pairs(
                         ),
                     ));
                 }
+                let mut left_out = Vec::new();
+                for names in &spec.except {
+                    let [first, second] = names.as_slice() else {
+                        return Err(invalid(
+                            format!("{what}: except"),
+                            format!("each pair left out is two names; got {} names", names.len()),
+                        ));
+                    };
+                    let (a, b) = (index(first)?, index(second)?);
+                    left_out.push([a.min(b), a.max(b)]);
+                }
                 (0..shaped.len())
                     .flat_map(|a| (a + 1..shaped.len()).map(move |b| [a, b]))
+                    .filter(|pair| !left_out.contains(pair))
                     .collect()
             }
             PairBodies::Every(other) => {

@@ -107,6 +107,9 @@ pub struct CollisionSpec {
     pub name: Option<String>,
     /// Two body or link names, or `"all"`.
     pub bodies: PairBodies,
+    /// With `"all"`: pairs left out, each two names.
+    #[serde(default)]
+    pub except: Vec<Vec<String>>,
     /// Coulomb's kinetic coefficient μ ≥ 0 (default 0).
     #[serde(default)]
     pub friction: f64,

@@ -1125,3 +1125,89 @@ bodies = ["leg", "ball"]
     check::<Pga>(&parsed, &expected);
     check::<Cga>(&parsed, &expected);
 }
+
+/// `bodies = "all"` pairs every two bodies with collision shapes, robot links among them, but for links joined by a
+/// joint (their shapes meet at the joint by design) and the pairs `except` leaves out.
+#[test]
+fn all_pairs_skip_joined_links_and_those_left_out() {
+    let dir = fresh("all-pairs");
+    let urdf = r#"<robot name="hopper">
+  <link name="base">
+    <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="leg">
+    <inertial><origin xyz="0 0 -0.1"/><mass value="0.2"/><inertia ixx="0.002" iyy="0.002" izz="0.0005" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 -0.2"/><geometry><sphere radius="0.03"/></geometry></collision>
+  </link>
+  <joint name="hip" type="revolute">
+    <parent link="base"/><child link="leg"/><origin xyz="0.05 0 -0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="10"/>
+  </joint>
+</robot>"#;
+    std::fs::write(dir.join("hopper.urdf"), urdf).unwrap();
+    let scene = r#"title = "hopper among things"
+algebra = "pga"
+tolerance = 1e-10
+duration = 0.1
+
+[robot]
+urdf = "hopper.urdf"
+root = "free"
+collisions = "urdf"
+base_position = [0.0, 0.0, 0.4]
+
+[[body]]
+name = "ball"
+mass = 0.1
+shape = { kind = "sphere", radius = 0.05 }
+collision = [{ kind = "sphere", radius = 0.05 }]
+initial = { position = [1.0, 0.0, 0.05] }
+
+[[body]]
+name = "crate"
+mass = 1.0
+shape = { kind = "cuboid", size = [0.2, 0.2, 0.2] }
+collision = [{ kind = "box", size = [0.2, 0.2, 0.2] }]
+initial = { position = [-1.0, 0.0, 0.1] }
+
+[[plane]]
+name = "floor"
+
+[[collision]]
+bodies = "all"
+except = [["crate", "ball"]]
+"#;
+    let parsed = Scene::parse_in(scene, &dir).unwrap();
+    let system = parsed.system::<Pga>().unwrap();
+    let mut pairs: Vec<&str> = (system.mechanism().contact_names())
+        .filter(|name| !name.starts_with("floor: "))
+        .map(|name| name.split(": ").next().unwrap())
+        .collect();
+    pairs.dedup();
+    assert_eq!(pairs, ["ball / base", "ball / leg", "crate / base", "crate / leg"]);
+    // `except` names two bodies with shapes, with "all" only.
+    for (from, to, part) in [
+        (
+            "except = [[\"crate\", \"ball\"]]",
+            "except = [[\"crate\"]]",
+            "each pair left out is two names",
+        ),
+        (
+            "except = [[\"crate\", \"ball\"]]",
+            "except = [[\"crate\", \"moon\"]]",
+            "no body or robot link named `moon`",
+        ),
+        (
+            "bodies = \"all\"",
+            "bodies = [\"crate\", \"ball\"]",
+            "has none to leave out",
+        ),
+    ] {
+        let message = Scene::parse_in(&scene.replace(from, to), &dir)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(message.contains("collision 1") && message.contains(part), "{message}");
+    }
+}
