@@ -120,6 +120,13 @@ impl Friction {
     }
 }
 
+/// A contact's touching point may be this far (m) outside its face ([`crate::Mechanism::set_contact_face`]) before
+/// the run stops: a point on the face's edge is outside by round-off.
+pub const OUTSIDE_FACE: f64 = 1e-9;
+
+/// The most planes a contact's face is bounded by (a convex hull's faces: at most twice its vertices).
+pub const MAX_FACE_PLANES: usize = 1024;
+
 /// A restitution coefficient, refused outside [0, 1] with an error naming `what`.
 fn checked_restitution(what: &str, restitution: f64) -> Result<f64, ConstraintError> {
     if !(0.0..=1.0).contains(&restitution) {

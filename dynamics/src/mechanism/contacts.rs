@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::contacts::{BallContact, Friction, PlaneContact};
+use crate::contacts::{BallContact, Friction, PlaneContact, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
@@ -193,7 +193,109 @@ impl<A: Algebra> Mechanism<A> {
             restitution,
             friction,
             against,
+            face: Vec::new(),
         });
+        Ok(())
+    }
+
+    /// Bounds the plane of contact `name` to a face: its touching point must stay inside the convex solid `n_k · x ≤
+    /// d_k` (the planes in the frame the contact's plane was given in: the world's, or the surface body's) while it
+    /// touches, within [`OUTSIDE_FACE`]. The plane itself is unbounded; a contact that holds, or meets its plane,
+    /// outside the face would be a silently wrong answer, so [`crate::simulate()`] stops there with an error naming the
+    /// contact and how far outside it is. Each normal finite and not zero, each offset finite and within
+    /// [`crate::contacts::LARGEST_COORDINATE`]; at most [`MAX_FACE_PLANES`] planes. A ball contact has no face.
+    ///
+    /// ```
+    /// use dynamics::{contacts::PlaneContact, Body, Mechanism, Pga};
+    /// use nalgebra::Vector3;
+    ///
+    /// // A table top 1 m square at z = 0.8: a corner of a block may rest on it only within |x|, |y| ≤ 0.5.
+    /// let mut scene = Mechanism::<Pga>::new();
+    /// let block = scene.add_body("block", Body::cuboid(1.0, Vector3::repeat(0.1))?)?;
+    /// scene.add_contact("corner", block, PlaneContact::new(Vector3::new(0.05, 0.05, -0.05), Vector3::z(), 0.8)?)?;
+    /// let sides = [(Vector3::x(), 0.5), (-Vector3::x(), 0.5), (Vector3::y(), 0.5), (-Vector3::y(), 0.5)];
+    /// scene.set_contact_face("corner", &sides)?;
+    /// assert!(scene.set_contact_face("edge", &sides).is_err()); // no such contact
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_contact_face(&mut self, name: &str, solid: &[(Vector3<f64>, f64)]) -> Result<(), MechanismError> {
+        let refuse = |reason: String| {
+            MechanismError::from(ConstraintError::InvalidParameter {
+                name: name.to_owned(),
+                reason,
+            })
+        };
+        let Some(index) = self.contacts.iter().position(|c| c.name == name) else {
+            return Err(refuse("no contact has this name".to_owned()));
+        };
+        if solid.len() > MAX_FACE_PLANES {
+            return Err(refuse(format!(
+                "a face is bounded by at most {MAX_FACE_PLANES} planes, got {}",
+                solid.len()
+            )));
+        }
+        let frame = match self.contacts[index].against {
+            Against::World { .. } => nalgebra::Isometry3::identity(),
+            Against::Face { body, .. } => self.bodies[body].frame,
+            Against::Ball { .. } => return Err(refuse("a ball contact has no face".to_owned())),
+        };
+        let within = |x: f64| x.is_finite() && x.abs() <= crate::contacts::LARGEST_COORDINATE;
+        let mut face = Vec::with_capacity(solid.len());
+        for (k, (normal, offset)) in solid.iter().enumerate() {
+            let length = normal.norm();
+            if !(length.is_finite() && length > 0.0 && within(*offset)) {
+                return Err(refuse(format!(
+                    "the face's plane {} needs a finite, non-zero normal and a finite offset within {:e} m, got {:?} \
+                     and {offset}",
+                    k + 1,
+                    crate::contacts::LARGEST_COORDINATE,
+                    normal.as_slice()
+                )));
+            }
+            // n · y ≤ d in the given frame F is (R n) · x ≤ d + (R n) · t in principal coordinates x = F y.
+            let normal = frame.rotation * (normal / length);
+            face.push((normal, offset / length + normal.dot(&frame.translation.vector)));
+        }
+        self.contacts[index].face = face;
+        Ok(())
+    }
+
+    /// An error naming the first contact that touches its plane (held, or within [`TOUCHING`] of it) with its
+    /// touching point outside its face by more than [`OUTSIDE_FACE`] ([`Mechanism::set_contact_face`]).
+    pub(super) fn check_faces(
+        &self,
+        t: f64,
+        states: &[State<A>],
+        held: &[Option<crate::limits::Bound>],
+    ) -> Result<(), ConstraintError> {
+        for (c, contact) in self.contacts.iter().enumerate() {
+            if contact.face.is_empty() {
+                continue;
+            }
+            let frame = self.contact_frame(c, states);
+            if held[self.limits.len() + c].is_none() && frame.gap > TOUCHING {
+                continue;
+            }
+            // The touching point in the frame the face is fixed in.
+            let point = match contact.against {
+                Against::Face { body, .. } => {
+                    let (position, rotation) = states[body].pose();
+                    rotation.inverse() * (frame.touching - position)
+                }
+                _ => frame.touching,
+            };
+            let outside = (contact.face.iter()).fold(f64::NEG_INFINITY, |m, (n, d)| m.max(n.dot(&point) - d));
+            if outside > OUTSIDE_FACE.max(4.0 * f64::EPSILON * point.amax()) {
+                return Err(ConstraintError::InvalidParameter {
+                    name: contact.name.clone(),
+                    reason: format!(
+                        "at t = {t} the contact touches its plane {outside:.3e} m outside its face: the plane holds \
+                         only on the face, and a contact keeps the features it was given (docs/contacts.md \
+                         \"Between bodies\")"
+                    ),
+                });
+            }
+        }
         Ok(())
     }
 

@@ -83,6 +83,9 @@ pub(super) struct Contact {
     pub restitution: f64,
     pub friction: Friction,
     pub against: Against,
+    /// The face the contact holds on, if bounded: the convex solid `n · x ≤ d` (in the frame `against` is fixed in,
+    /// principal coordinates for a body; n unit) its touching point must stay inside while it touches.
+    pub face: Vec<(Vector3<f64>, f64)>,
 }
 
 /// What a contact's point or sphere stays outside of (docs/contacts.md "Between bodies").

@@ -73,6 +73,7 @@ impl<A: Algebra> Mechanism<A> {
             });
         }
         let space = self.limited_space()?;
+        self.check_faces(t, states, &workspace.held)?;
         if workspace.held.iter().any(Option::is_some) {
             self.evaluate_states(t, states, workspace)?;
         }

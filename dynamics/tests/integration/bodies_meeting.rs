@@ -416,6 +416,57 @@ fn a_block_on_a_turntable_turns_with_it<A: Algebra>() {
     }
 }
 
+/// A block sliding without friction at 2 m/s across a table top 1 m square (a plane bounded to a face): its leading
+/// corners reach the table's edge at `(0.5 − 0.1)/2` s, where the run stops with an error naming a corner and saying
+/// it is outside its face, rather than holding the block up on the plane beyond the table.
+fn a_block_sliding_off_a_bounded_face_stops_the_run<A: Algebra>() {
+    let block = Body::cuboid(1.0, Vector3::repeat(0.2)).unwrap();
+    let mut system = Mechanism::<A>::new();
+    let id = system.add_body("block", block).unwrap();
+    system.add_force(id, Force::gravity()).unwrap();
+    let sides = [
+        (Vector3::x(), 0.5),
+        (-Vector3::x(), 0.5),
+        (Vector3::y(), 0.5),
+        (-Vector3::y(), 0.5),
+    ];
+    for (c, corner) in bottom_corners(Vector3::repeat(0.2)).into_iter().enumerate() {
+        let name = format!("corner {c}");
+        system
+            .add_contact(name.as_str(), id, PlaneContact::new(corner, Vector3::z(), 0.8).unwrap())
+            .unwrap();
+        system.set_contact_face(&name, &sides).unwrap();
+    }
+    let start = [moving::<A>(&block, Vector3::new(0.0, 0.0, 0.9), Vector3::x() * 2.0)];
+    let edge = (0.5 - 0.1) / 2.0;
+    let error = simulate(&system, &start, Method::Dop853Body, &adaptive(1e-10, 1.0))
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        error.contains("corner") && error.contains("outside its face"),
+        "{error}"
+    );
+    let at: f64 = error
+        .split("at t = ")
+        .nth(1)
+        .and_then(|rest| rest.split([' ', ':']).next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{error}"));
+    assert!(
+        at > edge && at < edge + 0.05,
+        "stopped at t = {at}, the edge at {edge} s"
+    );
+    // On the table the same block slides on undisturbed.
+    let run = simulate(&system, &start, Method::Dop853Body, &adaptive(1e-10, 0.15)).unwrap();
+    let end = run.body(0).last().unwrap();
+    assert!(
+        (end.position - Vector3::new(0.3, 0.0, 0.9)).norm() < 1e-10,
+        "{}",
+        end.position
+    );
+}
+
 /// Careless contacts between bodies are refused naming the cause: ball radii zero, negative, NaN, infinite or huge;
 /// centres NaN, infinite or far away; restitution outside [0, 1]; a body in contact with itself; a body of another
 /// mechanism.
@@ -480,6 +531,7 @@ fn careless_contacts_between_bodies_are_refused() {
 }
 
 for_both_algebras!(
+    a_block_sliding_off_a_bounded_face_stops_the_run,
     a_ball_leaves_a_ball_at_the_classical_angle,
     a_block_on_a_turntable_turns_with_it,
     two_balls_meeting_off_centre_leave_at_right_angles,

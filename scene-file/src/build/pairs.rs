@@ -24,13 +24,16 @@ struct Placed<'p> {
     to_world: Isometry3<f64>,
 }
 
-/// Adds every pair's contacts to the mechanism.
-pub(crate) fn add_pair_contacts<A: Algebra>(assembly: &mut Assembly<A>) -> Result<(), SceneFileError> {
+/// Adds every pair's contacts to the mechanism, their features chosen with the bodies at `start` (on the joints).
+pub(crate) fn add_pair_contacts<A: Algebra>(
+    assembly: &mut Assembly<A>,
+    start: &[State<A>],
+) -> Result<(), SceneFileError> {
     let scene = assembly.scene;
     let joined = joined_bodies(&assembly.mechanism);
     for pair in &scene.pairs {
         let what = format!("collision {}", pair.name);
-        let [first, second] = [0, 1].map(|k| place(assembly, &pair.sides[k].body, &what));
+        let [first, second] = [0, 1].map(|k| place(assembly, start, &pair.sides[k].body, &what));
         let (first, second) = (first?, second?);
         if first.id == second.id || joined.contains(&(first.id, second.id)) || joined.contains(&(second.id, first.id)) {
             if pair.among_all {
@@ -68,8 +71,13 @@ fn joined_bodies<A: Algebra>(mechanism: &Mechanism<A>) -> Vec<(BodyId, BodyId)> 
     )
 }
 
-/// Where the body or link `name` is: its id, its frame in the body's reference frame, and the start's pose.
-fn place<'p, A: Algebra>(assembly: &Assembly<A>, name: &'p str, what: &str) -> Result<Placed<'p>, SceneFileError> {
+/// Where the body or link `name` is: its id, its frame in the body's reference frame, and its pose at `start`.
+fn place<'p, A: Algebra>(
+    assembly: &Assembly<A>,
+    start: &[State<A>],
+    name: &'p str,
+    what: &str,
+) -> Result<Placed<'p>, SceneFileError> {
     let scene = assembly.scene;
     let robot = scene.robot.as_ref().map(|robot| &robot.loaded);
     let end = scene.layout.end(robot, &format!("{what}: bodies"), name)?;
@@ -81,7 +89,7 @@ fn place<'p, A: Algebra>(assembly: &Assembly<A>, name: &'p str, what: &str) -> R
     };
     // The place is in principal coordinates; contacts take points in the body's reference frame.
     let reference = assembly.mechanism.reference_frame(id)?;
-    let state: &State<A> = &assembly.states[id.index()];
+    let state = &start[id.index()];
     let (position, rotation) = state.pose();
     let pose = Isometry3::from_parts(position.into(), rotation);
     Ok(Placed {
@@ -164,9 +172,14 @@ fn add_shape_pair<A: Algebra>(
         ((first, a), (second, b))
     };
     let face = shape.faces[k];
-    // The face's plane in its body's reference frame: `(R n) · x = d + (R n) · t`.
-    let normal = faced.to_body.rotation * face.normal;
-    let offset = face.offset + normal.dot(&faced.to_body.translation.vector);
+    // A plane of the shape in its body's reference frame: `(R n) · x = d + (R n) · t`.
+    let placed = |face: &Face| {
+        let normal = faced.to_body.rotation * face.normal;
+        (normal, face.offset + normal.dot(&faced.to_body.translation.vector))
+    };
+    let (normal, offset) = placed(&face);
+    // The contacts hold on this face only: inside the shape's other faces.
+    let solid: Vec<_> = shape.faces.iter().map(placed).collect();
     for feature in &features.features {
         let point = other.to_body * Point3::from(feature.centre);
         let contact = if feature.radius > 0.0 {
@@ -188,7 +201,8 @@ fn add_shape_pair<A: Algebra>(
             k + 1
         );
         mechanism
-            .add_contact_on(name, other.id, faced.id, contact)
+            .add_contact_on(name.as_str(), other.id, faced.id, contact)
+            .and_then(|()| mechanism.set_contact_face(&name, &solid))
             .map_err(|e| failed(&e))?;
     }
     Ok(())

@@ -145,8 +145,9 @@ pub(crate) fn build<A: RoundPins>(scene: &CheckedScene) -> Result<SceneSystem<A>
     assembly.mechanism.set_stabilisation(scene.stabilisation)?;
     add_elements(&mut assembly)?;
     add_contacts(&mut assembly)?;
-    add_pair_contacts(&mut assembly)?;
     let (initial, start_correction) = start(&assembly)?;
+    // The pairs' features are chosen where the start is, on the joints (a body a joint places has its pose only now).
+    add_pair_contacts(&mut assembly, &initial)?;
     let Assembly {
         mechanism,
         places,

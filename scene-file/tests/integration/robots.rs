@@ -21,16 +21,16 @@ use nalgebra::{UnitQuaternion, Vector3};
 use scenarios::trajectory;
 use scene_file::{FileAlgebra, Scene};
 
-fn scenes() -> PathBuf {
+pub(super) fn scenes() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes")
 }
 
-fn robots() -> PathBuf {
+pub(super) fn robots() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../reference/data/robots")
 }
 
 /// A fresh folder in the temporary directory.
-fn fresh(name: &str) -> PathBuf {
+pub(super) fn fresh(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("scene-file-robots-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -560,11 +560,11 @@ fn the_careless_input_bases_parse() {
 
 /// A careless input: in the base text, `from` replaced by `to`, and the parts its message must mention (the entry and
 /// the value).
-type Row<'a> = (&'a str, &'a str, &'a str, &'a [&'a str]);
+pub(super) type Row<'a> = (&'a str, &'a str, &'a str, &'a [&'a str]);
 
 /// Every row's text (a robot's URDF relative to the robots' folder) fails with a message that contains every one of
 /// its parts; the rows that do not are listed together.
-fn assert_each_refused(rows: &[Row]) {
+pub(super) fn assert_each_refused(rows: &[Row]) {
     let mut failures = Vec::new();
     for (base, from, to, parts) in rows {
         assert!(base.contains(from), "{from:?} is not in the base");
@@ -593,7 +593,7 @@ fn assert_each_refused(rows: &[Row]) {
 }
 
 /// A shipped scene file's text.
-fn shipped(name: &str) -> String {
+pub(super) fn shipped(name: &str) -> String {
     std::fs::read_to_string(scenes().join(name)).unwrap()
 }
 
@@ -822,44 +822,6 @@ fn careless_contacts_fail_naming_the_entry_and_the_value() {
     assert_each_refused(rows);
 }
 
-/// `[[collision]]` pairs with their careless inputs (the shipped stack and billiards scene edited): the wrong number of
-/// bodies, one body twice, an unknown body or one without shapes, a word other than "all", coefficients out of range,
-/// unknown keys, a start where two shapes interpenetrate (naming the pair, the shapes and the depth), a capsule
-/// against a sphere.
-#[test]
-fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
-    let scene = shipped("stack_and_billiards.toml");
-    let pair = "bodies = [\"top\", \"middle\"]\nfriction = 0.5";
-    let balls = "bodies = [\"cue\", \"red\"]";
-    let top_shape =
-        "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]\ninitial = { position = [0.0, 0.0, 0.6] }";
-    #[rustfmt::skip]
-    let rows: &[Row] = &[
-        (&scene, pair, "bodies = [\"top\"]", &["collision 2: bodies", "name two bodies", "got 1 names"]),
-        (&scene, pair, "bodies = [\"top\", \"middle\", \"base\"]", &["collision 2: bodies", "got 3 names"]),
-        (&scene, pair, "bodies = [\"top\", \"top\"]", &["collision 2: bodies", "`top` twice"]),
-        (&scene, balls, "bodies = [\"cue\", \"cue\"]", &["balls: bodies", "`cue` twice"]),
-        (&scene, pair, "bodies = [\"top\", \"moon\"]", &["collision 2: bodies", "no body or robot link named `moon`"]),
-        (&scene, pair, "bodies = [\"top\", \"world\"]", &["collision 2: bodies", "named `world`"]),
-        (&scene, pair, "bodies = \"everything\"", &["collision 2: bodies", "\"all\"", "everything"]),
-        (&scene, pair, "bodies = 3", &["did not match any variant"]),
-        (&scene, pair, "friction = 0.5", &["missing field `bodies`"]),
-        (&scene, pair, &format!("{pair}\nfriction = -0.5"), &["duplicate key"]),
-        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = -0.5", &["collision 2: friction", "kinetic coefficient", "-0.5"]),
-        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = nan", &["collision 2: friction", "NaN"]),
-        (&scene, pair, "bodies = [\"top\", \"middle\"]\nfriction = 1e300", &["collision 2: friction", "1e6"]),
-        (&scene, pair, &format!("{pair}\nstatic_friction = 0.1"), &["collision 2: friction", "static coefficient 0.1 is below the kinetic one 0.5"]),
-        (&scene, pair, &format!("{pair}\nrestitution = 1.5"), &["collision 2: restitution", "1.5"]),
-        (&scene, pair, &format!("{pair}\nrestitution = nan"), &["collision 2: restitution", "NaN"]),
-        (&scene, pair, &format!("{pair}\ncolour = 1"), &["unknown field `colour`"]),
-        (&scene, top_shape, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]\ninitial = { position = [0.0, 0.0, 0.55] }", &["collision top / middle: `top` box 1 and `middle` box 1", "5.000e-2 m into each other"]),
-        (&scene, "position = [0.0, 1.03, 0.0285]", "position = [-0.98, 1.0, 0.0285]", &["collision balls: `cue` sphere 1 and `red` sphere 1", "into each other"]),
-        (&scene, top_shape, "initial = { position = [0.0, 0.0, 0.6] }", &["collision 2: bodies", "no body or robot link named `top` has collision shapes"]),
-        (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"capsule\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` capsule 1 against `red` sphere 1", "not modelled"]),
-    ];
-    assert_each_refused(rows);
-}
-
 /// Points on surfaces and curves with their careless inputs (the shipped surface scenes edited).
 #[test]
 fn careless_surfaces_fail_naming_the_entry_and_the_value() {
@@ -1047,167 +1009,4 @@ fn careless_collision_shapes_and_planes_fail_naming_the_entry_and_the_value() {
         .map(|e| e.to_string())
         .unwrap_or_default();
     assert!(message.contains("no [[plane]]"), "{message}");
-}
-
-/// Contacts and collision shapes on robot links sit where the URDF's kinematics put them, also on a link whose centre
-/// of mass is off its frame's origin (its body's principal frame is not the link frame): a hopper with a free base at
-/// (0, 0, 0.4) turned 10° about x, its leg on a hip 0.3 rad about y at (0.05, 0, −0.05), a foot sphere of 3 cm at
-/// (0, 0, −0.2) in the leg's frame (whose centre of mass is at (0, 0, −0.1), its principal axes turned about y), and a
-/// free ball of 5 cm beside it in a
-/// `[[collision]]` pair with the leg. At the start the foot's height above the floor is its centre's z less 3 cm, and
-/// the pair's gap the distance of the centres less 8 cm, each to 1e-12 m, in both algebras.
-#[test]
-fn contacts_on_robot_links_sit_where_the_kinematics_put_them() {
-    let dir = fresh("link-contacts");
-    let urdf = r#"<robot name="hopper">
-  <link name="base">
-    <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
-  </link>
-  <link name="leg">
-    <inertial><origin xyz="0 0 -0.1"/><mass value="0.2"/><inertia ixx="0.002" iyy="0.002" izz="0.0005" ixy="0" ixz="0.0003" iyz="0"/></inertial>
-    <collision><origin xyz="0 0 -0.2"/><geometry><sphere radius="0.03"/></geometry></collision>
-  </link>
-  <joint name="hip" type="revolute">
-    <parent link="base"/><child link="leg"/><origin xyz="0.05 0 -0.05"/><axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="10"/>
-  </joint>
-</robot>"#;
-    std::fs::write(dir.join("hopper.urdf"), urdf).unwrap();
-    let scene = r#"title = "hopper"
-algebra = "both"
-tolerance = 1e-10
-duration = 0.1
-
-[robot]
-urdf = "hopper.urdf"
-root = "free"
-collisions = "urdf"
-base_position = [0.0, 0.0, 0.4]
-base_orientation = { axis = [1.0, 0.0, 0.0], degrees = 10.0 }
-q = { hip = 0.3 }
-
-[[body]]
-name = "ball"
-mass = 0.1
-shape = { kind = "sphere", radius = 0.05 }
-collision = [{ kind = "sphere", radius = 0.05 }]
-initial = { position = [0.3, 0.1, 0.2] }
-
-[[plane]]
-name = "floor"
-
-[[collision]]
-bodies = ["leg", "ball"]
-"#;
-    let parsed = Scene::parse_in(scene, &dir).unwrap();
-    let base = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 10f64.to_radians());
-    let hip = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), 0.3);
-    let foot =
-        Vector3::new(0.0, 0.0, 0.4) + base * (Vector3::new(0.05, 0.0, -0.05) + hip * Vector3::new(0.0, 0.0, -0.2));
-    let ball = Vector3::new(0.3, 0.1, 0.2);
-    let expected = [
-        ("floor: ball sphere 1", ball.z - 0.05),
-        ("floor: leg sphere 1", foot.z - 0.03),
-        ("leg / ball: leg sphere 1 on ball sphere 1", (foot - ball).norm() - 0.08),
-    ];
-    fn check<A: FileAlgebra>(parsed: &Scene, expected: &[(&str, f64)]) {
-        let system = parsed.system::<A>().unwrap();
-        let heights = system.mechanism().contact_heights(system.initial()).unwrap();
-        let names: Vec<&str> = system.mechanism().contact_names().collect();
-        assert_eq!(names, expected.iter().map(|e| e.0).collect::<Vec<_>>());
-        for ((name, exact), height) in expected.iter().zip(heights) {
-            assert!(
-                (height - exact).abs() < 1e-12,
-                "{name}: {height} m, {exact} m from the kinematics"
-            );
-        }
-    }
-    check::<Pga>(&parsed, &expected);
-    check::<Cga>(&parsed, &expected);
-}
-
-/// `bodies = "all"` pairs every two bodies with collision shapes, robot links among them, but for links joined by a
-/// joint (their shapes meet at the joint by design) and the pairs `except` leaves out.
-#[test]
-fn all_pairs_skip_joined_links_and_those_left_out() {
-    let dir = fresh("all-pairs");
-    let urdf = r#"<robot name="hopper">
-  <link name="base">
-    <inertial><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
-  </link>
-  <link name="leg">
-    <inertial><origin xyz="0 0 -0.1"/><mass value="0.2"/><inertia ixx="0.002" iyy="0.002" izz="0.0005" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><origin xyz="0 0 -0.2"/><geometry><sphere radius="0.03"/></geometry></collision>
-  </link>
-  <joint name="hip" type="revolute">
-    <parent link="base"/><child link="leg"/><origin xyz="0.05 0 -0.05"/><axis xyz="0 1 0"/>
-    <limit lower="-1" upper="1" effort="10" velocity="10"/>
-  </joint>
-</robot>"#;
-    std::fs::write(dir.join("hopper.urdf"), urdf).unwrap();
-    let scene = r#"title = "hopper among things"
-algebra = "pga"
-tolerance = 1e-10
-duration = 0.1
-
-[robot]
-urdf = "hopper.urdf"
-root = "free"
-collisions = "urdf"
-base_position = [0.0, 0.0, 0.4]
-
-[[body]]
-name = "ball"
-mass = 0.1
-shape = { kind = "sphere", radius = 0.05 }
-collision = [{ kind = "sphere", radius = 0.05 }]
-initial = { position = [1.0, 0.0, 0.05] }
-
-[[body]]
-name = "crate"
-mass = 1.0
-shape = { kind = "cuboid", size = [0.2, 0.2, 0.2] }
-collision = [{ kind = "box", size = [0.2, 0.2, 0.2] }]
-initial = { position = [-1.0, 0.0, 0.1] }
-
-[[plane]]
-name = "floor"
-
-[[collision]]
-bodies = "all"
-except = [["crate", "ball"]]
-"#;
-    let parsed = Scene::parse_in(scene, &dir).unwrap();
-    let system = parsed.system::<Pga>().unwrap();
-    let mut pairs: Vec<&str> = (system.mechanism().contact_names())
-        .filter(|name| !name.starts_with("floor: "))
-        .map(|name| name.split(": ").next().unwrap())
-        .collect();
-    pairs.dedup();
-    assert_eq!(pairs, ["ball / base", "ball / leg", "crate / base", "crate / leg"]);
-    // `except` names two bodies with shapes, with "all" only.
-    for (from, to, part) in [
-        (
-            "except = [[\"crate\", \"ball\"]]",
-            "except = [[\"crate\"]]",
-            "each pair left out is two names",
-        ),
-        (
-            "except = [[\"crate\", \"ball\"]]",
-            "except = [[\"crate\", \"moon\"]]",
-            "no body or robot link named `moon`",
-        ),
-        (
-            "bodies = \"all\"",
-            "bodies = [\"crate\", \"ball\"]",
-            "has none to leave out",
-        ),
-    ] {
-        let message = Scene::parse_in(&scene.replace(from, to), &dir)
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default();
-        assert!(message.contains("collision 1") && message.contains(part), "{message}");
-    }
 }
