@@ -24,6 +24,9 @@ pub struct AlgebraRun {
     pub transitions: Vec<LimitTransition>,
     /// The deepest any contact point went below its plane over the samples (m); 0 without contacts.
     pub deepest: f64,
+    /// The `[[collision]]` shapes that went deepest into each other at a sample, by parry3d's query rather than the
+    /// contacts (`SceneSystem::deepest_overlap`): the time, the shapes and the depth (m); `None` if none overlapped.
+    pub overlap: Option<(f64, String, f64)>,
     /// The largest joint violation per sample (m).
     pub(crate) violation: Vec<f64>,
     /// The work done by the force elements from the start to each sample (J; `Sample::work`).
@@ -102,6 +105,7 @@ pub(crate) fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &Scene) -> Res
     let robot = system.joint_columns().is_some();
     let mut violation = Vec::with_capacity(samples.len());
     let mut deepest = 0.0f64;
+    let mut overlap = None;
     let mut rows = Vec::new();
     let mut previous: Option<Vec<f64>> = None;
     for k in 0..samples.len() {
@@ -134,6 +138,11 @@ pub(crate) fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &Scene) -> Res
                 .contact_heights(&states)
                 .map_err(|e| failed("the contact heights", &e))?;
             deepest = heights.into_iter().fold(deepest, |d, h| d.max(-h));
+            if let Some((shapes, depth)) = system.deepest_overlap(&states) {
+                if overlap.as_ref().is_none_or(|(_, _, deepest)| depth > *deepest) {
+                    overlap = Some((samples[k].t, shapes, depth));
+                }
+            }
         }
         if let Some(q) = q {
             rows.extend(system.joint_row(&q));
@@ -156,5 +165,6 @@ pub(crate) fn run_in<A: FileAlgebra>(algebra: AlgebraKind, scene: &Scene) -> Res
         statistics: simulation.statistics,
         transitions,
         deepest,
+        overlap,
     })
 }

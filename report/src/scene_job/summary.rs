@@ -316,6 +316,22 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
             },
         );
     }
+    if !scene.pairs.is_empty() {
+        for run in runs {
+            let deepest = match &run.overlap {
+                Some((t, shapes, depth)) => format!("{} m ({}, t = {t} s)", scientific(*depth), escape(shapes)),
+                None => "none".to_owned(),
+            };
+            let _ = writeln!(
+                out,
+                "{}: the deepest two `[[collision]]` shapes went into each other at the samples, by parry3d's query \
+                 rather than the contacts (it sees an edge through an edge, which no contact watches; its tolerance \
+                 for polytopes is some 1e-8 m): {deepest}.",
+                run.algebra.name()
+            );
+        }
+        let _ = writeln!(out);
+    }
     if limited {
         let _ = writeln!(out);
     }

@@ -278,8 +278,13 @@ fn the_shipped_stack_rests_and_the_billiard_balls_meet() {
             "Pairs of bodies whose collision shapes stay apart",
             "- top / middle: `top` and `middle`, restitution 0, friction 0.5",
             "- balls: `cue` and `red`, restitution 0.9, friction 0.05",
+            "PGA: the deepest two `[[collision]]` shapes went into each other at the samples, by parry3d's query",
         ],
     );
+    // The boxes rest face on face: parry3d's query sees them touching, within its tolerance.
+    for run in [pga, cga] {
+        assert!(run.overlap.as_ref().is_none_or(|o| o.2 < 1e-6), "{:?}", run.overlap);
+    }
 }
 
 /// A box's collision shape on a `[[plane]]` is its eight corners as `[[contact]]`s: the same file written both ways

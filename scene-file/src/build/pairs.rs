@@ -9,6 +9,9 @@
 use dynamics::contacts::{BallContact, PlaneContact, TOUCHING};
 use dynamics::{Algebra, BodyId, Mechanism, Reference, State};
 use nalgebra::{Isometry3, Point3};
+use parry3d_f64::math::{Pose, Rotation, Vector};
+use parry3d_f64::query;
+use parry3d_f64::shape::SharedShape;
 
 use super::assembly::Assembly;
 use crate::check::collisions::{Face, Feature, ShapeGeometry, Solid};
@@ -24,13 +27,22 @@ struct Placed<'p> {
     to_world: Isometry3<f64>,
 }
 
-/// Adds every pair's contacts to the mechanism, their features chosen with the bodies at `start` (on the joints).
+/// A pair of shapes the contacts keep apart, as parry3d shapes for [`deepest_overlap`]: its name and, per side, the
+/// body, the shape's frame in the body's principal frame (where a state's pose puts it), and the shape there.
+pub(crate) struct ShapePair {
+    name: String,
+    sides: [(BodyId, Isometry3<f64>, SharedShape); 2],
+}
+
+/// Adds every pair's contacts to the mechanism, their features chosen with the bodies at `start` (on the joints);
+/// returns the pairs of shapes, for [`deepest_overlap`].
 pub(crate) fn add_pair_contacts<A: Algebra>(
     assembly: &mut Assembly<A>,
     start: &[State<A>],
-) -> Result<(), SceneFileError> {
+) -> Result<Vec<ShapePair>, SceneFileError> {
     let scene = assembly.scene;
     let joined = joined_bodies(&assembly.mechanism);
+    let mut shapes = Vec::new();
     for pair in &scene.pairs {
         let what = format!("collision {}", pair.name);
         let [first, second] = [0, 1].map(|k| place(assembly, start, &pair.sides[k].body, &what));
@@ -52,10 +64,57 @@ pub(crate) fn add_pair_contacts<A: Algebra>(
         for a in &pair.sides[0].shapes {
             for b in &pair.sides[1].shapes {
                 add_shape_pair(&mut assembly.mechanism, pair, (&first, a), (&second, b))?;
+                let side = |placed: &Placed<'_>, shape: &ShapeGeometry| {
+                    let principal = assembly.mechanism.reference_frame(placed.id)? * placed.to_body;
+                    Ok::<_, SceneFileError>((placed.id, principal, parry_shape(shape)))
+                };
+                shapes.push(ShapePair {
+                    name: format!(
+                        "{}: {} {} and {} {}",
+                        pair.name, first.name, a.label, second.name, b.label
+                    ),
+                    sides: [side(&first, a)?, side(&second, b)?],
+                });
             }
         }
     }
-    Ok(())
+    Ok(shapes)
+}
+
+/// A shape as parry3d's: a ball about its centre, a capsule between its end spheres' centres, a polytope as the hull
+/// of its vertices (all in the shape's body or link frame).
+fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
+    let at = |v: &nalgebra::Vector3<f64>| Vector::new(v.x, v.y, v.z);
+    match shape.solid {
+        // A ball as a capsule of no length, so that its centre need not be the frame's origin.
+        Solid::Ball | Solid::Capsule => {
+            let (first, last) = (&shape.features[0], &shape.features[shape.features.len() - 1]);
+            SharedShape::capsule(at(&first.centre), at(&last.centre), first.radius)
+        }
+        Solid::Polytope => {
+            let vertices: Vec<Vector> = shape.features.iter().map(|f| at(&f.centre)).collect();
+            SharedShape::convex_hull(&vertices).expect("a checked hull has volume")
+        }
+    }
+}
+
+/// The pair of shapes that go deepest into each other with the bodies at `states` (their names and the depth, m), if
+/// any overlaps at all: parry3d's contact query, independent of the contacts, so that shapes that meet where no
+/// contact watches them (an edge through an edge) are seen.
+pub(crate) fn deepest_overlap<A: Algebra>(pairs: &[ShapePair], states: &[State<A>]) -> Option<(String, f64)> {
+    let pose = |(body, frame, _): &(BodyId, Isometry3<f64>, SharedShape)| {
+        let (position, rotation) = states[body.index()].pose();
+        let placed = Isometry3::from_parts(position.into(), rotation) * frame;
+        let (t, q) = (placed.translation.vector, placed.rotation);
+        Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
+    };
+    (pairs.iter())
+        .filter_map(|pair| {
+            let [a, b] = &pair.sides;
+            let contact = query::contact(&pose(a), a.2.as_ref(), &pose(b), b.2.as_ref(), 0.0).ok()??;
+            (contact.dist < 0.0).then(|| (pair.name.clone(), -contact.dist))
+        })
+        .max_by(|x, y| x.1.total_cmp(&y.1))
 }
 
 /// Every pair of bodies a joint model joins (child, parent), which `"all"` skips: a link's shapes touch its

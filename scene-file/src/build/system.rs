@@ -10,7 +10,7 @@ use super::assembly::Assembly;
 use super::constraints::RoundPins;
 use super::contacts::{add_contacts, check_contact_start};
 use super::elements::add_elements;
-use super::pairs::add_pair_contacts;
+use super::pairs::{add_pair_contacts, deepest_overlap, ShapePair};
 use super::robot::{RobotColumns, RobotJoint};
 use crate::check::bodies::Pose;
 use crate::check::geometry::{joint_violations, JointGeometry};
@@ -35,6 +35,8 @@ pub struct SceneSystem<A: Algebra> {
     robot_columns: Option<RobotColumns>,
     /// How far putting the file's start on the joints moved each body.
     start_correction: Correction,
+    /// The `[[collision]]` pairs' shapes, for [`SceneSystem::deepest_overlap`].
+    shape_pairs: Vec<ShapePair>,
 }
 
 impl<A: Algebra> SceneSystem<A> {
@@ -56,6 +58,17 @@ impl<A: Algebra> SceneSystem<A> {
     /// How far putting the file's start on the joints moved each body.
     pub fn start_correction(&self) -> &Correction {
         &self.start_correction
+    }
+
+    /// The `[[collision]]` pair of shapes that go deepest into each other with the bodies at `states` (mechanism
+    /// order): its description ("`pair`: `body` `shape` and `body` `shape`") and the depth (m), from parry3d's contact
+    /// query, independent of the contacts; `None` where no two shapes of a pair overlap. The contacts keep the
+    /// features they were given apart; this sees shapes that meet elsewhere (an edge through an edge, docs/contacts.md
+    /// "Between bodies"), to within parry3d's tolerance for polytopes (some 1e-8 m).
+    pub fn deepest_overlap(&self, states: &[State<A>]) -> Option<(String, f64)> {
+        (states.len() == self.names.len())
+            .then(|| deepest_overlap(&self.shape_pairs, states))
+            .flatten()
     }
 
     /// The headers of the joints CSV between `t` and `energy`, with a robot.
@@ -147,7 +160,7 @@ pub(crate) fn build<A: RoundPins>(scene: &CheckedScene) -> Result<SceneSystem<A>
     add_contacts(&mut assembly)?;
     let (initial, start_correction) = start(&assembly)?;
     // The pairs' features are chosen where the start is, on the joints (a body a joint places has its pose only now).
-    add_pair_contacts(&mut assembly, &initial)?;
+    let shape_pairs = add_pair_contacts(&mut assembly, &initial)?;
     let Assembly {
         mechanism,
         places,
@@ -182,6 +195,7 @@ pub(crate) fn build<A: RoundPins>(scene: &CheckedScene) -> Result<SceneSystem<A>
         geometries,
         robot_joints,
         robot_columns,
+        shape_pairs,
     })
 }
 

@@ -2,7 +2,7 @@
 //! refused by name, contacts and shapes on robot links where the kinematics put them, `"all"` and `except`, and a face
 //! contact that would hold outside its face stopping the run.
 
-use dynamics::{Cga, Pga};
+use dynamics::{Cga, Dynamics, Pga};
 use nalgebra::{UnitQuaternion, Vector3};
 use scene_file::{FileAlgebra, Scene};
 
@@ -225,6 +225,72 @@ fn a_box_thrown_off_a_stack_stops_the_run_at_the_edge_of_the_face() {
         error.contains("top / middle: top box 1 corner")
             && error.contains("on middle box 1 face 6")
             && error.contains("outside its face"),
+        "{error}"
+    );
+}
+
+/// Two boxes whose edges cross, one turned 45° about x above the other turned 45° about y: the contacts watch vertices
+/// on faces, not edges on edges, so an edge through an edge is seen only by `SceneSystem::deepest_overlap`
+/// (parry3d's query). Apart, nothing overlaps; with the upper box lowered until its bottom edge is 3.28 cm below the
+/// lower box's top edge, the pair overlaps, by at most that depth. Run, the crossing boxes stop with an error where a
+/// corner meets the other box's face plane outside the face, before their edges meet.
+#[test]
+fn crossed_edges_are_seen_by_the_overlap_query_and_stop_the_run() {
+    let scene = r#"title = "crossed edges"
+algebra = "pga"
+tolerance = 1e-10
+duration = 0.4
+
+[[body]]
+name = "upper"
+mass = 1.0
+shape = { kind = "cuboid", size = [0.2, 0.2, 0.2] }
+collision = [{ kind = "box", size = [0.2, 0.2, 0.2] }]
+initial = { position = [0.0, 0.0, 0.5], orientation = { axis = [1.0, 0.0, 0.0], degrees = 45.0 }, velocity = [0.0, 0.0, -1.0] }
+
+[[body]]
+name = "lower"
+mass = 1.0
+shape = { kind = "cuboid", size = [0.2, 0.2, 0.2] }
+collision = [{ kind = "box", size = [0.2, 0.2, 0.2] }]
+initial = { position = [0.0, 0.0, 0.0], orientation = { axis = [0.0, 1.0, 0.0], degrees = 45.0 } }
+
+[[collision]]
+bodies = ["upper", "lower"]
+"#;
+    let parsed = Scene::parse(scene).unwrap();
+    let system = parsed.system::<Pga>().unwrap();
+    assert_eq!(system.deepest_overlap(system.initial()), None);
+    let half_diagonal = 0.1 * std::f64::consts::SQRT_2;
+    let lowered = 2.0 * half_diagonal - 0.0328;
+    let body = |i: usize| *system.mechanism().body(i);
+    let turned = |axis: Vector3<f64>| UnitQuaternion::from_scaled_axis(axis * std::f64::consts::FRAC_PI_4);
+    let states = [
+        dynamics::State::<Pga>::from_world_twist(
+            &body(0),
+            Vector3::z() * lowered,
+            &turned(Vector3::x()),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+        dynamics::State::<Pga>::from_world_twist(
+            &body(1),
+            Vector3::zeros(),
+            &turned(Vector3::y()),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        ),
+    ];
+    let (shapes, depth) = system.deepest_overlap(&states).expect("the edges cross");
+    assert_eq!(shapes, "upper / lower: upper box 1 and lower box 1");
+    assert!(depth > 0.0 && depth <= 0.0328 + 1e-9, "{depth} m");
+    let error = parsed
+        .simulate::<Pga>()
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        error.contains("upper / lower: ") && error.contains("outside its face"),
         "{error}"
     );
 }
