@@ -109,6 +109,27 @@ fn two_balls_meeting_off_centre_leave_at_right_angles<A: Algebra>() {
     }
 }
 
+/// The same two balls meeting 1e4 m from the origin (in x and z): the impact within 1e-10 s of its time and the exit
+/// velocities within 1e-10 m/s, the round-off of coordinates 1e4 large.
+fn two_balls_meeting_far_from_the_origin<A: Algebra>() {
+    let (speed, offset, distance, far) = (1.0, RADIUS, 0.5, Vector3::new(1e4, 0.0, 1e4));
+    let system = balls::<A>(2);
+    let start = [
+        moving::<A>(&ball(), far + Vector3::new(-distance, 0.0, 0.0), Vector3::x() * speed),
+        moving::<A>(&ball(), far + Vector3::new(0.0, offset, 0.0), Vector3::zeros()),
+    ];
+    let reach = (4.0 * RADIUS * RADIUS - offset * offset).sqrt();
+    let line = Vector3::new(reach, offset, 0.0) / (2.0 * RADIUS);
+    let struck = line * speed * line.x;
+    let run = simulate(&system, &start, Method::Dop853Body, &adaptive(1e-12, 1.0)).unwrap();
+    assert_eq!(run.transitions.len(), 1, "{:?}", run.transitions);
+    assert!((run.transitions[0].t - (distance - reach) / speed).abs() < 1e-10);
+    let [first, second] = final_velocities(&run, 2)[..] else {
+        unreachable!()
+    };
+    assert!((second - struck).norm() < 1e-10 && (first - (Vector3::x() * speed - struck)).norm() < 1e-10);
+}
+
 /// Newton's cradle, three balls 1 mm apart: each impact is between two balls, so ball 0 stops and ball 1 moves on at
 /// its speed, then ball 1 stops and ball 2 leaves at it: (0, 0, v), at `g/v` and `2g/v`.
 fn newtons_cradle_with_gaps_passes_the_speed_down_the_row<A: Algebra>() {
@@ -531,6 +552,7 @@ fn careless_contacts_between_bodies_are_refused() {
 }
 
 for_both_algebras!(
+    two_balls_meeting_far_from_the_origin,
     a_block_sliding_off_a_bounded_face_stops_the_run,
     a_ball_leaves_a_ball_at_the_classical_angle,
     a_block_on_a_turntable_turns_with_it,

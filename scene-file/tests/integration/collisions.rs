@@ -284,6 +284,19 @@ bodies = ["upper", "lower"]
     let (shapes, depth) = system.deepest_overlap(&states).expect("the edges cross");
     assert_eq!(shapes, "upper / lower: upper box 1 and lower box 1");
     assert!(depth > 0.0 && depth <= 0.0328 + 1e-9, "{depth} m");
+    // Careless states: the wrong count is no overlap; non-finite or far-away poses do not panic.
+    assert_eq!(system.deepest_overlap(&states[..1]), None);
+    for far in [f64::NAN, f64::INFINITY, 1e300, 1e6] {
+        let mut moved = states.clone();
+        moved[0] = dynamics::State::<Pga>::from_world_twist(
+            &body(0),
+            Vector3::new(far, 0.0, far),
+            &turned(Vector3::x()),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        );
+        let _ = system.deepest_overlap(&moved);
+    }
     let error = parsed
         .simulate::<Pga>()
         .err()
