@@ -287,7 +287,7 @@ bodies = ["upper", "lower"]
     // Careless states: the wrong count is no overlap; non-finite or far-away poses do not panic.
     assert_eq!(system.deepest_overlap(&states[..1]), None);
     for far in [f64::NAN, f64::INFINITY, 1e300, 1e6] {
-        let mut moved = states.clone();
+        let mut moved = states;
         moved[0] = dynamics::State::<Pga>::from_world_twist(
             &body(0),
             Vector3::new(far, 0.0, far),
