@@ -6,41 +6,17 @@
 
 use dynamics::contacts::{BallContact, Friction, PlaneContact};
 use dynamics::limits::LimitChange;
-use dynamics::{
-    simulate, Algebra, Body, Force, JointMethod, Mechanism, Method, Schedule, Simulation, State, Tolerance,
-};
+use dynamics::{simulate, Algebra, Body, Force, JointMethod, Mechanism, Method, Schedule, Simulation, State};
 use nalgebra::{UnitQuaternion, Vector3};
+
+// The runs every test makes, as the friction tests make them: body-momentum stepping adaptive (DOP853-body) and
+// fixed (RKMK8-body), and joint-coordinate stepping (RKMK8-joint).
+use super::friction::{adaptive, runs};
 
 const G: f64 = 9.81;
 /// The balls' radius (m) and mass (kg).
 const RADIUS: f64 = 0.1;
 const MASS: f64 = 1.0;
-
-fn adaptive(tolerance: f64, duration: f64) -> Schedule {
-    Schedule::adaptive(Tolerance::new(tolerance, tolerance).unwrap(), duration, 0.01).unwrap()
-}
-
-/// The runs every test makes, as the friction tests do: body-momentum stepping adaptive (DOP853-body) and fixed
-/// (RKMK8-body), and joint-coordinate stepping (RKMK8-joint).
-fn runs<A: Algebra>(system: &Mechanism<A>, start: &[State<A>], duration: f64) -> Vec<Simulation<A>> {
-    vec![
-        simulate(system, start, Method::Dop853Body, &adaptive(1e-12, duration)).unwrap(),
-        simulate(
-            system,
-            start,
-            Method::Rkmk8Body,
-            &Schedule::new(2e-3, duration).unwrap(),
-        )
-        .unwrap(),
-        simulate(
-            system,
-            start,
-            JointMethod::Rkmk8,
-            &Schedule::new(2e-3, duration).unwrap(),
-        )
-        .unwrap(),
-    ]
-}
 
 fn ball() -> Body {
     Body::sphere(MASS, RADIUS).unwrap()
@@ -75,20 +51,29 @@ fn final_velocities<A: Algebra>(run: &Simulation<A>, count: usize) -> Vec<Vector
     (0..count).map(|b| run.body(b).last().unwrap().velocity).collect()
 }
 
+/// Ball 0 moving at 1 m/s along x, 0.5 m short of ball 1 at rest and off its centre by the radius, about `origin`:
+/// the start, the time they meet and ball 1's velocity after an elastic frictionless impact.
+fn off_centre<A: Algebra>(origin: Vector3<f64>) -> ([State<A>; 2], f64, Vector3<f64>) {
+    let (speed, offset, distance) = (1.0, RADIUS, 0.5);
+    let start = [
+        moving::<A>(
+            &ball(),
+            origin + Vector3::new(-distance, 0.0, 0.0),
+            Vector3::x() * speed,
+        ),
+        moving::<A>(&ball(), origin + Vector3::new(0.0, offset, 0.0), Vector3::zeros()),
+    ];
+    let reach = (4.0 * RADIUS * RADIUS - offset * offset).sqrt();
+    let line = Vector3::new(reach, offset, 0.0) / (2.0 * RADIUS);
+    (start, (distance - reach) / speed, line * speed * line.x)
+}
+
 /// Ball 0 moving at 1 m/s along x meets ball 1 at rest, off centre by the radius (sin θ = 1/2): it meets it where
 /// its centre is √(4r² − b²) short of ball 1's in x. Equal masses, elastic, no friction: ball 1 leaves along the line
 /// of centres at `v cos θ`, ball 0 at right angles to it with `v sin θ`, neither spinning.
 fn two_balls_meeting_off_centre_leave_at_right_angles<A: Algebra>() {
-    let (speed, offset, distance) = (1.0, RADIUS, 0.5);
-    let system = balls::<A>(2);
-    let start = [
-        moving::<A>(&ball(), Vector3::new(-distance, 0.0, 0.0), Vector3::x() * speed),
-        moving::<A>(&ball(), Vector3::new(0.0, offset, 0.0), Vector3::zeros()),
-    ];
-    let reach = (4.0 * RADIUS * RADIUS - offset * offset).sqrt();
-    let impact = (distance - reach) / speed;
-    let line = Vector3::new(reach, offset, 0.0) / (2.0 * RADIUS);
-    let struck = line * speed * line.x;
+    let (start, impact, struck) = off_centre::<A>(Vector3::zeros());
+    let (system, speed) = (balls::<A>(2), 1.0);
     for run in runs(&system, &start, 1.0) {
         assert_eq!(run.transitions.len(), 1, "{:?}", run.transitions);
         assert!(matches!(run.transitions[0].change, LimitChange::Bounced { .. }));
@@ -112,22 +97,14 @@ fn two_balls_meeting_off_centre_leave_at_right_angles<A: Algebra>() {
 /// The same two balls meeting 1e4 m from the origin (in x and z): the impact within 1e-10 s of its time and the exit
 /// velocities within 1e-10 m/s, the round-off of coordinates 1e4 large.
 fn two_balls_meeting_far_from_the_origin<A: Algebra>() {
-    let (speed, offset, distance, far) = (1.0, RADIUS, 0.5, Vector3::new(1e4, 0.0, 1e4));
-    let system = balls::<A>(2);
-    let start = [
-        moving::<A>(&ball(), far + Vector3::new(-distance, 0.0, 0.0), Vector3::x() * speed),
-        moving::<A>(&ball(), far + Vector3::new(0.0, offset, 0.0), Vector3::zeros()),
-    ];
-    let reach = (4.0 * RADIUS * RADIUS - offset * offset).sqrt();
-    let line = Vector3::new(reach, offset, 0.0) / (2.0 * RADIUS);
-    let struck = line * speed * line.x;
-    let run = simulate(&system, &start, Method::Dop853Body, &adaptive(1e-12, 1.0)).unwrap();
+    let (start, impact, struck) = off_centre::<A>(Vector3::new(1e4, 0.0, 1e4));
+    let run = simulate(&balls::<A>(2), &start, Method::Dop853Body, &adaptive(1e-12, 1.0)).unwrap();
     assert_eq!(run.transitions.len(), 1, "{:?}", run.transitions);
-    assert!((run.transitions[0].t - (distance - reach) / speed).abs() < 1e-10);
+    assert!((run.transitions[0].t - impact).abs() < 1e-10);
     let [first, second] = final_velocities(&run, 2)[..] else {
         unreachable!()
     };
-    assert!((second - struck).norm() < 1e-10 && (first - (Vector3::x() * speed - struck)).norm() < 1e-10);
+    assert!((second - struck).norm() < 1e-10 && (first - (Vector3::x() - struck)).norm() < 1e-10);
 }
 
 /// Newton's cradle, three balls 1 mm apart: each impact is between two balls, so ball 0 stops and ball 1 moves on at

@@ -20,7 +20,7 @@ const MASS: f64 = 2.0;
 /// The block's half side (m): a 0.2 m cube of 1 kg.
 const HALF: f64 = 0.1;
 
-fn adaptive(tolerance: f64, duration: f64) -> Schedule {
+pub(crate) fn adaptive(tolerance: f64, duration: f64) -> Schedule {
     Schedule::adaptive(Tolerance::new(tolerance, tolerance).unwrap(), duration, 0.01).unwrap()
 }
 
@@ -42,7 +42,7 @@ fn ball_on<A: Algebra>(normal: Vector3<f64>, friction: Friction) -> Mechanism<A>
 
 /// The runs every test makes: body-momentum stepping adaptive (DOP853-body at a tight tolerance) and fixed
 /// (RKMK8-body), and joint-coordinate stepping (RKMK8-joint at a fixed step).
-fn runs<A: Algebra>(system: &Mechanism<A>, start: &[State<A>], duration: f64) -> Vec<Simulation<A>> {
+pub(crate) fn runs<A: Algebra>(system: &Mechanism<A>, start: &[State<A>], duration: f64) -> Vec<Simulation<A>> {
     vec![
         simulate(system, start, Method::Dop853Body, &adaptive(1e-12, duration)).unwrap(),
         simulate(
