@@ -107,21 +107,22 @@ fn two_balls_meeting_far_from_the_origin<A: Algebra>() {
     assert!((second - struck).norm() < 1e-10 && (first - (Vector3::x() - struck)).norm() < 1e-10);
 }
 
+/// Balls at `positions` along x, the first moving at `speed` along x into the others at rest.
+fn cradle<A: Algebra>(positions: &[f64], speed: f64) -> Vec<State<A>> {
+    (positions.iter().enumerate())
+        .map(|(k, &x)| {
+            let velocity = if k == 0 { Vector3::x() * speed } else { Vector3::zeros() };
+            moving::<A>(&ball(), Vector3::x() * x, velocity)
+        })
+        .collect()
+}
+
 /// Newton's cradle, three balls 1 mm apart: each impact is between two balls, so ball 0 stops and ball 1 moves on at
 /// its speed, then ball 1 stops and ball 2 leaves at it: (0, 0, v), at `g/v` and `2g/v`.
 fn newtons_cradle_with_gaps_passes_the_speed_down_the_row<A: Algebra>() {
     let (speed, gap) = (1.0, 1e-3);
     let system = balls::<A>(3);
-    let start: Vec<State<A>> = (0..3)
-        .map(|k| {
-            let x = k as f64 * (2.0 * RADIUS + gap);
-            moving::<A>(
-                &ball(),
-                Vector3::x() * x,
-                if k == 0 { Vector3::x() * speed } else { Vector3::zeros() },
-            )
-        })
-        .collect();
+    let start = cradle::<A>(&[0.0, 2.0 * RADIUS + gap, 4.0 * RADIUS + 2.0 * gap], speed);
     for run in runs(&system, &start, 0.01) {
         let times: Vec<f64> = run.transitions.iter().map(|t| t.t).collect();
         assert_eq!(times.len(), 2, "{:?}", run.transitions);
@@ -144,16 +145,7 @@ fn newtons_cradle_with_gaps_passes_the_speed_down_the_row<A: Algebra>() {
 fn newtons_cradle_touching_moves_as_the_simultaneous_law_says<A: Algebra>() {
     let (speed, gap) = (1.0, 1e-3);
     let system = balls::<A>(3);
-    let positions = [-2.0 * RADIUS - gap, 0.0, 2.0 * RADIUS];
-    let start: Vec<State<A>> = (positions.iter().enumerate())
-        .map(|(k, &x)| {
-            moving::<A>(
-                &ball(),
-                Vector3::x() * x,
-                if k == 0 { Vector3::x() * speed } else { Vector3::zeros() },
-            )
-        })
-        .collect();
+    let start = cradle::<A>(&[-2.0 * RADIUS - gap, 0.0, 2.0 * RADIUS], speed);
     for run in runs(&system, &start, 0.01) {
         let velocities = final_velocities(&run, 3);
         for (velocity, exact) in velocities
