@@ -244,6 +244,67 @@ pub(crate) fn symmetric_least_norm(matrix: &DMatrix<f64>, rhs: &DVector<f64>, th
     x
 }
 
+/// The least-norm solution of `G x = b` for a Gram matrix `G` (pivots or singular values at or below `threshold`
+/// taken as zero), solved block by block: rows that move no body in common (a stack of boxes and a ball rolling beside
+/// it) leave exact zeros between them in G, and each group of rows that couple only among themselves is solved alone,
+/// by [`symmetric_least_norm`], or by [`SingularValues`] where `by_svd` says so (a block whose G is not symmetric,
+/// sliding friction tilting a row's force from its direction; or where the rank is to be decided by singular values). The same solution as the whole at once, at the cost
+/// of the blocks: a sliding ball does not turn a resting stack's symmetric solve into an SVD.
+pub(crate) fn least_norm_by_blocks(
+    gram: &DMatrix<f64>,
+    rhs: &DVector<f64>,
+    threshold: f64,
+    by_svd: impl Fn(&[usize]) -> bool,
+) -> DVector<f64> {
+    let mut x = DVector::zeros(gram.nrows());
+    for block in coupled_blocks(gram) {
+        let sub = gram.select_rows(&block).select_columns(&block);
+        let sub_rhs = rhs.select_rows(&block);
+        let solved = if by_svd(&block) {
+            SingularValues::of(&sub).solve(&sub_rhs, threshold)
+        } else {
+            symmetric_least_norm(&sub, &sub_rhs, threshold)
+        };
+        for (&k, value) in block.iter().zip(solved.iter()) {
+            x[k] = *value;
+        }
+    }
+    x
+}
+
+/// The rows of `gram` in groups that couple only among themselves (`G[i][k]` or `G[k][i]` not zero joins rows i and
+/// k), each in increasing order, the groups in the order of their first rows.
+fn coupled_blocks(gram: &DMatrix<f64>) -> Vec<Vec<usize>> {
+    fn root(group: &mut [usize], mut k: usize) -> usize {
+        while group[k] != k {
+            group[k] = group[group[k]];
+            k = group[k];
+        }
+        k
+    }
+    let n = gram.nrows();
+    let mut group: Vec<usize> = (0..n).collect();
+    for i in 0..n {
+        for k in i + 1..n {
+            if gram[(i, k)] != 0.0 || gram[(k, i)] != 0.0 {
+                let (a, b) = (root(&mut group, i), root(&mut group, k));
+                group[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut blocks: Vec<Vec<usize>> = Vec::new();
+    let mut block_of = vec![usize::MAX; n];
+    for k in 0..n {
+        let top = root(&mut group, k);
+        if block_of[top] == usize::MAX {
+            block_of[top] = blocks.len();
+            blocks.push(Vec::new());
+        }
+        blocks[block_of[top]].push(k);
+    }
+    blocks
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

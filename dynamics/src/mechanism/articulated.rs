@@ -13,7 +13,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::eigen::{symmetric_least_norm, SingularValues};
+use crate::eigen::least_norm_by_blocks;
 use crate::joint_models::{JointAxis, JointModel, Motion, Side};
 use crate::mechanism::joint_rows::{BodyKinematics, Joint};
 use crate::mechanism::parts::MechanismBody;
@@ -563,16 +563,12 @@ impl Articulation {
         let lambda = if rows.iter().all(|row| matches!(row, Row::Joints { .. })) {
             gram.cholesky().ok_or(())?.solve(&rhs)
         } else {
+            // Not symmetric where sliding friction tilts a row's force from its direction.
             let largest = gram.diagonal().amax();
-            let tilted = rows
-                .iter()
-                .any(|row| matches!(row, Row::Point { direction, force, .. } if force != direction));
-            if tilted {
-                // Not symmetric once sliding friction tilts a row's force from its direction.
-                SingularValues::of(&gram).solve(&rhs, REPEATED_ROW * largest)
-            } else {
-                symmetric_least_norm(&gram, &rhs, REPEATED_ROW * largest)
-            }
+            let tilted = |block: &[usize]| {
+                (block.iter()).any(|&k| matches!(rows[k], Row::Point { direction, force, .. } if force != direction))
+            };
+            least_norm_by_blocks(&gram, &rhs, REPEATED_ROW * largest, tilted)
         };
         if !lambda.iter().all(|x| x.is_finite()) {
             return Err(());

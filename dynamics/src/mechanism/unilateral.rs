@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::eigen::SingularValues;
+use crate::eigen::least_norm_by_blocks;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
 use crate::mechanism::contacts::stack;
@@ -541,7 +541,8 @@ impl<A: Algebra> Mechanism<A> {
         r: &DVector<f64>,
     ) -> Result<DVector<f64>, ConstraintError> {
         let largest = gram.diagonal().amax();
-        let p = SingularValues::of(gram).solve(r, REPEATED_ROW * largest);
+        // Each block by its SVD: the impacts' rank decisions are the singular values'.
+        let p = least_norm_by_blocks(gram, r, REPEATED_ROW * largest, |_| true);
         if !p.iter().all(|x| x.is_finite()) {
             return Err(self.impact_failed(t, "the impulse is not finite".to_owned()));
         }
