@@ -415,7 +415,7 @@ impl<A: Algebra> Mechanism<A> {
                 matrix[(i, j)] = combination.iter().map(|&(r, w)| w * rows.gram[(row, r)]).sum();
             }
         }
-        let solution = self.least_norm(t, &matrix, &rhs)?;
+        let solution = self.least_norm(t, &matrix, &rhs, false)?;
         let mut impulses = DVector::zeros(total);
         for (combination, &x) in unknowns.iter().zip(solution.iter()) {
             for &(r, w) in combination {

@@ -511,7 +511,7 @@ impl<A: Algebra> Mechanism<A> {
         r: &DVector<f64>,
     ) -> Result<(DVector<f64>, DVector<f64>), ConstraintError> {
         let (response, gram) = self.responses(t, states, &stack(&[rows, equalities]))?;
-        let p = self.least_norm(t, &gram, r)?;
+        let p = self.least_norm(t, &gram, r, true)?;
         let change = &response * &p;
         Ok((change, p.rows(0, rows.nrows()).into_owned()))
     }
@@ -532,17 +532,18 @@ impl<A: Algebra> Mechanism<A> {
         Ok((response, gram))
     }
 
-    /// The impulses `G⁺ r` of a Gram matrix G: rows that repeat others (a held limit on a coupled pair, a fourth corner
-    /// on a plane) share by the least-norm solution.
+    /// The impulses `G⁺ r` of a matrix G: rows that repeat others (a held limit on a coupled pair, a fourth corner on a
+    /// plane) share by the least-norm solution. Block by block: a `symmetric` G (a Gram matrix `C M⁻¹ Cᵀ`) by the
+    /// pivoted Cholesky least-norm solve, another (an impact's modes, sliding friction in its rows) by the SVD.
     pub(super) fn least_norm(
         &self,
         t: f64,
         gram: &DMatrix<f64>,
         r: &DVector<f64>,
+        symmetric: bool,
     ) -> Result<DVector<f64>, ConstraintError> {
         let largest = gram.diagonal().amax();
-        // Each block by its SVD: the impacts' rank decisions are the singular values'.
-        let p = least_norm_by_blocks(gram, r, REPEATED_ROW * largest, |_| true);
+        let p = least_norm_by_blocks(gram, r, REPEATED_ROW * largest, |_| !symmetric);
         if !p.iter().all(|x| x.is_finite()) {
             return Err(self.impact_failed(t, "the impulse is not finite".to_owned()));
         }
