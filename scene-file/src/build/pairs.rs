@@ -223,6 +223,25 @@ fn add_shape_pair<A: Algebra>(
         unreachable!("a pair of shapes not both balls has a polytope, with faces")
     };
     if separation < -TOUCHING {
+        // No face separates them: they overlap, or they are apart only across an edge against an edge, which the
+        // contacts (a vertex on a face) cannot hold apart; parry3d's distance tells which.
+        let pose = |placed: &Placed<'_>| {
+            let (t, q) = (placed.to_world.translation.vector, placed.to_world.rotation);
+            Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
+        };
+        let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
+        let distance = query::distance(&pose(first), shape_a.as_ref(), &pose(second), shape_b.as_ref())
+            .map_or(0.0, |d| d.distance);
+        if distance > TOUCHING {
+            return Err(invalid(
+                what,
+                format!(
+                    "the start has the two shapes {distance:.3e} m apart with no face of either between them (an edge \
+                     faces an edge): contacts between bodies hold a vertex or sphere on a face, not an edge on an edge \
+                     (docs/contacts.md \"Between bodies\"); turn or move them so that a face lies between them"
+                ),
+            ));
+        }
         return Err(refuse_depth(-separation));
     }
     let ((faced, shape), (other, features)) = if faces_of_b {

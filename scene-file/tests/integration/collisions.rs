@@ -232,7 +232,8 @@ fn a_box_thrown_off_a_stack_stops_the_run_at_the_edge_of_the_face() {
 /// Two boxes whose edges cross, one turned 45° about x above the other turned 45° about y: the contacts watch vertices
 /// on faces, not edges on edges, so an edge through an edge is seen only by `SceneSystem::deepest_overlap`
 /// (parry3d's query). Apart, nothing overlaps; with the upper box lowered until its bottom edge is 3.28 cm below the
-/// lower box's top edge, the pair overlaps, by at most that depth. Run, the crossing boxes stop with an error where a
+/// lower box's top edge, the pair overlaps, by at most that depth. Started 1 cm apart edge on edge, no face lies
+/// between them, and the file is refused with parry3d's distance. Run, the crossing boxes stop with an error where a
 /// corner meets the other box's face plane outside the face, before their edges meet.
 #[test]
 fn crossed_edges_are_seen_by_the_overlap_query_and_stop_the_run() {
@@ -297,6 +298,16 @@ bodies = ["upper", "lower"]
         );
         let _ = system.deepest_overlap(&moved);
     }
+    // Started 1 cm apart edge on edge, no face lies between them: refused, saying so.
+    let apart = scene.replace(
+        "position = [0.0, 0.0, 0.5]",
+        &format!("position = [0.0, 0.0, {}]", 2.0 * half_diagonal + 0.01),
+    );
+    let message = Scene::parse(&apart).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(
+        message.contains("1.000e-2 m apart") && message.contains("an edge faces an edge"),
+        "{message}"
+    );
     let error = parsed
         .simulate::<Pga>()
         .err()
