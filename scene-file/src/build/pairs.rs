@@ -19,11 +19,13 @@ use crate::check::pairs::CheckedPair;
 use crate::error::{invalid, SceneFileError};
 
 /// One body of a pair in the mechanism: its id, the maps from its shapes' frame (the body's or the link's) to the
-/// body's reference frame (where contacts take their points) and to the world at the start.
+/// body's reference frame (where contacts take their points), to its principal frame (where a state's pose puts it)
+/// and to the world at the start.
 struct Placed<'p> {
     name: &'p str,
     id: BodyId,
     to_body: Isometry3<f64>,
+    to_principal: Isometry3<f64>,
     to_world: Isometry3<f64>,
 }
 
@@ -64,16 +66,14 @@ pub(crate) fn add_pair_contacts<A: Algebra>(
         for a in &pair.sides[0].shapes {
             for b in &pair.sides[1].shapes {
                 add_shape_pair(&mut assembly.mechanism, pair, (&first, a), (&second, b))?;
-                let side = |placed: &Placed<'_>, shape: &ShapeGeometry| {
-                    let principal = assembly.mechanism.reference_frame(placed.id)? * placed.to_body;
-                    Ok::<_, SceneFileError>((placed.id, principal, parry_shape(shape)))
-                };
+                let side =
+                    |placed: &Placed<'_>, shape: &ShapeGeometry| (placed.id, placed.to_principal, parry_shape(shape));
                 shapes.push(ShapePair {
                     name: format!(
                         "{}: {} {} and {} {}",
                         pair.name, first.name, a.label, second.name, b.label
                     ),
-                    sides: [side(&first, a)?, side(&second, b)?],
+                    sides: [side(&first, a), side(&second, b)],
                 });
             }
         }
@@ -98,15 +98,19 @@ fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
     }
 }
 
+/// An isometry as parry3d's pose.
+fn parry_pose(isometry: &Isometry3<f64>) -> Pose {
+    let (t, q) = (isometry.translation.vector, isometry.rotation);
+    Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
+}
+
 /// The pair of shapes that go deepest into each other with the bodies at `states` (their names and the depth, m), if
 /// any overlaps at all: parry3d's contact query, independent of the contacts, so that shapes that meet where no
 /// contact watches them (an edge through an edge) are seen.
 pub(crate) fn deepest_overlap<A: Algebra>(pairs: &[ShapePair], states: &[State<A>]) -> Option<(String, f64)> {
     let pose = |(body, frame, _): &(BodyId, Isometry3<f64>, SharedShape)| {
         let (position, rotation) = states[body.index()].pose();
-        let placed = Isometry3::from_parts(position.into(), rotation) * frame;
-        let (t, q) = (placed.translation.vector, placed.rotation);
-        Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
+        parry_pose(&(Isometry3::from_parts(position.into(), rotation) * frame))
     };
     (pairs.iter())
         .filter_map(|pair| {
@@ -155,6 +159,7 @@ fn place<'p, A: Algebra>(
         name,
         id,
         to_body: reference.inverse() * to_body,
+        to_principal: to_body,
         to_world: pose * to_body,
     })
 }
@@ -225,13 +230,10 @@ fn add_shape_pair<A: Algebra>(
     if separation < -TOUCHING {
         // No face separates them: they overlap, or they are apart only across an edge against an edge, which the
         // contacts (a vertex on a face) cannot hold apart; parry3d's distance tells which.
-        let pose = |placed: &Placed<'_>| {
-            let (t, q) = (placed.to_world.translation.vector, placed.to_world.rotation);
-            Pose::from_parts(Vector::new(t.x, t.y, t.z), Rotation::from_xyzw(q.i, q.j, q.k, q.w))
-        };
         let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
-        let distance = query::distance(&pose(first), shape_a.as_ref(), &pose(second), shape_b.as_ref())
-            .map_or(0.0, |d| d.distance);
+        let (pose_a, pose_b) = (parry_pose(&first.to_world), parry_pose(&second.to_world));
+        let distance =
+            query::distance(&pose_a, shape_a.as_ref(), &pose_b, shape_b.as_ref()).map_or(0.0, |d| d.distance);
         if distance > TOUCHING {
             return Err(invalid(
                 what,
