@@ -26,11 +26,13 @@ use crate::constraints::ConstraintError;
 pub use crate::state::LARGEST_COORDINATE;
 
 /// A plane below a body point: the point `p` (body coordinates) is kept where `n · p ≥ offset` (world, m); or below
-/// a sphere of radius r about that point, kept where `n · p ≥ offset + r`.
+/// a sphere of radius r about that point, kept where `n · p ≥ offset + r`; or below the rim of a disk about that
+/// point ([`PlaneContact::disk`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlaneContact {
     point: Vector3<f64>,
     radius: f64,
+    rim: Option<Rim>,
     normal: Unit<Vector3<f64>>,
     offset: f64,
     restitution: f64,
@@ -180,6 +182,7 @@ impl PlaneContact {
         Ok(PlaneContact {
             point,
             radius: 0.0,
+            rim: None,
             normal: Unit::new_unchecked(normal / length),
             offset: offset / length,
             restitution: 0.0,
@@ -222,6 +225,58 @@ impl PlaneContact {
         })
     }
 
+    /// The rim of a disk of radius `radius` (m) about the body point `centre`, in the plane through it normal to
+    /// `axis` (the body's frame; any length), kept on the side of the plane `normal · x = offset` that `normal`
+    /// points to: a cylinder's cap edge, a wheel or a coin. It touches the plane at its lowest point, `c − ρ û` with
+    /// û the plane's normal projected on the disk and made unit, which runs along the rim as the disk turns; a
+    /// cylinder on a plane is the disks of its two caps (docs/contacts.md "Rims"). A disk lying flat on its plane
+    /// touches it along its whole rim, which one point cannot hold: [`crate::simulate()`] stops with an error naming
+    /// the contact where a touching disk comes within [`FLAT_RIM`] of flat. The radius positive, finite and within
+    /// [`LARGEST_COORDINATE`]; the axis finite and not zero (any length), the centre as [`PlaneContact::new`]'s point.
+    ///
+    /// ```
+    /// use dynamics::contacts::PlaneContact;
+    /// use nalgebra::Vector3;
+    ///
+    /// // A wheel of radius 0.3 m turning about the body's y axis, on the floor z = 0.
+    /// let wheel = PlaneContact::disk(Vector3::zeros(), Vector3::y(), 0.3, Vector3::z(), 0.0)?;
+    /// assert!((wheel.height(&Vector3::new(0.0, 0.0, 0.5)) - 0.5).abs() < 1e-15); // the centre's height
+    /// assert!(PlaneContact::disk(Vector3::zeros(), Vector3::zeros(), 0.3, Vector3::z(), 0.0).is_err());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn disk(
+        centre: Vector3<f64>,
+        axis: Vector3<f64>,
+        radius: f64,
+        normal: Vector3<f64>,
+        offset: f64,
+    ) -> Result<Self, ConstraintError> {
+        let refuse = |reason: String| ConstraintError::InvalidParameter {
+            name: "plane contact".to_owned(),
+            reason,
+        };
+        if !(radius > 0.0 && radius <= LARGEST_COORDINATE) {
+            return Err(refuse(format!(
+                "a disk's radius must be positive, finite and within {LARGEST_COORDINATE:e} m, got {radius}"
+            )));
+        }
+        // Scaled before its length is taken, so that a direction given by huge or tiny numbers is still one.
+        let scale = axis.amax();
+        if !(axis.iter().all(|x| x.is_finite()) && scale > 0.0) {
+            return Err(refuse(format!(
+                "a disk's axis must be finite and not zero, got {:?}",
+                axis.as_slice()
+            )));
+        }
+        Ok(PlaneContact {
+            rim: Some(Rim {
+                axis: Unit::new_normalize(axis / scale),
+                radius,
+            }),
+            ..PlaneContact::new(centre, normal, offset)?
+        })
+    }
+
     /// The same contact with Newton's restitution coefficient `restitution` in [0, 1]: the point leaves the plane at
     /// `restitution` times the normal speed it met it with (1: elastic; 0: it stays).
     pub fn with_restitution(self, restitution: f64) -> Result<Self, ConstraintError> {
@@ -239,9 +294,14 @@ impl PlaneContact {
         self.point
     }
 
-    /// The sphere's radius (m); zero for a point.
+    /// The sphere's radius (m); zero for a point or a disk.
     pub fn radius(&self) -> f64 {
         self.radius
+    }
+
+    /// A disk's unit axis (the body's frame) and radius (m), if the contact is a disk's rim.
+    pub fn rim(&self) -> Option<(Vector3<f64>, f64)> {
+        self.rim.map(|rim| (rim.axis.into_inner(), rim.radius))
     }
 
     /// The friction between the contact and its plane.
@@ -264,12 +324,24 @@ impl PlaneContact {
         self.restitution
     }
 
-    /// The height (m) above the plane of the contact with its point at the world point `x`: `n · x − d` for a point,
-    /// `n · x − d − r` for a sphere about x (its lowest point's); negative below it.
+    /// The height (m) above the plane of the contact with its point at the world point `x`: `n · x − d` for a point
+    /// (and a disk's centre), `n · x − d − r` for a sphere about x (its lowest point's); negative below it.
     pub fn height(&self, x: &Vector3<f64>) -> f64 {
         self.normal.dot(x) - self.offset - self.radius
     }
 }
+
+/// A disk's rim: its unit axis (body frame) and radius (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Rim {
+    axis: Unit<Vector3<f64>>,
+    radius: f64,
+}
+
+/// A disk touching its plane (or within [`TOUCHING`] of it) whose axis is this close to the plane's normal (the sine
+/// of the angle between them) lies flat, touching along its whole rim: [`crate::simulate()`] stops there with an
+/// error naming the contact, as one point cannot hold it.
+pub const FLAT_RIM: f64 = 1e-6;
 
 /// A sphere fixed in one body kept outside a sphere fixed in another ([`crate::Mechanism::add_ball_contact`]):
 /// their centres stay at least the sum of the radii apart. They touch on the line between the centres, where the

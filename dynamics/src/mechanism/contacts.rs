@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
-use crate::contacts::{BallContact, Friction, PlaneContact, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
+use crate::contacts::{BallContact, Friction, PlaneContact, FLAT_RIM, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
@@ -45,13 +45,7 @@ impl<A: Algebra> Mechanism<A> {
             normal: contact.normal(),
             offset: contact.offset(),
         };
-        let contact = (
-            contact.point(),
-            contact.radius(),
-            contact.restitution(),
-            contact.friction(),
-        );
-        self.push_contact(name.into(), body, contact, |_| Ok(against))
+        self.push_contact(name.into(), body, features(&contact), |_| Ok(against))
     }
 
     /// Keeps the point or sphere of `contact` (in `body`'s frame) above the contact's plane fixed in `surface`'s
@@ -84,13 +78,7 @@ impl<A: Algebra> Mechanism<A> {
         contact: PlaneContact,
     ) -> Result<(), MechanismError> {
         let (normal, offset) = (contact.normal(), contact.offset());
-        let parts = (
-            contact.point(),
-            contact.radius(),
-            contact.restitution(),
-            contact.friction(),
-        );
-        self.push_contact(name.into(), body, parts, |mechanism| {
+        self.push_contact(name.into(), body, features(&contact), |mechanism| {
             let other = mechanism.other_body(body, surface)?;
             // n · y = d in the body's frame F is (R n) · x = d + (R n) · t in principal coordinates x = F y.
             let frame = &mechanism.bodies[other].frame;
@@ -128,7 +116,7 @@ impl<A: Algebra> Mechanism<A> {
     ) -> Result<(), MechanismError> {
         let (centre, other_centre) = contact.centres();
         let (radius, other_radius) = contact.radii();
-        let parts = (centre, radius, contact.restitution(), contact.friction());
+        let parts = (centre, radius, None, contact.restitution(), contact.friction());
         self.push_contact(name.into(), body, parts, |mechanism| {
             let other = mechanism.other_body(body, other)?;
             Ok(Against::Ball {
@@ -155,13 +143,13 @@ impl<A: Algebra> Mechanism<A> {
         Ok(index)
     }
 
-    /// A contact of `body` (its point, radius, restitution and friction, the point in the body's frame) kept outside
-    /// what `against` gives, once the name and the solve are checked.
+    /// A contact of `body` (its point, radius, rim, restitution and friction, the point and the rim's axis in the
+    /// body's frame) kept outside what `against` gives, once the name and the solve are checked.
     fn push_contact(
         &mut self,
         name: String,
         body: BodyId,
-        (point, radius, restitution, friction): (Vector3<f64>, f64, f64, Friction),
+        (point, radius, rim, restitution, friction): ContactParts,
         against: impl FnOnce(&Self) -> Result<Against, MechanismError>,
     ) -> Result<(), MechanismError> {
         if name.is_empty() {
@@ -181,7 +169,9 @@ impl<A: Algebra> Mechanism<A> {
             .into());
         }
         let against = against(self)?;
-        let point = self.bodies[index].frame.transform_point(&point.into()).coords;
+        let frame = &self.bodies[index].frame;
+        let point = frame.transform_point(&point.into()).coords;
+        let rim = rim.map(|(axis, radius)| (frame.rotation * axis, radius));
         if friction.is_some() {
             self.frictional.push(self.contacts.len());
         }
@@ -190,6 +180,7 @@ impl<A: Algebra> Mechanism<A> {
             body: index,
             point,
             radius,
+            rim,
             restitution,
             friction,
             against,
@@ -261,20 +252,32 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// An error naming the first contact that touches its plane (held, or within [`TOUCHING`] of it) with its
-    /// touching point outside its face by more than [`OUTSIDE_FACE`] ([`Mechanism::set_contact_face`]).
-    pub(super) fn check_faces(
+    /// touching point outside its face by more than [`OUTSIDE_FACE`] ([`Mechanism::set_contact_face`]), or as a disk
+    /// within [`FLAT_RIM`] of lying flat ([`PlaneContact::disk`]): what one touching point cannot answer for.
+    pub(super) fn check_features(
         &self,
         t: f64,
         states: &[State<A>],
         held: &[Option<crate::limits::Bound>],
     ) -> Result<(), ConstraintError> {
         for (c, contact) in self.contacts.iter().enumerate() {
-            if contact.face.is_empty() {
+            if contact.face.is_empty() && contact.rim.is_none() {
                 continue;
             }
             let frame = self.contact_frame(c, states);
             if held[self.limits.len() + c].is_none() && frame.gap > TOUCHING {
                 continue;
+            }
+            let refuse = |reason: String| ConstraintError::InvalidParameter {
+                name: contact.name.clone(),
+                reason,
+            };
+            if frame.tilt < FLAT_RIM {
+                return Err(refuse(format!(
+                    "at t = {t} the disk lies flat on its plane (its axis {:.3e} rad from the normal), touching \
+                     along its whole rim, which one rim point cannot hold (docs/contacts.md \"Rims\")",
+                    frame.tilt.asin()
+                )));
             }
             // The touching point in the frame the face is fixed in.
             let point = match contact.against {
@@ -286,14 +289,10 @@ impl<A: Algebra> Mechanism<A> {
             };
             let outside = (contact.face.iter()).fold(f64::NEG_INFINITY, |m, (n, d)| m.max(n.dot(&point) - d));
             if outside > OUTSIDE_FACE.max(4.0 * f64::EPSILON * point.amax()) {
-                return Err(ConstraintError::InvalidParameter {
-                    name: contact.name.clone(),
-                    reason: format!(
-                        "at t = {t} the contact touches its plane {outside:.3e} m outside its face: the plane holds \
-                         only on the face, and a contact keeps the features it was given (docs/contacts.md \
-                         \"Between bodies\")"
-                    ),
-                });
+                return Err(refuse(format!(
+                    "at t = {t} the contact touches its plane {outside:.3e} m outside its face: the plane holds only \
+                     on the face, and a contact keeps the features it was given (docs/contacts.md \"Between bodies\")"
+                )));
             }
         }
         Ok(())
@@ -394,15 +393,19 @@ impl<A: Algebra> Mechanism<A> {
                 (Some(ball), distance - radius, normal, normal_rate)
             }
         };
-        let touching = centre - normal * contact.radius;
+        let rim = contact.rim.map_or_else(RimPoint::default, |(axis, radius)| {
+            RimPoint::towards(radius, &(own.rotation * axis), &own.angular, &normal, &normal_rate)
+        });
+        let touching = centre - rim.offset - normal * contact.radius;
         let surface_velocity = other.map_or_else(Vector3::zeros, |o| o.velocity_at(&touching));
         ContactFrame {
-            gap: gap_to_centre - contact.radius,
+            gap: gap_to_centre - normal.dot(&rim.offset) - contact.radius,
             normal,
             touching,
             relative: own.velocity_at(&touching) - surface_velocity,
             normal_rate,
-            touching_rate: centre_velocity - normal_rate * contact.radius,
+            touching_rate: centre_velocity - rim.rate - normal_rate * contact.radius,
+            tilt: rim.tilt,
         }
     }
 
@@ -501,6 +504,20 @@ impl<A: Algebra> Mechanism<A> {
     }
 }
 
+/// A contact's point, sphere radius, rim (axis and radius), restitution and friction, in its body's frame.
+type ContactParts = (Vector3<f64>, f64, Option<(Vector3<f64>, f64)>, f64, Friction);
+
+/// A plane contact's parts.
+fn features(contact: &PlaneContact) -> ContactParts {
+    (
+        contact.point(),
+        contact.radius(),
+        contact.rim(),
+        contact.restitution(),
+        contact.friction(),
+    )
+}
+
 /// A body's pose and velocity (world): its centre of mass, its rotation, the centre's velocity and the angular one.
 #[derive(Clone, Copy, Debug)]
 struct BodyMotion {
@@ -529,6 +546,70 @@ pub(super) struct ContactFrame {
     pub relative: Vector3<f64>,
     pub normal_rate: Vector3<f64>,
     pub touching_rate: Vector3<f64>,
+    /// For a disk's rim, the sine of the angle between its axis and the normal (zero: flat on the plane); 1 else.
+    pub tilt: f64,
+}
+
+/// Where a disk's rim touches a plane, from its centre: `ρ û`, û the normal n projected on the disk (normal to its
+/// axis a) and made unit, the rim's point farthest along n, which the touching point `c − ρ û` is; its rate; and the
+/// disk's tilt `|n − (n · a) a|` (docs/contacts.md "Rims").
+#[derive(Clone, Copy, Debug)]
+struct RimPoint {
+    offset: Vector3<f64>,
+    rate: Vector3<f64>,
+    tilt: f64,
+}
+
+impl Default for RimPoint {
+    /// No rim: a point or a sphere.
+    fn default() -> Self {
+        RimPoint {
+            offset: Vector3::zeros(),
+            rate: Vector3::zeros(),
+            tilt: 1.0,
+        }
+    }
+}
+
+impl RimPoint {
+    /// The rim of radius `radius` about the world axis `axis` of a body turning at `angular`, against the normal
+    /// `normal` turning at `normal_rate`. With `u = n − (n · a) a`, `u̇ = ṅ − (ṅ · a + n · ȧ) a − (n · a) ȧ` (ȧ = ω ×
+    /// a) and `d û/dt = (u̇ − û (û · u̇)) / |u|`. A disk exactly flat has no farthest point: any rim point serves
+    /// (the gap is the same), moving with the body.
+    fn towards(
+        radius: f64,
+        axis: &Vector3<f64>,
+        angular: &Vector3<f64>,
+        normal: &Vector3<f64>,
+        normal_rate: &Vector3<f64>,
+    ) -> Self {
+        let along = normal.dot(axis);
+        let projected = normal - axis * along;
+        let tilt = projected.norm();
+        if tilt == 0.0 {
+            let any = axis.cross(&Vector3::x());
+            let any = if any.norm() > 0.5 {
+                any
+            } else {
+                axis.cross(&Vector3::y())
+            }
+            .normalize();
+            return RimPoint {
+                offset: any * radius,
+                rate: angular.cross(&any) * radius,
+                tilt,
+            };
+        }
+        let unit = projected / tilt;
+        let axis_rate = angular.cross(axis);
+        let projected_rate = normal_rate - axis * (normal_rate.dot(axis) + normal.dot(&axis_rate)) - axis_rate * along;
+        let unit_rate = (projected_rate - unit * unit.dot(&projected_rate)) / tilt;
+        RimPoint {
+            offset: unit * radius,
+            rate: unit_rate * radius,
+            tilt,
+        }
+    }
 }
 
 impl ContactFrame {

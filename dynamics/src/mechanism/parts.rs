@@ -73,13 +73,15 @@ pub(super) struct Coupling {
 }
 
 /// A contact of a mechanism: `point` (principal body coordinates: from the centre of mass) of `body`, or a sphere of
-/// radius `radius` about it, kept outside what `against` describes.
+/// radius `radius` about it, or the rim of a disk about it, kept outside what `against` describes.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct Contact {
     pub name: String,
     pub body: usize,
     pub point: Vector3<f64>,
     pub radius: f64,
+    /// A disk's unit axis (principal body coordinates) and radius: its rim is what touches (docs/contacts.md "Rims").
+    pub rim: Option<(Vector3<f64>, f64)>,
     pub restitution: f64,
     pub friction: Friction,
     pub against: Against,

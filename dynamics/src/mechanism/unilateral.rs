@@ -73,7 +73,7 @@ impl<A: Algebra> Mechanism<A> {
             });
         }
         let space = self.limited_space()?;
-        self.check_faces(t, states, &workspace.held)?;
+        self.check_features(t, states, &workspace.held)?;
         if workspace.held.iter().any(Option::is_some) {
             self.evaluate_states(t, states, workspace)?;
         }

@@ -412,7 +412,7 @@ fn elastic_corners_bounce_alike_in_both_algebras() {
 }
 
 /// Careless contacts, each refused naming what is wrong: points, normals and offsets NaN, infinite or beyond 1e6 m,
-/// a zero normal, restitutions outside [0, 1]; a contact with no name, a repeated name or one of a joint, on a body
+/// a zero normal, restitutions outside [0, 1], disks of no radius or axis; a contact with no name, a repeated name or one of a joint, on a body
 /// that is not there, on a mechanism without the articulated solve (or a change that would take it away); a start
 /// below the plane. A plane far from the origin and a non-unit normal are contacts like any other.
 #[test]
@@ -479,6 +479,37 @@ fn careless_contacts_are_refused() {
             .unwrap_err()
             .to_string();
         assert!(error.contains("must be finite and within"), "{centre:?}: {error}");
+    }
+    // Disks: radii zero, negative, NaN, infinite or huge; axes zero, NaN or infinite; centres NaN or far away. An axis
+    // of huge or tiny numbers is a direction like any other.
+    for radius in [0.0, -0.1, nan, inf, 2e6] {
+        let error = PlaneContact::disk(point, Vector3::z(), radius, Vector3::z(), 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("disk's radius"), "{radius}: {error}");
+    }
+    for axis in [
+        Vector3::zeros(),
+        Vector3::new(nan, 0.0, 1.0),
+        Vector3::new(0.0, -inf, 1.0),
+    ] {
+        let error = PlaneContact::disk(point, axis, 0.1, Vector3::z(), 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("disk's axis"), "{axis:?}: {error}");
+    }
+    for centre in [Vector3::new(nan, 0.0, 0.0), Vector3::new(0.0, 0.0, -2e6)] {
+        let error = PlaneContact::disk(centre, Vector3::z(), 0.1, Vector3::z(), 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("must be finite and within"), "{centre:?}: {error}");
+    }
+    for (axis, unit) in [
+        (Vector3::new(1e300, 1e300, 0.0), Vector3::new(1.0, 1.0, 0.0)),
+        (Vector3::new(0.0, 0.0, -1e-320), -Vector3::z()),
+    ] {
+        let disk = PlaneContact::disk(point, axis, 0.1, Vector3::z(), 0.0).unwrap();
+        assert!((disk.rim().unwrap().0 - unit.normalize()).norm() < 1e-15, "{axis:?}");
     }
     // A plane given by a non-unit normal is scaled to a unit one: 2z = 1 is z = 0.5.
     let scaled = PlaneContact::new(point, Vector3::z() * 2.0, 1.0).unwrap();

@@ -63,7 +63,7 @@ pub(crate) fn runs<A: Algebra>(system: &Mechanism<A>, start: &[State<A>], durati
 }
 
 /// The friction transitions of a run, in order, with their times.
-fn friction_changes<A: Algebra>(run: &Simulation<A>) -> Vec<(f64, LimitChange)> {
+pub(crate) fn friction_changes<A: Algebra>(run: &Simulation<A>) -> Vec<(f64, LimitChange)> {
     (run.transitions.iter())
         .filter(|t| matches!(t.change, LimitChange::Stuck { .. } | LimitChange::Slipped { .. }))
         .map(|t| (t.t, t.change))
@@ -145,12 +145,41 @@ fn a_struck_ball_far_from_the_origin_slides_then_rolls<A: Algebra>() {
     assert!((end.velocity.x - 5.0 * v0 / 7.0).abs() < 1e-10, "{}", end.velocity.x);
 }
 
+/// The incline's angle (rad), about x.
+const SLOPE: f64 = 0.3;
+
+/// The incline of [`a_ball_rolls_down_an_incline`] (and of a cylinder's): its unit normal and the direction down it.
+pub(crate) fn incline() -> (Vector3<f64>, Vector3<f64>) {
+    (
+        Vector3::new(0.0, SLOPE.sin(), SLOPE.cos()),
+        Vector3::new(0.0, SLOPE.cos(), -SLOPE.sin()),
+    )
+}
+
+/// Asserts that `run`, of a body of touching radius `radius` started at rest at `centre` on the [`incline`], rolls
+/// down it at `factor · g sin α` (1e-11 m), its centre `radius` above it (1e-12 m), its touching point at rest (1e-11
+/// m/s), without a friction transition.
+pub(crate) fn assert_rolls_down<A: Algebra>(run: &Simulation<A>, centre: Vector3<f64>, radius: f64, factor: f64) {
+    let (normal, down) = incline();
+    assert!(friction_changes(run).is_empty(), "{:?}", run.transitions);
+    for sample in run.body(0) {
+        let exact = 0.5 * factor * G * SLOPE.sin() * sample.t * sample.t;
+        let travelled = (sample.position - centre).dot(&down);
+        assert!(
+            (travelled - exact).abs() < 1e-11,
+            "t = {}: {travelled} m, {exact} m",
+            sample.t
+        );
+        assert!((normal.dot(&sample.position) - radius).abs() < 1e-12);
+        let contact = sample.velocity + sample.angular_velocity.cross(&(-normal * radius));
+        assert!(contact.norm() < 1e-11, "t = {}: slip {}", sample.t, contact.norm());
+    }
+}
+
 /// Released at rest on an incline of 0.3 rad with enough friction to roll (`tan α < 7μ/2`), the ball sticks at its
 /// contact point and rolls down at `(5/7) g sin α`.
 fn a_ball_rolls_down_an_incline<A: Algebra>() {
-    let slope = 0.3f64;
-    let normal = Vector3::new(0.0, slope.sin(), slope.cos());
-    let down = Vector3::new(0.0, slope.cos(), -slope.sin());
+    let (normal, _) = incline();
     let system = ball_on::<A>(normal, Friction::coulomb(0.5).unwrap());
     let centre = normal * RADIUS;
     let start = [State::<A>::from_world_twist(
@@ -161,20 +190,7 @@ fn a_ball_rolls_down_an_incline<A: Algebra>() {
         Vector3::zeros(),
     )];
     for run in runs(&system, &start, 1.0) {
-        assert!(friction_changes(&run).is_empty(), "{:?}", run.transitions);
-        for sample in run.body(0) {
-            let exact = 0.5 * (5.0 / 7.0) * G * slope.sin() * sample.t * sample.t;
-            let travelled = (sample.position - centre).dot(&down);
-            assert!(
-                (travelled - exact).abs() < 1e-11,
-                "t = {}: {travelled} m, {exact} m",
-                sample.t
-            );
-            assert!((normal.dot(&sample.position) - RADIUS).abs() < 1e-12);
-            // Rolling: the contact point is at rest.
-            let contact = sample.velocity + sample.angular_velocity.cross(&(-normal * RADIUS));
-            assert!(contact.norm() < 1e-11, "t = {}: slip {}", sample.t, contact.norm());
-        }
+        assert_rolls_down(&run, centre, RADIUS, 5.0 / 7.0);
     }
 }
 

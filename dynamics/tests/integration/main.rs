@@ -26,4 +26,5 @@ mod mechanism_solve;
 mod module_order;
 mod newton_euler;
 mod orders;
+mod rims;
 mod surfaces;

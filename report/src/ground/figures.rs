@@ -1,5 +1,5 @@
-//! The ground figure: Solo-12's base height as it lands on its feet and stands; the crate's, pill's and gem's centres
-//! as they bounce and come to rest on the floor; and, on their own axes, how far the billiard balls and the box a UR5
+//! The ground figure: Solo-12's base height as it lands on its feet and stands; the crate's, pill's, gem's and can's
+//! centres as they bounce and come to rest on the floor; and, on their own axes, how far the billiard balls and the box a UR5
 //! pushes travel.
 
 use std::path::Path;
@@ -61,17 +61,25 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Vec<&'static str>,
             series,
         ));
     }
-    if !shapes.is_empty() {
-        let mut series = Vec::new();
-        for run in shapes {
-            for (body, name) in run.names.iter().enumerate() {
-                series.push(heights(run, body, name));
-            }
-        }
-        panels.push(Panel::new(
-            Labels::new("A crate, a pill and a gem on a floor", "time (s)", "centre height (m)"),
-            series,
-        ));
+    // Two bodies to a panel: each drawn in both algebras, within the colours one axis may use.
+    let pairs: Vec<Vec<usize>> = shapes.first().map_or_else(Vec::new, |run| {
+        (0..run.names.len())
+            .collect::<Vec<_>>()
+            .chunks(2)
+            .map(<[usize]>::to_vec)
+            .collect()
+    });
+    let titles: Vec<String> = (pairs.iter())
+        .map(|pair| {
+            let names: Vec<&str> = pair.iter().map(|&b| shapes[0].names[b].as_str()).collect();
+            format!("The {} dropped onto a floor", names.join(" and the "))
+        })
+        .collect();
+    for (pair, title) in pairs.iter().zip(&titles) {
+        let series = (shapes.iter())
+            .flat_map(|run| pair.iter().map(move |&body| heights(run, body, &run.names[body])))
+            .collect();
+        panels.push(Panel::new(Labels::new(title, "time (s)", "centre height (m)"), series));
     }
     let mut drawn = Vec::new();
     if !panels.is_empty() {
@@ -80,9 +88,9 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Vec<&'static str>,
             "Bodies on the ground: Coulomb friction and collision shapes",
             &panels,
             "Top: Solo-12's base (foot spheres, friction 0.8, a PD stance) lands 3 cm below its start, its feet stick \
-             and it settles and stands still. Bottom: a box, a capsule and a convex hull dropped onto a floor with \
-             friction 0.5 bounce on their corners, ends and vertices and come to rest on a face, on a side and on a \
-             face of the hull.",
+             and it settles and stands still. Below: a box, a capsule, a convex hull and a cylinder dropped onto a \
+             floor with friction 0.5 bounce on their corners, ends, vertices and cap rims and come to rest on a face, \
+             on a side, on a face of the hull and on a side.",
         )?;
         drawn.push("ground.png");
     }

@@ -132,20 +132,24 @@ fn write_setup(out: &mut String, setup: &Setup, robot: bool) {
     );
 }
 
-/// The contacts, each a body point or sphere above a world plane.
+/// The contacts, each a body point, sphere or disk's rim above a world plane.
 fn write_contacts(out: &mut String, scene: &CheckedScene) {
     if !scene.contacts.is_empty() {
         let _ = writeln!(
             out,
-            "Contacts, each a body point or sphere kept above the world plane n · x = d (docs/contacts.md):\n"
+            "Contacts, each a body point, sphere or disk's rim kept above the world plane n · x = d (docs/contacts.md):\n"
         );
         for (k, contact) in scene.contacts.iter().enumerate() {
-            let what = match (&contact.sphere, contact.point) {
-                (Some(sphere), _) => format!(
+            let what = match (&contact.sphere, &contact.disk, contact.point) {
+                (Some(sphere), ..) => format!(
                     "the sphere of radius {} m centred at {:?} m",
                     sphere.radius, sphere.centre
                 ),
-                (None, point) => format!("the point {:?} m", point.unwrap_or_default()),
+                (None, Some(disk), _) => format!(
+                    "the rim of the disk of radius {} m centred at {:?} m, axis {:?},",
+                    disk.radius, disk.centre, disk.axis
+                ),
+                (None, None, point) => format!("the point {:?} m", point.unwrap_or_default()),
             };
             let friction = match contact.static_friction {
                 Some(stiction) if stiction != contact.friction => {

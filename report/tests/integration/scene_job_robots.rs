@@ -373,9 +373,10 @@ fn solo12_pulled_harder_than_friction_holds_slides() {
 }
 
 /// A two-link robot whose URDF gives collision shapes (`collisions = "urdf"`): a box on its base link, a sphere at its
-/// leg's end, a cylinder and a mesh whose file is missing. Dropped with a free root onto a `[[plane]]` with friction,
-/// the box's corners and the sphere stay above the plane (no sample below it by 1e-12 m) through contacts named after
-/// the links; the cylinder and the missing mesh are named in the summary's importer warnings, not silently dropped.
+/// leg's end, a cylinder along the leg and a mesh whose file is missing. Dropped with a free root onto a `[[plane]]`
+/// with friction, the box's corners and the sphere stay above the plane (no sample below it by 1e-12 m) through
+/// contacts named after the links, the cylinder through its cap rims; the missing mesh is named in the summary's
+/// importer warnings, not silently dropped.
 #[test]
 fn urdf_collision_shapes_stay_above_a_plane() {
     let dir = fresh("urdf-collisions");
@@ -431,13 +432,14 @@ restitution = 0.2
     }
     let text = std::fs::read_to_string(dir.join("out").join("summary.md")).unwrap();
     for part in [
-        "the cylinder",
-        "not modelled against planes",
+        "floor: leg cylinder 2 cap 1: the rim of the disk of radius 0.01 m",
+        "floor: leg cylinder 2 cap 2",
         "the mesh",
         "shell.stl is not found",
     ] {
         assert!(text.contains(part), "{part:?} not in the summary");
     }
+    assert!(!text.contains("the cylinder <collision>"), "{text}");
 }
 
 /// The shipped UR5 sweeping a box across a table (scenes/ur5_pushes_a_box.toml): the ball welded to its flange meets

@@ -33,16 +33,30 @@ pub(crate) fn add_contacts<A: Algebra>(assembly: &mut Assembly<A>) -> Result<(),
         let frame = assembly.mechanism.reference_frame(id)?.inverse() * frame;
         let in_frame = |point: [f64; 3]| frame.transform_point(&Vector3::from(point).into()).coords;
         let normal = Vector3::from(spec.normal);
-        let contact = match (spec.point, &spec.sphere) {
-            (Some(point), None) => PlaneContact::new(in_frame(point), normal, spec.offset),
-            (None, Some(sphere)) => PlaneContact::sphere(in_frame(sphere.centre), sphere.radius, normal, spec.offset),
-            (Some(_), Some(_)) => return Err(invalid(what, "give `point` or `sphere`, not both")),
-            (None, None) => {
+        let contact = match (spec.point, &spec.sphere, &spec.disk) {
+            (Some(point), None, None) => PlaneContact::new(in_frame(point), normal, spec.offset),
+            (None, Some(sphere), None) => {
+                PlaneContact::sphere(in_frame(sphere.centre), sphere.radius, normal, spec.offset)
+            }
+            (None, None, Some(disk)) => {
+                // Turned only if finite (and scaled first, so that huge numbers stay finite), else passed on for
+                // the contact to refuse as given.
+                let axis = Vector3::from(disk.axis);
+                let axis = if axis.iter().all(|x| x.is_finite()) && axis.amax() > 0.0 {
+                    frame.rotation * (axis / axis.amax())
+                } else {
+                    axis
+                };
+                PlaneContact::disk(in_frame(disk.centre), axis, disk.radius, normal, spec.offset)
+            }
+            (None, None, None) => {
                 return Err(invalid(
                     what,
-                    "give the `point = [x, y, z]` or the `sphere = { centre = [x, y, z], radius = r }` kept above the plane",
+                    "give the `point = [x, y, z]`, the `sphere = { centre = [x, y, z], radius = r }` or the \
+                     `disk = { centre = [x, y, z], axis = [x, y, z], radius = r }` kept above the plane",
                 ))
             }
+            _ => return Err(invalid(what, "give one of `point`, `sphere` and `disk`")),
         };
         let friction = Friction::new(spec.friction, spec.static_friction.unwrap_or(spec.friction));
         let contact = contact
@@ -68,7 +82,11 @@ pub(crate) fn check_contact_start<A: Algebra>(
     let heights = mechanism.contact_heights(initial)?;
     for (k, (spec, height)) in scene.contacts.iter().zip(heights).enumerate() {
         if height < -dynamics::simulate::AT_BOUND {
-            let what = if spec.sphere.is_some() { "sphere" } else { "point" };
+            let what = match (&spec.sphere, &spec.disk) {
+                (Some(_), _) => "sphere",
+                (_, Some(_)) => "disk",
+                _ => "point",
+            };
             return Err(invalid(
                 format!("contact {}", spec.name(k)),
                 format!("the start puts its {what} {:e} m below its plane", -height),

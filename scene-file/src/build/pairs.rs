@@ -1,14 +1,14 @@
 //! The `[[collision]]` pairs' contacts (docs/contacts.md "Between bodies"): for each shape of one body and each of
 //! the other, the features that meet, chosen at the start. Two spheres are one ball contact. Otherwise the face, of
-//! either shape, that separates them most at the start (the largest least distance of the other's vertices or sphere
-//! centres less their radii; of faces separating as much, the largest) becomes a plane fixed in its body, and each
-//! vertex or sphere of the other shape is a contact on it: a box resting on a wider box rests on its corners on the
+//! either shape, that separates them most at the start (the largest least distance of the other's vertices, spheres
+//! or rims; of faces separating as much, the largest) becomes a plane fixed in its body, and each vertex, sphere or
+//! cap rim of the other shape is a contact on it: a box resting on a wider box rests on its corners on the
 //! other's top face. A start where no face
 //! separates the shapes (they interpenetrate, or meet edge on edge) is refused, naming the pair and the depth.
 
 use dynamics::contacts::{BallContact, PlaneContact, TOUCHING};
 use dynamics::{Algebra, BodyId, Mechanism, Reference, State};
-use nalgebra::{Isometry3, Point3};
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
 use parry3d_f64::query;
 use parry3d_f64::shape::SharedShape;
@@ -81,8 +81,8 @@ pub(crate) fn add_pair_contacts<A: Algebra>(
     Ok(shapes)
 }
 
-/// A shape as parry3d's: a ball about its centre, a capsule between its end spheres' centres, a polytope as the hull
-/// of its vertices (all in the shape's body or link frame).
+/// A shape as parry3d's: a ball about its centre, a capsule between its end spheres' centres, a cylinder between its
+/// caps' centres, a polytope as the hull of its vertices (all in the shape's body or link frame).
 fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
     let at = |v: &nalgebra::Vector3<f64>| Vector::new(v.x, v.y, v.z);
     match shape.solid {
@@ -90,6 +90,16 @@ fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
         Solid::Ball | Solid::Capsule => {
             let (first, last) = (&shape.features[0], &shape.features[shape.features.len() - 1]);
             SharedShape::capsule(at(&first.centre), at(&last.centre), first.radius)
+        }
+        Solid::Cylinder => {
+            // parry3d's cylinder stands on its own y axis, centred: turned onto the caps' axis, between their centres.
+            let (first, last) = (&shape.features[0], &shape.features[1]);
+            let (axis, radius) = first.rim.expect("a cylinder's features are its rims");
+            let turn = UnitQuaternion::rotation_between(&Vector3::y(), &axis)
+                .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
+            let middle = Isometry3::from_parts(((first.centre + last.centre) / 2.0).into(), turn);
+            let half = (last.centre - first.centre).norm() / 2.0;
+            SharedShape::compound(vec![(parry_pose(&middle), SharedShape::cylinder(half, radius))])
         }
         Solid::Polytope => {
             let vertices: Vec<Vector> = shape.features.iter().map(|f| at(&f.centre)).collect();
@@ -262,10 +272,12 @@ fn add_shape_pair<A: Algebra>(
     let solid: Vec<_> = shape.faces.iter().map(placed).collect();
     for feature in &features.features {
         let point = other.to_body * Point3::from(feature.centre);
-        let contact = if feature.radius > 0.0 {
-            PlaneContact::sphere(point.coords, feature.radius, normal, offset)
-        } else {
-            PlaneContact::new(point.coords, normal, offset)
+        let contact = match feature.rim {
+            Some((axis, radius)) => {
+                PlaneContact::disk(point.coords, other.to_body.rotation * axis, radius, normal, offset)
+            }
+            None if feature.radius > 0.0 => PlaneContact::sphere(point.coords, feature.radius, normal, offset),
+            None => PlaneContact::new(point.coords, normal, offset),
         }
         .and_then(|c| c.with_restitution(pair.restitution))
         .map_err(|e| failed(&e))?
@@ -288,12 +300,20 @@ fn add_shape_pair<A: Algebra>(
     Ok(())
 }
 
-/// The least height, at the start, of `features` of the body `other` above `face` of the body `faced` (less each
-/// feature's radius).
+/// The least height, at the start, of `features` of the body `other` above `face` of the body `faced` (each
+/// feature's lowest point: less its radius, and for a rim its reach towards the face).
 fn least_distance(faced: &Placed<'_>, face: &Face, other: &Placed<'_>, features: &[Feature]) -> f64 {
     let normal = faced.to_world.rotation * face.normal;
     let offset = face.offset + normal.dot(&faced.to_world.translation.vector);
     (features.iter())
-        .map(|f| normal.dot(&(other.to_world * Point3::from(f.centre)).coords) - offset - f.radius)
+        .map(|f| {
+            let axis = other.to_world.rotation * f.rim.map_or_else(Vector3::z, |(axis, _)| axis);
+            f.height(
+                &(other.to_world * Point3::from(f.centre)).coords,
+                &axis,
+                &normal,
+                offset,
+            )
+        })
         .fold(f64::INFINITY, f64::min)
 }

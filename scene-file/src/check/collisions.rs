@@ -1,7 +1,7 @@
 //! Collision shapes against `[[plane]]`s, as contacts (docs/contacts.md "Shapes on planes"): every shape of every
 //! body stays above every plane through the contacts that keep a convex shape above a plane exactly: its lowest point
 //! is always one of them. A sphere is one sphere contact, a box its eight corners, a capsule the spheres at its
-//! segment's ends, a convex hull its vertices. The expanded contacts are ordinary `[[contact]]` entries, so the
+//! segment's ends, a cylinder the rims of its two caps, a convex hull its vertices. The expanded contacts are ordinary `[[contact]]` entries, so the
 //! summary, the start check and the transitions treat them as any other.
 
 use std::path::Path;
@@ -13,7 +13,7 @@ use crate::error::{invalid, SceneFileError};
 use urdf_import::Geometry;
 
 use crate::syntax::bodies::{CollisionShape, OrientationSpec};
-use crate::syntax::contacts::{ContactSpec, PlaneSpec, SphereSpec};
+use crate::syntax::contacts::{ContactSpec, DiskSpec, PlaneSpec, SphereSpec};
 
 /// The largest size or coordinate of a collision shape (m), as for contact points.
 const LARGEST: f64 = 1e6;
@@ -28,8 +28,8 @@ pub(crate) struct ShapedBody {
 }
 
 /// A robot's links' URDF `<collision>` shapes as the file's collision shapes (each in its link's frame, placed by its
-/// origin), one [`ShapedBody`] per link that has any, and a warning for each that cannot be one: a cylinder (not
-/// modelled against planes), a mesh whose file is not found or not STL. Meshes are looked up as written, relative to
+/// origin), one [`ShapedBody`] per link that has any, and a warning for each that cannot be one: a mesh whose file
+/// is not found or not STL. Meshes are looked up as written, relative to
 /// the URDF's folder, and for `package://package/path` as `path` and `package/path` under the URDF's folder and each
 /// folder above it.
 pub(crate) fn urdf_shapes(
@@ -57,14 +57,12 @@ pub(crate) fn urdf_shapes(
                 position,
                 orientation,
             },
-            Geometry::Cylinder { .. } => {
-                warnings.push(format!(
-                    "link `{link}`: the cylinder <collision> at line {} is not modelled against planes (its touching \
-                     point runs along the rim); add [[contact]]s on the link instead",
-                    collision.line
-                ));
-                continue;
-            }
+            Geometry::Cylinder { radius, length } => CollisionShape::Cylinder {
+                radius: *radius,
+                length: *length,
+                position,
+                orientation,
+            },
             Geometry::Mesh { filename, scale } => match mesh_file(folder, filename) {
                 Some(path) => match mesh_vertices("mesh", &path) {
                     Ok(vertices) => CollisionShape::Convex {
@@ -120,12 +118,25 @@ fn mesh_file(folder: &Path, filename: &str) -> Option<std::path::PathBuf> {
         .find(|path| path.is_file())
 }
 
-/// One point or sphere of a shape, in its body's frame, with the feature's name (" corner 3").
+/// One point, sphere or disk rim of a shape, in its body's frame, with the feature's name (" corner 3"): about
+/// `centre`, a sphere of `radius` (zero: a point) or the rim of a disk (its unit axis and radius).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Feature {
     pub name: String,
     pub centre: Vector3<f64>,
     pub radius: f64,
+    pub rim: Option<(Vector3<f64>, f64)>,
+}
+
+impl Feature {
+    /// The least height of the feature above the plane `normal · x = offset` with its centre at `centre` and (for a
+    /// rim) its axis turned to `axis` (world, or any one frame): `n · c − d − r`, less `ρ |n − (n · a) a|` for a rim.
+    pub fn height(&self, centre: &Vector3<f64>, axis: &Vector3<f64>, normal: &Vector3<f64>, offset: f64) -> f64 {
+        let rim = self
+            .rim
+            .map_or(0.0, |(_, radius)| radius * (normal - axis * normal.dot(axis)).norm());
+        normal.dot(centre) - offset - self.radius - rim
+    }
 }
 
 /// A face's plane `normal · x = offset` (its body's frame, normal unit and outward) and its area (m²).
@@ -143,6 +154,8 @@ pub(crate) enum Solid {
     Ball,
     /// A capsule: the spheres at its segment's ends, which are its lowest points against a plane only.
     Capsule,
+    /// A cylinder: its caps' rims, which are its lowest points against a plane only.
+    Cylinder,
     /// A box or convex hull: its vertices and its faces.
     Polytope,
 }
@@ -178,22 +191,32 @@ pub(crate) fn plane_contacts(
     for (k, plane) in planes.iter().enumerate() {
         for (body, name, feature) in &features {
             let centre: [f64; 3] = feature.centre.into();
-            let (point, sphere) = if feature.radius > 0.0 {
-                (
+            let (point, sphere, disk) = match feature.rim {
+                Some((axis, radius)) => (
+                    None,
+                    None,
+                    Some(DiskSpec {
+                        centre,
+                        axis: axis.into(),
+                        radius,
+                    }),
+                ),
+                None if feature.radius > 0.0 => (
                     None,
                     Some(SphereSpec {
                         centre,
                         radius: feature.radius,
                     }),
-                )
-            } else {
-                (Some(centre), None)
+                    None,
+                ),
+                None => (Some(centre), None, None),
             };
             contacts.push(ContactSpec {
                 name: Some(format!("{}: {name}", plane.name(k))),
                 body: body.map(str::to_owned),
                 point,
                 sphere,
+                disk,
                 normal: plane.normal,
                 offset: plane.offset,
                 restitution: plane.restitution,
@@ -277,6 +300,7 @@ fn shape_geometry(
         name,
         centre: place(local),
         radius,
+        rim: None,
     };
     // A face of the shape's own frame, placed: `n · x = d` becomes `(R n) · x = d + (R n) · o`.
     let face = |normal: Vector3<f64>, offset: f64, area: f64| {
@@ -326,12 +350,14 @@ fn shape_geometry(
             ];
             (Solid::Capsule, ends, Vec::new())
         }
-        CollisionShape::Cylinder { .. } => {
-            return Err(invalid(
-                what,
-                "a cylinder's rim against a plane is not modelled (its touching point moves along the rim): use a \
-                 capsule, or a `convex` shape of points on its two rims",
-            ))
+        CollisionShape::Cylinder { radius, length, .. } => {
+            let radius = size(&format!("{what}: radius"), *radius)?;
+            let half = 0.5 * size(&format!("{what}: length"), *length)?;
+            let cap = |k: usize, sign: f64| Feature {
+                rim: Some((turn * Vector3::z(), radius)),
+                ..feature(format!(" cap {k}"), Vector3::z() * sign * half, 0.0)
+            };
+            (Solid::Cylinder, vec![cap(1, -1.0), cap(2, 1.0)], Vec::new())
         }
         CollisionShape::Convex { points, mesh, .. } => {
             let vertices = match (points, mesh) {

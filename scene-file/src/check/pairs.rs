@@ -41,8 +41,9 @@ impl CheckedPair {
 }
 
 /// The file's `[[collision]]`s, each between two of `bodies` (those with shapes; relative mesh paths from `folder`):
-/// the names known and different, friction and restitution in range, and no capsule against a sphere or a capsule
-/// (their touching point runs along the segment, which the contacts, fixed features, do not model).
+/// the names known and different, friction and restitution in range, and no capsule or cylinder against a sphere, a
+/// capsule or a cylinder (their touching point runs over the curved side, which the contacts, fixed features, do not
+/// model).
 pub(crate) fn collision_pairs(
     specs: &[CollisionSpec],
     bodies: &[ShapedBody],
@@ -140,15 +141,26 @@ pub(crate) fn collision_pairs(
             for first in &sides[0].shapes {
                 for second in &sides[1].shapes {
                     let curved = |s: &ShapeGeometry| s.solid != Solid::Polytope;
-                    let capsule = first.solid == Solid::Capsule || second.solid == Solid::Capsule;
-                    if capsule && curved(first) && curved(second) {
-                        return Err(invalid(
+                    let either = |kind: Solid| first.solid == kind || second.solid == kind;
+                    let refuse = |what_meets: &str| {
+                        invalid(
                             format!("{what}: bodies"),
                             format!(
-                                "`{}` {} against `{}` {}: a capsule against a sphere or a capsule is not modelled \
-                                 (their touching point runs along the segment); use spheres, boxes or convex hulls",
+                                "`{}` {} against `{}` {}: {what_meets}; use spheres, boxes or convex hulls",
                                 sides[0].body, first.label, sides[1].body, second.label
                             ),
+                        )
+                    };
+                    if either(Solid::Cylinder) && curved(first) && curved(second) {
+                        return Err(refuse(
+                            "a cylinder against a sphere, a capsule or a cylinder is not modelled (their touching \
+                             point runs over the curved side); a cylinder's rims rest on faces",
+                        ));
+                    }
+                    if either(Solid::Capsule) && curved(first) && curved(second) {
+                        return Err(refuse(
+                            "a capsule against a sphere or a capsule is not modelled (their touching point runs along \
+                             the segment)",
                         ));
                     }
                 }

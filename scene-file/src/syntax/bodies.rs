@@ -114,7 +114,7 @@ pub enum Shape {
 
 /// A collision shape in its body's frame (m): at `position`, turned by `orientation`; a capsule's and a cylinder's
 /// axis along the shape's z (as URDF's cylinders). `[[plane]]`s keep each above them through contacts: a sphere's
-/// own, a box's eight corners, a capsule's two end spheres, a convex hull's vertices.
+/// own, a box's eight corners, a capsule's two end spheres, a cylinder's two cap rims, a convex hull's vertices.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum CollisionShape {

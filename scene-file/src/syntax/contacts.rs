@@ -7,7 +7,7 @@ use serde::Deserialize;
 use super::arrays::{exactly, maybe_exactly};
 
 /// `[[contact]]`: `point` (m) of `body` (a named body or robot link; the only body may go unnamed), or the sphere
-/// `sphere = { centre, radius }` in its frame, kept on the side of the plane `normal · x = offset` (world) that the
+/// `sphere = { centre, radius }`, or the rim of the disk `disk = { centre, axis, radius }` in its frame, kept on the side of the plane `normal · x = offset` (world) that the
 /// normal points to, meeting it with `restitution`, rubbing it with Coulomb `friction` (and `static_friction`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -18,12 +18,15 @@ pub struct ContactSpec {
     /// A named body or robot link; the only body of a scene may go unnamed.
     #[serde(default)]
     pub body: Option<String>,
-    /// In the body's (or link's) coordinates (m); or `sphere`.
+    /// In the body's (or link's) coordinates (m); or `sphere`, or `disk`.
     #[serde(default, deserialize_with = "maybe_exactly")]
     pub point: Option<[f64; 3]>,
     /// A sphere fixed in the body (centre in its coordinates, m) that rolls and slides on the plane; or `point`.
     #[serde(default)]
     pub sphere: Option<SphereSpec>,
+    /// A disk fixed in the body whose rim rolls and slides on the plane (a wheel, a cylinder's cap); or `point`.
+    #[serde(default)]
+    pub disk: Option<DiskSpec>,
     /// The plane's normal, world, any length (default +z, a floor).
     #[serde(default = "up", deserialize_with = "exactly")]
     pub normal: [f64; 3],
@@ -48,6 +51,21 @@ pub struct SphereSpec {
     /// The centre in the body's coordinates.
     #[serde(deserialize_with = "exactly")]
     pub centre: [f64; 3],
+    /// The radius, positive.
+    pub radius: f64,
+}
+
+/// `disk = { centre = [x, y, z], axis = [x, y, z], radius = r }` of a contact (m, body coordinates): the circle of
+/// radius r about the centre, normal to the axis.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiskSpec {
+    /// The centre in the body's coordinates.
+    #[serde(deserialize_with = "exactly")]
+    pub centre: [f64; 3],
+    /// Normal to the disk, any length.
+    #[serde(deserialize_with = "exactly")]
+    pub axis: [f64; 3],
     /// The radius, positive.
     pub radius: f64,
 }

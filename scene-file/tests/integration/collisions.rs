@@ -1,6 +1,6 @@
 //! `[[collision]]` pairs in scene files (docs/contacts.md "Between bodies", docs/scene-files.md): careless pairs
-//! refused by name, contacts and shapes on robot links where the kinematics put them, `"all"` and `except`, and a face
-//! contact that would hold outside its face stopping the run.
+//! refused by name, contacts and shapes on robot links where the kinematics put them, `"all"` and `except`, a face
+//! contact that would hold outside its face stopping the run, and a cylinder's rims rolling on a box's face.
 
 use dynamics::{Cga, Dynamics, Pga};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -27,8 +27,8 @@ const HOPPER: &str = r#"<robot name="hopper">
 
 /// `[[collision]]` pairs with their careless inputs (the shipped stack and billiards scene edited): the wrong number of
 /// bodies, one body twice, an unknown body or one without shapes, a word other than "all", coefficients out of range,
-/// unknown keys, a start where two shapes interpenetrate (naming the pair, the shapes and the depth), a capsule
-/// against a sphere.
+/// unknown keys, a start where two shapes interpenetrate (naming the pair, the shapes and the depth), a capsule or a
+/// cylinder against a sphere.
 #[test]
 fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
     let scene = shipped("stack_and_billiards.toml");
@@ -59,6 +59,7 @@ fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
         (&scene, "position = [0.0, 1.03, 0.0285]", "position = [-0.98, 1.0, 0.0285]", &["collision balls: `cue` sphere 1 and `red` sphere 1", "into each other"]),
         (&scene, top_shape, "initial = { position = [0.0, 0.0, 0.6] }", &["collision 2: bodies", "no body or robot link named `top` has collision shapes"]),
         (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"capsule\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` capsule 1 against `red` sphere 1", "not modelled"]),
+        (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"cylinder\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` cylinder 1 against `red` sphere 1", "not modelled"]),
     ];
     assert_each_refused(rows);
 }
@@ -315,6 +316,102 @@ bodies = ["upper", "lower"]
         .unwrap_or_default();
     assert!(
         error.contains("upper / lower: ") && error.contains("outside its face"),
+        "{error}"
+    );
+}
+
+/// A can (a solid cylinder of 5 cm radius, 20 cm long, 1 kg) lying on the top face of a 10 kg crate that stands on a
+/// floor, struck across its axis at 1 m/s without spin, friction 0.3 between them: its cap rims slide on the face
+/// until they stop slipping at `v₀/(3μg)`, and it rolls on at `2v₀/3` (I = m r²/2), its centre at the height of the
+/// face plus its radius, while the crate, its corners sticking on the floor (μ = 0.5 holds the 2.9 N the can drags it
+/// with), does not move; both algebras. Stood upright and dropped 5 cm, the can meets the face with its whole lower
+/// rim, and the run stops there with an error naming the rim.
+#[test]
+fn a_can_rolls_on_a_crate_and_one_landing_upright_stops_the_run() {
+    let text = r#"title = "a can on a crate"
+algebra = "both"
+tolerance = 1e-12
+duration = 0.4
+
+[[body]]
+name = "crate"
+mass = 10.0
+shape = { kind = "cuboid", size = [1.0, 1.0, 0.2] }
+collision = [{ kind = "box", size = [1.0, 1.0, 0.2] }]
+initial = { position = [0.0, 0.0, 0.1] }
+forces = [{ kind = "gravity" }]
+
+[[body]]
+name = "can"
+mass = 1.0
+principal_moments = [0.00395833333333333, 0.00395833333333333, 0.00125]
+collision = [{ kind = "cylinder", radius = 0.05, length = 0.2 }]
+initial = { position = [0.0, 0.0, 0.25], orientation = { axis = [0.0, 1.0, 0.0], degrees = 90.0 }, velocity = [0.0, 1.0, 0.0] }
+forces = [{ kind = "gravity" }]
+
+[[plane]]
+name = "floor"
+friction = 0.5
+
+[[collision]]
+bodies = ["can", "crate"]
+friction = 0.3
+"#;
+    let (v0, mu, g) = (1.0, 0.3, 9.81);
+    let stop = v0 / (3.0 * mu * g);
+    let scene = Scene::parse(text).unwrap();
+    fn check<A: FileAlgebra>(scene: &Scene, v0: f64, mu: f64, g: f64, stop: f64) {
+        let run = scene.simulate::<A>().unwrap();
+        let stuck: Vec<_> = (run.transitions.iter())
+            .filter(|t| t.constraint.starts_with("can / crate: can cylinder 1 cap"))
+            .filter(|t| matches!(t.change, dynamics::limits::LimitChange::Stuck { .. }))
+            .collect();
+        assert_eq!(stuck.len(), 2, "{:?}", run.transitions);
+        for t in &stuck {
+            assert!(
+                (t.t - stop).abs() < 1e-12,
+                "{}: {} s, {stop} s exact",
+                t.constraint,
+                t.t
+            );
+        }
+        for (crate_box, can) in run.body(0).iter().zip(run.body(1)) {
+            let speed = if can.t < stop {
+                v0 - mu * g * can.t
+            } else {
+                2.0 * v0 / 3.0
+            };
+            assert!(
+                (can.velocity - Vector3::y() * speed).norm() < 1e-10,
+                "t = {}: {}",
+                can.t,
+                can.velocity
+            );
+            assert!(
+                (can.position.z - 0.25).abs() < 1e-12,
+                "t = {}: {}",
+                can.t,
+                can.position.z
+            );
+            let moved = (crate_box.position - Vector3::z() * 0.1).norm();
+            assert!(moved < 1e-12, "t = {}: the crate moved {moved:e} m", crate_box.t);
+        }
+    }
+    check::<Pga>(&scene, v0, mu, g, stop);
+    check::<Cga>(&scene, v0, mu, g, stop);
+    let upright = text.replace(
+        "position = [0.0, 0.0, 0.25], orientation = { axis = [0.0, 1.0, 0.0], degrees = 90.0 }, velocity = [0.0, 1.0, 0.0]",
+        "position = [0.0, 0.0, 0.35]",
+    );
+    assert_ne!(upright, text);
+    let error = Scene::parse(&upright)
+        .unwrap()
+        .simulate::<Pga>()
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        error.contains("can / crate: can cylinder 1 cap 1 on crate box 1 face") && error.contains("lies flat"),
         "{error}"
     );
 }

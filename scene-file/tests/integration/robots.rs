@@ -809,8 +809,23 @@ fn careless_contacts_fail_naming_the_entry_and_the_value() {
         (&block, first, "[[contact]]\nsphere = { centre = [0.0, 0.0, 0.0], radius = 0.1, colour = 1 }", &["unknown field `colour`"]),
         (&block, first, "[[contact]]\nsphere = { centre = [0.0, 0.0, 0.0] }", &["missing field `radius`"]),
         (&block, first, "[[contact]]\nsphere = 0.1", &["invalid type: floating point `0.1`"]),
-        (&block, first, &format!("{first}\nsphere = {{ centre = [0.0, 0.0, 0.0], radius = 0.1 }}"), &["contact contact 1", "`point` or `sphere`, not both"]),
-        (&block, first, "[[contact]]\nrestitution = 0.5", &["contact contact 1", "give the `point = [x, y, z]` or the `sphere"]),
+        (&block, first, &format!("{first}\nsphere = {{ centre = [0.0, 0.0, 0.0], radius = 0.1 }}"), &["contact contact 1", "one of `point`, `sphere` and `disk`"]),
+        (&block, first, "[[contact]]\nrestitution = 0.5", &["contact contact 1", "give the `point = [x, y, z]`, the `sphere", "the `disk"]),
+        // Disks: a radius zero, negative, NaN or huge; an axis zero, NaN, infinite or of the wrong length; a centre far
+        // away; unknown or missing keys; a disk with a point or a sphere; a start with the rim below the floor.
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 0.0 }", &["contact contact 1", "disk's radius must be positive", "got 0"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = -0.1 }", &["contact contact 1", "disk's radius", "-0.1"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = nan }", &["contact contact 1", "disk's radius", "NaN"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 1e7 }", &["contact contact 1", "disk's radius", "within 1e6"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 0.0], radius = 0.1 }", &["contact contact 1", "disk's axis", "not zero"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [nan, 0.0, 1.0], radius = 0.1 }", &["contact contact 1", "disk's axis", "NaN"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [0.0, inf, 1.0], radius = 0.1 }", &["contact contact 1", "disk's axis", "inf"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0], radius = 0.1 }", &["invalid length 2"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [2e6, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 0.1 }", &["contact contact 1", "within 1e6"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], radius = 0.1 }", &["missing field `axis`"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 0.1, width = 1 }", &["unknown field `width`"]),
+        (&block, first, &format!("{first}\ndisk = {{ centre = [0.0, 0.0, 0.0], axis = [1.0, 0.0, 0.0], radius = 0.1 }}"), &["contact contact 1", "one of `point`, `sphere` and `disk`"]),
+        (&block, first, "[[contact]]\ndisk = { centre = [0.0, 0.0, -0.6], axis = [1.0, 0.0, 0.0], radius = 0.1 }", &["contact contact 1", "the start puts its disk", "below its plane"]),
         (&block, first, "[[contact]]\nsphere = { centre = [0.0, 0.0, 0.0], radius = 0.6 }", &["contact contact 1", "the start puts its sphere", "below its plane"]),
         (&block, first, &format!("{first}\nbody = \"moon\""), &["contact contact 1: body", "no body named \"moon\""]),
         (&block, first, &format!("{first}\nbody = \"world\""), &["contact contact 1: body", "the world has no point"]),
@@ -913,7 +928,7 @@ fn differences(first: &[Sample], second: &[Sample]) -> (f64, f64) {
 }
 
 /// Collision shapes and `[[plane]]`s with their careless inputs (the shipped shapes scene edited): sizes zero,
-/// negative, NaN or huge, wrong lengths, unknown kinds and keys, a cylinder (not modelled), hulls of too few,
+/// negative, NaN or huge, wrong lengths, unknown kinds and keys, a cylinder reaching below the floor, hulls of too few,
 /// coplanar, malformed or too many points, a missing or malformed mesh, a plane with no shape or shapes with no
 /// plane, a plane's careless coefficients and normal, a start where a shape is below the plane.
 #[test]
@@ -958,7 +973,13 @@ fn careless_collision_shapes_and_planes_fail_naming_the_entry_and_the_value() {
         (&scene, crate_box, "collision = [{ kind = \"sphere\", radius = 1e300 }]", &["body crate: collision 1: radius", "1e6"]),
         (&scene, crate_box, "collision = [{ kind = \"sphere\" }]", &["missing field `radius`"]),
         (&scene, crate_box, "collision = { kind = \"sphere\", radius = 0.1 }", &["invalid type: map", "expected a sequence"]),
-        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = 0.2 }]", &["body crate: collision 1", "cylinder", "not modelled", "capsule"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.0, length = 0.2 }]", &["body crate: collision 1: radius", "positive", "got 0"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = -0.2 }]", &["body crate: collision 1: length", "-0.2"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = nan }]", &["body crate: collision 1: length", "NaN"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 1e300, length = 0.2 }]", &["body crate: collision 1: radius", "1e6"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1 }]", &["missing field `length`"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = 0.2, position = [0.0, nan, 0.0] }]", &["body crate: collision 1: position", "not finite"]),
+        (&scene, crate_box, "collision = [{ kind = \"cylinder\", radius = 0.1, length = 0.7 }]", &["contact floor: crate cylinder 1 cap 1", "the start puts its disk", "below its plane"]),
         (&scene, pill, "collision = [{ kind = \"capsule\", radius = 0.05, length = 0.0,", &["body pill: collision 1: length", "positive", "got 0"]),
         (&scene, pill, "collision = [{ kind = \"capsule\", radius = nan, length = 0.2,", &["body pill: collision 1: radius", "NaN"]),
         (&scene, gem, "collision = [{ kind = \"convex\", points = [[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [-0.1, 0.0, 0.0]] }]", &["body gem: collision 1", "span no volume"]),
@@ -993,7 +1014,8 @@ fn careless_collision_shapes_and_planes_fail_naming_the_entry_and_the_value() {
             &format!("{pill} orientation = {{ axis = [0.0, 1.0, 0.0], degrees = 60.0 }} }}]"),
             "",
         )
-        .replace(gem, "");
+        .replace(gem, "")
+        .replace("collision = [{ kind = \"cylinder\", radius = 0.05, length = 0.2 }]", "");
     assert!(!bare.contains("collision = ["), "{bare}");
     let message = Scene::parse_in(&bare, &robots())
         .err()
