@@ -10,7 +10,7 @@
 //! `V = (ω; v_o)` (v_o the velocity of the body point at o), forces `F = (n_o; f)` (moment about o), the two paired
 //! by the power `V·F`: the (ω; v), (τ; f) coordinates of §M1 with the moments taken about o.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
 
 use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::eigen::least_norm_by_blocks;
@@ -73,6 +73,8 @@ impl Articulation {
 struct BodyTerms {
     /// Its articulated inertia (first its spatial inertia about o).
     inertia: Inertia6,
+    /// A root's inverse articulated inertia, kept when rows couple: each row's response needs it.
+    compliance: Matrix6<f64>,
     /// Its articulated bias force (first `V ×* I V − F_ext`).
     bias: Vector6<f64>,
     velocity: Vector6<f64>,
@@ -211,6 +213,7 @@ impl ArticulatedScratch {
     pub(crate) fn new(bodies: usize, joints: usize, rows: usize) -> Self {
         let body = BodyTerms {
             inertia: Inertia6::ZERO,
+            compliance: Matrix6::zeros(),
             bias: Vector6::zeros(),
             velocity: Vector6::zeros(),
             acceleration: Vector6::zeros(),
@@ -420,12 +423,6 @@ fn project(terms: &mut JointTerms, child: &BodyTerms) -> Option<Vector6<f64>> {
     Some(passed)
 }
 
-/// A free root's acceleration from `I^A a = −p^A`; `None` if its articulated inertia is not positive definite.
-#[inline]
-fn root_acceleration(inertia: &Inertia6, bias: &Vector6<f64>) -> Option<Vector6<f64>> {
-    inertia.solve(bias).map(|a| -a)
-}
-
 /// A child's acceleration from `a' = a_parent + c` (given): `q̈ = D⁻¹(u − Uᵀa')`, stored in the joint's rates, and
 /// `a = a' + S q̈`; `force` is u.
 #[inline]
@@ -508,7 +505,7 @@ impl Articulation {
             }
             for &body in &self.order {
                 let acceleration = match self.parent_joint[body] {
-                    None => root_acceleration(&scratch.bodies[body].inertia, &scratch.response_bias[body]).ok_or(())?,
+                    None => -(scratch.bodies[body].compliance * scratch.response_bias[body]),
                     Some(j) => {
                         let parent = self.parent_body[body].map_or_else(Vector6::zeros, |p| scratch.responses[k][p]);
                         let terms = &mut scratch.joints[j];
@@ -702,7 +699,15 @@ impl Articulation {
         // Parents before children: the accelerations.
         for &body in &self.order {
             let acceleration = match self.parent_joint[body] {
-                None => root_acceleration(&scratch.bodies[body].inertia, &scratch.bodies[body].bias).ok_or(body)?,
+                // A free root: `I^A a = −p^A`, an error if its articulated inertia is not positive definite.
+                None => {
+                    let terms = &mut scratch.bodies[body];
+                    let factor = terms.inertia.matrix().cholesky().ok_or(body)?;
+                    if !rows.is_empty() {
+                        terms.compliance = factor.inverse();
+                    }
+                    -factor.solve(&terms.bias)
+                }
                 Some(j) => {
                     let parent = self.parent_body[body].map_or_else(Vector6::zeros, |p| scratch.bodies[p].acceleration);
                     let terms = &mut scratch.joints[j];

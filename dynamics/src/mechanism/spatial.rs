@@ -104,12 +104,6 @@ impl Inertia6 {
     pub fn matrix(&self) -> Matrix6<f64> {
         Matrix6::from_fn(|i, j| self.0[INDEX[i][j]])
     }
-
-    /// `I⁻¹ f` by Cholesky, or `None` if I is not positive definite.
-    #[inline]
-    pub fn solve(&self, f: &Vector6<f64>) -> Option<Vector6<f64>> {
-        self.matrix().cholesky().map(|factor| factor.solve(f))
-    }
 }
 
 #[inline]
