@@ -6,7 +6,7 @@ use crate::integrate::{StepError, Stepper};
 use crate::limits::{LimitTransition, AT_BOUND};
 use crate::motion::Dynamics;
 use crate::simulate::error::SimulationError;
-use crate::simulate::events::{brackets, locate, Located};
+use crate::simulate::events::{brackets, locate, Bracket, Located};
 use crate::state::State;
 
 /// The system's limit values at `(t, states)` into `values` ([`Dynamics::limit_values`]).
@@ -55,10 +55,9 @@ pub(super) fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
             .for_each(|(p, &value)| p.push((offset, value)));
     }
     after.copy_from_slice(&values);
-    let falls = |before: f64, after: f64| (before > 0.0 && after <= 0.0) || (before == 0.0 && after < -AT_BOUND);
     let mut earliest: Option<Located<A>> = None;
     for (index, points) in points.iter().enumerate() {
-        let Some(&bracket) = brackets(points, falls).first() else {
+        let Some(bracket) = first_fall(points) else {
             continue;
         };
         if earliest.as_ref().is_some_and(|(time, ..)| t + bracket.0 .0 >= *time) {
@@ -74,6 +73,20 @@ pub(super) fn limit_crossing<A: Algebra, D: Dynamics<A> + ?Sized>(
         }
     }
     Ok(earliest)
+}
+
+/// The first part of a step, between two of its `(offset, value)` points, where a one-sided value falls to its bound:
+/// from above zero to zero or below, or from within AT_BOUND of zero (at the bound, inside the step as at its start)
+/// to below −AT_BOUND. One that has left the bound and drifts down by round-off (−2e-13 at one point) falls where it
+/// passes −AT_BOUND (−4e-12 at the next); that part starts at +0, so that [`locate`] finds it as one leaving the bound.
+fn first_fall(points: &[(f64, f64)]) -> Option<Bracket> {
+    let at_bound = |value: f64| value.abs() <= AT_BOUND;
+    let falls = |before: f64, after: f64| (before > 0.0 && after <= 0.0) || (at_bound(before) && after < -AT_BOUND);
+    let mut bracket = *brackets(points, falls).first()?;
+    if at_bound(bracket.0 .1) && bracket.1 .1 < -AT_BOUND {
+        bracket.0 .1 = 0.0;
+    }
+    Some(bracket)
 }
 
 /// More transitions than this with no whole step between them end the run ([`SimulationError::Zeno`]): impacts that
@@ -135,4 +148,30 @@ pub(super) fn start_on_bounds<A: Algebra, D: Dynamics<A> + ?Sized>(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Falls to the bound: a plain crossing; a value starting at +0 that passes −AT_BOUND; one that leaves the bound
+    /// by round-off inside the step and passes −AT_BOUND between two later points (located from +0); not round-off
+    /// about zero, nor a value that stays above.
+    #[test]
+    fn values_falling_to_their_bound_are_bracketed() {
+        assert_eq!(
+            first_fall(&[(0.0, 1e-3), (1.0, -1e-9)]),
+            Some(((0.0, 1e-3), (1.0, -1e-9)))
+        );
+        assert_eq!(
+            first_fall(&[(0.0, 0.0), (1.0, -4e-12)]),
+            Some(((0.0, 0.0), (1.0, -4e-12)))
+        );
+        assert_eq!(
+            first_fall(&[(0.0, 0.0), (0.5, -2e-13), (1.0, -4e-12)]),
+            Some(((0.5, 0.0), (1.0, -4e-12)))
+        );
+        assert_eq!(first_fall(&[(0.0, 0.0), (0.5, -2e-13), (1.0, -9e-13)]), None);
+        assert_eq!(first_fall(&[(0.0, 1e-3), (0.5, 2e-3), (1.0, 1e-9)]), None);
+    }
 }
