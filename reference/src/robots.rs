@@ -277,10 +277,16 @@ impl RobotReference {
     }
 }
 
-/// The CSV: `t`, the joints, for a floating base `base.x … base.qz`, `energy`.
+/// The CSV: `t`, the joints, for a floating base `base.x … base.qz`, `energy` (RFC 4180: a name may be quoted).
 fn parse_samples(csv: &str, joints: &[String], free_base: bool) -> Result<Vec<RobotSample>, RobotDataError> {
-    let mut lines = csv.lines();
-    let header: Vec<&str> = lines.next().ok_or_else(|| bad("empty CSV"))?.split(',').collect();
+    let mut reader = ::csv::ReaderBuilder::new()
+        .trim(::csv::Trim::All)
+        .from_reader(csv.as_bytes());
+    let header: Vec<String> = (reader.headers())
+        .map_err(|e| bad(format!("CSV header: {e}")))?
+        .iter()
+        .map(str::to_owned)
+        .collect();
     let mut expected: Vec<String> = std::iter::once("t".to_owned()).chain(joints.iter().cloned()).collect();
     if free_base {
         expected.extend(["base.x", "base.y", "base.z", "base.qw", "base.qx", "base.qy", "base.qz"].map(str::to_owned));
@@ -289,20 +295,14 @@ fn parse_samples(csv: &str, joints: &[String], free_base: bool) -> Result<Vec<Ro
     if header != expected {
         return Err(bad(format!("CSV header {header:?}, expected {expected:?}")));
     }
-    lines
-        .filter(|l| !l.trim().is_empty())
-        .map(|line| {
-            let values: Vec<f64> = line
-                .split(',')
-                .map(|v| v.trim().parse::<f64>().map_err(|_| bad(format!("not a number: {v}"))))
+    reader
+        .records()
+        .map(|record| {
+            let record = record.map_err(|e| bad(format!("CSV row: {e}")))?;
+            let values: Vec<f64> = record
+                .iter()
+                .map(|v| v.parse::<f64>().map_err(|_| bad(format!("not a number: {v}"))))
                 .collect::<Result<_, _>>()?;
-            if values.len() != expected.len() {
-                return Err(bad(format!(
-                    "a row of {} values, expected {}",
-                    values.len(),
-                    expected.len()
-                )));
-            }
             let n = joints.len();
             let base = free_base.then(|| {
                 let b = &values[1 + n..];

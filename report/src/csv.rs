@@ -1,9 +1,8 @@
-//! Trajectories as CSV, all written by one writer: a header of column names, then a line per sample of numbers in
-//! Rust's `{:e}` (exact when read back), comma-separated. One body in the reference files' columns plus the energy
+//! Trajectories as CSV, all written by one writer (the `csv` crate, RFC 4180): a header of column names, then a line
+//! per sample of numbers in Rust's `{:e}` (exact when read back), comma-separated. One body in the reference files' columns plus the energy
 //! ([`write()`]); several bodies' centres of mass and orientations, then the system's energy (`write_bodies`); a
 //! robot's joint coordinates between the time and the energy (`write_joints`).
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use dynamics::simulate::Sample;
@@ -83,25 +82,17 @@ pub(crate) fn write_joints(
     write_table(path, columns, rows)
 }
 
-/// Writes the header of `columns` and the `rows` to `path`.
+/// Writes the header of `columns` and the `rows` to `path`, a name quoted where RFC 4180 says (a comma, a quote or a
+/// line break in it).
 fn write_table(
     path: &Path,
     columns: impl IntoIterator<Item = impl AsRef<str>>,
     rows: impl ExactSizeIterator<Item = Vec<f64>>,
 ) -> std::io::Result<()> {
-    let columns: Vec<_> = columns.into_iter().collect();
-    let mut text = String::with_capacity(rows.len() * columns.len() * 24);
-    for (k, column) in columns.iter().enumerate() {
-        let separator = if k == 0 { "" } else { "," };
-        let _ = write!(text, "{separator}{}", column.as_ref());
-    }
-    text.push('\n');
+    let mut writer = ::csv::Writer::from_path(path)?;
+    writer.write_record(columns.into_iter().map(|c| c.as_ref().to_owned()))?;
     for row in rows {
-        for (k, value) in row.iter().enumerate() {
-            let separator = if k == 0 { "" } else { "," };
-            let _ = write!(text, "{separator}{value:e}");
-        }
-        text.push('\n');
+        writer.write_record(row.iter().map(|value| format!("{value:e}")))?;
     }
-    std::fs::write(path, text)
+    writer.flush()
 }

@@ -24,13 +24,13 @@ fn robots() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../reference/data/robots")
 }
 
-/// A CSV file's header and rows.
+/// A CSV file's header and rows, read as RFC 4180 says (the `csv` crate: quoted names, every row as long as the
+/// header).
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(str::to_owned).collect();
-    let rows = lines
-        .map(|line| line.split(',').map(|v| v.parse::<f64>().unwrap()).collect())
+    let mut reader = csv::Reader::from_path(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let header = reader.headers().unwrap().iter().map(str::to_owned).collect();
+    let rows = (reader.records())
+        .map(|record| record.unwrap().iter().map(|v| v.parse::<f64>().unwrap()).collect())
         .collect();
     (header, rows)
 }
@@ -179,6 +179,34 @@ const ARM_MASSLESS_SENSOR: &str = include_str!("../../../scene-file/tests/data/a
 /// A scene of the arm in `dir` (URDF `arm.urdf`), `robot` the `[robot]` table's further lines.
 fn arm_scene(robot: &str) -> String {
     format!("dt = 1e-3\nduration = 0.2\nalgebra = \"pga\"\n[robot]\nurdf = \"arm.urdf\"\n{robot}\n")
+}
+
+/// Joint and link names with commas, quotes and spaces (the arm's shoulder `shoulder, left "a"`, its link `upper,
+/// arm`) are written into the joints and bodies CSVs quoted as RFC 4180 says: read back by the `csv` crate, the
+/// headers hold the names as the URDF spells them and every row has as many fields as its header.
+#[test]
+fn names_with_commas_and_quotes_are_quoted_in_the_csvs() {
+    let dir = fresh("quoted-names");
+    let urdf = ARM_MASSLESS_SENSOR
+        .replace("joint name=\"shoulder\"", "joint name=\"shoulder, left &quot;a&quot;\"")
+        .replace("\"link\"", "\"upper, arm\"");
+    assert_ne!(urdf, ARM_MASSLESS_SENSOR);
+    std::fs::write(dir.join("arm.urdf"), urdf).unwrap();
+    let scene = arm_scene("q = { \"shoulder, left \\\"a\\\"\" = 0.5 }\nrepairs = { massless_subtrees = \"freeze\" }");
+    std::fs::write(dir.join("quoted.toml"), &scene).unwrap();
+    run_scene_file(&dir.join("quoted.toml"), &dir.join("out")).expect("the scene runs");
+    let (joints, rows) = read_csv(&dir.join("out/quoted_joints_pga.csv"));
+    assert_eq!(joints, ["t", "shoulder, left \"a\"", "spin", "slide", "energy"]);
+    assert!((rows[0][1] - 0.5).abs() < 1e-15);
+    let (bodies, rows) = read_csv(&dir.join("out/quoted_pga.csv"));
+    assert!(bodies.iter().any(|c| c == "upper, arm.x"), "{bodies:?}");
+    assert!(rows.iter().all(|r| r.len() == bodies.len()));
+    let text = std::fs::read_to_string(dir.join("out/quoted_joints_pga.csv")).unwrap();
+    assert!(
+        text.starts_with("t,\"shoulder, left \"\"a\"\"\",spin,slide,energy\n"),
+        "{}",
+        &text[..80]
+    );
 }
 
 /// A URDF with a massless moving link: an error naming the joint and the link without the freeze repair; frozen at 0
