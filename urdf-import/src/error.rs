@@ -55,6 +55,18 @@ pub enum ImportError {
         /// The XML parser's message.
         message: String,
     },
+    /// Elements nested deeper than [`crate::parse::MAX_NESTING`]: a URDF nests a few levels, and the XML parser
+    /// recurses once per level, so a hostile file would exhaust the stack.
+    #[error(
+        "elements nested more than {limit} deep at line {line}: a URDF nests a few levels (robot, link, visual, \
+         geometry, mesh)"
+    )]
+    TooDeep {
+        /// The line of the first element beyond the limit.
+        line: u32,
+        /// The limit.
+        limit: usize,
+    },
     /// The root element is not `<robot>`.
     #[error("the root element is <{element}> (line {line}), not <robot>")]
     NotRobot {

@@ -182,6 +182,62 @@ impl Lines {
     }
 }
 
+/// The deepest nesting of elements accepted. The XML parser recurses once per level; a URDF nests five or six.
+pub const MAX_NESTING: usize = 256;
+
+/// The byte offset of the first start tag nested deeper than `limit`, if any, by a scan that knows only what can hide
+/// a `<`: comments, CDATA, processing instructions, the DOCTYPE, quoted attribute values. Malformed text is left to
+/// the XML parser, which then sees a nesting within the limit.
+fn too_deep(text: &str, limit: usize) -> Option<usize> {
+    let bytes = text.as_bytes();
+    let skip_past = |from: usize, end: &str| text[from..].find(end).map_or(bytes.len(), |k| from + k + end.len());
+    let (mut depth, mut at) = (0usize, 0usize);
+    while let Some(k) = text[at..].find('<') {
+        let start = at + k;
+        let rest = &text[start..];
+        at = if rest.starts_with("<!--") {
+            skip_past(start, "-->")
+        } else if rest.starts_with("<![CDATA[") {
+            skip_past(start, "]]>")
+        } else if rest.starts_with("<?") {
+            skip_past(start, "?>")
+        } else if rest.starts_with("<!") {
+            // A DOCTYPE, with its internal subset in brackets.
+            let close = rest.find('>').map_or(bytes.len(), |k| start + k);
+            match rest.find('[') {
+                Some(open) if start + open < close => skip_past(start, "]>"),
+                _ => close + 1,
+            }
+        } else {
+            // A tag: to its `>` outside quotes.
+            let mut end = start + 1;
+            let mut quote = None;
+            while end < bytes.len() {
+                match (quote, bytes[end]) {
+                    (None, b'"' | b'\'') => quote = Some(bytes[end]),
+                    (Some(q), b) if b == q => quote = None,
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                end += 1;
+            }
+            if rest.starts_with("</") {
+                depth = depth.saturating_sub(1);
+            } else if bytes.get(end.saturating_sub(1)) != Some(&b'/') {
+                depth += 1;
+                if depth > limit {
+                    return Some(start);
+                }
+            }
+            end + 1
+        };
+        if at >= bytes.len() {
+            break;
+        }
+    }
+    None
+}
+
 /// Parses URDF text into a [`RawModel`].
 ///
 /// ```
@@ -192,6 +248,12 @@ impl Lines {
 pub fn parse(text: &str) -> Result<RawModel, ImportError> {
     if text.trim().is_empty() {
         return Err(ImportError::Empty);
+    }
+    if let Some(offset) = too_deep(text, MAX_NESTING) {
+        return Err(ImportError::TooDeep {
+            line: Lines::new(text).line(offset),
+            limit: MAX_NESTING,
+        });
     }
     // A DTD is allowed: some exporters write one, and roxmltree still guards against entity expansion bombs.
     let options = ParsingOptions {

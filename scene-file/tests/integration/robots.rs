@@ -597,13 +597,20 @@ pub(super) fn shipped(name: &str) -> String {
     std::fs::read_to_string(scenes().join(name)).unwrap()
 }
 
-/// The `[robot]` table's keys with their careless inputs ([`FIXED`] and [`FREE`] edited), a missing, empty or
-/// massless URDF among them.
+/// The `[robot]` table's keys with their careless inputs ([`FIXED`] and [`FREE`] edited), a missing, empty,
+/// massless or 100 000 elements deep URDF among them.
 #[test]
 fn careless_robot_keys_fail_naming_the_entry_and_the_value() {
     let dir = fresh("careless");
     std::fs::write(dir.join("empty.urdf"), "").unwrap();
     std::fs::write(dir.join("massless.urdf"), ARM_MASSLESS_SENSOR).unwrap();
+    let nested = format!(
+        "<robot name=\"r\"><link name=\"base\"/>{}{}</robot>",
+        "<a>".repeat(100_000),
+        "</a>".repeat(100_000)
+    );
+    std::fs::write(dir.join("nested.urdf"), nested).unwrap();
+    let nested = dir.join("nested.urdf").display().to_string();
     let ur5 = robots().join("ur5_robot.urdf").display().to_string();
     let solo = robots().join("solo12.urdf").display().to_string();
     let empty = dir.join("empty.urdf").display().to_string();
@@ -616,6 +623,7 @@ fn careless_robot_keys_fail_naming_the_entry_and_the_value() {
         (FIXED, urdf, "urdf = \".\"", &["robot.urdf", "cannot read"]),
         (FIXED, urdf, "urdf = \"\"", &["robot.urdf", "cannot read"]),
         (FIXED, urdf, &format!("urdf = {empty:?}"), &["robot.urdf", "empty.urdf", "the URDF text is empty"]),
+        (FIXED, urdf, &format!("urdf = {nested:?}"), &["robot.urdf", "nested.urdf", "nested more than 256 deep at line 1"]),
         (FREE, "urdf = \"solo12.urdf\"", &format!("urdf = {massless:?}"), &["robot.urdf", "massless.urdf", "joint `spin`", "links `sensor`", "mass 0 kg"]),
         (FIXED, urdf, "urdf = 3", &["invalid type: integer `3`", "expected a string"]),
         (FIXED, urdf, &format!("urdf = {:?}", ur5.replace("ur5_robot", "solo12")), &["joint hinge: between", "no body named \"tool0\"", "base_link"]),

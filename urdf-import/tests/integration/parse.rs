@@ -90,6 +90,48 @@ fn defaults_axis_limit_dynamics_and_mimic() {
     assert_eq!(model.joints[1].mimic.as_ref().unwrap().index, Some(0));
 }
 
+/// Elements nested 100 000 deep (a hostile file) are refused before the XML parser, which recurses once per level,
+/// could exhaust the stack: an error naming the line and the limit, from `read` as from the parse. Nested as deep as
+/// the limit, they parse; `<` inside comments, CDATA, processing instructions and a DOCTYPE's subset opens nothing,
+/// and `/>` inside a quoted attribute value closes nothing.
+#[test]
+fn nesting_beyond_the_limit_is_refused_naming_the_line() {
+    use urdf_import::parse::MAX_NESTING;
+    let nested = |depth: usize| {
+        format!(
+            "<robot name=\"r\">\n<link name=\"base\"/>\n{}{}</robot>\n",
+            "<a>".repeat(depth),
+            "</a>".repeat(depth)
+        )
+    };
+    for depth in [MAX_NESTING, 100_000] {
+        let text = nested(depth);
+        let error = urdf_import::read(&text, &urdf_import::ImportOptions::default()).unwrap_err();
+        assert_eq!(
+            error,
+            ImportError::TooDeep {
+                line: 3,
+                limit: MAX_NESTING
+            },
+            "{depth}"
+        );
+        assert_message(&error, &["nested more than 256 deep at line 3"]);
+    }
+    // The robot counts: 255 more levels are within the limit.
+    let within = nested(MAX_NESTING - 1);
+    assert!(urdf_import::parse::parse(&within).is_ok());
+    let (hidden, closing) = ("<a><b>".repeat(1000), "a/>".repeat(1000));
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [<!ENTITY x \"{hidden}\">]>\n<robot name=\"r\">\n<!-- {hidden} -->\n\
+         <link name=\"base\"><![CDATA[{hidden}]]><?pi {hidden}?></link>\n<link name=\"other\" note=\"{closing}\"/>\n</robot>\n"
+    );
+    assert!(
+        urdf_import::parse::parse(&text).is_ok(),
+        "{:?}",
+        urdf_import::parse::parse(&text).err()
+    );
+}
+
 #[test]
 fn empty_text_not_xml_and_not_a_robot() {
     assert_eq!(error(""), ImportError::Empty);
