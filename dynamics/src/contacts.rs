@@ -147,8 +147,8 @@ pub const TOUCHING: f64 = 1e-9;
 impl PlaneContact {
     /// The body point `point` (m, the body's frame) kept on the side of the plane `normal · x = offset` (world)
     /// that `normal` points to; inelastic (restitution 0). The normal need not be unit (the plane is scaled to a unit
-    /// normal); it must be
-    /// finite and not zero, and every coordinate finite and within [`LARGEST_COORDINATE`].
+    /// normal): finite and not zero, of any size. The point's coordinates finite and within [`LARGEST_COORDINATE`],
+    /// and so the offset and the plane's distance from the origin (the offset over the normal's length).
     ///
     /// ```
     /// use dynamics::contacts::PlaneContact;
@@ -158,6 +158,8 @@ impl PlaneContact {
     /// let corner = PlaneContact::new(Vector3::new(0.1, 0.1, -0.1), Vector3::z(), 0.0)?.with_restitution(0.5)?;
     /// assert_eq!(corner.height(&Vector3::new(0.0, 0.0, 0.25)), 0.25);
     /// assert!(PlaneContact::new(Vector3::zeros(), Vector3::zeros(), 0.0).is_err()); // no normal
+    /// let tiny = PlaneContact::new(Vector3::zeros(), Vector3::z() * 1e-300, 2e-300)?; // z = 2: a direction of any size
+    /// assert_eq!((tiny.normal(), tiny.offset()), (Vector3::z(), 2.0));
     /// # Ok::<(), dynamics::ConstraintError>(())
     /// ```
     pub fn new(point: Vector3<f64>, normal: Vector3<f64>, offset: f64) -> Result<Self, ConstraintError> {
@@ -166,25 +168,34 @@ impl PlaneContact {
             reason,
         };
         let within = |x: f64| x.is_finite() && x.abs() <= LARGEST_COORDINATE;
-        if !(point.iter().all(|&x| within(x)) && within(offset)) {
+        if !(point.iter().all(|&x| within(x)) && offset.is_finite()) {
             return Err(refuse(format!(
                 "the body point {:?} and the offset {offset} must be finite and within {LARGEST_COORDINATE:e} m",
                 point.as_slice()
             )));
         }
-        let length = normal.norm();
-        if !(length.is_finite() && length > 0.0 && normal.iter().all(|&x| within(x))) {
+        // Scaled before its length is taken, so that a normal of huge or tiny numbers is still a direction.
+        let scale = normal.amax();
+        if !(normal.iter().all(|x| x.is_finite()) && scale > 0.0) {
             return Err(refuse(format!(
-                "the normal {:?} must be finite, within {LARGEST_COORDINATE:e} and not zero",
+                "the normal {:?} must be finite and not zero",
                 normal.as_slice()
+            )));
+        }
+        let length = (normal / scale).norm();
+        let offset = offset / scale / length;
+        if !within(offset) {
+            return Err(refuse(format!(
+                "the plane's distance from the origin, {offset:e} m (the offset over the normal's length), must be \
+                 finite and within {LARGEST_COORDINATE:e} m"
             )));
         }
         Ok(PlaneContact {
             point,
             radius: 0.0,
             rim: None,
-            normal: Unit::new_unchecked(normal / length),
-            offset: offset / length,
+            normal: Unit::new_unchecked(normal / scale / length),
+            offset,
             restitution: 0.0,
             friction: Friction::NONE,
         })

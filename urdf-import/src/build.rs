@@ -118,6 +118,18 @@ pub enum BuildError {
         /// The value the leader implies.
         implied: f64,
     },
+    /// A start state names a joint twice among its positions, or twice among its velocities.
+    #[error("the start gives the {what} of joint `{name}` twice ({first} and {second})")]
+    Repeated {
+        /// The joint's name.
+        name: String,
+        /// "position" or "velocity".
+        what: &'static str,
+        /// The first value given.
+        first: f64,
+        /// The second.
+        second: f64,
+    },
     /// A start state gives a base pose or twist to a robot whose root is fixed.
     #[error("the root is fixed to the world: a base {0} cannot be given")]
     FixedBase(&'static str),
@@ -409,7 +421,15 @@ impl<A: Algebra> Robot<A> {
             }
         };
         for (values, velocities, target) in [(&start.positions, false, &mut q), (&start.velocities, true, &mut v)] {
-            for (name, value) in values {
+            for (k, (name, value)) in values.iter().enumerate() {
+                if let Some((_, first)) = values[..k].iter().find(|(other, _)| other == name) {
+                    return Err(BuildError::Repeated {
+                        name: name.clone(),
+                        what: if velocities { "velocity" } else { "position" },
+                        first: *first,
+                        second: *value,
+                    });
+                }
                 let index = lookup(name)?;
                 if !value.is_finite() {
                     let what = if velocities { "velocity" } else { "position" };

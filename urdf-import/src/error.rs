@@ -162,6 +162,18 @@ pub enum ImportError {
         /// The `<limit>` element's line.
         line: u32,
     },
+    /// A joint whose `<dynamics>` has a negative damping or friction, which would feed energy in.
+    #[error("joint `{joint}` (line {line}) has <dynamics {attribute}=\"{value}\">: it cannot be negative")]
+    NegativeDynamics {
+        /// The joint.
+        joint: String,
+        /// `damping` or `friction`.
+        attribute: &'static str,
+        /// The value given.
+        value: f64,
+        /// The `<dynamics>` element's line.
+        line: u32,
+    },
     /// Two links with the same name.
     #[error("link `{name}` is defined twice: at line {first_line} and at line {line}")]
     DuplicateLink {

@@ -557,10 +557,18 @@ fn parse_joint(node: Node, robot: &str, at: &impl Fn(Node) -> u32) -> Result<Raw
     };
     let (damping, friction) = match child(node, "dynamics") {
         None => (0.0, 0.0),
-        Some(d) => (
-            site.number(d, "damping")?.unwrap_or(0.0),
-            site.number(d, "friction")?.unwrap_or(0.0),
-        ),
+        Some(d) => {
+            let coefficient = |attribute: &'static str| match site.number(d, attribute)? {
+                Some(value) if value < 0.0 => Err(ImportError::NegativeDynamics {
+                    joint: name.clone(),
+                    attribute,
+                    value,
+                    line: at(d),
+                }),
+                value => Ok(value.unwrap_or(0.0)),
+            };
+            (coefficient("damping")?, coefficient("friction")?)
+        }
     };
     let mimic = match child(node, "mimic") {
         None => None,

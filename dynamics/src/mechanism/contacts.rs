@@ -193,8 +193,9 @@ impl<A: Algebra> Mechanism<A> {
     /// d_k` (the planes in the frame the contact's plane was given in: the world's, or the surface body's) while it
     /// touches, within [`OUTSIDE_FACE`]. The plane itself is unbounded; a contact that holds, or meets its plane,
     /// outside the face would be a silently wrong answer, so [`crate::simulate()`] stops there with an error naming the
-    /// contact and how far outside it is. Each normal finite and not zero, each offset finite and within
-    /// [`crate::contacts::LARGEST_COORDINATE`]; at most [`MAX_FACE_PLANES`] planes. A ball contact has no face.
+    /// contact and how far outside it is. Each normal finite and not zero (of any size), each plane's distance from
+    /// the origin (the offset over the normal's length) within [`crate::contacts::LARGEST_COORDINATE`]; at most
+    /// [`MAX_FACE_PLANES`] planes. A ball contact has no face.
     ///
     /// ```
     /// use dynamics::{contacts::PlaneContact, Body, Mechanism, Pga};
@@ -233,19 +234,22 @@ impl<A: Algebra> Mechanism<A> {
         let within = |x: f64| x.is_finite() && x.abs() <= crate::contacts::LARGEST_COORDINATE;
         let mut face = Vec::with_capacity(solid.len());
         for (k, (normal, offset)) in solid.iter().enumerate() {
-            let length = normal.norm();
-            if !(length.is_finite() && length > 0.0 && within(*offset)) {
+            // Scaled before its length is taken: a normal of huge or tiny numbers is a direction like any other.
+            let scale = normal.amax();
+            let length = (normal / scale).norm();
+            let distance = offset / scale / length;
+            if !(normal.iter().all(|x| x.is_finite()) && scale > 0.0 && within(distance)) {
                 return Err(refuse(format!(
-                    "the face's plane {} needs a finite, non-zero normal and a finite offset within {:e} m, got {:?} \
-                     and {offset}",
+                    "the face's plane {} needs a finite, non-zero normal and a distance from the origin (the offset \
+                     over the normal's length) within {:e} m, got {:?} and {offset}",
                     k + 1,
                     crate::contacts::LARGEST_COORDINATE,
                     normal.as_slice()
                 )));
             }
             // n · y ≤ d in the given frame F is (R n) · x ≤ d + (R n) · t in principal coordinates x = F y.
-            let normal = frame.rotation * (normal / length);
-            face.push((normal, offset / length + normal.dot(&frame.translation.vector)));
+            let normal = frame.rotation * (normal / scale / length);
+            face.push((normal, distance + normal.dot(&frame.translation.vector)));
         }
         self.contacts[index].face = face;
         Ok(())

@@ -81,6 +81,9 @@ pub enum SimulationError {
         /// The refused time (s).
         time: f64,
     },
+    /// A schedule of output times was given none.
+    #[error("no output times were given: the schedule needs at least one, the last the run's end")]
+    NoOutputTimes,
     /// A schedule's start time is not finite, or so large that f64 times near it do not resolve the step to a
     /// millionth of it.
     #[error("the start time must be finite and small enough for the clock to resolve the step to 1e-6 of it, got {0}")]

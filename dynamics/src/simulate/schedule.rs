@@ -154,7 +154,8 @@ impl Schedule {
     }
 
     /// Steps of `dt` (any size) on the grid `k·dt`, with samples at t = 0 and at each of `times` (finite,
-    /// positive, increasing); the run ends at the last. A time between two steps is sampled by a partial step.
+    /// positive, increasing, at least one); the run ends at the last. A time between two steps is sampled by a partial
+    /// step.
     ///
     /// ```
     /// use dynamics::{simulate, Body, FreeBody, Method, Pga, Schedule, State};
@@ -177,7 +178,7 @@ impl Schedule {
                 return Err(SimulationError::OutputTime { index, time });
             }
         }
-        let duration = positive("the duration", times.last().copied().unwrap_or(0.0))?;
+        let duration = positive("the duration", *times.last().ok_or(SimulationError::NoOutputTimes)?)?;
         if times.len() >= MAX_SAMPLES || duration / dt > (1u64 << 53) as f64 {
             return Err(SimulationError::TooLong);
         }

@@ -518,6 +518,43 @@ fn careless_contacts_between_bodies_are_refused() {
         ));
         assert_eq!(pair.reference_frame(a), Ok(nalgebra::Isometry3::identity()));
     }
+    // Faces: an unknown contact, a ball contact; normals zero, NaN or infinite; offsets NaN, or a plane 1e7 m away;
+    // more than MAX_FACE_PLANES planes. Normals of huge or tiny numbers are directions like any other.
+    use dynamics::contacts::MAX_FACE_PLANES;
+    let mut pair = Mechanism::<Pga>::new();
+    let (a, b) = (
+        pair.add_body("a", block()).unwrap(),
+        pair.add_body("b", block()).unwrap(),
+    );
+    let corner = PlaneContact::new(point, Vector3::z(), 0.0).unwrap();
+    pair.add_contact_on("corner", a, b, corner).unwrap();
+    let ball = BallContact::new(Vector3::zeros(), 0.1, Vector3::zeros(), 0.1).unwrap();
+    pair.add_ball_contact("balls", a, b, ball).unwrap();
+    let side = |normal: Vector3<f64>, offset: f64| vec![(normal, offset)];
+    for (name, solid, words) in [
+        ("edge", side(Vector3::x(), 0.5), "no contact has this name"),
+        ("balls", side(Vector3::x(), 0.5), "a ball contact has no face"),
+        ("corner", side(Vector3::zeros(), 0.5), "non-zero normal"),
+        ("corner", side(Vector3::new(nan, 0.0, 1.0), 0.5), "non-zero normal"),
+        ("corner", side(Vector3::new(0.0, inf, 1.0), 0.5), "non-zero normal"),
+        ("corner", side(Vector3::x(), nan), "distance from the origin"),
+        ("corner", side(Vector3::x(), 1e7), "distance from the origin"),
+        ("corner", side(Vector3::x() * 1e-300, 1.0), "distance from the origin"),
+        (
+            "corner",
+            vec![(Vector3::x(), 0.5); MAX_FACE_PLANES + 1],
+            "at most 1024 planes",
+        ),
+    ] {
+        let error = pair.set_contact_face(name, &solid).unwrap_err().to_string();
+        assert!(
+            error.contains(name) && error.contains(words),
+            "{name} {solid:?}: {error}"
+        );
+    }
+    for normal in [Vector3::x() * 1e300, Vector3::x() * 1e-300] {
+        pair.set_contact_face("corner", &side(normal, normal.x * 0.5)).unwrap();
+    }
 }
 
 for_both_algebras!(

@@ -411,62 +411,13 @@ fn elastic_corners_bounce_alike_in_both_algebras() {
     }
 }
 
-/// Careless contacts, each refused naming what is wrong: points, normals and offsets NaN, infinite or beyond 1e6 m,
-/// a zero normal, restitutions outside [0, 1], disks of no radius or axis; a contact with no name, a repeated name or one of a joint, on a body
-/// that is not there, on a mechanism without the articulated solve (or a change that would take it away); a start
-/// below the plane. A plane far from the origin and a non-unit normal are contacts like any other.
+/// Careless spheres and disks of plane contacts, each refused naming what is wrong: radii zero, negative, NaN,
+/// infinite or huge; disks' axes zero, NaN or infinite; centres NaN or far away. An axis of huge or tiny numbers is a
+/// direction like any other.
 #[test]
-fn careless_contacts_are_refused() {
-    use dynamics::constraints::{Stabilisation, VirtualPower};
-    use dynamics::{MechanismError, Pga};
+fn careless_spheres_and_disks_are_refused() {
     let (nan, inf) = (f64::NAN, f64::INFINITY);
     let point = Vector3::new(0.0, 0.0, -0.1);
-    for (p, n, d) in [
-        (Vector3::new(nan, 0.0, 0.0), Vector3::z(), 0.0),
-        (Vector3::new(0.0, inf, 0.0), Vector3::z(), 0.0),
-        (Vector3::new(0.0, 0.0, 2e6), Vector3::z(), 0.0),
-        (point, Vector3::z(), nan),
-        (point, Vector3::z(), -inf),
-        (point, Vector3::z(), 1e7),
-    ] {
-        let error = PlaneContact::new(p, n, d).unwrap_err().to_string();
-        assert!(error.contains("must be finite and within"), "{p:?} {d}: {error}");
-    }
-    for n in [
-        Vector3::zeros(),
-        Vector3::new(nan, 0.0, 1.0),
-        Vector3::new(0.0, inf, 1.0),
-        Vector3::new(1e300, 0.0, 0.0),
-        Vector3::new(1e-320, 0.0, 0.0),
-    ] {
-        let error = PlaneContact::new(point, n, 0.0).unwrap_err().to_string();
-        assert!(error.contains("the normal"), "{n:?}: {error}");
-    }
-    for e in [nan, -0.1, 1.0 + 1e-12, inf] {
-        let error = PlaneContact::new(point, Vector3::z(), 0.0)
-            .unwrap()
-            .with_restitution(e)
-            .unwrap_err()
-            .to_string();
-        assert!(error.contains("restitution"), "{e}: {error}");
-    }
-    // Friction: coefficients negative, NaN, infinite or beyond 1e6, static below kinetic.
-    use dynamics::contacts::{Friction, MAX_FRICTION};
-    for (kinetic, stiction) in [
-        (-0.1, 0.5),
-        (nan, 0.5),
-        (0.3, nan),
-        (inf, inf),
-        (0.3, 2.0 * MAX_FRICTION),
-        (0.5, 0.4),
-    ] {
-        let error = Friction::new(kinetic, stiction).unwrap_err().to_string();
-        assert!(
-            error.contains("friction") && error.contains("coefficient"),
-            "{kinetic} {stiction}: {error}"
-        );
-    }
-    assert!(Friction::coulomb(-1e-300).is_err() && Friction::coulomb(MAX_FRICTION).is_ok());
     // Spheres: radii zero, negative, NaN, infinite or huge; centres NaN or far away.
     for radius in [0.0, -0.1, nan, inf, 2e6] {
         let error = PlaneContact::sphere(point, radius, Vector3::z(), 0.0)
@@ -511,6 +462,84 @@ fn careless_contacts_are_refused() {
         let disk = PlaneContact::disk(point, axis, 0.1, Vector3::z(), 0.0).unwrap();
         assert!((disk.rim().unwrap().0 - unit.normalize()).norm() < 1e-15, "{axis:?}");
     }
+}
+
+/// Careless contacts, each refused naming what is wrong: points, normals and offsets NaN, infinite or beyond 1e6 m,
+/// a zero normal, restitutions outside [0, 1]; a contact with no name, a repeated name or one of a joint, on a body
+/// that is not there, on a mechanism without the articulated solve (or a change that would take it away); a start
+/// below the plane. A plane far from the origin and a non-unit normal are contacts like any other.
+#[test]
+fn careless_contacts_are_refused() {
+    use dynamics::constraints::{Stabilisation, VirtualPower};
+    use dynamics::{MechanismError, Pga};
+    let (nan, inf) = (f64::NAN, f64::INFINITY);
+    let point = Vector3::new(0.0, 0.0, -0.1);
+    for (p, n, d) in [
+        (Vector3::new(nan, 0.0, 0.0), Vector3::z(), 0.0),
+        (Vector3::new(0.0, inf, 0.0), Vector3::z(), 0.0),
+        (Vector3::new(0.0, 0.0, 2e6), Vector3::z(), 0.0),
+        (point, Vector3::z(), nan),
+        (point, Vector3::z(), -inf),
+        (point, Vector3::z(), 1e7),
+    ] {
+        let error = PlaneContact::new(p, n, d).unwrap_err().to_string();
+        assert!(error.contains("must be finite and within"), "{p:?} {d}: {error}");
+    }
+    for n in [
+        Vector3::zeros(),
+        Vector3::new(nan, 0.0, 1.0),
+        Vector3::new(0.0, inf, 1.0),
+    ] {
+        let error = PlaneContact::new(point, n, 0.0).unwrap_err().to_string();
+        assert!(error.contains("the normal"), "{n:?}: {error}");
+    }
+    // A normal of huge or tiny numbers is a direction like any other (as a surface's is); the plane's distance from
+    // the origin, the offset over the normal's length, stays within 1e6 m.
+    for (n, d, unit, distance) in [
+        (Vector3::new(1e300, 0.0, 0.0), 5e299, Vector3::x(), 0.5),
+        (Vector3::new(0.0, -1e-320, 0.0), 1e-320, -Vector3::y(), 1.0),
+        (
+            Vector3::new(3e-300, 4e-300, 0.0),
+            5e-300,
+            Vector3::new(0.6, 0.8, 0.0),
+            1.0,
+        ),
+    ] {
+        let contact = PlaneContact::new(point, n, d).unwrap();
+        assert!(
+            (contact.normal() - unit).norm() < 1e-15 && (contact.offset() - distance).abs() < 1e-15,
+            "{n:?}"
+        );
+    }
+    let error = PlaneContact::new(point, Vector3::z() * 1e-300, 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("distance from the origin"), "{error}");
+    for e in [nan, -0.1, 1.0 + 1e-12, inf] {
+        let error = PlaneContact::new(point, Vector3::z(), 0.0)
+            .unwrap()
+            .with_restitution(e)
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("restitution"), "{e}: {error}");
+    }
+    // Friction: coefficients negative, NaN, infinite or beyond 1e6, static below kinetic.
+    use dynamics::contacts::{Friction, MAX_FRICTION};
+    for (kinetic, stiction) in [
+        (-0.1, 0.5),
+        (nan, 0.5),
+        (0.3, nan),
+        (inf, inf),
+        (0.3, 2.0 * MAX_FRICTION),
+        (0.5, 0.4),
+    ] {
+        let error = Friction::new(kinetic, stiction).unwrap_err().to_string();
+        assert!(
+            error.contains("friction") && error.contains("coefficient"),
+            "{kinetic} {stiction}: {error}"
+        );
+    }
+    assert!(Friction::coulomb(-1e-300).is_err() && Friction::coulomb(MAX_FRICTION).is_ok());
     // A plane given by a non-unit normal is scaled to a unit one: 2z = 1 is z = 0.5.
     let scaled = PlaneContact::new(point, Vector3::z() * 2.0, 1.0).unwrap();
     assert_eq!((scaled.normal(), scaled.offset()), (Vector3::z(), 0.5));

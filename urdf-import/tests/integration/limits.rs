@@ -1,7 +1,8 @@
 //! The URDF's `<limit>` enforced ([`Limits::Enforce`], docs/limits.md): an arm swinging under gravity stops at its
 //! bound and never passes it, where the same arm with the limits ignored swings through; one-sided limits, a
 //! continuous joint's limit (ignored, as the URDF specification says) and a mimic follower's (its leader's governs)
-//! build; an empty range or a restitution outside [0, 1] is refused naming the joint.
+//! build; an empty range or a restitution outside [0, 1] is refused naming the joint. The same arm's careless starts
+//! (an unknown joint, a value not finite, a joint given twice) are refused naming the joint.
 
 use dynamics::limits::LimitChange;
 use dynamics::{simulate, Method, Pga, Schedule, Tolerance};
@@ -114,5 +115,47 @@ fn limits_build_as_the_urdf_means_them_and_careless_ones_are_refused() {
             error.contains("joint `shoulder`") && error.contains("restitution"),
             "{restitution}: {error}"
         );
+    }
+}
+
+/// Careless starts, each refused naming the joint: an unknown joint, a position that is not finite, a joint's
+/// position or velocity given twice (which of the two would hold is a guess).
+#[test]
+fn careless_starts_are_refused_naming_the_joint() {
+    let robot = build(&arm("revolute", r#"lower="-1" upper="1""#), Limits::Ignore).unwrap();
+    let named = |pairs: &[(&str, f64)]| pairs.iter().map(|&(name, value)| (name.to_owned(), value)).collect();
+    let cases = [
+        (
+            RobotStart {
+                positions: named(&[("elbow", 0.1)]),
+                ..RobotStart::default()
+            },
+            "no moving joint is named `elbow`",
+        ),
+        (
+            RobotStart {
+                positions: named(&[("shoulder", f64::NAN)]),
+                ..RobotStart::default()
+            },
+            "position of joint `shoulder` must be finite",
+        ),
+        (
+            RobotStart {
+                positions: named(&[("shoulder", 0.1), ("shoulder", 0.2)]),
+                ..RobotStart::default()
+            },
+            "the start gives the position of joint `shoulder` twice (0.1 and 0.2)",
+        ),
+        (
+            RobotStart {
+                velocities: named(&[("shoulder", 1.0), ("shoulder", 1.0)]),
+                ..RobotStart::default()
+            },
+            "the start gives the velocity of joint `shoulder` twice (1 and 1)",
+        ),
+    ];
+    for (start, words) in cases {
+        let error = robot.initial_states(&start).unwrap_err().to_string();
+        assert!(error.contains(words), "{start:?}: {error}");
     }
 }

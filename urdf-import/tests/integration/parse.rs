@@ -362,3 +362,32 @@ fn read_file_names_a_missing_path() {
     assert!(matches!(&e, ImportError::Io { path, .. } if path == "/nonexistent/robot.urdf"));
     assert_message(&e, &["/nonexistent/robot.urdf"]);
 }
+
+/// A negative `<dynamics>` damping or friction would feed energy in: refused naming the joint, the attribute, the
+/// value and the line, rather than dropped; zero is no damping.
+#[test]
+fn negative_joint_dynamics_are_refused() {
+    let with = |dynamics: &str| {
+        format!(
+            "<robot name=\"r\">\n<link name=\"a\"/>\n<link name=\"b\"/>\n<joint name=\"hinge\" type=\"continuous\">\n\
+             <parent link=\"a\"/><child link=\"b\"/>\n{dynamics}\n</joint>\n</robot>\n"
+        )
+    };
+    for (dynamics, attribute, value) in [
+        ("<dynamics damping=\"-1\"/>", "damping", -1.0),
+        ("<dynamics damping=\"0.5\" friction=\"-0.1\"/>", "friction", -0.1),
+    ] {
+        let error = error(&with(dynamics));
+        assert_eq!(
+            error,
+            ImportError::NegativeDynamics {
+                joint: "hinge".to_owned(),
+                attribute,
+                value,
+                line: 6
+            }
+        );
+        assert_message(&error, &["joint `hinge` (line 6)", attribute, "cannot be negative"]);
+    }
+    assert!(parse(&with("<dynamics damping=\"0\" friction=\"0\"/>")).is_ok());
+}
