@@ -31,9 +31,9 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
         out,
         "## Bodies on the ground (docs/contacts.md)\n\nCoulomb friction at exact contacts: a sliding contact's \
          push carries μN against its slip, a sticking one holds two more rows while its force stays in the cone, and \
-         every stop and slip is located as impacts are. Collision shapes (boxes, capsules, convex hulls) stay above \
-         `[[plane]]`s through their corners, end spheres and vertices, and apart in `[[collision]]` pairs: a vertex \
-         or sphere of one body on a face of another, or two balls. The shipped scene files below run as \
+         every stop and slip is located as impacts are. Collision shapes (boxes, capsules, cylinders, convex hulls) stay \
+         above `[[plane]]`s through their corners, end spheres, cap rims and vertices, and apart in `[[collision]]` \
+         pairs: a vertex, sphere or rim of one body on a face of another, or two balls. The shipped scene files below run as \
          `cargo run --release -- --scene-file scenes/<name>` runs them (written under `ground/`).\n"
     );
     let mut runs: Vec<(&str, Vec<AlgebraRun>)> = Vec::new();
