@@ -4,7 +4,7 @@
 use dynamics::{Algebra, Body, BodyError, Force, State};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
-use super::values::{direction, finite, rescaled};
+use super::values::{bounded_vector, direction, finite, rescaled};
 use crate::error::{invalid, SceneFileError};
 use crate::syntax::bodies::{BodySpec, ForceSpec, InitialSpec, OrientationSpec, Shape};
 
@@ -68,19 +68,19 @@ impl OrientationSpec {
 }
 
 impl ForceSpec {
-    /// The force checked finite, messages naming it `force {index}` (1-based).
+    /// The force checked finite (and within 1e50), messages naming it `force {index}` (1-based).
     pub(crate) fn checked(&self, index: usize) -> Result<BodyForce, SceneFileError> {
         let what = |field: &str| format!("force {index}: {field}");
         Ok(match *self {
             ForceSpec::Gravity { acceleration } => BodyForce::Gravity {
-                acceleration: finite(&what("acceleration"), acceleration)?,
+                acceleration: bounded_vector(&what("acceleration"), acceleration)?,
             },
             ForceSpec::Force { force, point } => BodyForce::Line {
-                force: finite(&what("force"), force)?,
+                force: bounded_vector(&what("force"), force)?,
                 point: finite(&what("point"), point)?,
             },
             ForceSpec::Couple { moment } => BodyForce::Couple {
-                moment: finite(&what("moment"), moment)?,
+                moment: bounded_vector(&what("moment"), moment)?,
             },
         })
     }
@@ -171,8 +171,8 @@ impl InitialSpec {
         Ok(InitialState {
             position: finite(&at("position"), self.position)?,
             orientation: self.orientation.rotation_of(&at("orientation"))?,
-            body_angular_velocity: finite(&at("body_angular_velocity"), self.body_angular_velocity)?,
-            velocity: finite(&at("velocity"), self.velocity)?,
+            body_angular_velocity: bounded_vector(&at("body_angular_velocity"), self.body_angular_velocity)?,
+            velocity: bounded_vector(&at("velocity"), self.velocity)?,
         })
     }
 }

@@ -57,6 +57,16 @@ pub(crate) fn bounded(what: &str, value: f64) -> Result<f64, SceneFileError> {
     }
 }
 
+/// Finite values of at most 1e50 in magnitude: a velocity, an acceleration or a force beyond it is no physics, and its
+/// squares overflow where the joints are solved, which would then be blamed.
+pub(crate) fn bounded_vector<const D: usize>(what: &str, values: [f64; D]) -> Result<SVector<f64, D>, SceneFileError> {
+    if values.iter().all(|v| v.is_finite() && v.abs() <= MAX_VALUE) {
+        Ok(SVector::from(values))
+    } else {
+        Err(invalid(what, format!("{values:?} is not finite or beyond 1e50")))
+    }
+}
+
 /// A finite, non-negative value of at most 1e50.
 pub(crate) fn non_negative(what: &str, value: f64) -> Result<f64, SceneFileError> {
     if value.is_finite() && (0.0..=MAX_VALUE).contains(&value) {

@@ -349,6 +349,33 @@ fn bad_bodies_fail_naming_the_value() {
             "position = [0.0, 0.0, -0.5]\norientation = { axis = [0.0, 0.0, 0.0], angle = 1.0 }",
             &["initial.orientation.axis: has no direction"],
         ),
+        // Velocities, gravity, forces and couples beyond 1e50: named as such, not as the joint whose solve
+        // their squares overflow ("non-finite residual" before).
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\nvelocity = [1e300, 0.0, 0.0]",
+            &["initial.velocity", "1e300", "beyond 1e50"],
+        ),
+        (
+            "position = [0.0, 0.0, -0.5]",
+            "position = [0.0, 0.0, -0.5]\nbody_angular_velocity = [0.0, -1e51, 0.0]",
+            &["initial.body_angular_velocity", "beyond 1e50"],
+        ),
+        (
+            "kind = \"gravity\"",
+            "kind = \"gravity\"\nacceleration = [0.0, 0.0, -1e300]",
+            &["force 1: acceleration", "beyond 1e50"],
+        ),
+        (
+            "kind = \"gravity\"",
+            "kind = \"force\"\nforce = [1e300, 0.0, 0.0]\npoint = [0.0, 0.0, 0.0]",
+            &["force 1: force", "beyond 1e50"],
+        ),
+        (
+            "kind = \"gravity\"",
+            "kind = \"couple\"\nmoment = [0.0, 1e300, 0.0]",
+            &["force 1: moment", "beyond 1e50"],
+        ),
         (
             "position = [0.0, 0.0, -0.5]",
             "position = [0.0, 0.0, -0.5]\norientation = { degrees = 30.0, quaternion = [1.0, 0.0, 0.0, 0.0] }",
