@@ -306,14 +306,6 @@ fn least_distance(faced: &Placed<'_>, face: &Face, other: &Placed<'_>, features:
     let normal = faced.to_world.rotation * face.normal;
     let offset = face.offset + normal.dot(&faced.to_world.translation.vector);
     (features.iter())
-        .map(|f| {
-            let axis = other.to_world.rotation * f.rim.map_or_else(Vector3::z, |(axis, _)| axis);
-            f.height(
-                &(other.to_world * Point3::from(f.centre)).coords,
-                &axis,
-                &normal,
-                offset,
-            )
-        })
+        .map(|f| f.height(&other.to_world, &normal, offset))
         .fold(f64::INFINITY, f64::min)
 }

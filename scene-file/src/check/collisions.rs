@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
 use super::values::finite;
 use crate::error::{invalid, SceneFileError};
@@ -129,13 +129,14 @@ pub(crate) struct Feature {
 }
 
 impl Feature {
-    /// The least height of the feature above the plane `normal · x = offset` with its centre at `centre` and (for a
-    /// rim) its axis turned to `axis` (world, or any one frame): `n · c − d − r`, less `ρ |n − (n · a) a|` for a rim.
-    pub fn height(&self, centre: &Vector3<f64>, axis: &Vector3<f64>, normal: &Vector3<f64>, offset: f64) -> f64 {
-        let rim = self
-            .rim
-            .map_or(0.0, |(_, radius)| radius * (normal - axis * normal.dot(axis)).norm());
-        normal.dot(centre) - offset - self.radius - rim
+    /// The least height of the feature, its body placed by `place`, above the plane `normal · x = offset` (in the
+    /// frame `place` maps to): `n · c − d − r`, less `ρ |n − (n · a) a|` for a rim of axis a.
+    pub fn height(&self, place: &Isometry3<f64>, normal: &Vector3<f64>, offset: f64) -> f64 {
+        let rim = self.rim.map_or(0.0, |(axis, radius)| {
+            let axis = place.rotation * axis;
+            radius * (normal - axis * normal.dot(&axis)).norm()
+        });
+        normal.dot(&(place * Point3::from(self.centre)).coords) - offset - self.radius - rim
     }
 }
 
