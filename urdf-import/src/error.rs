@@ -124,6 +124,24 @@ pub enum ImportError {
         /// The element's line.
         line: u32,
     },
+    /// An `<origin xyz>` farther than [`dynamics::state::LARGEST_COORDINATE`] from its parent frame: a typo or the
+    /// wrong unit, and beyond the bodies' range.
+    #[error(
+        "{owner}: <origin xyz=\"{text}\"> at line {line} puts the frame {distance:e} m from its parent's, beyond \
+         {limit:e} m (a typo, or millimetres for metres?)"
+    )]
+    FarOrigin {
+        /// The link or joint the origin belongs to.
+        owner: String,
+        /// The attribute's text as written.
+        text: String,
+        /// The largest coordinate's size (m).
+        distance: f64,
+        /// The bound (m).
+        limit: f64,
+        /// The origin's line.
+        line: u32,
+    },
     /// A joint type outside revolute, continuous, prismatic, fixed, floating and planar (the URDF "spherical" is
     /// not part of the specification, and a typo lands here too).
     #[error(

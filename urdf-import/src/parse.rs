@@ -407,6 +407,17 @@ impl<F: Fn(Node) -> u32> Site<'_, F> {
             return Ok(Isometry3::identity());
         };
         let xyz = self.numbers::<3>(origin, "xyz")?.unwrap_or([0.0; 3]);
+        let distance = xyz.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let limit = dynamics::state::LARGEST_COORDINATE;
+        if distance > limit {
+            return Err(ImportError::FarOrigin {
+                owner: self.owner.to_owned(),
+                text: origin.attribute("xyz").unwrap_or_default().to_owned(),
+                distance,
+                limit,
+                line: (self.at)(origin),
+            });
+        }
         let rpy = self.numbers::<3>(origin, "rpy")?.unwrap_or([0.0; 3]);
         Ok(pose(xyz, rpy))
     }

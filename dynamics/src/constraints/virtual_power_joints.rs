@@ -9,7 +9,7 @@ use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 
 use crate::algebra::{Algebra, ScrewCoordinates};
-use crate::constraints::on_surfaces::check_held_point;
+use crate::constraints::on_surfaces::{check_curve, check_held_point};
 use crate::constraints::paths::{Fixed, MotorPath, MotorPoint, Path};
 use crate::constraints::virtual_power::{coordinate_axes, normals_to, unit, Alignment, VirtualPower, Wrenches};
 use crate::constraints::{Composite, ConstraintError};
@@ -569,6 +569,7 @@ impl<A: Algebra> VirtualPower<A> {
 
     fn on_surfaces(name: String, body_point: Vector3<f64>, surfaces: &[Surface]) -> Result<Self, ConstraintError> {
         check_held_point(&name, &body_point)?;
+        check_curve(&name, surfaces)?;
         Ok(VirtualPower {
             name,
             wrenches: Wrenches::Surfaces {

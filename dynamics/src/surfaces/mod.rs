@@ -70,6 +70,49 @@ fn invalid(parameter: &'static str, reason: String) -> SurfaceError {
     SurfaceError { parameter, reason }
 }
 
+/// Why the quadric `xᵀA x + 2 bᵀx + c = 0` of `coefficients` (as [`Surface::quadric`] takes them) has no point a body
+/// can be held at, if so: no real point at all (x² + y² + z² + 1 = 0), or real points that are all singular (a double
+/// plane (x − 1)² = 0, a line x² + y² = 0, a point). In A's eigenbasis (eigenvalues λᵢ, β = Vᵀb) the form is
+/// `Σ (λᵢ yᵢ² + 2 βᵢ yᵢ) + c`: with A semidefinite (made positive by a sign) and no βᵢ along a zero λᵢ, its least
+/// value is `c − Σ βᵢ²/λᵢ`; above zero there are no real points, at zero only the minimum's, where the gradient
+/// vanishes. An indefinite A, or a linear term along a zero eigenvalue, always gives regular points.
+fn no_regular_points(coefficients: &[f64; 10]) -> Option<&'static str> {
+    let [a, b, c, d, e, f, g, h, i, j] = *coefficients;
+    let form = nalgebra::Matrix3::new(a, d / 2.0, e / 2.0, d / 2.0, b, f / 2.0, e / 2.0, f / 2.0, c);
+    let linear = Vector3::new(g, h, i) / 2.0;
+    let eigen = nalgebra::SymmetricEigen::new(form);
+    let largest = eigen.eigenvalues.amax();
+    let zero = 1e-12 * largest;
+    let sign = if eigen.eigenvalues.iter().all(|&l| l >= -zero) {
+        1.0
+    } else if eigen.eigenvalues.iter().all(|&l| l <= zero) {
+        -1.0
+    } else {
+        return None;
+    };
+    let along = eigen.eigenvectors.transpose() * linear * sign;
+    let scale = coefficients.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let (mut least, mut terms) = (sign * j, j.abs());
+    for (&lambda, &beta) in eigen.eigenvalues.iter().zip(along.iter()) {
+        let lambda = sign * lambda;
+        if lambda > zero {
+            least -= beta * beta / lambda;
+            terms += beta * beta / lambda;
+        } else if beta.abs() > 1e-12 * scale {
+            return None;
+        }
+    }
+    // The least value's round-off: a few ulps of the terms summed (a sphere of radius 1e-6 m is one).
+    let round = 64.0 * f64::EPSILON * terms;
+    if least > round {
+        Some("has no real points: its least value over space is above zero")
+    } else if least >= -round {
+        Some("has only singular real points (a point, a line or a double plane, where its gradient vanishes): no normal to hold a point by")
+    } else {
+        None
+    }
+}
+
 /// Each component finite and within [`LARGEST_COORDINATE`].
 fn check_coordinates(parameter: &'static str, values: &[f64]) -> Result<(), SurfaceError> {
     if values.iter().all(|v| v.is_finite() && v.abs() <= LARGEST_COORDINATE) {
@@ -161,7 +204,7 @@ fn moved_form(s: &Matrix4<f64>, pose: &Isometry3<f64>) -> Matrix4<f64> {
 impl Surface {
     /// The quadric `a x² + b y² + c z² + d xy + e xz + f yz + g x + h y + i z + j = 0` in the reference frame, from
     /// `[a, b, c, d, e, f, g, h, i, j]`. The coefficients must be finite and within 1e12, and not all of the first-
-    /// and second-order ones zero.
+    /// and second-order ones zero, and the quadric must have a regular real point (one with a normal).
     ///
     /// The unit sphere, `x² + y² + z² − 1 = 0`: a point on it is incident, the origin is 1 inside.
     ///
@@ -174,6 +217,8 @@ impl Surface {
     /// assert_eq!(sphere.value(&Vector3::zeros()), -1.0);
     /// assert_eq!(sphere.gradient(&Vector3::x()), Vector3::new(2.0, 0.0, 0.0));
     /// assert!(Surface::quadric([0.0; 10]).is_err());
+    /// assert!(Surface::quadric([1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]).is_err()); // no real point
+    /// assert!(Surface::quadric([1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]).is_err()); // the z axis, singular
     /// # Ok::<(), dynamics::surfaces::SurfaceError>(())
     /// ```
     pub fn quadric(coefficients: [f64; 10]) -> Result<Surface, SurfaceError> {
@@ -191,6 +236,9 @@ impl Surface {
                 "coefficients",
                 format!("{coefficients:?} have no first- or second-order term: no surface"),
             ));
+        }
+        if let Some(reason) = no_regular_points(&coefficients) {
+            return Err(invalid("coefficients", format!("{coefficients:?} {reason}")));
         }
         Ok(Surface {
             form: Form::Quadric {

@@ -238,6 +238,35 @@ fn a_bad_number_names_element_attribute_text_and_line() {
     assert_eq!(import(urdf).bodies[0].mass, 2.5);
 }
 
+/// An origin beyond the bodies' range (1e6 m) names its joint or link, the text and the line, for joints, inertials
+/// and collisions alike; one just within it is read.
+#[test]
+fn origins_beyond_the_bodies_range_are_named() {
+    for (owner, element, text) in [
+        ("joint `j0`", "<origin xyz=\"1e10 0 0\"/>", "1e10 0 0"),
+        ("joint `j0`", "<origin xyz=\"0 -2e6 0\" rpy=\"0 0 1\"/>", "0 -2e6 0"),
+    ] {
+        let urdf = format!(
+            "<robot name=\"arm\">\n  <link name=\"base\"/>\n  <link name=\"arm\"/>\n  <joint name=\"j0\" type=\"fixed\">\n    \
+             <parent link=\"base\"/><child link=\"arm\"/>\n    {element}\n  </joint>\n</robot>\n"
+        );
+        let e = error(&urdf);
+        let line = line_of(&urdf, element);
+        assert!(
+            matches!(&e, ImportError::FarOrigin { line: l, .. } if *l == line),
+            "{e}"
+        );
+        assert_message(&e, &[owner, text, &format!("line {line}"), "beyond 1e6 m"]);
+    }
+    let urdf =
+        "<robot name=\"r\">\n<link name=\"torso\">\n<inertial>\n<origin xyz=\"0 0 3e7\"/>\n<mass value=\"1\"/>\n\
+                <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>\n</inertial>\n</link>\n</robot>";
+    assert_message(&error(urdf), &["link `torso`", "0 0 3e7", "line 4", "3e7 m"]);
+    let within = "<robot name=\"r\"><link name=\"torso\"><inertial><origin xyz=\"0 0 1e6\"/><mass value=\"2\"/>\
+                  <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link></robot>";
+    assert_eq!(import(within).bodies[0].mass, 2.0);
+}
+
 #[test]
 fn missing_attributes_and_elements_are_named() {
     let e = error("<robot name=\"r\">\n  <link/>\n</robot>");
