@@ -18,7 +18,9 @@
 //! Between two bodies the plane may be fixed in the second body, a face of it
 //! ([`crate::Mechanism::add_contact_on`]), or a sphere of one body kept outside a sphere of the other
 //! ([`BallContact`]); the gap, its rate and the rows are then those of the relative motion (docs/contacts.md
-//! "Between bodies").
+//! "Between bodies"). Two convex polyhedra ([`Polyhedron`]) are kept apart by all their vertex–face pairs and edge
+//! pairs ([`EdgeContact`]), each a contact only where its features meet ([`crate::Mechanism::add_polyhedron_contacts`],
+//! docs/contacts.md "Edges").
 
 use nalgebra::{Unit, Vector3};
 
@@ -450,5 +452,337 @@ impl BallContact {
     /// The friction between the spheres.
     pub fn friction(&self) -> Friction {
         self.friction
+    }
+}
+
+/// Edges closer to parallel than this sine leave their contact to the vertex contacts at their ends: their common
+/// normal turns ever faster as they align (docs/contacts.md "Edges").
+pub const PARALLEL_EDGES: f64 = 1e-3;
+
+/// A straight edge of a convex polyhedron in its body's frame: its two ends and the outward normals of the two faces
+/// that meet along it (docs/contacts.md "Edges").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Edge {
+    start: Vector3<f64>,
+    end: Vector3<f64>,
+    faces: [Unit<Vector3<f64>>; 2],
+}
+
+impl Edge {
+    /// The edge from `start` to `end` (m, the body's frame) between the faces of outward normals `faces` (any
+    /// length). The ends finite, within [`LARGEST_COORDINATE`] and apart; each normal finite, not zero, and normal to
+    /// the edge (within a sine of 1e-6); the two faces not parallel (an edge where the solid turns).
+    ///
+    /// ```
+    /// use dynamics::contacts::Edge;
+    /// use nalgebra::Vector3;
+    ///
+    /// // The top front edge of a 0.2 m cube: between its top face (+z) and its front face (+y).
+    /// let edge = Edge::new(Vector3::new(-0.1, 0.1, 0.1), Vector3::new(0.1, 0.1, 0.1), [Vector3::z(), Vector3::y()])?;
+    /// assert_eq!(edge.length(), 0.2);
+    /// assert!(Edge::new(Vector3::zeros(), Vector3::x(), [Vector3::z(), Vector3::x()]).is_err()); // a face along it
+    /// assert!(Edge::new(Vector3::zeros(), Vector3::x(), [Vector3::z(), Vector3::z() * 2.0]).is_err()); // flat
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn new(start: Vector3<f64>, end: Vector3<f64>, faces: [Vector3<f64>; 2]) -> Result<Self, ConstraintError> {
+        let refuse = |reason: String| ConstraintError::InvalidParameter {
+            name: "edge".to_owned(),
+            reason,
+        };
+        let within = |x: &f64| x.is_finite() && x.abs() <= LARGEST_COORDINATE;
+        if !(start.iter().all(within) && end.iter().all(within)) {
+            return Err(refuse(format!(
+                "the ends {:?} and {:?} must be finite and within {LARGEST_COORDINATE:e} m",
+                start.as_slice(),
+                end.as_slice()
+            )));
+        }
+        let along = end - start;
+        let length = along.norm();
+        if length <= 1e-9 * start.amax().max(end.amax()).max(1.0) {
+            return Err(refuse(format!(
+                "the ends {:?} and {:?} must be apart",
+                start.as_slice(),
+                end.as_slice()
+            )));
+        }
+        let direction = along / length;
+        let mut units = [Unit::new_unchecked(Vector3::z()); 2];
+        for (unit, normal) in units.iter_mut().zip(faces) {
+            let scale = normal.amax();
+            if !(normal.iter().all(|x| x.is_finite()) && scale > 0.0) {
+                return Err(refuse(format!(
+                    "a face's normal {:?} must be finite and not zero",
+                    normal.as_slice()
+                )));
+            }
+            *unit = Unit::new_normalize(normal / scale);
+            if unit.dot(&direction).abs() > 1e-6 {
+                return Err(refuse(format!(
+                    "a face's normal {:?} must be normal to the edge {:?}: the face contains it",
+                    normal.as_slice(),
+                    direction.as_slice()
+                )));
+            }
+        }
+        if units[0].cross(&units[1]).norm() <= 1e-6 {
+            return Err(refuse(format!(
+                "the faces' normals {:?} and {:?} are parallel: the solid does not turn at this edge",
+                faces[0].as_slice(),
+                faces[1].as_slice()
+            )));
+        }
+        Ok(Edge {
+            start,
+            end,
+            faces: units,
+        })
+    }
+
+    /// The ends (m, the body's frame).
+    pub fn ends(&self) -> (Vector3<f64>, Vector3<f64>) {
+        (self.start, self.end)
+    }
+
+    /// The length (m).
+    pub fn length(&self) -> f64 {
+        (self.end - self.start).norm()
+    }
+
+    /// The unit outward normals of the two faces meeting along it (the body's frame).
+    pub fn faces(&self) -> [Vector3<f64>; 2] {
+        self.faces.map(Unit::into_inner)
+    }
+}
+
+/// An edge of one body kept from passing through an edge of another: two convex polyhedra meeting edge on edge, where
+/// no vertex touches a face (docs/contacts.md "Edges"). The gap is the distance between the two edges' lines along
+/// their common normal, which points out of the second body's solid at its edge; the contact holds only while the
+/// nearest points lie on both edges and the normal lies between each edge's faces, and lets go where they leave:
+/// the other features of the two solids take over there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeContact {
+    edge: Edge,
+    other: Edge,
+    restitution: f64,
+    friction: Friction,
+}
+
+impl EdgeContact {
+    /// `edge` of the contact's body against `other` of the second body (each in its body's frame); inelastic and
+    /// without friction.
+    ///
+    /// ```
+    /// use dynamics::contacts::{Edge, EdgeContact, Friction};
+    /// use nalgebra::Vector3;
+    ///
+    /// let bottom = Edge::new(Vector3::new(-0.1, 0.0, -0.1), Vector3::new(0.1, 0.0, -0.1), [-Vector3::z(), Vector3::y()])?;
+    /// let top = Edge::new(Vector3::new(0.0, -0.1, 0.1), Vector3::new(0.0, 0.1, 0.1), [Vector3::z(), Vector3::x()])?;
+    /// let crossed = EdgeContact::new(bottom, top).with_restitution(0.5)?.with_friction(Friction::coulomb(0.3)?);
+    /// assert_eq!(crossed.edges(), (bottom, top));
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn new(edge: Edge, other: Edge) -> Self {
+        EdgeContact {
+            edge,
+            other,
+            restitution: 0.0,
+            friction: Friction::NONE,
+        }
+    }
+
+    /// The same contact with Newton's restitution coefficient in [0, 1].
+    pub fn with_restitution(self, restitution: f64) -> Result<Self, ConstraintError> {
+        let restitution = checked_restitution("edge contact", restitution)?;
+        Ok(EdgeContact { restitution, ..self })
+    }
+
+    /// The same contact with Coulomb friction between the edges.
+    pub fn with_friction(self, friction: Friction) -> Self {
+        EdgeContact { friction, ..self }
+    }
+
+    /// The contact body's edge and the second body's.
+    pub fn edges(&self) -> (Edge, Edge) {
+        (self.edge, self.other)
+    }
+
+    /// The restitution coefficient.
+    pub fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    /// The friction between the edges.
+    pub fn friction(&self) -> Friction {
+        self.friction
+    }
+}
+
+/// The most contacts [`crate::Mechanism::add_polyhedron_contacts`] adds for one pair of polyhedra: each is watched
+/// at every step.
+pub const MAX_POLYHEDRON_CONTACTS: usize = 10_000;
+
+/// The most faces a [`Polyhedron`] may have (each a plane its vertex contacts are bounded by).
+pub const MAX_POLYHEDRON_FACES: usize = 512;
+
+/// A convex polyhedron in a body's frame: its vertices, its faces' planes and its edges, for
+/// [`crate::Mechanism::add_polyhedron_contacts`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polyhedron {
+    vertices: Vec<Vector3<f64>>,
+    faces: Vec<(Vector3<f64>, f64)>,
+    edges: Vec<Edge>,
+}
+
+impl Polyhedron {
+    /// A box of sides `sides` (m) about the body's origin, along its axes: 8 vertices, 6 faces, 12 edges.
+    ///
+    /// ```
+    /// use dynamics::contacts::Polyhedron;
+    /// use nalgebra::Vector3;
+    ///
+    /// let crate_ = Polyhedron::cuboid(Vector3::new(0.4, 0.3, 0.2))?;
+    /// assert_eq!((crate_.vertices().len(), crate_.faces().len(), crate_.edges().len()), (8, 6, 12));
+    /// assert!(Polyhedron::cuboid(Vector3::new(0.4, 0.0, 0.2)).is_err());
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn cuboid(sides: Vector3<f64>) -> Result<Self, ConstraintError> {
+        if !sides.iter().all(|&s| s > 0.0 && s <= LARGEST_COORDINATE) {
+            return Err(ConstraintError::InvalidParameter {
+                name: "polyhedron".to_owned(),
+                reason: format!(
+                    "a box's sides must be positive, finite and within {LARGEST_COORDINATE:e} m, got {:?}",
+                    sides.as_slice()
+                ),
+            });
+        }
+        let half = sides / 2.0;
+        let vertices = (0..8)
+            .map(|c| {
+                let sign = |bit: usize| if c & (1 << bit) == 0 { -1.0 } else { 1.0 };
+                Vector3::new(sign(0) * half.x, sign(1) * half.y, sign(2) * half.z)
+            })
+            .collect();
+        let faces = (0..6)
+            .map(|f| {
+                let sign = if f % 2 == 0 { -1.0 } else { 1.0 };
+                (Vector3::ith(f / 2, sign), half[f / 2])
+            })
+            .collect();
+        Polyhedron::new(vertices, faces)
+    }
+
+    /// The convex polyhedron of `vertices` (m, the body's frame) bounded by the planes `faces`, `n · x ≤ d` with n
+    /// outward (any length): every vertex inside every plane and on at least three, every plane through at least
+    /// three vertices, at least four planes and at most [`MAX_POLYHEDRON_FACES`]. Its edges are where two faces
+    /// share two vertices.
+    ///
+    /// ```
+    /// use dynamics::contacts::Polyhedron;
+    /// use nalgebra::Vector3;
+    ///
+    /// // A tetrahedron: the corner of a cube at the origin cut off by x + y + z = 1.
+    /// let vertices = vec![Vector3::zeros(), Vector3::x(), Vector3::y(), Vector3::z()];
+    /// let faces = vec![(-Vector3::x(), 0.0), (-Vector3::y(), 0.0), (-Vector3::z(), 0.0), (Vector3::repeat(1.0), 1.0)];
+    /// assert_eq!(Polyhedron::new(vertices.clone(), faces.clone())?.edges().len(), 6);
+    /// assert!(Polyhedron::new(vertices[..3].to_vec(), faces).is_err()); // a face through no third vertex
+    /// # Ok::<(), dynamics::ConstraintError>(())
+    /// ```
+    pub fn new(vertices: Vec<Vector3<f64>>, faces: Vec<(Vector3<f64>, f64)>) -> Result<Self, ConstraintError> {
+        let refuse = |reason: String| ConstraintError::InvalidParameter {
+            name: "polyhedron".to_owned(),
+            reason,
+        };
+        if !(4..=MAX_POLYHEDRON_FACES).contains(&faces.len()) {
+            return Err(refuse(format!(
+                "a polyhedron has 4 to {MAX_POLYHEDRON_FACES} faces, got {}",
+                faces.len()
+            )));
+        }
+        let within = |x: &f64| x.is_finite() && x.abs() <= LARGEST_COORDINATE;
+        if let Some(v) = vertices.iter().find(|v| !v.iter().all(within)) {
+            return Err(refuse(format!(
+                "a vertex {:?} is not finite or beyond {LARGEST_COORDINATE:e} m",
+                v.as_slice()
+            )));
+        }
+        let extent = vertices.iter().fold(0.0f64, |m, v| m.max(v.amax()));
+        let on = 1e-9 * extent.max(1e-3);
+        let mut planes = Vec::with_capacity(faces.len());
+        for (k, (normal, offset)) in faces.iter().enumerate() {
+            let scale = normal.amax();
+            if !(normal.iter().all(|x| x.is_finite()) && scale > 0.0 && offset.is_finite()) {
+                return Err(refuse(format!(
+                    "face {} needs a finite, non-zero normal and a finite offset, got {:?} and {offset}",
+                    k + 1,
+                    normal.as_slice()
+                )));
+            }
+            let length = (normal / scale).norm();
+            let (normal, offset) = (normal / scale / length, offset / scale / length);
+            let touching = vertices.iter().filter(|v| (normal.dot(v) - offset).abs() <= on).count();
+            if let Some(v) = vertices.iter().find(|v| normal.dot(v) - offset > on) {
+                return Err(refuse(format!(
+                    "the vertex {:?} is outside face {} ({:?} · x ≤ {offset}): the polyhedron is not convex",
+                    v.as_slice(),
+                    k + 1,
+                    normal.as_slice()
+                )));
+            }
+            if touching < 3 {
+                return Err(refuse(format!(
+                    "face {} passes through {touching} vertices: a face has at least three",
+                    k + 1
+                )));
+            }
+            planes.push((normal, offset));
+        }
+        if let Some(v) =
+            (vertices.iter()).find(|v| planes.iter().filter(|(n, d)| (n.dot(v) - d).abs() <= on).count() < 3)
+        {
+            return Err(refuse(format!(
+                "the vertex {:?} lies on fewer than three faces: not a corner of the polyhedron",
+                v.as_slice()
+            )));
+        }
+        let mut edges = Vec::new();
+        for (k, (n1, d1)) in planes.iter().enumerate() {
+            for (n2, d2) in &planes[k + 1..] {
+                let along = n1.cross(n2);
+                if along.norm() <= 1e-9 {
+                    continue;
+                }
+                let shared: Vec<&Vector3<f64>> = (vertices.iter())
+                    .filter(|v| (n1.dot(v) - d1).abs() <= on && (n2.dot(v) - d2).abs() <= on)
+                    .collect();
+                let extreme =
+                    |sign: f64| (shared.iter()).max_by(|a, b| (sign * along.dot(a)).total_cmp(&(sign * along.dot(b))));
+                if let (Some(start), Some(end)) = (extreme(-1.0), extreme(1.0)) {
+                    if shared.len() >= 2 {
+                        edges.push(Edge::new(**start, **end, [*n1, *n2])?);
+                    }
+                }
+            }
+        }
+        Ok(Polyhedron {
+            vertices,
+            faces: planes,
+            edges,
+        })
+    }
+
+    /// The vertices (m, the body's frame).
+    pub fn vertices(&self) -> &[Vector3<f64>] {
+        &self.vertices
+    }
+
+    /// The faces' planes `n · x ≤ d`, n unit and outward.
+    pub fn faces(&self) -> &[(Vector3<f64>, f64)] {
+        &self.faces
+    }
+
+    /// The edges, each between two faces.
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
     }
 }

@@ -17,6 +17,7 @@ use crate::mechanism::contacts::stack;
 use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{PointDirection, Slip};
+use crate::mechanism::polyhedra::outside;
 use crate::state::State;
 
 /// The relative size below which an impulse counts as zero in the contacts' complementarity (pushes are ≥ 0, speeds
@@ -134,8 +135,15 @@ impl<A: Algebra> Mechanism<A> {
         let mut involved = Vec::new();
         for c in 0..self.contacts.len() {
             let held = workspace.held[first + c].is_some();
+            if !held && c != contact && self.contacts[c].switching && !workspace.watched[c] {
+                continue;
+            }
             let (height, speed) = self.contact_motion(c, states);
-            if held || c == contact || (height <= TOUCHING && speed <= AT_REST) {
+            // A switching contact's gap may have jumped below zero (docs/contacts.md "Edges"): that is no touch.
+            let below = self.contacts[c].switching && height < -TOUCHING;
+            let touching = height <= TOUCHING && speed <= AT_REST && !below;
+            // A switching contact touching outside its face or edges is not a contact (docs/contacts.md "Edges").
+            if held || c == contact || (touching && !self.lets_go(c, states, workspace)) {
                 involved.push((c, held));
             }
         }
@@ -236,6 +244,21 @@ impl<A: Algebra> Mechanism<A> {
         self.hold_rows(workspace);
         self.place_held_contacts(t, states, workspace)?;
         Ok(changes)
+    }
+
+    /// The first free contact that is watched, touching (within [`TOUCHING`]), not moving away, and (switching)
+    /// inside its face or edges at `states`: one meeting its plane at a switching contact's false crossing, whose own
+    /// crossing is a round-off later (docs/contacts.md "Edges").
+    pub(super) fn meeting_contact(&self, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) -> Option<usize> {
+        let first = self.limits.len();
+        (0..self.contacts.len()).find(|&c| {
+            let switching = self.contacts[c].switching;
+            if workspace.held[first + c].is_some() || (switching && !workspace.watched[c]) {
+                return false;
+            }
+            let frame = self.contact_frame(c, states);
+            frame.gap.abs() <= TOUCHING && frame.normal_speed() <= AT_REST && !(switching && outside(&frame))
+        })
     }
 
     /// The rows of the slips of contacts `indices` in joint space at `states`: per contact two rows, the speeds of its

@@ -2,11 +2,12 @@
 //! other bodies, or outside other bodies' spheres; their gaps, normals and relative velocities, their rows in joint
 //! space, and the Newton projection that keeps a held contact touching.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::{BallContact, Friction, PlaneContact, FLAT_RIM, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
+use crate::mechanism::contact_frames::{edge_frame, BodyMotion, ContactFrame, RimPoint};
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
@@ -131,7 +132,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// The index of `other`, the second body of a contact of `body`: an error if it is unknown or the same body.
-    fn other_body(&self, body: BodyId, other: BodyId) -> Result<usize, MechanismError> {
+    pub(super) fn other_body(&self, body: BodyId, other: BodyId) -> Result<usize, MechanismError> {
         let index = self.check_body(other)?;
         if other == body {
             return Err(crate::ConstraintError::InvalidParameter {
@@ -145,7 +146,7 @@ impl<A: Algebra> Mechanism<A> {
 
     /// A contact of `body` (its point, radius, rim, restitution and friction, the point and the rim's axis in the
     /// body's frame) kept outside what `against` gives, once the name and the solve are checked.
-    fn push_contact(
+    pub(super) fn push_contact(
         &mut self,
         name: String,
         body: BodyId,
@@ -185,6 +186,8 @@ impl<A: Algebra> Mechanism<A> {
             friction,
             against,
             face: Vec::new(),
+            edge: None,
+            switching: false,
         });
         Ok(())
     }
@@ -211,6 +214,17 @@ impl<A: Algebra> Mechanism<A> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn set_contact_face(&mut self, name: &str, solid: &[(Vector3<f64>, f64)]) -> Result<(), MechanismError> {
+        self.bound_to_face(name, solid, false)
+    }
+
+    /// Contact `name` bounded to a face as [`Mechanism::set_contact_face`] bounds it, with `switching`: outside the
+    /// face it lets go rather than stopping the run ([`Mechanism::set_contact_switching_face`]).
+    pub(super) fn bound_to_face(
+        &mut self,
+        name: &str,
+        solid: &[(Vector3<f64>, f64)],
+        switching: bool,
+    ) -> Result<(), MechanismError> {
         let refuse = |reason: String| {
             MechanismError::from(ConstraintError::InvalidParameter {
                 name: name.to_owned(),
@@ -230,6 +244,7 @@ impl<A: Algebra> Mechanism<A> {
             Against::World { .. } => nalgebra::Isometry3::identity(),
             Against::Face { body, .. } => self.bodies[body].frame,
             Against::Ball { .. } => return Err(refuse("a ball contact has no face".to_owned())),
+            Against::Edge { .. } => return Err(refuse("an edge contact is bounded by its edges".to_owned())),
         };
         let within = |x: f64| x.is_finite() && x.abs() <= crate::contacts::LARGEST_COORDINATE;
         let mut face = Vec::with_capacity(solid.len());
@@ -252,6 +267,7 @@ impl<A: Algebra> Mechanism<A> {
             face.push((normal, distance + normal.dot(&frame.translation.vector)));
         }
         self.contacts[index].face = face;
+        self.contacts[index].switching = switching;
         Ok(())
     }
 
@@ -265,7 +281,7 @@ impl<A: Algebra> Mechanism<A> {
         held: &[Option<crate::limits::Bound>],
     ) -> Result<(), ConstraintError> {
         for (c, contact) in self.contacts.iter().enumerate() {
-            if contact.face.is_empty() && contact.rim.is_none() {
+            if (contact.face.is_empty() || contact.switching) && contact.rim.is_none() {
                 continue;
             }
             let frame = self.contact_frame(c, states);
@@ -283,16 +299,8 @@ impl<A: Algebra> Mechanism<A> {
                     frame.tilt.asin()
                 )));
             }
-            // The touching point in the frame the face is fixed in.
-            let point = match contact.against {
-                Against::Face { body, .. } => {
-                    let (position, rotation) = states[body].pose();
-                    rotation.inverse() * (frame.touching - position)
-                }
-                _ => frame.touching,
-            };
-            let outside = (contact.face.iter()).fold(f64::NEG_INFINITY, |m, (n, d)| m.max(n.dot(&point) - d));
-            if outside > OUTSIDE_FACE.max(4.0 * f64::EPSILON * point.amax()) {
+            if !contact.switching && frame.outside > OUTSIDE_FACE.max(4.0 * f64::EPSILON * frame.touching.amax()) {
+                let outside = frame.outside;
                 return Err(refuse(format!(
                     "at t = {t} the contact touches its plane {outside:.3e} m outside its face: the plane holds only \
                      on the face, and a contact keeps the features it was given (docs/contacts.md \"Between bodies\")"
@@ -303,7 +311,12 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     /// Every contact's height above its plane (m, negative below it) at `states`, in the order they were added; an
-    /// error unless there is one state per body.
+    /// error unless there is one state per body. A switching contact ([`Mechanism::add_polyhedron_contacts`]) whose
+    /// features do not meet there (its touching point outside its face or edges) has no height, +∞; where they meet,
+    /// its height is the larger of its gap and how far outside its face or edges it is (within [`OUTSIDE_FACE`]):
+    /// for a vertex inside the other solid, its distance from the solid's nearest face plane. An edge pair's lines
+    /// pass each other behind a solid as often as through it: below [`TOUCHING`] it has no height either (two
+    /// solids' overlap is a question for a collision library).
     ///
     /// ```
     /// use dynamics::{contacts::PlaneContact, Body, Mechanism, Pga, State};
@@ -320,7 +333,19 @@ impl<A: Algebra> Mechanism<A> {
     pub fn contact_heights(&self, states: &[State<A>]) -> Result<Vec<f64>, ConstraintError> {
         self.check_count("states", states.len())?;
         Ok((0..self.contacts.len())
-            .map(|c| self.contact_motion(c, states).0)
+            .map(|c| {
+                let frame = self.contact_frame(c, states);
+                let contact = &self.contacts[c];
+                match (contact.switching, contact.edge.is_some()) {
+                    (false, _) => frame.gap,
+                    (true, _) if !frame.defined || frame.outside > OUTSIDE_FACE => f64::INFINITY,
+                    // Two edges' lines pass each other far behind one solid as often as through it.
+                    (true, true) if frame.gap < -TOUCHING => f64::INFINITY,
+                    // Below the face's plane but at another face (a vertex on the top of a box, below its bottom
+                    // face's plane) is no deeper than that other face's plane: inside the solid, the deepest of them.
+                    (true, _) => frame.gap.max(frame.outside),
+                }
+            })
             .collect())
     }
 
@@ -373,6 +398,10 @@ impl<A: Algebra> Mechanism<A> {
                 let height = normal.dot(&(centre - surface.position)) - offset;
                 (Some(surface), height, normal, surface.angular.cross(&normal))
             }
+            Against::Edge { body, start, edge } => {
+                let own_edge = contact.edge.expect("an edge contact has its own edge");
+                return edge_frame((&own, centre, &own_edge), (&motion(body), start, &edge));
+            }
             Against::Ball {
                 body,
                 centre: other_centre,
@@ -402,14 +431,35 @@ impl<A: Algebra> Mechanism<A> {
         });
         let touching = centre - rim.offset - normal * contact.radius;
         let surface_velocity = other.map_or_else(Vector3::zeros, |o| o.velocity_at(&touching));
+        // How far the touching point is outside the contact's face, in the frame the face is fixed in, and how fast
+        // it moves out across the farthest of the face's planes: y = Rᵀ(p − x), ẏ = Rᵀ(ṗ − v(p)).
+        let touching_rate = centre_velocity - rim.rate - normal_rate * contact.radius;
+        let (local, local_rate) = other.map_or((touching, touching_rate), |o| {
+            let turn = o.rotation.transpose();
+            (
+                turn * (touching - o.position),
+                turn * (touching_rate - surface_velocity),
+            )
+        });
+        let (outside, outside_rate) = (contact.face.iter()).fold((f64::NEG_INFINITY, 0.0), |m, (n, d)| {
+            let distance = n.dot(&local) - d;
+            if distance > m.0 {
+                (distance, n.dot(&local_rate))
+            } else {
+                m
+            }
+        });
         ContactFrame {
             gap: gap_to_centre - normal.dot(&rim.offset) - contact.radius,
             normal,
             touching,
             relative: own.velocity_at(&touching) - surface_velocity,
             normal_rate,
-            touching_rate: centre_velocity - rim.rate - normal_rate * contact.radius,
+            touching_rate,
             tilt: rim.tilt,
+            outside,
+            outside_rate,
+            defined: true,
         }
     }
 
@@ -509,7 +559,7 @@ impl<A: Algebra> Mechanism<A> {
 }
 
 /// A contact's point, sphere radius, rim (axis and radius), restitution and friction, in its body's frame.
-type ContactParts = (Vector3<f64>, f64, Option<(Vector3<f64>, f64)>, f64, Friction);
+pub(super) type ContactParts = (Vector3<f64>, f64, Option<(Vector3<f64>, f64)>, f64, Friction);
 
 /// A plane contact's parts.
 fn features(contact: &PlaneContact) -> ContactParts {
@@ -520,112 +570,6 @@ fn features(contact: &PlaneContact) -> ContactParts {
         contact.restitution(),
         contact.friction(),
     )
-}
-
-/// A body's pose and velocity (world): its centre of mass, its rotation, the centre's velocity and the angular one.
-#[derive(Clone, Copy, Debug)]
-struct BodyMotion {
-    position: Vector3<f64>,
-    rotation: Matrix3<f64>,
-    linear: Vector3<f64>,
-    angular: Vector3<f64>,
-}
-
-impl BodyMotion {
-    /// The velocity of the body's material point at `point` (world).
-    fn velocity_at(&self, point: &Vector3<f64>) -> Vector3<f64> {
-        self.linear + self.angular.cross(&(point - self.position))
-    }
-}
-
-/// A contact at one configuration (world): its gap (m, negative where the shapes overlap), the unit normal from the
-/// other body (or the world) towards the contact's own, the touching point p, the relative velocity `w = v(p) −
-/// v_other(p)` of the two bodies' material points at p, and the rates ṅ of the normal and ṗ of the touching point.
-/// The gap changes at `n · w` (docs/contacts.md "Between bodies").
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ContactFrame {
-    pub gap: f64,
-    pub normal: Vector3<f64>,
-    pub touching: Vector3<f64>,
-    pub relative: Vector3<f64>,
-    pub normal_rate: Vector3<f64>,
-    pub touching_rate: Vector3<f64>,
-    /// For a disk's rim, the sine of the angle between its axis and the normal (zero: flat on the plane); 1 else.
-    pub tilt: f64,
-}
-
-/// Where a disk's rim touches a plane, from its centre: `ρ û`, û the normal n projected on the disk (normal to its
-/// axis a) and made unit, the rim's point farthest along n, which the touching point `c − ρ û` is; its rate; and the
-/// disk's tilt `|n − (n · a) a|` (docs/contacts.md "Rims").
-#[derive(Clone, Copy, Debug)]
-struct RimPoint {
-    offset: Vector3<f64>,
-    rate: Vector3<f64>,
-    tilt: f64,
-}
-
-impl Default for RimPoint {
-    /// No rim: a point or a sphere.
-    fn default() -> Self {
-        RimPoint {
-            offset: Vector3::zeros(),
-            rate: Vector3::zeros(),
-            tilt: 1.0,
-        }
-    }
-}
-
-impl RimPoint {
-    /// The rim of radius `radius` about the world axis `axis` of a body turning at `angular`, against the normal
-    /// `normal` turning at `normal_rate`. With `u = n − (n · a) a`, `u̇ = ṅ − (ṅ · a + n · ȧ) a − (n · a) ȧ` (ȧ = ω ×
-    /// a) and `d û/dt = (u̇ − û (û · u̇)) / |u|`. A disk exactly flat has no farthest point: any rim point serves
-    /// (the gap is the same), moving with the body.
-    fn towards(
-        radius: f64,
-        axis: &Vector3<f64>,
-        angular: &Vector3<f64>,
-        normal: &Vector3<f64>,
-        normal_rate: &Vector3<f64>,
-    ) -> Self {
-        let along = normal.dot(axis);
-        let projected = normal - axis * along;
-        let tilt = projected.norm();
-        if tilt == 0.0 {
-            let any = axis.cross(&Vector3::x());
-            let any = if any.norm() > 0.5 {
-                any
-            } else {
-                axis.cross(&Vector3::y())
-            }
-            .normalize();
-            return RimPoint {
-                offset: any * radius,
-                rate: angular.cross(&any) * radius,
-                tilt,
-            };
-        }
-        let unit = projected / tilt;
-        let axis_rate = angular.cross(axis);
-        let projected_rate = normal_rate - axis * (normal_rate.dot(axis) + normal.dot(&axis_rate)) - axis_rate * along;
-        let unit_rate = (projected_rate - unit * unit.dot(&projected_rate)) / tilt;
-        RimPoint {
-            offset: unit * radius,
-            rate: unit_rate * radius,
-            tilt,
-        }
-    }
-}
-
-impl ContactFrame {
-    /// The gap's rate `n · w` (m/s).
-    pub fn normal_speed(&self) -> f64 {
-        self.normal.dot(&self.relative)
-    }
-
-    /// The slip: the relative velocity's part along the tangent plane (m/s).
-    pub fn slip(&self) -> Vector3<f64> {
-        self.relative - self.normal * self.normal_speed()
-    }
 }
 
 /// The Newton steps [`Mechanism::place_contacts`] takes at most (one is enough but for round-off: each squares the

@@ -138,6 +138,10 @@ pub struct MechanismWorkspace<A: Algebra> {
     /// Per one-sided constraint (limits, then contacts), the index in `rows` of its row (a contact's normal row)
     /// while it is held.
     pub(super) held_rows: Vec<Option<usize>>,
+    /// Per contact, whether a switching contact is watched (docs/contacts.md "Edges"); renewed before every step.
+    pub(super) watched: Vec<bool>,
+    /// Whether `watched` has been renewed from a state since the workspace was made.
+    pub(super) switches_renewed: bool,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -303,6 +307,8 @@ impl<A: Algebra> Mechanism<A> {
             rows: self.coupling_rows.clone(),
             slips: vec![Slip::Sticking; self.contacts.len()],
             held_rows: vec![None; self.limits.len() + self.contacts.len()],
+            watched: vec![false; self.contacts.len()],
+            switches_renewed: false,
         }
     }
 }

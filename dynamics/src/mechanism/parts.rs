@@ -88,6 +88,21 @@ pub(super) struct Contact {
     /// The face the contact holds on, if bounded: the convex solid `n · x ≤ d` (in the frame `against` is fixed in,
     /// principal coordinates for a body; n unit) its touching point must stay inside while it touches.
     pub face: Vec<(Vector3<f64>, f64)>,
+    /// The contact's own edge, from `point`, for an edge on an edge (docs/contacts.md "Edges").
+    pub edge: Option<EdgeFeature>,
+    /// Whether the contact is one feature pair among all of two convex solids' (docs/contacts.md "Edges"): outside
+    /// its face or edges it is not watched and, held, lets go, where another pair takes over; else leaving its face
+    /// stops the run.
+    pub switching: bool,
+}
+
+/// A straight edge in principal body coordinates, from a point given with it: its unit direction, its length, and
+/// the unit outward normals of the two faces meeting along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct EdgeFeature {
+    pub direction: Vector3<f64>,
+    pub length: f64,
+    pub faces: [Vector3<f64>; 2],
 }
 
 /// What a contact's point or sphere stays outside of (docs/contacts.md "Between bodies").
@@ -107,6 +122,13 @@ pub(super) enum Against {
         centre: Vector3<f64>,
         radius: f64,
     },
+    /// The edge from `start` fixed in body `body` (its principal coordinates), outside whose solid the contact's own
+    /// edge stays.
+    Edge {
+        body: usize,
+        start: Vector3<f64>,
+        edge: EdgeFeature,
+    },
 }
 
 impl Against {
@@ -114,7 +136,7 @@ impl Against {
     pub fn body(&self) -> Option<usize> {
         match *self {
             Against::World { .. } => None,
-            Against::Face { body, .. } | Against::Ball { body, .. } => Some(body),
+            Against::Face { body, .. } | Against::Ball { body, .. } | Against::Edge { body, .. } => Some(body),
         }
     }
 }

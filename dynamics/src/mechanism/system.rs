@@ -64,8 +64,9 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         Ok(())
     }
 
-    /// Renews the directions the sliding contacts' slips are watched along.
+    /// Renews which switching contacts are watched and the directions the sliding contacts' slips are watched along.
     fn begin_step(&self, _t: f64, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) {
+        self.renew_switches(states, workspace);
         if !self.frictional.is_empty() {
             self.renew_slip_references(states, workspace);
         }

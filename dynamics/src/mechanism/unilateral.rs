@@ -6,11 +6,12 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
+use crate::contacts::OUTSIDE_FACE;
 use crate::eigen::least_norm_by_blocks;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
 use crate::mechanism::contacts::stack;
-use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
+use crate::mechanism::friction::{tangent_basis, NOT_WATCHED, STOP_SPEED};
 use crate::mechanism::joint_space::{JointSpace, WorldBody};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::Slip;
@@ -73,6 +74,9 @@ impl<A: Algebra> Mechanism<A> {
             });
         }
         let space = self.limited_space()?;
+        if !workspace.switches_renewed {
+            self.renew_switches(states, workspace);
+        }
         self.check_features(t, states, &workspace.held)?;
         if workspace.held.iter().any(Option::is_some) {
             self.evaluate_states(t, states, workspace)?;
@@ -84,9 +88,16 @@ impl<A: Algebra> Mechanism<A> {
         let (bounded, friction) = values.split_at_mut(workspace.held.len());
         for (index, (held, value)) in workspace.held.iter().zip(bounded.iter_mut()).enumerate() {
             *value = match (held, index.checked_sub(self.limits.len())) {
-                (Some(bound), _) => {
+                (Some(bound), contact) => {
                     let row = workspace.held_rows[index].expect("a held constraint has its row");
-                    bound.inward() * multipliers[row]
+                    let push = bound.inward() * multipliers[row];
+                    // A switching contact also lets go where its touching point leaves its face or edges.
+                    match contact {
+                        Some(c) if self.contacts[c].switching => {
+                            push.min(OUTSIDE_FACE - self.contact_frame(c, states).outside)
+                        }
+                        _ => push,
+                    }
                 }
                 (None, None) => {
                     let limit = &self.limits[index];
@@ -98,6 +109,7 @@ impl<A: Algebra> Mechanism<A> {
                     self.read_positions(group, &bodies, previous.map(|p| &p[offset..offset + 1]), &mut q);
                     limit.range.gap(q[0])
                 }
+                (None, Some(contact)) if self.contacts[contact].switching && !workspace.watched[contact] => NOT_WATCHED,
                 (None, Some(contact)) => self.contact_motion(contact, states).0,
             };
         }
@@ -137,6 +149,13 @@ impl<A: Algebra> Mechanism<A> {
         } else {
             match index.checked_sub(self.limits.len()) {
                 None => self.limit_impact(index, t, states, workspace)?,
+                // Not a contact; but another may meet at the same instant, a round-off later.
+                Some(contact) if self.lets_go(contact, states, workspace) => {
+                    match self.meeting_contact(states, workspace) {
+                        Some(meeting) => self.contact_impact(meeting, t, states, workspace)?,
+                        None => Vec::new(),
+                    }
+                }
                 Some(contact) => self.contact_impact(contact, t, states, workspace)?,
             }
         };
@@ -159,6 +178,7 @@ impl<A: Algebra> Mechanism<A> {
         self.hold_rows(workspace);
         if let Some(contact) = index.checked_sub(self.limits.len()) {
             self.check_release(contact, t, states, workspace)?;
+            self.lets_go(contact, states, workspace);
         }
         Ok(vec![(index, LimitChange::Released { bound })])
     }

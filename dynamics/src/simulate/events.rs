@@ -312,6 +312,11 @@ pub(super) fn state_inside<A: Algebra, D: Dynamics<A> + ?Sized>(
     start: &[State<A>],
     probe: &mut [State<A>],
 ) -> Result<f64, SimulationError> {
+    // A crossing a round-off into the step, lost in `t + offset`, is at its start.
+    if offset <= 0.0 {
+        probe.copy_from_slice(start);
+        return Ok(0.0);
+    }
     if let Some(work) = stepper.dense_output(offset / h, probe)? {
         let dynamics = stepper.dynamics();
         dynamics

@@ -26,5 +26,6 @@ mod mechanism_solve;
 mod module_order;
 mod newton_euler;
 mod orders;
+mod polyhedra;
 mod rims;
 mod surfaces;

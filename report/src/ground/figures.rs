@@ -1,6 +1,6 @@
 //! The ground figure: Solo-12's base height as it lands on its feet and stands; the crate's, pill's, gem's and can's
 //! centres as they bounce and come to rest on the floor; and, on their own axes, how far the billiard balls and the box a UR5
-//! pushes travel.
+//! pushes travel, and the height of a box thrown off a ledge.
 
 use std::path::Path;
 
@@ -38,6 +38,7 @@ pub(crate) struct Scenes<'r> {
     pub shapes: &'r [AlgebraRun],
     pub billiards: &'r [AlgebraRun],
     pub push: &'r [AlgebraRun],
+    pub ledge: &'r [AlgebraRun],
 }
 
 /// Draws the figures of the scenes' runs into `dir`: heights (the robot and the shapes), and distances travelled (the
@@ -48,6 +49,7 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Vec<&'static str>,
         shapes,
         billiards,
         push,
+        ledge,
     } = *scenes;
     let mut panels = Vec::new();
     if !robot.is_empty() {
@@ -106,17 +108,29 @@ pub(crate) fn draw(dir: &Path, scenes: &Scenes<'_>) -> Result<Vec<&'static str>,
         }
     }
     if !series.is_empty() {
-        let panel = Panel::new(
+        let mut panels = vec![Panel::new(
             Labels::new("Bodies meeting bodies", "time (s)", "distance travelled (m)"),
             series,
-        );
+        )];
+        let tumbling: Vec<Series> = (ledge.iter())
+            .filter_map(|run| Some(heights(run, run.names.iter().position(|n| n == "box")?, "box")))
+            .collect();
+        if !tumbling.is_empty() {
+            panels.push(Panel::new(
+                Labels::new("A box thrown off a ledge", "time (s)", "centre height (m)"),
+                tumbling,
+            ));
+        }
         figure_with_caption(
             &dir.join("bodies_meeting.png"),
             "Bodies meeting bodies: [[collision]] pairs",
-            &[panel],
+            &panels,
             "A cue ball slides, rolls and meets a red ball off centre, and the red ball rolls off \
              (scenes/stack_and_billiards.toml, where a stack of three boxes rests beside them); a ball welded to a \
-             UR5's flange sweeps into a box on a table, which slides on and stops (scenes/ur5_pushes_a_box.toml).",
+             UR5's flange sweeps into a box on a table, which slides on and stops (scenes/ur5_pushes_a_box.toml). \
+             Below: a box slides across a ledge, tips over its edge on its bottom edges, falls, lands on an edge and \
+             tumbles to rest on the floor, kept off the ledge by all the two boxes' vertex-face and edge-edge pairs \
+             (scenes/box_off_a_ledge.toml).",
         )?;
         drawn.push("bodies_meeting.png");
     }

@@ -1,5 +1,6 @@
 //! The report's section on bodies on the ground (docs/contacts.md): `scenes/solo12_standing.toml`,
-//! `scenes/shapes_on_a_floor.toml`, `scenes/stack_and_billiards.toml` and `scenes/ur5_pushes_a_box.toml` run as the
+//! `scenes/shapes_on_a_floor.toml`, `scenes/stack_and_billiards.toml`, `scenes/ur5_pushes_a_box.toml` and
+//! `scenes/box_off_a_ledge.toml` run as the
 //! scene job runs them (written under `ground/`), a figure, and a table of their transitions, the deepest any contact
 //! went below its plane or into another shape, the energy balance and the cost.
 
@@ -12,11 +13,12 @@ use crate::plot::PlotError;
 use crate::scene_job::{run_scene_file, AlgebraRun};
 
 /// The shipped scene files the section runs.
-const SCENES: [&str; 4] = [
+const SCENES: [&str; 5] = [
     "solo12_standing.toml",
     "shapes_on_a_floor.toml",
     "stack_and_billiards.toml",
     "ur5_pushes_a_box.toml",
+    "box_off_a_ledge.toml",
 ];
 
 /// The repository's `scenes/` folder (the section runs the files shipped there).
@@ -33,7 +35,8 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
          push carries μN against its slip, a sticking one holds two more rows while its force stays in the cone, and \
          every stop and slip is located as impacts are. Collision shapes (boxes, capsules, cylinders, convex hulls) stay \
          above `[[plane]]`s through their corners, end spheres, cap rims and vertices, and apart in `[[collision]]` \
-         pairs: a vertex, sphere or rim of one body on a face of another, or two balls. The shipped scene files below run as \
+         pairs: a sphere or rim of one body on a face of another, two balls, or two polytopes by all their vertex-face \
+         and edge-edge pairs, each a contact only where its features meet. The shipped scene files below run as \
          `cargo run --release -- --scene-file scenes/<name>` runs them (written under `ground/`).\n"
     );
     let mut runs: Vec<(&str, Vec<AlgebraRun>)> = Vec::new();
@@ -56,6 +59,7 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
         shapes: of("shapes_on_a_floor"),
         billiards: of("stack_and_billiards"),
         push: of("ur5_pushes_a_box"),
+        ledge: of("box_off_a_ledge"),
     };
     for name in figures::draw(dir, &scenes)? {
         let _ = writeln!(out, "![{name}]({name})\n");

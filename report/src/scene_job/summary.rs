@@ -329,8 +329,8 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
             let _ = writeln!(
                 out,
                 "{}: the deepest two `[[collision]]` shapes went into each other at the samples, by parry3d's query \
-                 rather than the contacts (it sees an edge through an edge, which no contact watches; its tolerance \
-                 for polytopes is some 1e-8 m): {deepest}.",
+                 rather than the contacts (it sees shapes meet where no contact watches them, as a sphere past the \
+                 face it is held on; its tolerance for polytopes is some 1e-8 m): {deepest}.",
                 run.algebra.name()
             );
         }

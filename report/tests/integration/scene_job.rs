@@ -235,6 +235,50 @@ fn the_shipped_shapes_come_to_rest_on_the_floor() {
     }
 }
 
+/// The shipped box thrown off a ledge (scenes/box_off_a_ledge.toml), the two boxes kept apart by all their feature
+/// pairs: the box slides on the ledge's top face decelerating at μg (μ = 0.3) until its leading corners pass the
+/// edge, where `1.5 t − μg t²/2 = 0.2` m (and `OUTSIDE_FACE` more): there its bottom edges are held on the ledge's edge
+/// and the leading corners let go (1e-9 s). It tips off, lands on the floor and comes to rest on a face beside the
+/// ledge (its centre 0.1 m up, to 1e-9 m). Both algebras make the same transitions, no contact goes below its plane
+/// or two shapes into each other by 1e-9 m at a sample, and the energy less the impacts' and friction's work is the
+/// integration error.
+#[test]
+fn the_shipped_box_tips_off_the_ledge_and_comes_to_rest() {
+    let (_, [pga, cga]) = shipped_runs("box_off_a_ledge.toml", "report-scene-file-ledge");
+    let (pga, cga) = (&pga, &cga);
+    assert_same_transitions(pga, cga);
+    let decelerating = 0.3 * 9.81 / 2.0;
+    let passing = 0.2 + dynamics::contacts::OUTSIDE_FACE;
+    let leading = (1.5 - (1.5f64 * 1.5 - 4.0 * decelerating * passing).sqrt()) / (2.0 * decelerating);
+    for run in [pga, cga] {
+        assert!(run.deepest < 1e-9, "{:e} m into a plane or a shape", run.deepest);
+        let let_go: Vec<f64> = (run.transitions.iter())
+            .filter(|t| t.constraint.ends_with("on ledge box 1 face 6") && t.constraint.contains("vertex"))
+            .filter(|t| matches!(t.change, dynamics::limits::LimitChange::Released { .. }))
+            .map(|t| t.t)
+            .collect();
+        assert!(
+            let_go.len() >= 2 && let_go[..2].iter().all(|t| (t - leading).abs() < 1e-9),
+            "{let_go:?}: {leading} s"
+        );
+        assert!(
+            (run.transitions.iter()).any(|t| t.constraint.contains(" edge ") && (t.t - leading).abs() < 1e-9),
+            "no edge held as the corners pass: {:?}",
+            run.transitions
+        );
+        let (first, last) = (run.bodies[1].first().unwrap(), run.bodies[1].last().unwrap());
+        assert!(
+            (last.position.z - 0.1).abs() < 1e-9 && last.position.x > 0.4,
+            "{}",
+            last.position
+        );
+        assert!(last.velocity.norm() < 1e-9, "{}", last.velocity);
+        let impacts: f64 = run.transitions.iter().map(|t| t.energy_change).sum();
+        let error = last.energy - first.energy - impacts - run.work.last().unwrap();
+        assert!(error.abs() < 1e-8, "E − E₀ − L − W = {error:e} J");
+    }
+}
+
 /// The shipped stack and billiard balls (scenes/stack_and_billiards.toml): three boxes resting on each other by
 /// `[[collision]]` pairs (each box's bottom corners on the top face of the one below) stay where they started, to
 /// 1e-12 m, for the whole run; the cue ball, struck without spin on a floor with μ = 0.5, rolls at `5v₀/7` before it

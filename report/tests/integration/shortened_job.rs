@@ -107,6 +107,7 @@ fn shortened_job_matches_the_references() {
         "| shapes_on_a_floor | CGA |",
         "| stack_and_billiards | PGA |",
         "| ur5_pushes_a_box | CGA |",
+        "| box_off_a_ledge | PGA |",
         "Solo-12 stands on its sticking feet",
     ] {
         assert!(report.contains(part), "report lacks {part:?}");

@@ -1,12 +1,15 @@
 //! The `[[collision]]` pairs' contacts (docs/contacts.md "Between bodies"): for each shape of one body and each of
-//! the other, the features that meet, chosen at the start. Two spheres are one ball contact. Otherwise the face, of
+//! the other, the features that meet. Two spheres are one ball contact. Two polytopes (boxes, hulls) are every
+//! vertex of each on every face of the other and every edge of each on every edge of the other, each pair watched
+//! only where its features meet, so that they may tumble over each other (docs/contacts.md "Edges"). Otherwise
+//! (a sphere, capsule or cylinder on a polytope) the features are chosen at the start: the face, of
 //! either shape, that separates them most at the start (the largest least distance of the other's vertices, spheres
 //! or rims; of faces separating as much, the largest) becomes a plane fixed in its body, and each vertex, sphere or
 //! cap rim of the other shape is a contact on it: a box resting on a wider box rests on its corners on the
-//! other's top face. A start where no face
-//! separates the shapes (they interpenetrate, or meet edge on edge) is refused, naming the pair and the depth.
+//! other's top face. A start where the shapes interpenetrate, or where no face separates a curved shape from a
+//! polytope, is refused, naming the pair and the depth.
 
-use dynamics::contacts::{BallContact, PlaneContact, TOUCHING};
+use dynamics::contacts::{BallContact, PlaneContact, Polyhedron, TOUCHING};
 use dynamics::{Algebra, BodyId, Mechanism, Reference, State};
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::math::{Pose, Rotation, Vector};
@@ -116,7 +119,7 @@ fn parry_pose(isometry: &Isometry3<f64>) -> Pose {
 
 /// The pair of shapes that go deepest into each other with the bodies at `states` (their names and the depth, m), if
 /// any overlaps at all: parry3d's contact query, independent of the contacts, so that shapes that meet where no
-/// contact watches them (an edge through an edge) are seen.
+/// contact watches them (a sphere past the face it is held on) are seen.
 pub(crate) fn deepest_overlap<A: Algebra>(pairs: &[ShapePair], states: &[State<A>]) -> Option<(String, f64)> {
     let pose = |(body, frame, _): &(BodyId, Isometry3<f64>, SharedShape)| {
         let (position, rotation) = states[body.index()].pose();
@@ -218,6 +221,9 @@ fn add_shape_pair<A: Algebra>(
             .add_ball_contact(name, first.id, second.id, contact)
             .map_err(|e| failed(&e));
     }
+    if a.solid == Solid::Polytope && b.solid == Solid::Polytope {
+        return add_polyhedra(mechanism, pair, [(first, a), (second, b)], &what);
+    }
     // The face that separates most: of b against a's features, or of a against b's; of faces that separate as much
     // (within round-off: a box resting on a wider one, whose top face and the box's bottom face are one plane) the
     // largest, so that the smaller shape's vertices rest on it.
@@ -238,8 +244,8 @@ fn add_shape_pair<A: Algebra>(
         unreachable!("a pair of shapes not both balls has a polytope, with faces")
     };
     if separation < -TOUCHING {
-        // No face separates them: they overlap, or they are apart only across an edge against an edge, which the
-        // contacts (a vertex on a face) cannot hold apart; parry3d's distance tells which.
+        // No face separates them: they overlap, or they are apart only across the polytope's edge or vertex, which
+        // the contacts (a sphere, capsule end or rim on a face) cannot hold apart; parry3d's distance tells which.
         let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
         let (pose_a, pose_b) = (parry_pose(&first.to_world), parry_pose(&second.to_world));
         let distance =
@@ -248,8 +254,8 @@ fn add_shape_pair<A: Algebra>(
             return Err(invalid(
                 what,
                 format!(
-                    "the start has the two shapes {distance:.3e} m apart with no face of either between them (an edge \
-                     faces an edge): contacts between bodies hold a vertex or sphere on a face, not an edge on an edge \
+                    "the start has the two shapes {distance:.3e} m apart with no face between them (an edge or a \
+                     vertex faces the curved shape): a sphere, capsule or cylinder is held on a polytope's faces only \
                      (docs/contacts.md \"Between bodies\"); turn or move them so that a face lies between them"
                 ),
             ));
@@ -297,6 +303,54 @@ fn add_shape_pair<A: Algebra>(
             .and_then(|()| mechanism.set_contact_face(&name, &solid))
             .map_err(|e| failed(&e))?;
     }
+    Ok(())
+}
+
+/// Two polytopes kept apart by all their feature pairs (`Mechanism::add_polyhedron_contacts`, docs/contacts.md
+/// "Edges"): refused if the start puts them into each other (parry3d's contact query); errors name `what`.
+fn add_polyhedra<A: Algebra>(
+    mechanism: &mut Mechanism<A>,
+    pair: &CheckedPair,
+    [(first, a), (second, b)]: [(&Placed<'_>, &ShapeGeometry); 2],
+    what: &str,
+) -> Result<(), SceneFileError> {
+    let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
+    let (pose_a, pose_b) = (parry_pose(&first.to_world), parry_pose(&second.to_world));
+    if let Ok(Some(contact)) = query::contact(&pose_a, shape_a.as_ref(), &pose_b, shape_b.as_ref(), 0.0) {
+        if contact.dist < -TOUCHING {
+            return Err(invalid(
+                what,
+                format!("the start puts the two shapes {:.3e} m into each other", -contact.dist),
+            ));
+        }
+    }
+    // A shape in its body's reference frame, where contacts take their points and planes.
+    let polyhedron = |placed: &Placed<'_>, shape: &ShapeGeometry| {
+        let vertices = (shape.features.iter())
+            .map(|f| (placed.to_body * Point3::from(f.centre)).coords)
+            .collect();
+        let faces = (shape.faces.iter())
+            .map(|face| {
+                let normal = placed.to_body.rotation * face.normal;
+                (normal, face.offset + normal.dot(&placed.to_body.translation.vector))
+            })
+            .collect();
+        Polyhedron::new(vertices, faces).map_err(|e| invalid(what, e.to_string()))
+    };
+    let (first_shape, second_shape) = (polyhedron(first, a)?, polyhedron(second, b)?);
+    let labels = [
+        format!("{} {}", first.name, a.label),
+        format!("{} {}", second.name, b.label),
+    ];
+    mechanism
+        .add_polyhedron_contacts(
+            &pair.name,
+            (first.id, &first_shape, &labels[0]),
+            (second.id, &second_shape, &labels[1]),
+            pair.friction,
+            pair.restitution,
+        )
+        .map_err(|e| invalid(what, e.to_string()))?;
     Ok(())
 }
 

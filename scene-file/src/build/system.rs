@@ -63,8 +63,8 @@ impl<A: Algebra> SceneSystem<A> {
     /// The `[[collision]]` pair of shapes that go deepest into each other with the bodies at `states` (mechanism
     /// order): its description ("`pair`: `body` `shape` and `body` `shape`") and the depth (m), from parry3d's contact
     /// query, independent of the contacts; `None` where no two shapes of a pair overlap. The contacts keep the
-    /// features they were given apart; this sees shapes that meet elsewhere (an edge through an edge, docs/contacts.md
-    /// "Between bodies"), to within parry3d's tolerance for polytopes (some 1e-8 m).
+    /// features they watch apart; this sees shapes that meet elsewhere (a sphere past the face it is held on,
+    /// docs/contacts.md "Between bodies"), to within parry3d's tolerance for polytopes (some 1e-8 m).
     pub fn deepest_overlap(&self, states: &[State<A>]) -> Option<(String, f64)> {
         (states.len() == self.names.len())
             .then(|| deepest_overlap(&self.shape_pairs, states))
