@@ -148,14 +148,13 @@ pub(super) fn edge_frame(
     let normal = direction * sign;
     let d = start - start_b;
     let c = a.dot(&b);
-    let squared = sine * sine;
+    // Nearer parallel than half the bound, where the pair is outside by half the longer edge at least, the nearest
+    // points and the rates are those of edges at that angle: finite, for a trial stage that goes there.
+    let kept = sine.max(PARALLEL_EDGES / 2.0);
+    let squared = kept * kept;
     let (along_b, along_a) = (d.dot(&b), d.dot(&a));
     let numerator = c * along_b - along_a;
-    let (s, t) = if squared > 0.0 {
-        (numerator / squared, (along_b - c * along_a) / squared)
-    } else {
-        (0.0, along_b)
-    };
+    let (s, t) = (numerator / squared, (along_b - c * along_a) / squared);
     let touching = start + a * s;
     // Inside: the nearest points on both edges, n between the other's faces' normals, −n between the own's.
     let between = |n: &Vector3<f64>, f1: &Vector3<f64>, f2: &Vector3<f64>| {
@@ -175,23 +174,13 @@ pub(super) fn edge_frame(
         (terms.into_iter().enumerate()).fold((0, f64::NEG_INFINITY), |m, (k, x)| if x > m.1 { (k, x) } else { m });
     let (a_rate, b_rate) = (own.angular.cross(&a), other.angular.cross(&b));
     let u_rate = a_rate.cross(&b) + a.cross(&b_rate);
-    let normal_rate = if sine > 0.0 {
-        (u_rate - direction * direction.dot(&u_rate)) * (sign / sine)
-    } else {
-        Vector3::zeros()
-    };
+    let normal_rate = (u_rate - direction * direction.dot(&u_rate)) * (sign / kept);
     let d_rate = own.velocity_at(&start) - other.velocity_at(&start_b);
     let c_rate = a_rate.dot(&b) + a.dot(&b_rate);
     let along_b_rate = d_rate.dot(&b) + d.dot(&b_rate);
     let along_a_rate = d_rate.dot(&a) + d.dot(&a_rate);
     let numerator_rate = c_rate * along_b + c * along_b_rate - along_a_rate;
-    let quotient_rate = |top: f64, top_rate: f64| {
-        if squared > 0.0 {
-            (top_rate * squared + top * 2.0 * c * c_rate) / (squared * squared)
-        } else {
-            0.0
-        }
-    };
+    let quotient_rate = |top: f64, top_rate: f64| (top_rate * squared + top * 2.0 * c * c_rate) / (squared * squared);
     let s_rate = quotient_rate(numerator, numerator_rate);
     let t_rate = quotient_rate(
         along_b - c * along_a,

@@ -8,6 +8,7 @@ use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::{BallContact, Friction, PlaneContact, FLAT_RIM, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
 use crate::mechanism::contact_frames::{edge_frame, BodyMotion, ContactFrame, RimPoint};
+use crate::mechanism::error::listed;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
 use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
@@ -333,20 +334,23 @@ impl<A: Algebra> Mechanism<A> {
     pub fn contact_heights(&self, states: &[State<A>]) -> Result<Vec<f64>, ConstraintError> {
         self.check_count("states", states.len())?;
         Ok((0..self.contacts.len())
-            .map(|c| {
-                let frame = self.contact_frame(c, states);
-                let contact = &self.contacts[c];
-                match (contact.switching, contact.edge.is_some()) {
-                    (false, _) => frame.gap,
-                    (true, _) if !frame.defined || frame.outside > OUTSIDE_FACE => f64::INFINITY,
-                    // Two edges' lines pass each other far behind one solid as often as through it.
-                    (true, true) if frame.gap < -TOUCHING => f64::INFINITY,
-                    // Below the face's plane but at another face (a vertex on the top of a box, below its bottom
-                    // face's plane) is no deeper than that other face's plane: inside the solid, the deepest of them.
-                    (true, _) => frame.gap.max(frame.outside),
-                }
-            })
+            .map(|c| self.contact_height(c, states))
             .collect())
+    }
+
+    /// Contact `c`'s height at `states`, as [`Mechanism::contact_heights`] gives it.
+    pub(super) fn contact_height(&self, c: usize, states: &[State<A>]) -> f64 {
+        let frame = self.contact_frame(c, states);
+        let contact = &self.contacts[c];
+        match (contact.switching, contact.edge.is_some()) {
+            (false, _) => frame.gap,
+            (true, _) if !frame.defined || frame.outside > OUTSIDE_FACE => f64::INFINITY,
+            // Two edges' lines pass each other far behind one solid as often as through it.
+            (true, true) if frame.gap < -TOUCHING => f64::INFINITY,
+            // Below the face's plane but at another face (a vertex on the top of a box, below its bottom face's
+            // plane) is no deeper than that other face's plane: inside the solid, the deepest of them.
+            (true, _) => frame.gap.max(frame.outside),
+        }
     }
 
     /// The contacts' names, in the order they were added.
@@ -492,7 +496,7 @@ impl<A: Algebra> Mechanism<A> {
     ) -> Result<DMatrix<f64>, ConstraintError> {
         self.point_jacobian(states, points)
             .map_err(|error| ConstraintError::InvalidParameter {
-                name: self.contact_names().collect::<Vec<_>>().join(" + "),
+                name: listed(self.contact_names()),
                 reason: error.to_string(),
             })
     }

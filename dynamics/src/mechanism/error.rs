@@ -65,3 +65,14 @@ pub enum MechanismError {
         got: usize,
     },
 }
+
+/// The names of an error's constraints, joined by " + ": the first few of them and how many more (two boxes bring 240
+/// contacts).
+pub(super) fn listed<'n>(names: impl Iterator<Item = &'n str>) -> String {
+    const SHOWN: usize = 4;
+    let names: Vec<&str> = names.collect();
+    match names.len().checked_sub(SHOWN) {
+        Some(more) if more > 0 => format!("{} + {more} more", names[..SHOWN].join(" + ")),
+        _ => names.join(" + "),
+    }
+}

@@ -479,7 +479,7 @@ impl<A: Algebra> Mechanism<A> {
         self.position_rows(t, states, &mut workspace, Rows::Residuals)?;
         let (mut position, velocity) = self.coupling_violation(states);
         for contact in 0..self.contacts.len() {
-            position = position.max(-self.contact_motion(contact, states).0);
+            position = position.max(-self.contact_height(contact, states));
         }
         Ok(workspace
             .joints

@@ -11,6 +11,7 @@ use crate::eigen::least_norm_by_blocks;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
 use crate::mechanism::contacts::stack;
+use crate::mechanism::error::listed;
 use crate::mechanism::friction::{tangent_basis, NOT_WATCHED, STOP_SPEED};
 use crate::mechanism::joint_space::{JointSpace, WorldBody};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
@@ -48,10 +49,7 @@ impl<A: Algebra> Mechanism<A> {
     }
 
     fn unilateral_names(&self) -> String {
-        (0..self.limits.len() + self.contacts.len())
-            .filter_map(|index| self.limit_name(index))
-            .collect::<Vec<_>>()
-            .join(" + ")
+        listed((0..self.limits.len() + self.contacts.len()).filter_map(|index| self.limit_name(index)))
     }
 
     /// Per one-sided constraint, what [`crate::simulate()`] watches (docs/limits.md "The three states of a limit"):
@@ -177,8 +175,10 @@ impl<A: Algebra> Mechanism<A> {
         let bound = workspace.held[index].take().expect("a released constraint is held");
         self.hold_rows(workspace);
         if let Some(contact) = index.checked_sub(self.limits.len()) {
-            self.check_release(contact, t, states, workspace)?;
-            self.lets_go(contact, states, workspace);
+            // A switching contact leaving its face goes beyond the plane's edge, where it may sink: no paradox.
+            if !self.lets_go(contact, states, workspace) {
+                self.check_release(contact, t, states, workspace)?;
+            }
         }
         Ok(vec![(index, LimitChange::Released { bound })])
     }
