@@ -202,3 +202,58 @@ pub(super) fn edge_frame(
         defined: sine > PARALLEL_EDGES,
     }
 }
+
+/// A sphere's frame against an edge (docs/contacts.md "Spheres on polyhedra"): the sphere of radius `radius` about
+/// `centre` (world) of the body moving as `own`, the edge from `start` (principal coordinates) of the body moving as
+/// `other`. With b the edge's unit direction and `τ = (c − q₀) · b`, the nearest point of its line is `q = q₀ + τ b`;
+/// `δ = c − q`, the normal `n = δ/|δ|`, the gap `|δ| − r` and the touching point `p = c − r n`. As for two balls,
+/// `ġ = n · (v_A(p) − v_B(p))` (q moves along b, normal to n), with `q̇ = v_B(q) + τ̇ b`, `τ̇ = (ċ − v_B(q₀)) · b +
+/// (c − q₀) · ḃ`, `ṅ = (δ̇ − n (n · δ̇))/|δ|` and `ṗ = ċ − r ṅ`. Inside: q on the edge, n between its faces' normals.
+pub(super) fn sphere_edge_frame(
+    (own, centre, radius): (&BodyMotion, Vector3<f64>, f64),
+    (other, other_start, edge): (&BodyMotion, Vector3<f64>, &EdgeFeature),
+) -> ContactFrame {
+    let b = other.rotation * edge.direction;
+    let start = other.position + other.rotation * other_start;
+    let [f1, f2] = edge.faces.map(|f| other.rotation * f);
+    let from_start = centre - start;
+    let along = from_start.dot(&b);
+    let nearest = start + b * along;
+    let between = centre - nearest;
+    let distance = between.norm();
+    let defined = distance > 0.0;
+    let normal = if defined {
+        between / distance
+    } else {
+        (f1 + f2).normalize()
+    };
+    let centre_velocity = own.velocity_at(&centre);
+    let b_rate = other.angular.cross(&b);
+    let along_rate = (centre_velocity - other.velocity_at(&start)).dot(&b) + from_start.dot(&b_rate);
+    let nearest_rate = other.velocity_at(&nearest) + b * along_rate;
+    let between_rate = centre_velocity - nearest_rate;
+    let normal_rate = if defined {
+        (between_rate - normal * normal.dot(&between_rate)) / distance
+    } else {
+        Vector3::zeros()
+    };
+    let touching = centre - normal * radius;
+    let axis = f1.cross(&f2).normalize();
+    let cone = f1.cross(&normal).dot(&axis).min(normal.cross(&f2).dot(&axis));
+    let terms = [-along, along - edge.length, -edge.length * cone];
+    let (farthest, outside) =
+        (terms.into_iter().enumerate()).fold((0, f64::NEG_INFINITY), |m, (k, x)| if x > m.1 { (k, x) } else { m });
+    let outside_rate = [-along_rate, along_rate].get(farthest).copied().unwrap_or(0.0);
+    ContactFrame {
+        gap: distance - radius,
+        normal,
+        touching,
+        relative: own.velocity_at(&touching) - other.velocity_at(&touching),
+        normal_rate,
+        touching_rate: centre_velocity - normal_rate * radius,
+        tilt: 1.0,
+        outside,
+        outside_rate,
+        defined,
+    }
+}

@@ -30,7 +30,7 @@ const ENERGY_ROUND_OFF: f64 = 1e-10;
 
 /// A contact on its plane moving off it slower than this (m/s) is at rest on it: round-off of a motion along the
 /// plane (a block started sliding on a floor).
-const AT_REST: f64 = 1e-12;
+pub(super) const AT_REST: f64 = 1e-12;
 
 /// Contacts in one impact at most: the active sets cost the cube of their number per pass.
 pub const MAX_CONTACTS_PER_IMPACT: usize = 256;
@@ -119,18 +119,20 @@ impl<A: Algebra> Mechanism<A> {
     /// A contact's impact: contact `contact`, every free contact within [`TOUCHING`] of its plane and not moving away
     /// from it, and every held contact take impulses (see the module docs). Contacts leaving slower than
     /// [`REST_SPEED`] are held, sticking if their slip after is below the stop speed, else sliding; held ones that
-    /// leave are released.
+    /// leave are released. None, if contact `contact` leaves its plane faster than `leaving` (m/s): [`AT_REST`] for
+    /// a located crossing, [`REST_SPEED`] for a contact handed a load at rest ([`Mechanism::hand_over`]), which may
+    /// leave its plane at a round-off.
     pub(super) fn contact_impact(
         &self,
-        contact: usize,
+        (contact, leaving): (usize, f64),
         t: f64,
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
-        let first = self.limits.len();
-        if self.contact_motion(contact, states).1 > AT_REST {
+        if self.contact_motion(contact, states).1 > leaving {
             return Ok(Vec::new());
         }
+        let first = self.limits.len();
         // The contacts in the impact: (contact index, was held).
         let mut involved = Vec::new();
         for c in 0..self.contacts.len() {
@@ -246,10 +248,37 @@ impl<A: Algebra> Mechanism<A> {
         Ok(changes)
     }
 
+    /// Where switching contact `released` let go at its face's edge or its edges' ends (docs/contacts.md "Edges"):
+    /// the features that meet there, touching and not leaving faster than [`REST_SPEED`], take the load at once, by
+    /// an impact at rest (a ball's face contact hands it to the edge it rolls over, whose gap opens only at second
+    /// order).
+    pub(super) fn hand_over(
+        &self,
+        t: f64,
+        states: &mut [State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+    ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        match self.touching_contact(states, workspace, REST_SPEED) {
+            Some(meeting) => self.contact_impact((meeting, REST_SPEED), t, states, workspace),
+            None => Ok(Vec::new()),
+        }
+    }
+
     /// The first free contact that is watched, touching (within [`TOUCHING`]), not moving away, and (switching)
     /// inside its face or edges at `states`: one meeting its plane at a switching contact's false crossing, whose own
     /// crossing is a round-off later (docs/contacts.md "Edges").
     pub(super) fn meeting_contact(&self, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) -> Option<usize> {
+        self.touching_contact(states, workspace, AT_REST)
+    }
+
+    /// The first free contact that is watched, touching (within [`TOUCHING`]), moving away slower than `leaving`,
+    /// and (switching) inside its face or edges at `states`.
+    fn touching_contact(
+        &self,
+        states: &[State<A>],
+        workspace: &mut MechanismWorkspace<A>,
+        leaving: f64,
+    ) -> Option<usize> {
         let first = self.limits.len();
         (0..self.contacts.len()).find(|&c| {
             let switching = self.contacts[c].switching;
@@ -257,7 +286,7 @@ impl<A: Algebra> Mechanism<A> {
                 return false;
             }
             let frame = self.contact_frame(c, states);
-            frame.gap.abs() <= TOUCHING && frame.normal_speed() <= AT_REST && !(switching && outside(&frame))
+            frame.gap.abs() <= TOUCHING && frame.normal_speed() <= leaving && !(switching && outside(&frame))
         })
     }
 

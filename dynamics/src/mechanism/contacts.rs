@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::{BallContact, Friction, PlaneContact, FLAT_RIM, MAX_FACE_PLANES, OUTSIDE_FACE, TOUCHING};
-use crate::mechanism::contact_frames::{edge_frame, BodyMotion, ContactFrame, RimPoint};
+use crate::mechanism::contact_frames::{edge_frame, sphere_edge_frame, BodyMotion, ContactFrame, RimPoint};
 use crate::mechanism::error::listed;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
@@ -189,6 +189,7 @@ impl<A: Algebra> Mechanism<A> {
             face: Vec::new(),
             edge: None,
             switching: false,
+            region_at_centre: false,
         });
         Ok(())
     }
@@ -403,8 +404,10 @@ impl<A: Algebra> Mechanism<A> {
                 (Some(surface), height, normal, surface.angular.cross(&normal))
             }
             Against::Edge { body, start, edge } => {
-                let own_edge = contact.edge.expect("an edge contact has its own edge");
-                return edge_frame((&own, centre, &own_edge), (&motion(body), start, &edge));
+                return match contact.edge {
+                    Some(own_edge) => edge_frame((&own, centre, &own_edge), (&motion(body), start, &edge)),
+                    None => sphere_edge_frame((&own, centre, contact.radius), (&motion(body), start, &edge)),
+                };
             }
             Against::Ball {
                 body,
@@ -438,12 +441,14 @@ impl<A: Algebra> Mechanism<A> {
         // How far the touching point is outside the contact's face, in the frame the face is fixed in, and how fast
         // it moves out across the farthest of the face's planes: y = Rᵀ(p − x), ẏ = Rᵀ(ṗ − v(p)).
         let touching_rate = centre_velocity - rim.rate - normal_rate * contact.radius;
-        let (local, local_rate) = other.map_or((touching, touching_rate), |o| {
+        let (probe, probe_rate) = if contact.region_at_centre {
+            (centre, centre_velocity)
+        } else {
+            (touching, touching_rate)
+        };
+        let (local, local_rate) = other.map_or((probe, probe_rate), |o| {
             let turn = o.rotation.transpose();
-            (
-                turn * (touching - o.position),
-                turn * (touching_rate - surface_velocity),
-            )
+            (turn * (probe - o.position), turn * (probe_rate - o.velocity_at(&probe)))
         });
         let (outside, outside_rate) = (contact.face.iter()).fold((f64::NEG_INFINITY, 0.0), |m, (n, d)| {
             let distance = n.dot(&local) - d;

@@ -94,6 +94,9 @@ pub(super) struct Contact {
     /// its face or edges it is not watched and, held, lets go, where another pair takes over; else leaving its face
     /// stops the run.
     pub switching: bool,
+    /// Whether `face` bounds the sphere's centre rather than its touching point: a sphere on a vertex, whose touching
+    /// point is the vertex itself (docs/contacts.md "Spheres on polyhedra").
+    pub region_at_centre: bool,
 }
 
 /// A straight edge in principal body coordinates, from a point given with it: its unit direction, its length, and

@@ -145,6 +145,106 @@ impl<A: Algebra> Mechanism<A> {
         Ok(added)
     }
 
+    /// Keeps the sphere of `radius` about `centre` (the body `a`'s frame) outside convex polyhedron `solid` of body `b`,
+    /// exactly, with all the features it may touch (docs/contacts.md "Spheres on polyhedra"): the sphere on each face
+    /// (within the face), on each vertex (its centre where the vertex is nearest) and on each edge (its centre where
+    /// the edge is nearest, between the edge's faces), each pair watched only where its feature is the nearest, so
+    /// that a ball rolls off a box's face over its edge, or meets its corner. Contacts are named "`name`: `label_a` on
+    /// `label_b` face j" (vertex i, edge k), counting from 1. Returns how many were added.
+    ///
+    /// ```
+    /// use dynamics::contacts::{Friction, Polyhedron};
+    /// use dynamics::{Body, Mechanism, Pga};
+    /// use nalgebra::Vector3;
+    ///
+    /// let mut scene = Mechanism::<Pga>::new();
+    /// let ball = scene.add_body("ball", Body::sphere(0.2, 0.03)?)?;
+    /// let crate_ = scene.add_body("crate", Body::cuboid(5.0, Vector3::repeat(0.4))?)?;
+    /// let shape = Polyhedron::cuboid(Vector3::repeat(0.4))?;
+    /// let added = scene.add_sphere_polyhedron_contacts("ball on crate", (ball, Vector3::zeros(), 0.03, "ball"), (crate_, &shape, "crate"), Friction::NONE, 0.5)?;
+    /// assert_eq!(added, 6 + 8 + 12);
+    /// assert!(scene.add_sphere_polyhedron_contacts("again", (ball, Vector3::zeros(), -0.03, "ball"), (crate_, &shape, "crate"), Friction::NONE, 0.5).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn add_sphere_polyhedron_contacts(
+        &mut self,
+        name: &str,
+        (a, centre, radius, label_a): (BodyId, Vector3<f64>, f64, &str),
+        (b, solid, label_b): (BodyId, &Polyhedron, &str),
+        friction: Friction,
+        restitution: f64,
+    ) -> Result<usize, MechanismError> {
+        // Checked as a sphere on a plane is: the centre, the radius, the restitution.
+        let on_face = |normal: Vector3<f64>, offset: f64| {
+            PlaneContact::sphere(centre, radius, normal, offset)
+                .and_then(|c| c.with_restitution(restitution))
+                .map(|c| c.with_friction(friction))
+        };
+        for (j, &(normal, offset)) in solid.faces().iter().enumerate() {
+            let contact_name = format!("{name}: {label_a} on {label_b} face {}", j + 1);
+            self.add_contact_on(contact_name.as_str(), a, b, on_face(normal, offset)?)?;
+            let others: Vec<(Vector3<f64>, f64)> = (solid.faces().iter().enumerate())
+                .filter(|&(k, _)| k != j)
+                .map(|(_, plane)| *plane)
+                .collect();
+            self.set_contact_switching_face(&contact_name, &others)?;
+        }
+        let parts = on_face(Vector3::z(), 0.0)?;
+        let features = (centre, radius, None, parts.restitution(), parts.friction());
+        for (i, vertex) in solid.vertices().iter().enumerate() {
+            // The vertex is nearest where the centre lies behind it along every edge leaving it.
+            let region: Vec<(Vector3<f64>, f64)> = (solid.edges().iter())
+                .filter_map(|edge| {
+                    let (start, end) = edge.ends();
+                    let away = if start == *vertex {
+                        end - start
+                    } else if end == *vertex {
+                        start - end
+                    } else {
+                        return None;
+                    };
+                    let away = away.normalize();
+                    Some((away, away.dot(vertex)))
+                })
+                .collect();
+            let contact_name = format!("{name}: {label_a} on {label_b} vertex {}", i + 1);
+            self.push_contact(contact_name, a, features, |mechanism| {
+                let other = mechanism.other_body(a, b)?;
+                let frame = &mechanism.bodies[other].frame;
+                Ok(Against::Ball {
+                    body: other,
+                    centre: frame.transform_point(&Point3::from(*vertex)).coords,
+                    radius: 0.0,
+                })
+            })?;
+            let index = self.contacts.len() - 1;
+            let frame = self.bodies[b.index()].frame;
+            self.contacts[index].face = (region.iter())
+                .map(|(n, d)| {
+                    let n = frame.rotation * n;
+                    (n, d + n.dot(&frame.translation.vector))
+                })
+                .collect();
+            self.contacts[index].switching = true;
+            self.contacts[index].region_at_centre = true;
+        }
+        for (k, edge) in solid.edges().iter().enumerate() {
+            let contact_name = format!("{name}: {label_a} on {label_b} edge {}", k + 1);
+            self.push_contact(contact_name, a, features, |mechanism| {
+                let other = mechanism.other_body(a, b)?;
+                let (start, edge) = principal(&mechanism.bodies[other].frame, edge);
+                Ok(Against::Edge {
+                    body: other,
+                    start,
+                    edge,
+                })
+            })?;
+            let index = self.contacts.len() - 1;
+            self.contacts[index].switching = true;
+        }
+        Ok(solid.faces().len() + solid.vertices().len() + solid.edges().len())
+    }
+
     /// Bounds contact `name`'s plane to a face as [`Mechanism::set_contact_face`] does, for a contact that is one
     /// feature pair among all of two convex solids (docs/contacts.md "Edges"): a vertex of one on a face of the
     /// other, beside the other vertex–face pairs and the edge pairs ([`Mechanism::add_edge_contact`]). Outside the

@@ -10,6 +10,7 @@ use crate::contacts::OUTSIDE_FACE;
 use crate::eigen::least_norm_by_blocks;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
 use crate::mechanism::articulated::{Row, REPEATED_ROW};
+use crate::mechanism::contact_impacts::AT_REST;
 use crate::mechanism::contacts::stack;
 use crate::mechanism::error::listed;
 use crate::mechanism::friction::{tangent_basis, NOT_WATCHED, STOP_SPEED};
@@ -143,18 +144,25 @@ impl<A: Algebra> Mechanism<A> {
         let mut changes = if index >= bounded {
             self.friction_transition(self.frictional[index - bounded], t, states, workspace)?
         } else if workspace.held[index].is_some() {
-            self.release(index, t, states, workspace)?
+            let mut changes = self.release(index, t, states, workspace)?;
+            // A switching contact that let go at its face's edge hands over to the features that meet there (a ball's
+            // face contact to the edge it rolls over), at once rather than a round-off of sinking later.
+            let contact = index.checked_sub(self.limits.len());
+            if contact.is_some_and(|c| self.contacts[c].switching && !workspace.watched[c]) {
+                changes.extend(self.hand_over(t, states, workspace)?);
+            }
+            changes
         } else {
             match index.checked_sub(self.limits.len()) {
                 None => self.limit_impact(index, t, states, workspace)?,
                 // Not a contact; but another may meet at the same instant, a round-off later.
                 Some(contact) if self.lets_go(contact, states, workspace) => {
                     match self.meeting_contact(states, workspace) {
-                        Some(meeting) => self.contact_impact(meeting, t, states, workspace)?,
+                        Some(meeting) => self.contact_impact((meeting, AT_REST), t, states, workspace)?,
                         None => Vec::new(),
                     }
                 }
-                Some(contact) => self.contact_impact(contact, t, states, workspace)?,
+                Some(contact) => self.contact_impact((contact, AT_REST), t, states, workspace)?,
             }
         };
         self.hold_rows(workspace);

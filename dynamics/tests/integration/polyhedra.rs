@@ -201,6 +201,89 @@ fn a_cube_slides_off_a_ledge_and_tips_over_its_edge<A: Algebra>() {
     }
 }
 
+/// A ball (radius r = 5 cm, no friction) sliding at v₀ = 0.1 m/s across a heavy box's top face, 0.2 m from its edge
+/// (docs/contacts.md "Spheres on polyhedra"): at `(x_e − x₀)/v₀` its centre passes over the edge, where the ball's
+/// contact with the edge is held and the face lets go (`OUTSIDE_FACE` later); the ball then turns about the edge as a
+/// particle on a circle of radius r, without spin, and leaves it where `cos θ = (v₀²/(g r) + 2)/3`, at the time the
+/// quadrature `∫ dθ / √((v₀/r)² + 2 (g/r)(1 − cos θ))` gives; the energy is kept throughout.
+fn a_ball_rolls_over_a_box_edge_and_leaves_it_at_the_classical_angle<A: Algebra>() {
+    let (radius, speed, x0, edge) = (0.05, 0.1, 0.3, 0.5);
+    let ledge = Vector3::new(1.0, 1.0, 0.2);
+    let ball = Body::sphere(MASS, radius).unwrap();
+    let mut system = Mechanism::<A>::new();
+    let id = system.add_body("ball", ball).unwrap();
+    let heavy = system.add_body("ledge", Body::cuboid(HEAVY, ledge).unwrap()).unwrap();
+    system.add_force(id, Force::gravity()).unwrap();
+    let shape = Polyhedron::cuboid(ledge).unwrap();
+    system
+        .add_sphere_polyhedron_contacts(
+            "pair",
+            (id, Vector3::zeros(), radius, "ball"),
+            (heavy, &shape, "ledge"),
+            Friction::NONE,
+            0.0,
+        )
+        .unwrap();
+    let start = [
+        State::<A>::from_world_twist(
+            &ball,
+            Vector3::new(x0, 0.0, radius),
+            &UnitQuaternion::identity(),
+            Vector3::zeros(),
+            Vector3::x() * speed,
+        ),
+        placed::<A>(ledge, Vector3::z() * -0.1, UnitQuaternion::identity(), Vector3::zeros()),
+    ];
+    let over = (edge - x0) / speed;
+    let leaving = ((speed * speed / (G * radius) + 2.0) / 3.0).acos();
+    // Simpson's rule on the turn from the top to where it leaves (the integrand is smooth: v₀ > 0).
+    let rate = |theta: f64| ((speed / radius).powi(2) + 2.0 * G / radius * (1.0 - theta.cos())).sqrt();
+    let n = 20_000;
+    let h = leaving / n as f64;
+    let turning: f64 = (0..=n)
+        .map(|k| {
+            let weight = if k == 0 || k == n {
+                1.0
+            } else if k % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            weight / rate(k as f64 * h)
+        })
+        .sum::<f64>()
+        * h
+        / 3.0;
+    for run in [
+        simulate(&system, &start, Method::Dop853Body, &adaptive(1e-12, 2.5)).unwrap(),
+        simulate(&system, &start, JointMethod::Rkmk8, &Schedule::new(2e-3, 2.5).unwrap()).unwrap(),
+    ] {
+        // The face lets go OUTSIDE_FACE past its edge and hands the ball to the edge.
+        let handed = over + OUTSIDE_FACE / speed;
+        let on_edge = changes(&run, " edge ");
+        assert_eq!(on_edge.len(), 2, "{:?}", run.transitions);
+        assert!(
+            matches!(on_edge[0].1, LimitChange::Held { .. }) && (on_edge[0].0 - handed).abs() < 1e-11,
+            "{on_edge:?}"
+        );
+        assert!(
+            matches!(on_edge[1].1, LimitChange::Released { .. }) && (on_edge[1].0 - over - turning).abs() < 1e-9,
+            "{on_edge:?}: leaves {turning} s after {over} s"
+        );
+        let face: Vec<(f64, LimitChange)> = changes(&run, "face 6");
+        assert!(
+            face.iter()
+                .any(|(t, c)| matches!(c, LimitChange::Released { .. }) && (t - handed).abs() < 1e-11),
+            "{face:?}"
+        );
+        let energies: Vec<f64> = run.energies().collect();
+        assert!(energies
+            .iter()
+            .all(|e| (e - energies[0]).abs() < 1e-10 * energies[0].abs().max(1.0)));
+        assert!(run.body(0).iter().all(|s| s.angular_velocity.norm() < 1e-9));
+    }
+}
+
 /// A number uniform in [0, 1) from `seed`, which it advances (a linear congruential generator).
 fn uniform(seed: &mut u64) -> f64 {
     *seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
@@ -270,6 +353,7 @@ fn cubes_tumbling_onto_a_box_never_pass_into_it<A: Algebra>() {
 }
 
 for_both_algebras!(
+    a_ball_rolls_over_a_box_edge_and_leaves_it_at_the_classical_angle,
     cubes_tumbling_onto_a_box_never_pass_into_it,
     a_cube_lands_edge_on_edge_and_balances,
     a_cube_slides_off_a_ledge_and_tips_over_its_edge,
@@ -279,7 +363,8 @@ for_both_algebras!(
 /// coincident; face normals zero, NaN, along the edge or parallel to each other; restitution outside [0, 1]; boxes of
 /// zero, negative, NaN or huge sides; polyhedra of too few or too many faces, a vertex outside a face, a face through
 /// fewer than three vertices, a vertex on fewer than three faces; an edge contact of a body with itself or with an
-/// unknown body; a switching face on no contact or on an edge contact; a pair of polyhedra with too many feature pairs.
+/// unknown body; a switching face on no contact or on an edge contact; a pair of polyhedra with too many feature pairs;
+/// a sphere on a polyhedron of zero, negative, NaN or huge radius, a NaN or far centre, or on its own body.
 #[test]
 fn careless_edges_and_polyhedra_are_refused() {
     use dynamics::contacts::{Edge, EdgeContact, PlaneContact};
@@ -403,6 +488,31 @@ fn careless_edges_and_polyhedra_are_refused() {
         .unwrap_or_default();
     assert!(text.contains("feature pairs, more than 10000"), "{text}");
     let box_shape = Polyhedron::cuboid(Vector3::repeat(SIDE)).unwrap();
+    // A sphere on a polyhedron: radius zero, negative, NaN or huge; centre NaN or far; restitution out of range; the
+    // sphere's own body.
+    for (centre, radius, restitution, other) in [
+        (Vector3::zeros(), 0.0, 0.0, b),
+        (Vector3::zeros(), -0.1, 0.0, b),
+        (Vector3::zeros(), nan, 0.0, b),
+        (Vector3::zeros(), 2e6, 0.0, b),
+        (Vector3::new(nan, 0.0, 0.0), 0.1, 0.0, b),
+        (Vector3::new(0.0, 0.0, 2e6), 0.1, 0.0, b),
+        (Vector3::zeros(), 0.1, 1.5, b),
+        (Vector3::zeros(), 0.1, 0.0, a),
+    ] {
+        assert!(
+            system
+                .add_sphere_polyhedron_contacts(
+                    "ball",
+                    (a, centre, radius, "a"),
+                    (other, &box_shape, "b"),
+                    Friction::NONE,
+                    restitution
+                )
+                .is_err(),
+            "{centre} {radius} {restitution}"
+        );
+    }
     assert!(system
         .add_polyhedron_contacts(
             "bounce",

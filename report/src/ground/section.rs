@@ -35,8 +35,8 @@ pub(crate) fn ground_section(dir: &Path) -> Result<String, PlotError> {
          push carries μN against its slip, a sticking one holds two more rows while its force stays in the cone, and \
          every stop and slip is located as impacts are. Collision shapes (boxes, capsules, cylinders, convex hulls) stay \
          above `[[plane]]`s through their corners, end spheres, cap rims and vertices, and apart in `[[collision]]` \
-         pairs: a sphere or rim of one body on a face of another, two balls, or two polytopes by all their vertex-face \
-         and edge-edge pairs, each a contact only where its features meet. The shipped scene files below run as \
+         pairs: a capsule end or rim of one body on a face of another, two balls, and a sphere and a polytope or two \
+         polytopes by all their vertex, edge and face pairs, each a contact only where its features meet. The shipped scene files below run as \
          `cargo run --release -- --scene-file scenes/<name>` runs them (written under `ground/`).\n"
     );
     let mut runs: Vec<(&str, Vec<AlgebraRun>)> = Vec::new();

@@ -221,7 +221,8 @@ fn add_shape_pair<A: Algebra>(
             .add_ball_contact(name, first.id, second.id, contact)
             .map_err(|e| failed(&e));
     }
-    if a.solid == Solid::Polytope && b.solid == Solid::Polytope {
+    let polytope_or_ball = |shape: &ShapeGeometry| matches!(shape.solid, Solid::Polytope | Solid::Ball);
+    if polytope_or_ball(a) && polytope_or_ball(b) {
         return add_polyhedra(mechanism, pair, [(first, a), (second, b)], &what);
     }
     // The face that separates most: of b against a's features, or of a against b's; of faces that separate as much
@@ -306,8 +307,10 @@ fn add_shape_pair<A: Algebra>(
     Ok(())
 }
 
-/// Two polytopes kept apart by all their feature pairs (`Mechanism::add_polyhedron_contacts`, docs/contacts.md
-/// "Edges"): refused if the start puts them into each other (parry3d's contact query); errors name `what`.
+/// A polytope and a polytope, or a ball and a polytope, kept apart by all their feature pairs
+/// (`Mechanism::add_polyhedron_contacts`, `Mechanism::add_sphere_polyhedron_contacts`, docs/contacts.md "Edges",
+/// "Spheres on polyhedra"): refused if the start puts them into each other (parry3d's contact query); errors name
+/// `what`.
 fn add_polyhedra<A: Algebra>(
     mechanism: &mut Mechanism<A>,
     pair: &CheckedPair,
@@ -337,20 +340,37 @@ fn add_polyhedra<A: Algebra>(
             .collect();
         Polyhedron::new(vertices, faces).map_err(|e| invalid(what, e.to_string()))
     };
-    let (first_shape, second_shape) = (polyhedron(first, a)?, polyhedron(second, b)?);
-    let labels = [
-        format!("{} {}", first.name, a.label),
-        format!("{} {}", second.name, b.label),
-    ];
-    mechanism
-        .add_polyhedron_contacts(
+    let label = |placed: &Placed<'_>, shape: &ShapeGeometry| format!("{} {}", placed.name, shape.label);
+    let added = match (a.solid, b.solid) {
+        (Solid::Ball, _) | (_, Solid::Ball) => {
+            let ((ball, sphere), (faced, solid)) = if a.solid == Solid::Ball {
+                ((first, a), (second, b))
+            } else {
+                ((second, b), (first, a))
+            };
+            let feature = &sphere.features[0];
+            mechanism.add_sphere_polyhedron_contacts(
+                &pair.name,
+                (
+                    ball.id,
+                    (ball.to_body * Point3::from(feature.centre)).coords,
+                    feature.radius,
+                    &label(ball, sphere),
+                ),
+                (faced.id, &polyhedron(faced, solid)?, &label(faced, solid)),
+                pair.friction,
+                pair.restitution,
+            )
+        }
+        _ => mechanism.add_polyhedron_contacts(
             &pair.name,
-            (first.id, &first_shape, &labels[0]),
-            (second.id, &second_shape, &labels[1]),
+            (first.id, &polyhedron(first, a)?, &label(first, a)),
+            (second.id, &polyhedron(second, b)?, &label(second, b)),
             pair.friction,
             pair.restitution,
-        )
-        .map_err(|e| invalid(what, e.to_string()))?;
+        ),
+    };
+    added.map_err(|e| invalid(what, e.to_string()))?;
     Ok(())
 }
 
