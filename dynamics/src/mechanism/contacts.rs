@@ -361,16 +361,33 @@ impl<A: Algebra> Mechanism<A> {
 
     /// Contact `index`'s frame at `states` (docs/contacts.md "Between bodies").
     pub(super) fn contact_frame(&self, index: usize, states: &[State<A>]) -> ContactFrame {
-        self.frame_of(index, &|b| {
-            let (position, rotation) = states[b].pose();
-            let velocity = states[b].world_velocity(&self.bodies[b].body);
-            BodyMotion {
-                position,
-                rotation: rotation.to_rotation_matrix().into_inner(),
-                linear: velocity.linear,
-                angular: velocity.angular,
-            }
-        })
+        self.frame_of(index, &|b| self.body_motion(b, states))
+    }
+
+    /// Body `b`'s pose and velocity at `states` (world).
+    fn body_motion(&self, b: usize, states: &[State<A>]) -> BodyMotion {
+        let (position, rotation) = states[b].pose();
+        let velocity = states[b].world_velocity(&self.bodies[b].body);
+        BodyMotion {
+            position,
+            rotation: rotation.to_rotation_matrix().into_inner(),
+            linear: velocity.linear,
+            angular: velocity.angular,
+        }
+    }
+
+    /// Every body's motion at `states`, for [`Mechanism::frame_among`]: found once for the many contacts of a pair of
+    /// polyhedra (none without contacts).
+    pub(super) fn body_motions(&self, states: &[State<A>]) -> Vec<BodyMotion> {
+        if self.contacts.is_empty() {
+            return Vec::new();
+        }
+        (0..states.len()).map(|b| self.body_motion(b, states)).collect()
+    }
+
+    /// Contact `index`'s frame with the bodies moving as `motions` ([`Mechanism::body_motions`]) say.
+    pub(super) fn frame_among(&self, index: usize, motions: &[BodyMotion]) -> ContactFrame {
+        self.frame_of(index, &|b| motions[b])
     }
 
     /// Contact `index`'s frame at the kinematics the workspace holds (an evaluation's).

@@ -278,12 +278,17 @@ impl<A: Algebra> Mechanism<A> {
     /// its face or edges; it stops being watched where it closes outside them ([`Mechanism::lets_go`]), or where its
     /// gap has jumped below zero.
     pub(super) fn renew_switches(&self, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) {
+        workspace.switches_renewed = true;
+        if !self.contacts.iter().any(|c| c.switching) {
+            return;
+        }
         let first = self.limits.len();
+        let motions = self.body_motions(states);
         for (c, contact) in self.contacts.iter().enumerate() {
             if !contact.switching || workspace.held[first + c].is_some() {
                 continue;
             }
-            let frame = self.contact_frame(c, states);
+            let frame = self.frame_among(c, &motions);
             workspace.watched[c] = frame.defined
                 && if workspace.watched[c] {
                     // A gap that jumped below zero (an edge pair's normal turning over) is no touch.
@@ -292,7 +297,6 @@ impl<A: Algebra> Mechanism<A> {
                     frame.gap > TOUCHING || (frame.gap.abs() <= TOUCHING && !outside(&frame))
                 };
         }
-        workspace.switches_renewed = true;
     }
 
     /// Whether contact `c`, touching at `states`, is a switching contact whose features do not meet there: it is

@@ -84,6 +84,7 @@ impl<A: Algebra> Mechanism<A> {
         let previous =
             (workspace.previous_positions.len() == space.position_count()).then_some(&workspace.previous_positions);
         let multipliers = self.held_multipliers(workspace);
+        let motions = self.body_motions(states);
         let (bounded, friction) = values.split_at_mut(workspace.held.len());
         for (index, (held, value)) in workspace.held.iter().zip(bounded.iter_mut()).enumerate() {
             *value = match (held, index.checked_sub(self.limits.len())) {
@@ -93,7 +94,7 @@ impl<A: Algebra> Mechanism<A> {
                     // A switching contact also lets go where its touching point leaves its face or edges.
                     match contact {
                         Some(c) if self.contacts[c].switching => {
-                            push.min(OUTSIDE_FACE - self.contact_frame(c, states).outside)
+                            push.min(OUTSIDE_FACE - self.frame_among(c, &motions).outside)
                         }
                         _ => push,
                     }
@@ -109,7 +110,7 @@ impl<A: Algebra> Mechanism<A> {
                     limit.range.gap(q[0])
                 }
                 (None, Some(contact)) if self.contacts[contact].switching && !workspace.watched[contact] => NOT_WATCHED,
-                (None, Some(contact)) => self.contact_motion(contact, states).0,
+                (None, Some(contact)) => self.frame_among(contact, &motions).gap,
             };
         }
         for (&contact, value) in self.frictional.iter().zip(friction) {
