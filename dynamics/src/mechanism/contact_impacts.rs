@@ -248,46 +248,32 @@ impl<A: Algebra> Mechanism<A> {
         Ok(changes)
     }
 
-    /// Where switching contact `released` let go at its face's edge or its edges' ends (docs/contacts.md "Edges"):
-    /// the features that meet there, touching and not leaving faster than [`REST_SPEED`], take the load at once, by
-    /// an impact at rest (a ball's face contact hands it to the edge it rolls over, whose gap opens only at second
-    /// order).
+    /// The impact of the first free contact that is watched, touching (within [`TOUCHING`]), moving away slower than
+    /// `leaving` (m/s), and (switching) inside its face or edges at `states`, if any (docs/contacts.md "Edges"). Where
+    /// a switching contact let go at its face's edge, the features that meet there take the load at once, by an
+    /// impact at rest (`leaving` = [`REST_SPEED`]: a ball's face contact hands it to the edge it rolls over, whose gap
+    /// opens only at second order); at a switching contact's false crossing, one meeting its plane there, whose own
+    /// crossing is a round-off later, meets it now (`leaving` = [`AT_REST`]).
     pub(super) fn hand_over(
         &self,
+        leaving: f64,
         t: f64,
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
-        match self.touching_contact(states, workspace, REST_SPEED) {
-            Some(meeting) => self.contact_impact((meeting, REST_SPEED), t, states, workspace),
-            None => Ok(Vec::new()),
-        }
-    }
-
-    /// The first free contact that is watched, touching (within [`TOUCHING`]), not moving away, and (switching)
-    /// inside its face or edges at `states`: one meeting its plane at a switching contact's false crossing, whose own
-    /// crossing is a round-off later (docs/contacts.md "Edges").
-    pub(super) fn meeting_contact(&self, states: &[State<A>], workspace: &mut MechanismWorkspace<A>) -> Option<usize> {
-        self.touching_contact(states, workspace, AT_REST)
-    }
-
-    /// The first free contact that is watched, touching (within [`TOUCHING`]), moving away slower than `leaving`,
-    /// and (switching) inside its face or edges at `states`.
-    fn touching_contact(
-        &self,
-        states: &[State<A>],
-        workspace: &mut MechanismWorkspace<A>,
-        leaving: f64,
-    ) -> Option<usize> {
         let first = self.limits.len();
-        (0..self.contacts.len()).find(|&c| {
+        let meeting = (0..self.contacts.len()).find(|&c| {
             let switching = self.contacts[c].switching;
             if workspace.held[first + c].is_some() || (switching && !workspace.watched[c]) {
                 return false;
             }
             let frame = self.contact_frame(c, states);
             frame.gap.abs() <= TOUCHING && frame.normal_speed() <= leaving && !(switching && outside(&frame))
-        })
+        });
+        match meeting {
+            Some(meeting) => self.contact_impact((meeting, leaving), t, states, workspace),
+            None => Ok(Vec::new()),
+        }
     }
 
     /// The rows of the slips of contacts `indices` in joint space at `states`: per contact two rows, the speeds of its

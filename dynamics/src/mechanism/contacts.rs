@@ -2,6 +2,8 @@
 //! other bodies, or outside other bodies' spheres; their gaps, normals and relative velocities, their rows in joint
 //! space, and the Newton projection that keeps a held contact touching.
 
+use std::cell::OnceCell;
+
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use crate::algebra::Algebra;
@@ -11,7 +13,7 @@ use crate::mechanism::contact_frames::{edge_frame, sphere_edge_frame, BodyMotion
 use crate::mechanism::error::listed;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
-use crate::mechanism::parts::{Against, BodyId, Contact, PointDirection};
+use crate::mechanism::parts::{placed_plane, Against, BodyId, Contact, PointDirection};
 use crate::state::State;
 
 impl<A: Algebra> Mechanism<A> {
@@ -82,13 +84,11 @@ impl<A: Algebra> Mechanism<A> {
         let (normal, offset) = (contact.normal(), contact.offset());
         self.push_contact(name.into(), body, features(&contact), |mechanism| {
             let other = mechanism.other_body(body, surface)?;
-            // n · y = d in the body's frame F is (R n) · x = d + (R n) · t in principal coordinates x = F y.
-            let frame = &mechanism.bodies[other].frame;
-            let normal = frame.rotation * normal;
+            let (normal, offset) = placed_plane(&mechanism.bodies[other].frame, &normal, offset);
             Ok(Against::Face {
                 body: other,
                 normal,
-                offset: offset + normal.dot(&frame.translation.vector),
+                offset,
             })
         })
     }
@@ -264,9 +264,7 @@ impl<A: Algebra> Mechanism<A> {
                     normal.as_slice()
                 )));
             }
-            // n · y ≤ d in the given frame F is (R n) · x ≤ d + (R n) · t in principal coordinates x = F y.
-            let normal = frame.rotation * (normal / scale / length);
-            face.push((normal, distance + normal.dot(&frame.translation.vector)));
+            face.push(placed_plane(&frame, &(normal / scale / length), distance));
         }
         self.contacts[index].face = face;
         self.contacts[index].switching = switching;
@@ -376,18 +374,15 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
-    /// Every body's motion at `states`, for [`Mechanism::frame_among`]: found once for the many contacts of a pair of
-    /// polyhedra (none without contacts).
-    pub(super) fn body_motions(&self, states: &[State<A>]) -> Vec<BodyMotion> {
-        if self.contacts.is_empty() {
-            return Vec::new();
-        }
-        (0..states.len()).map(|b| self.body_motion(b, states)).collect()
-    }
-
-    /// Contact `index`'s frame with the bodies moving as `motions` ([`Mechanism::body_motions`]) say.
-    pub(super) fn frame_among(&self, index: usize, motions: &[BodyMotion]) -> ContactFrame {
-        self.frame_of(index, &|b| motions[b])
+    /// Contact `index`'s frame at `states`, each body's motion found at most once across the calls that share
+    /// `motions` (one empty cell per body): the many contacts of a pair of polyhedra share two bodies.
+    pub(super) fn frame_among(
+        &self,
+        index: usize,
+        states: &[State<A>],
+        motions: &[OnceCell<BodyMotion>],
+    ) -> ContactFrame {
+        self.frame_of(index, &|b| *motions[b].get_or_init(|| self.body_motion(b, states)))
     }
 
     /// Contact `index`'s frame at the kinematics the workspace holds (an evaluation's).

@@ -164,3 +164,9 @@ pub(crate) enum Slip {
     /// Sticking: the slip held at zero by two tangential rows.
     Sticking,
 }
+
+/// The plane `n · y = d` of a body's frame F in its principal coordinates `x = F y`: `(R n) · x = d + (R n) · t`.
+pub(super) fn placed_plane(frame: &Isometry3<f64>, normal: &Vector3<f64>, offset: f64) -> (Vector3<f64>, f64) {
+    let normal = frame.rotation * normal;
+    (normal, offset + normal.dot(&frame.translation.vector))
+}

@@ -11,7 +11,7 @@ use crate::contacts::{
 use crate::mechanism::contact_frames::ContactFrame;
 use crate::mechanism::error::MechanismError;
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
-use crate::mechanism::parts::{Against, BodyId, EdgeFeature};
+use crate::mechanism::parts::{placed_plane, Against, BodyId, EdgeFeature};
 use crate::state::State;
 
 impl<A: Algebra> Mechanism<A> {
@@ -219,12 +219,7 @@ impl<A: Algebra> Mechanism<A> {
             })?;
             let index = self.contacts.len() - 1;
             let frame = self.bodies[b.index()].frame;
-            self.contacts[index].face = (region.iter())
-                .map(|(n, d)| {
-                    let n = frame.rotation * n;
-                    (n, d + n.dot(&frame.translation.vector))
-                })
-                .collect();
+            self.contacts[index].face = region.iter().map(|(n, d)| placed_plane(&frame, n, *d)).collect();
             self.contacts[index].switching = true;
             self.contacts[index].region_at_centre = true;
         }
@@ -283,12 +278,12 @@ impl<A: Algebra> Mechanism<A> {
             return;
         }
         let first = self.limits.len();
-        let motions = self.body_motions(states);
+        let motions = vec![std::cell::OnceCell::new(); states.len()];
         for (c, contact) in self.contacts.iter().enumerate() {
             if !contact.switching || workspace.held[first + c].is_some() {
                 continue;
             }
-            let frame = self.frame_among(c, &motions);
+            let frame = self.frame_among(c, states, &motions);
             workspace.watched[c] = frame.defined
                 && if workspace.watched[c] {
                     // A gap that jumped below zero (an edge pair's normal turning over) is no touch.

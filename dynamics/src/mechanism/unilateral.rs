@@ -84,7 +84,7 @@ impl<A: Algebra> Mechanism<A> {
         let previous =
             (workspace.previous_positions.len() == space.position_count()).then_some(&workspace.previous_positions);
         let multipliers = self.held_multipliers(workspace);
-        let motions = self.body_motions(states);
+        let motions = vec![std::cell::OnceCell::new(); states.len()];
         let (bounded, friction) = values.split_at_mut(workspace.held.len());
         for (index, (held, value)) in workspace.held.iter().zip(bounded.iter_mut()).enumerate() {
             *value = match (held, index.checked_sub(self.limits.len())) {
@@ -94,7 +94,7 @@ impl<A: Algebra> Mechanism<A> {
                     // A switching contact also lets go where its touching point leaves its face or edges.
                     match contact {
                         Some(c) if self.contacts[c].switching => {
-                            push.min(OUTSIDE_FACE - self.frame_among(c, &motions).outside)
+                            push.min(OUTSIDE_FACE - self.frame_among(c, states, &motions).outside)
                         }
                         _ => push,
                     }
@@ -110,7 +110,7 @@ impl<A: Algebra> Mechanism<A> {
                     limit.range.gap(q[0])
                 }
                 (None, Some(contact)) if self.contacts[contact].switching && !workspace.watched[contact] => NOT_WATCHED,
-                (None, Some(contact)) => self.frame_among(contact, &motions).gap,
+                (None, Some(contact)) => self.frame_among(contact, states, &motions).gap,
             };
         }
         for (&contact, value) in self.frictional.iter().zip(friction) {
@@ -145,23 +145,13 @@ impl<A: Algebra> Mechanism<A> {
         let mut changes = if index >= bounded {
             self.friction_transition(self.frictional[index - bounded], t, states, workspace)?
         } else if workspace.held[index].is_some() {
-            let mut changes = self.release(index, t, states, workspace)?;
-            // A switching contact that let go at its face's edge hands over to the features that meet there (a ball's
-            // face contact to the edge it rolls over), at once rather than a round-off of sinking later.
-            let contact = index.checked_sub(self.limits.len());
-            if contact.is_some_and(|c| self.contacts[c].switching && !workspace.watched[c]) {
-                changes.extend(self.hand_over(t, states, workspace)?);
-            }
-            changes
+            self.release(index, t, states, workspace)?
         } else {
             match index.checked_sub(self.limits.len()) {
                 None => self.limit_impact(index, t, states, workspace)?,
                 // Not a contact; but another may meet at the same instant, a round-off later.
                 Some(contact) if self.lets_go(contact, states, workspace) => {
-                    match self.meeting_contact(states, workspace) {
-                        Some(meeting) => self.contact_impact((meeting, AT_REST), t, states, workspace)?,
-                        None => Vec::new(),
-                    }
+                    self.hand_over(AT_REST, t, states, workspace)?
                 }
                 Some(contact) => self.contact_impact((contact, AT_REST), t, states, workspace)?,
             }
@@ -178,18 +168,23 @@ impl<A: Algebra> Mechanism<A> {
         &self,
         index: usize,
         t: f64,
-        states: &[State<A>],
+        states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
         let bound = workspace.held[index].take().expect("a released constraint is held");
         self.hold_rows(workspace);
+        let mut changes = vec![(index, LimitChange::Released { bound })];
         if let Some(contact) = index.checked_sub(self.limits.len()) {
-            // A switching contact leaving its face goes beyond the plane's edge, where it may sink: no paradox.
-            if !self.lets_go(contact, states, workspace) {
+            if self.lets_go(contact, states, workspace) {
+                // A switching contact leaving its face goes beyond the plane's edge, where it may sink (no paradox),
+                // and hands over to the features that meet there (a ball's face contact to the edge it rolls over),
+                // at once rather than a round-off of sinking later.
+                changes.extend(self.hand_over(REST_SPEED, t, states, workspace)?);
+            } else {
                 self.check_release(contact, t, states, workspace)?;
             }
         }
-        Ok(vec![(index, LimitChange::Released { bound })])
+        Ok(changes)
     }
 
     /// A limit's impact: the joint placed on its nearer bound and its rate reversed times the restitution by an
@@ -248,7 +243,7 @@ impl<A: Algebra> Mechanism<A> {
     fn settle(
         &self,
         t: f64,
-        states: &[State<A>],
+        states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
         changes: &mut Vec<(usize, LimitChange)>,
     ) -> Result<(), ConstraintError> {

@@ -18,9 +18,9 @@ const SIDE: f64 = 0.2;
 const MASS: f64 = 1.0;
 const HEAVY: f64 = 1e15;
 
-/// A cube above a heavy box, the cube under gravity, every feature pair of the two with restitution `restitution`
-/// and no friction; the cube's and the box's ids.
-fn cube_over<A: Algebra>(sides: Vector3<f64>, restitution: f64) -> (Mechanism<A>, [BodyId; 2]) {
+/// A cube above a heavy box of `sides`, the cube under gravity, every feature pair of the two with `friction` and
+/// `restitution`; the cube's and the box's ids.
+fn cube_over<A: Algebra>(sides: Vector3<f64>, friction: Friction, restitution: f64) -> (Mechanism<A>, [BodyId; 2]) {
     let mut system = Mechanism::<A>::new();
     let cube = system
         .add_body("cube", Body::cuboid(MASS, Vector3::repeat(SIDE)).unwrap())
@@ -36,7 +36,7 @@ fn cube_over<A: Algebra>(sides: Vector3<f64>, restitution: f64) -> (Mechanism<A>
             "pair",
             (cube, &shapes.0, "cube"),
             (ledge, &shapes.1, "ledge"),
-            Friction::NONE,
+            friction,
             restitution,
         )
         .unwrap();
@@ -90,7 +90,7 @@ fn deepest_vertex<A: Algebra>(run: &Simulation<A>, sides: [Vector3<f64>; 2]) -> 
 /// falls freely for `√(2h/g)`, where the edge contact is held (restitution 0: the impulse through the centre stops it
 /// without spin) and the cube balances on the crossing, its centre still.
 fn a_cube_lands_edge_on_edge_and_balances<A: Algebra>() {
-    let (system, _) = cube_over::<A>(Vector3::repeat(SIDE), 0.0);
+    let (system, _) = cube_over::<A>(Vector3::repeat(SIDE), Friction::NONE, 0.0);
     let reach = SIDE / 2.0 * 2f64.sqrt();
     let drop = 0.05;
     let rest = Vector3::z() * 2.0 * reach;
@@ -141,7 +141,7 @@ fn a_cube_lands_edge_on_edge_and_balances<A: Algebra>() {
 /// they let go; it tips over the edge and falls off. No contact is ever passed through, and the energy is kept.
 fn a_cube_slides_off_a_ledge_and_tips_over_its_edge<A: Algebra>() {
     let ledge = Vector3::new(1.0, 1.0, 0.2);
-    let (system, _) = cube_over::<A>(ledge, 0.0);
+    let (system, _) = cube_over::<A>(ledge, Friction::NONE, 0.0);
     let (x0, speed, edge) = (0.3, 1.0, 0.5);
     let start = [
         placed::<A>(
@@ -303,26 +303,7 @@ fn cubes_tumbling_onto_a_box_never_pass_into_it<A: Algebra>() {
             if trial % 2 == 0 { 0.0 } else { 0.5 },
             if trial % 3 == 0 { 0.3 } else { 0.0 },
         );
-        let mut system = Mechanism::<A>::new();
-        let cube = system
-            .add_body("cube", Body::cuboid(MASS, Vector3::repeat(SIDE)).unwrap())
-            .unwrap();
-        let heavy = system.add_body("ledge", Body::cuboid(HEAVY, ledge).unwrap()).unwrap();
-        system.add_force(cube, Force::gravity()).unwrap();
-        let shapes = (
-            Polyhedron::cuboid(Vector3::repeat(SIDE)).unwrap(),
-            Polyhedron::cuboid(ledge).unwrap(),
-        );
-        let friction = Friction::coulomb(mu).unwrap();
-        system
-            .add_polyhedron_contacts(
-                "pair",
-                (cube, &shapes.0, "cube"),
-                (heavy, &shapes.1, "ledge"),
-                friction,
-                e,
-            )
-            .unwrap();
+        let (system, _) = cube_over::<A>(ledge, Friction::coulomb(mu).unwrap(), e);
         let mut draw = || uniform(&mut seed);
         let axis = nalgebra::Unit::new_normalize(Vector3::new(draw() - 0.5, draw() - 0.5, draw() - 0.5));
         let turn = UnitQuaternion::from_axis_angle(&axis, draw() * 6.0);

@@ -269,11 +269,8 @@ fn add_shape_pair<A: Algebra>(
         ((first, a), (second, b))
     };
     let face = shape.faces[k];
-    // A plane of the shape in its body's reference frame: `(R n) · x = d + (R n) · t`.
-    let placed = |face: &Face| {
-        let normal = faced.to_body.rotation * face.normal;
-        (normal, face.offset + normal.dot(&faced.to_body.translation.vector))
-    };
+    // A plane of the shape in its body's reference frame.
+    let placed = |face: &Face| face.placed(&faced.to_body);
     let (normal, offset) = placed(&face);
     // The contacts hold on this face only: inside the shape's other faces.
     let solid: Vec<_> = shape.faces.iter().map(placed).collect();
@@ -332,12 +329,7 @@ fn add_polyhedra<A: Algebra>(
         let vertices = (shape.features.iter())
             .map(|f| (placed.to_body * Point3::from(f.centre)).coords)
             .collect();
-        let faces = (shape.faces.iter())
-            .map(|face| {
-                let normal = placed.to_body.rotation * face.normal;
-                (normal, face.offset + normal.dot(&placed.to_body.translation.vector))
-            })
-            .collect();
+        let faces = shape.faces.iter().map(|face| face.placed(&placed.to_body)).collect();
         Polyhedron::new(vertices, faces).map_err(|e| invalid(what, e.to_string()))
     };
     let label = |placed: &Placed<'_>, shape: &ShapeGeometry| format!("{} {}", placed.name, shape.label);
@@ -377,8 +369,7 @@ fn add_polyhedra<A: Algebra>(
 /// The least height, at the start, of `features` of the body `other` above `face` of the body `faced` (each
 /// feature's lowest point: less its radius, and for a rim its reach towards the face).
 fn least_distance(faced: &Placed<'_>, face: &Face, other: &Placed<'_>, features: &[Feature]) -> f64 {
-    let normal = faced.to_world.rotation * face.normal;
-    let offset = face.offset + normal.dot(&faced.to_world.translation.vector);
+    let (normal, offset) = face.placed(&faced.to_world);
     (features.iter())
         .map(|f| f.height(&other.to_world, &normal, offset))
         .fold(f64::INFINITY, f64::min)

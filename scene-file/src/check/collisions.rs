@@ -148,6 +148,14 @@ pub(crate) struct Face {
     pub area: f64,
 }
 
+impl Face {
+    /// The face's plane in the frame `place` maps its body's frame to: `(R n) · x = d + (R n) · t`.
+    pub fn placed(&self, place: &Isometry3<f64>) -> (Vector3<f64>, f64) {
+        let normal = place.rotation * self.normal;
+        (normal, self.offset + normal.dot(&place.translation.vector))
+    }
+}
+
 /// What a shape is against another shape (docs/contacts.md "Between bodies").
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Solid {
