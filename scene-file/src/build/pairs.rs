@@ -69,14 +69,16 @@ pub(crate) fn add_pair_contacts<A: Algebra>(
         for a in &pair.sides[0].shapes {
             for b in &pair.sides[1].shapes {
                 add_shape_pair(&mut assembly.mechanism, pair, (&first, a), (&second, b))?;
-                let side =
-                    |placed: &Placed<'_>, shape: &ShapeGeometry| (placed.id, placed.to_principal, parry_shape(shape));
+                let side = |placed: &Placed<'_>, shape: &ShapeGeometry| {
+                    let shape = parry_shape(shape, &format!("{what}: {}", placed.name))?;
+                    Ok::<_, SceneFileError>((placed.id, placed.to_principal, shape))
+                };
                 shapes.push(ShapePair {
                     name: format!(
                         "{}: {} {} and {} {}",
                         pair.name, first.name, a.label, second.name, b.label
                     ),
-                    sides: [side(&first, a), side(&second, b)],
+                    sides: [side(&first, a)?, side(&second, b)?],
                 });
             }
         }
@@ -85,14 +87,16 @@ pub(crate) fn add_pair_contacts<A: Algebra>(
 }
 
 /// A shape as parry3d's: a ball about its centre, a capsule between its end spheres' centres, a cylinder between its
-/// caps' centres, a polytope as the hull of its vertices (all in the shape's body or link frame).
-fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
+/// caps' centres, a polytope as the hull of its vertices (all in the shape's body or link frame). parry3d refuses
+/// hulls it deems degenerate, which a valid polytope can be to it: a box of 1000 × 0.6 × 0.3 m is; that is an error
+/// naming `what` and the shape.
+fn parry_shape(shape: &ShapeGeometry, what: &str) -> Result<SharedShape, SceneFileError> {
     let at = |v: &nalgebra::Vector3<f64>| Vector::new(v.x, v.y, v.z);
     match shape.solid {
         // A ball as a capsule of no length, so that its centre need not be the frame's origin.
         Solid::Ball | Solid::Capsule => {
             let (first, last) = (&shape.features[0], &shape.features[shape.features.len() - 1]);
-            SharedShape::capsule(at(&first.centre), at(&last.centre), first.radius)
+            Ok(SharedShape::capsule(at(&first.centre), at(&last.centre), first.radius))
         }
         Solid::Cylinder => {
             // parry3d's cylinder stands on its own y axis, centred: turned onto the caps' axis, between their centres.
@@ -102,11 +106,28 @@ fn parry_shape(shape: &ShapeGeometry) -> SharedShape {
                 .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI));
             let middle = Isometry3::from_parts(((first.centre + last.centre) / 2.0).into(), turn);
             let half = (last.centre - first.centre).norm() / 2.0;
-            SharedShape::compound(vec![(parry_pose(&middle), SharedShape::cylinder(half, radius))])
+            Ok(SharedShape::compound(vec![(
+                parry_pose(&middle),
+                SharedShape::cylinder(half, radius),
+            )]))
         }
         Solid::Polytope => {
             let vertices: Vec<Vector> = shape.features.iter().map(|f| at(&f.centre)).collect();
-            SharedShape::convex_hull(&vertices).expect("a checked hull has volume")
+            SharedShape::convex_hull(&vertices).ok_or_else(|| {
+                let extent = |axis: usize| {
+                    let values = shape.features.iter().map(|f| f.centre[axis]);
+                    values.clone().fold(f64::NEG_INFINITY, f64::max) - values.fold(f64::INFINITY, f64::min)
+                };
+                let sides = [0, 1, 2].map(extent);
+                invalid(
+                    what,
+                    format!(
+                        "parry3d, which measures how deep shapes meet, cannot build the hull of {} (its extents {:.3e}, \
+                         {:.3e} and {:.3e} m are too unequal for it); a floor or a wall is a [[plane]]",
+                        shape.label, sides[0], sides[1], sides[2]
+                    ),
+                )
+            })
         }
     }
 }
@@ -247,7 +268,7 @@ fn add_shape_pair<A: Algebra>(
     if separation < -TOUCHING {
         // No face separates them: they overlap, or they are apart only across the polytope's edge or vertex, which
         // the contacts (a sphere, capsule end or rim on a face) cannot hold apart; parry3d's distance tells which.
-        let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
+        let (shape_a, shape_b) = (parry_shape(a, &what)?, parry_shape(b, &what)?);
         let (pose_a, pose_b) = (parry_pose(&first.to_world), parry_pose(&second.to_world));
         let distance =
             query::distance(&pose_a, shape_a.as_ref(), &pose_b, shape_b.as_ref()).map_or(0.0, |d| d.distance);
@@ -314,7 +335,7 @@ fn add_polyhedra<A: Algebra>(
     [(first, a), (second, b)]: [(&Placed<'_>, &ShapeGeometry); 2],
     what: &str,
 ) -> Result<(), SceneFileError> {
-    let (shape_a, shape_b) = (parry_shape(a), parry_shape(b));
+    let (shape_a, shape_b) = (parry_shape(a, what)?, parry_shape(b, what)?);
     let (pose_a, pose_b) = (parry_pose(&first.to_world), parry_pose(&second.to_world));
     if let Ok(Some(contact)) = query::contact(&pose_a, shape_a.as_ref(), &pose_b, shape_b.as_ref(), 0.0) {
         if contact.dist < -TOUCHING {

@@ -28,7 +28,7 @@ const HOPPER: &str = r#"<robot name="hopper">
 /// `[[collision]]` pairs with their careless inputs (the shipped stack and billiards scene edited): the wrong number of
 /// bodies, one body twice, an unknown body or one without shapes, a word other than "all", coefficients out of range,
 /// unknown keys, a start where two shapes interpenetrate (naming the pair, the shapes and the depth), a capsule or a
-/// cylinder against a sphere.
+/// cylinder against a sphere, a box too elongated for parry3d's hull.
 #[test]
 fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
     let scene = shipped("stack_and_billiards.toml");
@@ -68,6 +68,8 @@ fn careless_collision_pairs_fail_naming_the_entry_and_the_value() {
         (&scene, top_shape, "collision = [{ kind = \"box\", size = [0.2, 0.2, 0.2] }]\ninitial = { position = [0.0, 0.0, 0.55] }", &["collision top / middle: `top` box 1 and `middle` box 1", "5.000e-2 m into each other"]),
         (&scene, "position = [0.0, 1.03, 0.0285]", "position = [-0.98, 1.0, 0.0285]", &["collision balls: `cue` sphere 1 and `red` sphere 1", "into each other"]),
         (&scene, top_shape, "initial = { position = [0.0, 0.0, 0.6] }", &["collision 2: bodies", "no body or robot link named `top` has collision shapes"]),
+        // A box parry3d cannot take the hull of (found by the fuzz test: it panicked).
+        (&scene, "collision = [{ kind = \"box\", size = [0.6, 0.6, 0.3] }]", "collision = [{ kind = \"box\", size = [1000.0, 0.6, 0.3] }]", &["collision middle / base", "cannot build the hull of box 1", "1.000e3, 6.000e-1 and 3.000e-1 m"]),
         (&scene, top_shape, &format!("collision = [{{ kind = \"convex\", points = [{many}] }}]\ninitial = {{ position = [0.0, 0.0, 0.6] }}"), &["collision top / middle: `top` convex 1 and `middle` box 1", "feature pairs, more than 10000"]),
         (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"capsule\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` capsule 1 against `red` sphere 1", "not modelled"]),
         (&scene, "collision = [{ kind = \"sphere\", radius = 0.0285 }]\ninitial = { position = [-1.0", "collision = [{ kind = \"cylinder\", radius = 0.0285, length = 0.1 }]\ninitial = { position = [-1.0", &["balls: bodies", "`cue` cylinder 1 against `red` sphere 1", "not modelled"]),
