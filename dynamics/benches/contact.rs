@@ -1,7 +1,8 @@
 //! CPU per simulated second of a box held on a floor by its four bottom corners with friction (sticking: twelve rows
 //! held exactly), against the same box without contact (falling freely), both by DOP853-body at the same tolerance,
 //! and of a box sliding on the floor (four held corners, friction tilting their rows). The ratio is what holding a
-//! resting body exactly costs over moving it freely. A cube resting on a heavy box by its four corners on the box's
+//! resting body exactly costs over moving it freely; the resting box with each corner listed 100 times, what repeated
+//! contacts cost (docs/contacts.md "Repeated and dependent contacts"). A cube resting on a heavy box by its four corners on the box's
 //! face, against the same cube kept on it by all 240 feature pairs of the two boxes: what the pairs that switch cost.
 //!
 //! `cargo bench -p dynamics --bench contact`
@@ -14,22 +15,23 @@ use dynamics::contacts::{Friction, PlaneContact, Polyhedron};
 use dynamics::{simulate, Body, Force, Mechanism, Method, Pga, Schedule, State, Tolerance};
 use nalgebra::{UnitQuaternion, Vector3};
 
-/// A 0.2 m cube of 1 kg under gravity, with its four bottom corners on the floor z = 0 (friction 0.5) if `held`.
-fn cube(held: bool) -> (Mechanism<Pga>, Body) {
+/// A 0.2 m cube of 1 kg under gravity, with its four bottom corners on the floor z = 0 (friction 0.5), each listed
+/// `copies` times (none: no contact).
+fn cube(copies: usize) -> (Mechanism<Pga>, Body) {
     let body = Body::cuboid(1.0, Vector3::repeat(0.2)).expect("positive sides");
     let mut system = Mechanism::<Pga>::new();
     let id = system.add_body("cube", body).expect("a new name");
     system.add_force(id, Force::gravity()).expect("a body");
-    if held {
-        for (k, (x, y)) in [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]
-            .into_iter()
-            .enumerate()
-        {
-            let corner = PlaneContact::new(Vector3::new(x, y, -0.1), Vector3::z(), 0.0)
-                .expect("a plane")
-                .with_friction(Friction::coulomb(0.5).expect("a coefficient"));
+    for (k, (x, y)) in [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]
+        .into_iter()
+        .enumerate()
+    {
+        let corner = PlaneContact::new(Vector3::new(x, y, -0.1), Vector3::z(), 0.0)
+            .expect("a plane")
+            .with_friction(Friction::coulomb(0.5).expect("a coefficient"));
+        for copy in 0..copies {
             system
-                .add_contact(format!("corner {k}"), id, corner)
+                .add_contact(format!("corner {k} copy {copy}"), id, corner)
                 .expect("a contact");
         }
     }
@@ -41,12 +43,17 @@ fn contact(c: &mut Criterion) {
         Schedule::adaptive(Tolerance::new(1e-10, 1e-10).expect("a tolerance"), 1.0, 0.1).expect("a schedule");
     let mut group = c.benchmark_group("contact/one simulated second, DOP853-body 1e-10");
     group.sample_size(20).measurement_time(Duration::from_secs(5));
-    for (name, held, velocity) in [
-        ("free fall (no contact)", false, Vector3::zeros()),
-        ("resting on four sticking corners", true, Vector3::zeros()),
-        ("sliding on four corners", true, Vector3::x() * 3.0),
+    for (name, copies, velocity) in [
+        ("free fall (no contact)", 0, Vector3::zeros()),
+        ("resting on four sticking corners", 1, Vector3::zeros()),
+        (
+            "resting on four sticking corners, each listed 100 times",
+            100,
+            Vector3::zeros(),
+        ),
+        ("sliding on four corners", 1, Vector3::x() * 3.0),
     ] {
-        let (system, body) = cube(held);
+        let (system, body) = cube(copies);
         let start = [State::<Pga>::from_world_twist(
             &body,
             Vector3::z() * 0.1,

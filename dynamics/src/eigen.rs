@@ -175,10 +175,11 @@ impl SingularValues {
 }
 
 /// The least-norm solution of `G x = b` for a symmetric positive semidefinite `G` (a Gram matrix), pivots at or
-/// below `threshold` taken as zero: Cholesky with diagonal pivoting, `P G Pᵀ = L Lᵀ` with L of rank r, gives the basic
-/// solution `x_b = (L₁⁻ᵀ L₁⁻¹ y₁; 0)`, `y = P b`, and the null space `N = (−L₁⁻ᵀ L₂ᵀ; I)`; the least-norm solution is
-/// `x_b − N (NᵀN)⁻¹ Nᵀ x_b`, permuted back. O(n³) with a small constant, where Jacobi's SVD sweeps O(n³) several
-/// times.
+/// below `threshold` taken as zero: Cholesky with diagonal pivoting, `P G Pᵀ = L Lᵀ` with L (n × r) of rank r; with
+/// `y = P b` and `z = L₁⁻¹ y₁` (L₁ its leading r × r triangle) the pivot equations are `Lᵀ x = z`, solved by
+/// `x = L₁⁻ᵀ z` at full rank, else by their least-norm solution `L (LᵀL)⁻¹ z`, permuted back. O(n² r) with a
+/// small constant, where Jacobi's SVD sweeps O(n³) several times: rows repeating others cost their count, not its
+/// cube.
 pub(crate) fn symmetric_least_norm(matrix: &DMatrix<f64>, rhs: &DVector<f64>, threshold: f64) -> DVector<f64> {
     let n = matrix.nrows();
     let mut a = matrix.clone();
@@ -212,31 +213,29 @@ pub(crate) fn symmetric_least_norm(matrix: &DMatrix<f64>, rhs: &DVector<f64>, th
     }
     let l1 = a.view((0, 0), (rank, rank)).lower_triangle();
     let y = DVector::from_iterator(rank, order[..rank].iter().map(|&i| rhs[i]));
-    let mut basic = DVector::zeros(n);
-    if rank > 0 {
-        let z = l1.solve_lower_triangular(&y).unwrap_or_else(|| DVector::zeros(rank));
-        let x1 = l1
-            .transpose()
+    let z = l1.solve_lower_triangular(&y).unwrap_or_else(|| DVector::zeros(rank));
+    let basic = if rank == 0 {
+        DVector::zeros(n)
+    } else if rank == n {
+        l1.transpose()
             .solve_upper_triangular(&z)
-            .unwrap_or_else(|| DVector::zeros(rank));
-        basic.rows_mut(0, rank).copy_from(&x1);
-    }
-    if rank < n {
-        let l2 = a.view((rank, 0), (n - rank, rank)).into_owned();
-        let mut null = DMatrix::zeros(n, n - rank);
-        if rank > 0 {
-            let top = l1
-                .transpose()
-                .solve_upper_triangular(&l2.transpose())
-                .unwrap_or_else(|| DMatrix::zeros(rank, n - rank));
-            null.view_mut((0, 0), (rank, n - rank)).copy_from(&(-top));
+            .unwrap_or_else(|| DVector::zeros(n))
+    } else {
+        // The first r equations are `L₁ Lᵀ x = y₁`, that is `Lᵀ x = z`; their least-norm solution lies in L's range,
+        // `x = L (LᵀL)⁻¹ z`: O(n r²), where the null space's normal equations cost O((n − r)³), which many repeated
+        // rows (n ≫ r) make the whole cost. Column j of L is `a[j.., j]`.
+        let mut normal = DMatrix::zeros(rank, rank);
+        for i in 0..rank {
+            for j in 0..=i {
+                let product: f64 = (i..n).map(|k| a[(k, i)] * a[(k, j)]).sum();
+                (normal[(i, j)], normal[(j, i)]) = (product, product);
+            }
         }
-        null.view_mut((rank, 0), (n - rank, n - rank)).fill_with_identity();
-        let normal = null.transpose() * &null;
-        if let Some(factors) = normal.cholesky() {
-            basic -= &null * factors.solve(&(null.transpose() * &basic));
-        }
-    }
+        let w = normal
+            .cholesky()
+            .map_or_else(|| DVector::zeros(rank), |factors| factors.solve(&z));
+        DVector::from_fn(n, |k, _| (0..rank.min(k + 1)).map(|j| a[(k, j)] * w[j]).sum())
+    };
     let mut x = DVector::zeros(n);
     for (k, &i) in order.iter().enumerate() {
         x[i] = basic[k];

@@ -12,7 +12,9 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
 use crate::contacts::{Friction, TOUCHING};
+use crate::eigen::SingularValues;
 use crate::limits::{Bound, LimitChange, REST_SPEED};
+use crate::mechanism::articulated::REPEATED_ROW;
 use crate::mechanism::contacts::stack;
 use crate::mechanism::friction::{tangent_basis, STOP_SPEED};
 use crate::mechanism::model::{Mechanism, MechanismWorkspace};
@@ -129,6 +131,7 @@ impl<A: Algebra> Mechanism<A> {
         states: &mut [State<A>],
         workspace: &mut MechanismWorkspace<A>,
     ) -> Result<Vec<(usize, LimitChange)>, ConstraintError> {
+        let contact = workspace.repeats[contact].unwrap_or(contact);
         if self.contact_motion(contact, states).1 > leaving {
             return Ok(Vec::new());
         }
@@ -137,7 +140,8 @@ impl<A: Algebra> Mechanism<A> {
         let mut involved = Vec::new();
         for c in 0..self.contacts.len() {
             let held = workspace.held[first + c].is_some();
-            if !held && c != contact && self.contacts[c].switching && !workspace.watched[c] {
+            let repeat = workspace.repeats[c].is_some();
+            if repeat || (!held && c != contact && self.contacts[c].switching && !workspace.watched[c]) {
                 continue;
             }
             let (height, speed) = self.contact_motion(c, states);
@@ -264,7 +268,10 @@ impl<A: Algebra> Mechanism<A> {
         let first = self.limits.len();
         let meeting = (0..self.contacts.len()).find(|&c| {
             let switching = self.contacts[c].switching;
-            if workspace.held[first + c].is_some() || (switching && !workspace.watched[c]) {
+            if workspace.held[first + c].is_some()
+                || workspace.repeats[c].is_some()
+                || (switching && !workspace.watched[c])
+            {
                 return false;
             }
             let frame = self.contact_frame(c, states);
@@ -332,6 +339,9 @@ impl<A: Algebra> Mechanism<A> {
             Ok(outcome) => return Ok(outcome),
             Err(error) => error,
         };
+        if participants.iter().all(|p| !p.friction.is_some()) {
+            return frictionless_impulses(rows, participants, fraction).ok_or(error);
+        }
         let Some(iterated) = coulomb_iteration(rows, participants, fraction) else {
             return Err(error);
         };
@@ -529,6 +539,72 @@ fn consistent(
             }
         }
     })
+}
+
+/// A frictionless impact's impulses where the active sets cycle (contacts whose rows depend on each other, their
+/// targets not all met by one rigid motion: points along an edge, some slower than [`REST_SPEED`] and held, the others
+/// bouncing): the pushes `p ≥ 0` minimising `½ pᵀ G p + pᵀ (u⁻ − t)`, the equalities' impulses free, whose optimum is
+/// Newton's law with complementarity (its gradient is the speeds after less their targets; docs/contacts.md
+/// "Repeated and dependent contacts"). Primal active sets, as Lawson and Hanson's for non-negative least squares:
+/// each pass minimises over the free impulses (least norm where G repeats rows; along a null direction of G that
+/// lowers the objective where its equations have no solution), steps back to the first push reaching zero and fixes
+/// it, and frees the fixed push whose gradient is most negative, until none is. Each pass lowers the objective, so
+/// no set returns. `None` if the passes run out.
+fn frictionless_impulses(rows: &ImpactRows<'_>, participants: &[Participant], fraction: f64) -> Option<Outcome> {
+    let (gram, total) = (rows.gram, rows.gram.nrows());
+    let pushes: Vec<usize> = participants.iter().map(|p| p.normal).collect();
+    let mut linear = DVector::zeros(total);
+    for participant in participants {
+        linear[participant.normal] = rows.before[participant.normal] - participant.target * fraction;
+    }
+    let scale = rows.before.amax().max(f64::MIN_POSITIVE);
+    let threshold = REPEATED_ROW * gram.diagonal().amax();
+    let mut free: Vec<bool> = (0..total).map(|r| r >= rows.equalities).collect();
+    let mut x = DVector::zeros(total);
+    for _ in 0..MAX_IMPACT_PASSES * (pushes.len() + 1) {
+        let subset: Vec<usize> = (0..total).filter(|&r| free[r]).collect();
+        let block = DMatrix::from_fn(subset.len(), subset.len(), |i, j| gram[(subset[i], subset[j])]);
+        let rhs = DVector::from_iterator(subset.len(), subset.iter().map(|&r| -linear[r]));
+        let solution = SingularValues::of(&block).solve(&rhs, threshold);
+        let residual = &block * &solution - &rhs;
+        let current = DVector::from_iterator(subset.len(), subset.iter().map(|&r| x[r]));
+        // To the subset's optimum, or along the descent its equations' residual gives where they have no solution.
+        let (direction, reaches) = if residual.amax() <= COMPLEMENTARITY * scale {
+            (solution - &current, 1.0)
+        } else {
+            (-residual, f64::INFINITY)
+        };
+        let (step, stop) = (subset.iter().enumerate())
+            .filter(|&(k, &r)| r < rows.equalities && direction[k] < 0.0)
+            .map(|(k, &r)| (current[k] / -direction[k], r))
+            .fold(
+                (reaches, None),
+                |best, (s, r)| if s < best.0 { (s, Some(r)) } else { best },
+            );
+        if step.is_infinite() {
+            return None;
+        }
+        for (k, &r) in subset.iter().enumerate() {
+            x[r] = current[k] + step * direction[k];
+        }
+        if let Some(r) = stop {
+            x[r] = 0.0;
+            free[r] = false;
+            continue;
+        }
+        let gradient = gram * &x + &linear;
+        let entering = (pushes.iter().copied())
+            .filter(|&r| !free[r] && gradient[r] < -COMPLEMENTARITY * scale)
+            .min_by(|&a, &b| gradient[a].total_cmp(&gradient[b]));
+        match entering {
+            Some(r) => free[r] = true,
+            None => {
+                let after = rows.before + gram * &x;
+                return Some(Outcome { impulses: x, after });
+            }
+        }
+    }
+    None
 }
 
 /// Coulomb's and Newton's laws on an impact by projected Gauss–Seidel: each contact's impulse in turn solved exactly

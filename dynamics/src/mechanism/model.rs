@@ -12,7 +12,9 @@ use crate::mechanism::articulated::{ArticulatedScratch, Articulation, Row};
 use crate::mechanism::force_elements::ForceElement;
 use crate::mechanism::joint_rows::{BodyKinematics, Joint, JointRows};
 use crate::mechanism::joint_space::{JointSpace, WorldBody};
-use crate::mechanism::parts::{BodyId, Contact, Coupling, JointId, Limit, MechanismBody, Reference, Slip};
+use crate::mechanism::parts::{
+    repeated_contacts, BodyId, Contact, Coupling, JointId, Limit, MechanismBody, Reference, Slip,
+};
 use crate::mechanism::solve::{SolverSettings, SystemMatrix};
 use crate::mechanism::topology::{Slot, Topology};
 use crate::motor;
@@ -142,6 +144,9 @@ pub struct MechanismWorkspace<A: Algebra> {
     pub(super) watched: Vec<bool>,
     /// Whether `watched` has been renewed from a state since the workspace was made.
     pub(super) switches_renewed: bool,
+    /// Per contact, the earlier contact it repeats in all but its name, if any ([`repeated_contacts`]): a repeat is
+    /// never watched nor held, its leader takes the load for both (docs/contacts.md "Repeated contacts").
+    pub(super) repeats: Vec<Option<usize>>,
 }
 
 impl<A: Algebra> fmt::Debug for MechanismWorkspace<A> {
@@ -309,6 +314,7 @@ impl<A: Algebra> Mechanism<A> {
             held_rows: vec![None; self.limits.len() + self.contacts.len()],
             watched: vec![false; self.contacts.len()],
             switches_renewed: false,
+            repeats: repeated_contacts(&self.contacts),
         }
     }
 }

@@ -99,6 +99,32 @@ pub(super) struct Contact {
     pub region_at_centre: bool,
 }
 
+/// Per contact, the first earlier contact it repeats in everything but its name (its body, point, plane or features,
+/// restitution and friction), if any: the two give the same row, so the repeat adds nothing but cost
+/// (docs/contacts.md "Repeated contacts"). Contacts are grouped by body and point first, so this is linear in their
+/// count.
+pub(super) fn repeated_contacts(contacts: &[Contact]) -> Vec<Option<usize>> {
+    // `+ 0.0` takes −0 to +0, which compare equal.
+    let key = |c: &Contact| (c.body, c.point.map(|x| (x + 0.0).to_bits()));
+    let mut leaders: std::collections::HashMap<_, Vec<usize>> = std::collections::HashMap::new();
+    let mut repeats = vec![None; contacts.len()];
+    for (index, contact) in contacts.iter().enumerate() {
+        let group = leaders.entry(key(contact)).or_default();
+        let same = |&leader: &usize| {
+            let renamed = Contact {
+                name: contact.name.clone(),
+                ..contacts[leader].clone()
+            };
+            renamed == *contact
+        };
+        match group.iter().copied().find(same) {
+            Some(leader) => repeats[index] = Some(leader),
+            None => group.push(index),
+        }
+    }
+    repeats
+}
+
 /// A straight edge in principal body coordinates, from a point given with it: its unit direction, its length, and
 /// the unit outward normals of the two faces meeting along it.
 #[derive(Clone, Copy, Debug, PartialEq)]

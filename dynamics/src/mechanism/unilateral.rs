@@ -109,6 +109,7 @@ impl<A: Algebra> Mechanism<A> {
                     self.read_positions(group, &bodies, previous.map(|p| &p[offset..offset + 1]), &mut q);
                     limit.range.gap(q[0])
                 }
+                (None, Some(contact)) if workspace.repeats[contact].is_some() => NOT_WATCHED,
                 (None, Some(contact)) if self.contacts[contact].switching && !workspace.watched[contact] => NOT_WATCHED,
                 (None, Some(contact)) => self.frame_among(contact, states, &motions).gap,
             };

@@ -27,5 +27,6 @@ mod module_order;
 mod newton_euler;
 mod orders;
 mod polyhedra;
+mod repeated_contacts;
 mod rims;
 mod surfaces;
