@@ -276,14 +276,16 @@ impl Options {
             .chain(robots.robots.iter().map(|&robot| AdaptiveCase::Robot(robot)))
             .collect();
         let methods = (plan.integrators.iter())
-            .filter_map(|integrator| match integrator {
-                dynamics::Integrator::General(method) if method.estimate_order().is_some() => Some(*method),
-                _ => None,
-            })
+            .filter(|integrator| integrator.estimate_order().is_some())
+            .copied()
             .chain(
                 self.integrators
                     .is_empty()
-                    .then_some([dynamics::Method::Dopri5Body, dynamics::Method::Dop853Body])
+                    .then_some([
+                        dynamics::Method::Dopri5Body.into(),
+                        dynamics::Method::Dop853Body.into(),
+                        dynamics::JointMethod::Dop853.into(),
+                    ])
                     .into_iter()
                     .flatten(),
             )

@@ -42,6 +42,11 @@ pub enum IntegratorName {
     Rkmk6Joint,
     /// Cooper–Verner's order-8 method stepping in joint coordinates; mechanisms of joint models in a tree only.
     Rkmk8Joint,
+    /// Dormand–Prince's pair of order 8 (DOP853) stepping in joint coordinates: the default integrator of robots
+    /// with a `tolerance`, or an 8th-order method at a fixed step; mechanisms of joint models in a tree only.
+    #[serde(rename = "dop853-joint")]
+    #[cfg_attr(feature = "clap", value(name = "dop853-joint"))]
+    Dop853Joint,
 }
 
 impl From<IntegratorName> for Integrator {
@@ -59,6 +64,7 @@ impl From<IntegratorName> for Integrator {
             IntegratorName::Rkmk4Joint => Integrator::Joint(JointMethod::Rkmk4),
             IntegratorName::Rkmk6Joint => Integrator::Joint(JointMethod::Rkmk6),
             IntegratorName::Rkmk8Joint => Integrator::Joint(JointMethod::Rkmk8),
+            IntegratorName::Dop853Joint => Integrator::Joint(JointMethod::Dop853),
         }
     }
 }

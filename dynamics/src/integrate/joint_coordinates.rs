@@ -15,6 +15,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::algebra::Algebra;
 use crate::constraints::ConstraintError;
+use crate::integrate::tableaux::DOP853_EXTENDED_STAGES;
 use crate::joint_layout::{quaternion_at, vector_at, write_quaternion};
 use crate::motion::Dynamics;
 use crate::state::State;
@@ -88,6 +89,155 @@ fn dexp_inverse(sigma: &Vector3<f64>, k: &Vector3<f64>, order: u32) -> Vector3<f
     result
 }
 
+impl<A: Algebra> JointBuffers<A> {
+    /// The positions and velocities at `start + Σ_j w_j K_j` over the stages `j` of `weights` (nonzero ones only:
+    /// the later stages' slopes are another step's): vector coordinates by their rates, velocities by their
+    /// accelerations, rotations by `r₀ exp(Σ w_j K_j)`, a free root's position by its rates `R v`.
+    fn combine(&mut self, weights: &[f64], dt: f64) {
+        let JointBuffers {
+            layout,
+            start_positions,
+            start_velocities,
+            positions,
+            velocities,
+            stage_velocities,
+            stage_accelerations,
+            rotation_slopes,
+            translation_rates,
+            sigmas,
+            ..
+        } = self;
+        positions.copy_from_slice(start_positions);
+        velocities.copy_from_slice(start_velocities);
+        sigmas.iter_mut().for_each(|sigma| *sigma = Vector3::zeros());
+        for (j, &weight) in weights.iter().enumerate().filter(|(_, &w)| w != 0.0) {
+            let w = weight * dt;
+            for &(p, v) in &layout.vectors {
+                positions[p] += w * stage_velocities[j][v];
+            }
+            for (velocity, acceleration) in velocities.iter_mut().zip(&stage_accelerations[j]) {
+                *velocity += w * acceleration;
+            }
+            for (sigma, slope) in sigmas.iter_mut().zip(&rotation_slopes[j]) {
+                *sigma += slope * weight;
+            }
+            for (k, &(p, _, _)) in layout.translations.iter().enumerate() {
+                let moved = translation_rates[j][k] * w;
+                for axis in 0..3 {
+                    positions[p + axis] += moved[axis];
+                }
+            }
+        }
+        for (sigma, &(p, _)) in sigmas.iter().zip(&layout.rotations) {
+            let turned = quaternion_at(start_positions, p) * UnitQuaternion::from_scaled_axis(*sigma);
+            write_quaternion(positions, p, &turned);
+        }
+    }
+
+    /// Stage `s` at the positions and velocities [`JointBuffers::combine`] left, at time `t`: its accelerations
+    /// and power, and its slopes (the rotations' `dexp⁻¹_{−σ}(h ω)`, truncated for `order`).
+    fn evaluate<D: Dynamics<A> + ?Sized>(
+        &mut self,
+        dynamics: &D,
+        (s, t, dt, order): (usize, f64, f64, u32),
+        powers: &mut [f64],
+        workspace: &mut D::Workspace,
+    ) -> Result<(), ConstraintError> {
+        dynamics.joint_rates(
+            t,
+            &self.positions,
+            &self.velocities,
+            &mut self.stage_accelerations[s],
+            workspace,
+        )?;
+        powers[s] = dynamics.power(workspace);
+        self.stage_velocities[s].copy_from_slice(&self.velocities);
+        for (k, &(_, v)) in self.layout.rotations.iter().enumerate() {
+            let omega = vector_at(&self.velocities, v) * dt;
+            self.rotation_slopes[s][k] = dexp_inverse(&self.sigmas[k], &omega, order);
+        }
+        for (k, &(_, v, rotation)) in self.layout.translations.iter().enumerate() {
+            self.translation_rates[s][k] = quaternion_at(&self.positions, rotation) * vector_at(&self.velocities, v);
+        }
+        Ok(())
+    }
+
+    /// The stages DOP853's continuous extension adds to the last step from `t` of length `dt` (rows over the earlier
+    /// stages and their nodes), as a step's are evaluated.
+    pub(crate) fn extend<D: Dynamics<A> + ?Sized>(
+        &mut self,
+        dynamics: &D,
+        (t, dt, order): (f64, f64, u32),
+        (first, rows): (usize, &[([f64; DOP853_EXTENDED_STAGES], f64)]),
+        powers: &mut [f64],
+        workspace: &mut D::Workspace,
+    ) -> Result<(), ConstraintError> {
+        for (k, (row, node)) in rows.iter().enumerate() {
+            self.combine(&row[..first + k], dt);
+            self.evaluate(dynamics, (first + k, t + node * dt, dt, order), powers, workspace)?;
+        }
+        Ok(())
+    }
+
+    /// The state at `start + Σ w_j K_j` of the last step (from `t`, of length `dt`) written into `out` by forward
+    /// kinematics at time `at`: DOP853's continuous extension, with its dense-output weights at the fraction wanted.
+    pub(crate) fn dense<D: Dynamics<A> + ?Sized>(
+        &mut self,
+        dynamics: &D,
+        (weights, dt, at): (&[f64], f64, f64),
+        out: &mut [State<A>],
+        workspace: &mut D::Workspace,
+    ) -> Result<(), ConstraintError> {
+        self.combine(weights, dt);
+        dynamics.write_joints(at, &self.positions, &self.velocities, out, workspace)
+    }
+
+    /// The error norm of the last step (of length `dt`) whose embedded difference has the stage weights `weights`:
+    /// the largest over every coordinate of `ratio(error, size)`, its error over `absolute + relative · size`
+    /// (the tolerance's; docs/dynamics.md
+    /// "Adaptive steps in joint coordinates"): a joint's coordinate (rad or m) and a rotation's turn absolutely, a
+    /// free root's position relative to its distance from the origin, each velocity relative to its size at the
+    /// step's two ends. The largest, not a mean, so that a light distal joint's error is not averaged away; NaN
+    /// stays NaN.
+    pub(crate) fn error_norm(&self, ratio: impl Fn(f64, f64) -> f64, weights: &[f64], dt: f64) -> f64 {
+        let (end_positions, end_velocities) = match self.written.first() {
+            Some((_, positions, velocities)) => (positions, velocities),
+            None => (&self.positions, &self.velocities),
+        };
+        let weighted =
+            |value: &dyn Fn(usize) -> f64| -> f64 { weights.iter().enumerate().map(|(j, w)| w * value(j)).sum() };
+        let mut largest = 0.0f64;
+        let mut keep = |ratio: f64| {
+            if ratio > largest || ratio.is_nan() {
+                largest = ratio;
+            }
+        };
+        for &(_, v) in &self.layout.vectors {
+            keep(ratio(dt * weighted(&|j| self.stage_velocities[j][v]).abs(), 0.0));
+        }
+        for k in 0..self.layout.rotations.len() {
+            let turn: Vector3<f64> = (weights.iter().enumerate())
+                .map(|(j, w)| self.rotation_slopes[j][k] * *w)
+                .sum();
+            keep(ratio(turn.norm(), 0.0));
+        }
+        for (k, &(p, _, _)) in self.layout.translations.iter().enumerate() {
+            let shift: Vector3<f64> = (weights.iter().enumerate())
+                .map(|(j, w)| self.translation_rates[j][k] * (w * dt))
+                .sum();
+            let size = vector_at(&self.start_positions, p)
+                .norm()
+                .max(vector_at(end_positions, p).norm());
+            keep(ratio(shift.norm(), size));
+        }
+        for (i, (start, end)) in self.start_velocities.iter().zip(end_velocities.iter()).enumerate() {
+            let change = dt * weighted(&|j| self.stage_accelerations[j][i]).abs();
+            keep(ratio(change, start.abs().max(end.abs())));
+        }
+        largest
+    }
+}
+
 /// One step of an explicit tableau (`a`, `b`, `c`, order) in joint coordinates from `states` at `t`; the states are
 /// replaced by the step's end, and `powers` gets each stage's non-conservative power.
 #[allow(clippy::too_many_arguments)]
@@ -101,19 +251,6 @@ pub(crate) fn step<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
     powers: &mut [f64],
     workspace: &mut D::Workspace,
 ) -> Result<(), ConstraintError> {
-    let JointBuffers {
-        layout,
-        start_positions,
-        start_velocities,
-        positions,
-        velocities,
-        stage_velocities,
-        stage_accelerations,
-        rotation_slopes,
-        translation_rates,
-        sigmas,
-        written,
-    } = buffers;
     let same = |end: &[State<A>]| {
         end.len() == states.len()
             && end
@@ -121,66 +258,30 @@ pub(crate) fn step<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
                 .zip(states.iter())
                 .all(|(a, b)| a.motor == b.motor && a.momentum == b.momentum)
     };
-    match written.iter().position(|(end, _, _)| same(end)) {
+    match buffers.written.iter().position(|(end, _, _)| same(end)) {
         Some(k) => {
-            start_positions.copy_from_slice(&written[k].1);
-            start_velocities.copy_from_slice(&written[k].2);
+            let (_, positions, velocities) = &buffers.written[k];
+            buffers.start_positions.copy_from_slice(positions);
+            buffers.start_velocities.copy_from_slice(velocities);
         }
-        None => dynamics.read_joints(states, start_positions, start_velocities, workspace)?,
-    }
-    for s in 0..=S {
-        // Stage s (or, for s = S, the step's end): positions and velocities from the slopes of the earlier stages.
-        let weight = |j: usize| if s == S { b[j] } else { a[s][j] };
-        let stages = (0..s.min(S)).filter(|&j| weight(j) != 0.0);
-        positions.copy_from_slice(start_positions);
-        velocities.copy_from_slice(start_velocities);
-        sigmas.iter_mut().for_each(|sigma| *sigma = Vector3::zeros());
-        for j in stages {
-            let w = weight(j) * dt;
-            for &(p, v) in &layout.vectors {
-                positions[p] += w * stage_velocities[j][v];
-            }
-            for (velocity, acceleration) in velocities.iter_mut().zip(&stage_accelerations[j]) {
-                *velocity += w * acceleration;
-            }
-            for (sigma, slope) in sigmas.iter_mut().zip(&rotation_slopes[j]) {
-                *sigma += slope * weight(j);
-            }
-            for (k, &(p, _, _)) in layout.translations.iter().enumerate() {
-                let moved = translation_rates[j][k] * w;
-                for axis in 0..3 {
-                    positions[p + axis] += moved[axis];
-                }
-            }
-        }
-        for (sigma, &(p, _)) in sigmas.iter().zip(&layout.rotations) {
-            let turned = quaternion_at(start_positions, p) * UnitQuaternion::from_scaled_axis(*sigma);
-            write_quaternion(positions, p, &turned);
-        }
-        if s == S {
-            break;
-        }
-        dynamics.joint_rates(
-            t + c[s] * dt,
-            positions,
-            velocities,
-            &mut stage_accelerations[s],
+        None => dynamics.read_joints(
+            states,
+            &mut buffers.start_positions,
+            &mut buffers.start_velocities,
             workspace,
-        )?;
-        powers[s] = dynamics.power(workspace);
-        stage_velocities[s].copy_from_slice(velocities);
-        for (k, &(_, v)) in layout.rotations.iter().enumerate() {
-            let omega = vector_at(velocities, v) * dt;
-            rotation_slopes[s][k] = if s == 0 {
-                omega
-            } else {
-                dexp_inverse(&sigmas[k], &omega, order)
-            };
-        }
-        for (k, &(_, v, rotation)) in layout.translations.iter().enumerate() {
-            translation_rates[s][k] = quaternion_at(positions, rotation) * vector_at(velocities, v);
-        }
+        )?,
     }
+    for s in 0..S {
+        buffers.combine(&a[s][..s], dt);
+        buffers.evaluate(dynamics, (s, t + c[s] * dt, dt, order), powers, workspace)?;
+    }
+    buffers.combine(b, dt);
+    let JointBuffers {
+        positions,
+        velocities,
+        written,
+        ..
+    } = buffers;
     dynamics.write_joints(t + dt, positions, velocities, states, workspace)?;
     // Keep this end (reusing the oldest entry's storage).
     let mut entry = if written.len() == WRITTEN {

@@ -134,18 +134,30 @@ pub enum JointMethod {
     Rkmk6,
     /// Cooper and Verner's 11-stage method of order 8, as [`crate::Method::Rkmk8Body`]'s.
     Rkmk8,
+    /// Dormand and Prince's embedded pair of order 8 (DOP853), as [`crate::Method::Dop853Body`]'s: the 8th-order
+    /// solution kept, Hairer's combination of the embedded differences of orders 5 and 3 estimating each step's error
+    /// in joint coordinates for an adaptive [`crate::Schedule`] (the largest over the coordinates, docs/dynamics.md
+    /// "Adaptive steps in joint coordinates"), and its continuous extension of order 7 giving samples and events
+    /// inside a step. The method of robots with a tolerance.
+    Dop853,
 }
 
 impl JointMethod {
     /// Every joint-coordinate method.
-    pub const ALL: [JointMethod; 3] = [JointMethod::Rkmk4, JointMethod::Rkmk6, JointMethod::Rkmk8];
+    pub const ALL: [JointMethod; 4] = [
+        JointMethod::Rkmk4,
+        JointMethod::Rkmk6,
+        JointMethod::Rkmk8,
+        JointMethod::Dop853,
+    ];
 
-    /// "RKMK4-joint", "RKMK6-joint", "RKMK8-joint".
+    /// "RKMK4-joint", "RKMK6-joint", "RKMK8-joint", "DOP853-joint".
     pub fn name(self) -> &'static str {
         match self {
             JointMethod::Rkmk4 => "RKMK4-joint",
             JointMethod::Rkmk6 => "RKMK6-joint",
             JointMethod::Rkmk8 => "RKMK8-joint",
+            JointMethod::Dop853 => "DOP853-joint",
         }
     }
 
@@ -154,7 +166,16 @@ impl JointMethod {
         match self {
             JointMethod::Rkmk4 => 4,
             JointMethod::Rkmk6 => 6,
-            JointMethod::Rkmk8 => 8,
+            JointMethod::Rkmk8 | JointMethod::Dop853 => 8,
+        }
+    }
+
+    /// For an embedded pair, the order of its error estimate's step-size law ([`Method::estimate_order`]); `None`
+    /// for the others.
+    pub fn estimate_order(self) -> Option<u32> {
+        match self {
+            JointMethod::Dop853 => Some(8),
+            JointMethod::Rkmk4 | JointMethod::Rkmk6 | JointMethod::Rkmk8 => None,
         }
     }
 }
@@ -208,7 +229,8 @@ impl Integrator {
     pub fn estimate_order(self) -> Option<u32> {
         match self {
             Integrator::General(method) => method.estimate_order(),
-            Integrator::Splitting(_) | Integrator::Joint(_) => None,
+            Integrator::Joint(method) => method.estimate_order(),
+            Integrator::Splitting(_) => None,
         }
     }
 }

@@ -15,7 +15,7 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::integrate::error::StepError;
 use crate::integrate::error::MAX_TURN_PER_STEP;
 use crate::integrate::lie_group::weighted_slopes;
-use crate::integrate::methods::{Integrator, Method};
+use crate::integrate::methods::{Integrator, JointMethod, Method};
 use crate::integrate::stepper::Stepper;
 use crate::integrate::tableaux::{DOP853_ERROR_3, DOP853_ERROR_5, DORMAND_PRINCE_5_ERROR};
 use crate::motion::Dynamics;
@@ -131,14 +131,25 @@ impl<A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'_, A, D> {
             let estimates = (0..start.len()).map(|b| weighted_slopes(&self.buffers, weights, b, (dt, zero)));
             error_norm(tolerance, self.dynamics, (start, end), estimates)
         };
+        // Hairer's combination for DOP853: the 5th-order difference, damped where the 3rd-order one says the
+        // asymptotic regime is not reached; it falls as h⁸. A NaN stays a NaN (the step is refused).
+        let hairer = |fifth: f64, third: f64| {
+            let scale = (fifth * fifth + 0.01 * third * third).sqrt();
+            if scale == 0.0 {
+                0.0
+            } else {
+                fifth * fifth / scale
+            }
+        };
         match self.integrator {
             Integrator::General(Method::Dopri5Body) => Some(difference(&DORMAND_PRINCE_5_ERROR)),
             Integrator::General(Method::Dop853Body) => {
-                // Hairer's combination: the 5th-order difference, damped where the 3rd-order one says the
-                // asymptotic regime is not reached; it falls as h⁸. A NaN stays a NaN (the step is refused).
-                let (fifth, third) = (difference(&DOP853_ERROR_5), difference(&DOP853_ERROR_3));
-                let scale = (fifth * fifth + 0.01 * third * third).sqrt();
-                Some(if scale == 0.0 { 0.0 } else { fifth * fifth / scale })
+                Some(hairer(difference(&DOP853_ERROR_5), difference(&DOP853_ERROR_3)))
+            }
+            Integrator::Joint(JointMethod::Dop853) => {
+                let joints = self.joints.as_ref()?;
+                let difference = |weights: &[f64]| joints.error_norm(|e, size| tolerance.ratio(e, size), weights, dt);
+                Some(hairer(difference(&DOP853_ERROR_5), difference(&DOP853_ERROR_3)))
             }
             _ => None,
         }

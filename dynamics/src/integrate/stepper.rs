@@ -12,8 +12,8 @@ use crate::integrate::lie_group::{
 use crate::integrate::methods::{Integrator, JointMethod, Method, SplittingMethod};
 use crate::integrate::splitting::{step_splitting, KineticSplitting};
 use crate::integrate::tableaux::{
-    dop853_dense_weights, dormand_prince_5_dense_weights, BUTCHER_6, COOPER_VERNER_8, DOP853, DOP853_EXTENSION,
-    DORMAND_PRINCE_5, RK4, RK4_WEIGHTS,
+    dop853_dense_weights, dormand_prince_5_dense_weights, BUTCHER_6, COOPER_VERNER_8, DOP853, DOP853_EXTENDED_STAGES,
+    DOP853_EXTENSION, DORMAND_PRINCE_5, RK4, RK4_WEIGHTS,
 };
 use crate::motion::{to_world, Dynamics};
 use crate::motor;
@@ -28,7 +28,7 @@ pub struct Stepper<'a, A: Algebra, D: Dynamics<A> + ?Sized> {
     workspace: D::Workspace,
     pub(super) buffers: Buffers<A>,
     /// The buffers of a method stepping in joint coordinates.
-    joints: Option<JointBuffers<A>>,
+    pub(super) joints: Option<JointBuffers<A>>,
     /// The work done by the non-conservative forces over the last successful step (J).
     last_work: f64,
     /// The start and the length of the last successful step (s), if its stages are still in the buffers (for the
@@ -75,7 +75,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 let layout = dynamics
                     .joint_layout()
                     .ok_or(StepError::NoJointCoordinates { method: method.name() })?;
-                Some(JointBuffers::new(layout, COOPER_VERNER_8.b.len()))
+                Some(JointBuffers::new(layout, DOP853_EXTENDED_STAGES))
             }
             _ => None,
         };
@@ -147,6 +147,19 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 dop853 = dop853_dense_weights(theta);
                 &dop853
             }
+            Integrator::Joint(JointMethod::Dop853) => {
+                self.extend_dop853(t, dt)?;
+                let weights = dop853_dense_weights(theta);
+                let joints = self.joints.as_mut().expect("made with the stepper");
+                (joints.dense(self.dynamics, (&weights, dt, t + theta * dt), out, &mut self.workspace))
+                    .map_err(|error| StepError::Constraint { t, error })?;
+                let work = weights
+                    .iter()
+                    .zip(&self.buffers.powers)
+                    .map(|(w, p)| w * p)
+                    .sum::<f64>();
+                return Ok(Some(dt * work));
+            }
             _ => return Ok(None),
         };
         let buffers = &self.buffers;
@@ -169,6 +182,19 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             return Ok(());
         }
         self.evaluations += DOP853_EXTENSION.len();
+        if let Some(joints) = self.joints.as_mut() {
+            let stages = (DOP853.b.len(), DOP853_EXTENSION.as_slice());
+            (joints.extend(
+                self.dynamics,
+                (t, dt, DOP853.order),
+                stages,
+                &mut self.buffers.powers,
+                &mut self.workspace,
+            ))
+            .map_err(|error| StepError::Constraint { t, error })?;
+            self.extended = true;
+            return Ok(());
+        }
         for (k, (row, node)) in DOP853_EXTENSION.iter().enumerate() {
             let at = (DOP853.b.len() + k, t + node * dt, dt);
             rkmk_stage(
@@ -191,7 +217,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             Integrator::General(Method::Rk4 | Method::Rkmk4 | Method::Rkmk4Body) => &RK4_WEIGHTS,
             Integrator::General(Method::Rkmk6Body) => &BUTCHER_6.b,
             Integrator::General(Method::Dopri5Body) => &DORMAND_PRINCE_5.b,
-            Integrator::General(Method::Dop853Body) => &DOP853.b,
+            Integrator::General(Method::Dop853Body) | Integrator::Joint(JointMethod::Dop853) => &DOP853.b,
             Integrator::General(Method::Rkmk8Body) | Integrator::Joint(JointMethod::Rkmk8) => &COOPER_VERNER_8.b,
             Integrator::Joint(JointMethod::Rkmk4) => &RK4.b,
             Integrator::Joint(JointMethod::Rkmk6) => &BUTCHER_6.b,
@@ -362,6 +388,10 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                             &COOPER_VERNER_8.c,
                             COOPER_VERNER_8.order,
                         );
+                        joint_coordinates::step(tableau, dynamics, t, &mut next, dt, joints, powers, workspace)
+                    }
+                    JointMethod::Dop853 => {
+                        let tableau = (&DOP853.a, &DOP853.b, &DOP853.c, DOP853.order);
                         joint_coordinates::step(tableau, dynamics, t, &mut next, dt, joints, powers, workspace)
                     }
                 }

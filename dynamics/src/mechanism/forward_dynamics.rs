@@ -12,6 +12,7 @@ use crate::mechanism::error::MechanismError;
 use crate::mechanism::joint_space::WorldBody;
 use crate::mechanism::mass_matrix::WorldTerms;
 use crate::mechanism::model::{BodyTerms, Mechanism, MechanismWorkspace};
+use crate::mechanism::parts::Slip;
 use crate::mechanism::spatial::join;
 use crate::motor;
 use crate::state::State;
@@ -154,17 +155,24 @@ impl<A: Algebra> Mechanism<A> {
         let forces = self.body_forces(t, &momenta, workspace, BodyTerms::Forces);
         workspace.momenta = momenta;
         forces?;
-        // The reactions only for the drives' power: the other joints' is zero.
+        // The reactions only for the power of the drives and of sliding friction: the other joints' and contacts'
+        // is zero.
         let driven = self
             .joints
             .iter()
             .any(|j| j.model.as_ref().is_some_and(JointModel::is_driven));
-        self.solve_articulated(articulation, t, workspace, driven)
+        let first = self.limits.len();
+        let sliding = (0..self.contacts.len()).any(|c| {
+            workspace.held[first + c].is_some()
+                && self.contacts[c].friction.is_some()
+                && matches!(workspace.slips[c], Slip::Sliding { .. })
+        });
+        self.solve_articulated(articulation, t, workspace, driven || sliding)
             .map_err(|body| ConstraintError::NonFinite {
                 name: self.bodies[body].name.clone(),
                 t,
             })?;
-        if driven {
+        if driven || sliding {
             workspace.power += self.reaction_power(workspace);
         }
         let MechanismWorkspace {

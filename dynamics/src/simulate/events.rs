@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 
 use crate::algebra::Algebra;
-use crate::integrate::{StepError, Stepper};
+use crate::integrate::{Integrator, StepError, Stepper};
 use crate::limits::AT_BOUND;
 use crate::motion::Dynamics;
 use crate::simulate::error::SimulationError;
@@ -318,10 +318,14 @@ pub(super) fn state_inside<A: Algebra, D: Dynamics<A> + ?Sized>(
         return Ok(0.0);
     }
     if let Some(work) = stepper.dense_output(offset / h, probe)? {
-        let dynamics = stepper.dynamics();
-        dynamics
-            .after_step(t + offset, probe, stepper.workspace())
-            .map_err(|error| StepError::Constraint { t, error })?;
+        let (dynamics, joint) = (stepper.dynamics(), matches!(stepper.integrator(), Integrator::Joint(_)));
+        // As a step's end: in joint coordinates the joints hold by construction, and only held contacts are placed.
+        let placed = if joint {
+            dynamics.after_joint_step(t + offset, probe, stepper.workspace())
+        } else {
+            dynamics.after_step(t + offset, probe, stepper.workspace())
+        };
+        placed.map_err(|error| StepError::Constraint { t, error })?;
         return Ok(work);
     }
     probe.copy_from_slice(start);

@@ -97,8 +97,8 @@ fn largest_differences<A: Algebra>(one: &Simulation<A>, other: &Simulation<A>) -
 }
 
 /// Fifty copies of each corner: the same samples to round-off, the same transitions (the copies never take one), and
-/// the same steps and evaluations, by body-momentum steps with a tolerance and joint-coordinate steps of 1 ms, with
-/// friction (the cube sticks and slides) and without.
+/// the same steps and evaluations, by body-momentum and joint-coordinate steps with a tolerance (DOP853-body,
+/// DOP853-joint) and joint-coordinate steps of 1 ms, with friction (the cube sticks and slides) and without.
 fn fifty_copies_of_each_corner_change_nothing<A: Algebra>() {
     for friction in [0.0, 0.3] {
         let (once, fifty) = (
@@ -114,6 +114,10 @@ fn fifty_copies_of_each_corner_change_nothing<A: Algebra>() {
             (
                 simulate(&once, &start, JointMethod::Rkmk8, &Schedule::new(1e-3, 2.0).unwrap()),
                 simulate(&fifty, &start, JointMethod::Rkmk8, &Schedule::new(1e-3, 2.0).unwrap()),
+            ),
+            (
+                simulate(&once, &start, JointMethod::Dop853, &adaptive(2.0)),
+                simulate(&fifty, &start, JointMethod::Dop853, &adaptive(2.0)),
             ),
         ];
         for (one, many) in runs {

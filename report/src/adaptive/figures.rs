@@ -71,7 +71,7 @@ impl FixedRuns<'_> {
 }
 
 /// The successful runs of `case` with `method`, by tolerance from the loosest.
-pub(crate) fn runs_of(results: &[AdaptiveResult], case: AdaptiveCase, method: Method) -> Vec<&AdaptiveOutcome> {
+pub(crate) fn runs_of(results: &[AdaptiveResult], case: AdaptiveCase, method: Integrator) -> Vec<&AdaptiveOutcome> {
     let mut runs: Vec<&AdaptiveOutcome> = (results.iter())
         .filter(|(c, _)| c.case == case && c.method == method)
         .filter_map(|(_, r)| r.as_ref().ok())
@@ -85,7 +85,7 @@ pub(crate) fn runs_of(results: &[AdaptiveResult], case: AdaptiveCase, method: Me
 pub(crate) fn work_precision_panels<'a>(
     results: &[AdaptiveResult],
     fixed: &FixedRuns,
-    methods: &[Method],
+    methods: &[Integrator],
     (cases, titles): (&[AdaptiveCase], &'a [String]),
 ) -> Vec<Panel<'a>> {
     cases
@@ -128,7 +128,7 @@ pub(crate) fn work_precision_panels<'a>(
 /// Achieved error over requested tolerance, one panel per method and group of scenes.
 pub(crate) fn tolerance_panels(
     results: &[AdaptiveResult],
-    methods: &[Method],
+    methods: &[Integrator],
     groups: &[Vec<AdaptiveCase>],
 ) -> Vec<Panel<'static>> {
     let mut panels = Vec::new();
@@ -164,7 +164,7 @@ pub(crate) fn tolerance_panels(
 /// closest tolerance run.
 pub(crate) fn step_panels<'a>(
     results: &[AdaptiveResult],
-    methods: &[Method],
+    methods: &[Integrator],
     (shown, titles): (&[AdaptiveCase], &'a [String]),
 ) -> Vec<Panel<'a>> {
     (shown.iter().zip(titles))

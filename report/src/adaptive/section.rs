@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use dynamics::integrate::Method;
+use dynamics::integrate::Integrator;
 use reference::SceneId;
 use scenarios::MechanismId;
 
@@ -22,7 +22,7 @@ const VARYING: [AdaptiveCase; 3] = [
 ];
 
 /// The methods and the scenes run, in the plan's order.
-fn methods_and_cases(results: &[AdaptiveResult]) -> (Vec<Method>, Vec<AdaptiveCase>) {
+fn methods_and_cases(results: &[AdaptiveResult]) -> (Vec<Integrator>, Vec<AdaptiveCase>) {
     let (mut methods, mut cases) = (Vec::new(), Vec::new());
     for (config, _) in results {
         if !methods.contains(&config.method) {

@@ -1,5 +1,5 @@
 //! The adaptive runs of the main job: every selected scene (single bodies, M1–M3, the robots) in PGA with each
-//! embedded pair (DP5(4)-body, DOP853-body) over a sweep of tolerances, measured as the fixed-step runs of the same
+//! embedded pair (DP5(4)-body, DOP853-body, and on the robots DOP853-joint) over a sweep of tolerances, measured as the fixed-step runs of the same
 //! scene are, so the report draws both on the same work-precision axes (`figures`, `section`).
 //!
 //! Single bodies run by virtual power (scene 1 as a free body), M1 and M2 by virtual power with projection, M3 as
@@ -12,7 +12,7 @@ use std::ops::ControlFlow;
 
 use dynamics::constraints::Stabilisation;
 use dynamics::integrate::step_control::Tolerance;
-use dynamics::integrate::Method;
+use dynamics::integrate::Integrator;
 use dynamics::simulate::{simulate, Plan, Schedule, Simulation};
 use dynamics::{Algebra, Dynamics, Pga, State, StepStatistics};
 use reference::robots::RobotId;
@@ -90,8 +90,8 @@ impl AdaptiveCase {
 pub struct AdaptivePlan {
     /// The scenes; none if empty.
     pub cases: Vec<AdaptiveCase>,
-    /// The embedded pairs.
-    pub methods: Vec<Method>,
+    /// The embedded pairs (those in joint coordinates run on the robots only).
+    pub methods: Vec<Integrator>,
     /// The tolerances (relative and absolute alike).
     pub tolerances: Vec<f64>,
     /// Overrides the duration of every scene but the robots (for quick runs).
@@ -104,18 +104,23 @@ pub struct AdaptiveConfig {
     /// The scene.
     pub case: AdaptiveCase,
     /// The embedded pair.
-    pub method: Method,
+    pub method: Integrator,
     /// The tolerance.
     pub tolerance: f64,
     pub(crate) duration: Option<f64>,
 }
 
 impl AdaptivePlan {
-    /// Every run: scene × method × tolerance (methods without an error estimate are left out).
+    /// Every run: scene × method × tolerance (methods without an error estimate are left out, and those stepping in
+    /// joint coordinates but on the robots).
     pub(crate) fn configurations(&self) -> Vec<AdaptiveConfig> {
         let mut configs = Vec::new();
         for &case in &self.cases {
-            for &method in self.methods.iter().filter(|m| m.estimate_order().is_some()) {
+            let applies = |m: &&Integrator| {
+                m.estimate_order().is_some()
+                    && (matches!(case, AdaptiveCase::Robot(_)) || !matches!(m, Integrator::Joint(_)))
+            };
+            for &method in self.methods.iter().filter(applies) {
                 for &tolerance in &self.tolerances {
                     configs.push(AdaptiveConfig {
                         case,

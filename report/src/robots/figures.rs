@@ -32,11 +32,12 @@ use crate::plot::{
 use crate::recorded_anchors::{MUJOCO, PINOCCHIO, RECORDED_WHEN};
 
 /// The work-precision panel of an integrator (its place) and its place in the panel (0 or 1): the general methods
-/// by [`Family`], with the eighth-order joint-coordinate method beside the eighth-order body method, and the other
-/// two joint-coordinate methods in a panel of their own.
+/// by [`Family`], with the eighth-order joint-coordinate method beside the eighth-order body method, the other two
+/// fixed-step joint-coordinate methods in a panel of their own, and DOP853-joint (at fixed steps) in another.
 fn panel(integrator: Integrator) -> (usize, usize) {
     match integrator {
         Integrator::Joint(JointMethod::Rkmk8) => (Family::EighthOrder as usize, 1),
+        Integrator::Joint(JointMethod::Dop853) => (11, 0),
         Integrator::Joint(method) => (10, usize::from(method == JointMethod::Rkmk6)),
         general => {
             let (family, member) = Family::of(general);
@@ -51,6 +52,7 @@ fn panel_heading(panel: usize, integrators: &[Integrator]) -> String {
     let body_eighth = integrators.contains(&Integrator::General(dynamics::Method::Rkmk8Body));
     match panel {
         10 => "RKMK4-joint and RKMK6-joint (stepping in joint coordinates)".to_owned(),
+        11 => "DOP853-joint at fixed steps (joint coordinates)".to_owned(),
         p if p == Family::EighthOrder as usize && joint_eighth && body_eighth => {
             "RKMK8-body and RKMK8-joint (order 8: body momentum, joint coordinates)".to_owned()
         }

@@ -72,7 +72,7 @@ impl RobotPlan {
     /// use report::robots::{RobotPlan, DEFAULT_STEPS};
     ///
     /// let plan = RobotPlan::all();
-    /// assert_eq!((plan.robots.len(), plan.joint_methods.len()), (2, 3)); // UR5 and Solo-12; RKMK4, 6 and 8
+    /// assert_eq!((plan.robots.len(), plan.joint_methods.len()), (2, 4)); // UR5 and Solo-12; RKMK4, 6, 8, DOP853
     /// assert_eq!(plan.steps, DEFAULT_STEPS);
     /// ```
     pub fn all() -> Self {
@@ -258,9 +258,9 @@ mod tests {
         let plan = RobotPlan::all();
         let integrators = crate::single_bodies::sweep::default_integrators();
         let configs = plan.configurations(&integrators);
-        // Splittings are left out: five general methods and three joint-coordinate ones; Solo-12 by RK4 without 4e-2,
+        // Splittings are left out: five general methods and four joint-coordinate ones; Solo-12 by RK4 without 4e-2,
         // 2e-2 and 1e-2, by RKMK4 without 4e-2 and 2e-2.
-        assert_eq!(configs.len(), 2 * (2 * 8 * DEFAULT_STEPS.len() - 5));
+        assert_eq!(configs.len(), 2 * (2 * 9 * DEFAULT_STEPS.len() - 5));
         // Every default step gives a schedule of the reference's 1 s.
         for dt in DEFAULT_STEPS {
             assert!(Schedule::with_sample_interval(dt, 1.0, dt.max(0.01)).is_ok(), "{dt}");

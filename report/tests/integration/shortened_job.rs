@@ -237,7 +237,11 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
             AdaptiveCase::SingleBody(SceneId::Cuboid),
             AdaptiveCase::Mechanism(MechanismId::DoublePendulum),
         ],
-        methods: vec![Method::Dop853Body, Method::Rk4],
+        methods: vec![
+            Method::Dop853Body.into(),
+            Method::Rk4.into(),
+            dynamics::JointMethod::Dop853.into(),
+        ],
         tolerances: vec![1e-6, 1e-10],
         duration: Some(2.0),
     };
@@ -252,7 +256,7 @@ fn adaptive_runs_are_reported_beside_the_fixed_steps() {
     )
     .expect("the job writes its report");
     assert!(summary.failures.is_empty(), "{:?}", summary.failures);
-    // RK4 has no error estimate: left out of the adaptive runs.
+    // RK4 has no error estimate, and DOP853-joint runs on the robots only: both left out of the adaptive runs.
     assert_eq!(summary.adaptive.len(), 2 * 2);
     for pair in summary.adaptive.chunks(2) {
         let (loose, tight) = (pair[0].1.as_ref().unwrap(), pair[1].1.as_ref().unwrap());
@@ -331,7 +335,7 @@ fn careless_adaptive_plans_fail_with_their_reasons() {
     for (tolerance, duration, words) in cases {
         let adaptive = AdaptivePlan {
             cases: vec![AdaptiveCase::SingleBody(SceneId::Cuboid)],
-            methods: vec![Method::Dop853Body],
+            methods: vec![Method::Dop853Body.into()],
             tolerances: vec![tolerance],
             duration,
         };

@@ -97,13 +97,19 @@ impl CheckedScene {
         let mut robot = (file.robot.as_ref())
             .map(|spec| LoadedRobot::load(spec, folder))
             .transpose()?;
-        let integrator = file.integrator.unwrap_or(if file.tolerance.is_some() {
-            IntegratorName::Dop853Body
-        } else if file.robot.is_some() {
-            IntegratorName::Rkmk8Body
-        } else {
-            IntegratorName::Rk4
-        });
+        // A robot with a tolerance steps in joint coordinates (every joint of its file a joint model: the robot's and
+        // the free roots of other bodies), where its error is measured coordinate by coordinate; a [[joint]] may
+        // be a constraint no joint coordinate describes, and Baumgarte's feedback acts on the bodies, so a file
+        // with either steps its bodies.
+        let joint_models_only = file.joint.is_empty() && file.stabilisation != StabilisationName::Baumgarte;
+        let integrator = file
+            .integrator
+            .unwrap_or(match (file.tolerance.is_some(), file.robot.is_some()) {
+                (true, true) if joint_models_only => IntegratorName::Dop853Joint,
+                (true, _) => IntegratorName::Dop853Body,
+                (false, true) => IntegratorName::Rkmk8Body,
+                (false, false) => IntegratorName::Rk4,
+            });
         let (stepping, schedule) = schedule(&file)?;
         let names = Names::resolve(&file, robot.as_ref())?;
         let bodies = names.body_count() + robot.as_ref().map_or(0, LoadedRobot::body_count);

@@ -774,6 +774,9 @@ fn careless_force_elements_fail_naming_the_entry_and_the_value() {
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"strang\"", &["integrator", "splitting method"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"rkmk8-joint\"\nstabilisation = \"baumgarte\"", &["integrator", "joint coordinates", "Baumgarte"]),
         (FIXED, "dt = 1e-3", "dt = 1e-3\nintegrator = \"euler\"", &["unknown variant `euler`", "`rkmk8-joint`"]),
+        (FIXED, "dt = 1e-3", "tolerance = 1e-8\nintegrator = \"dop853-joint\"\nstabilisation = \"baumgarte\"", &["integrator", "joint coordinates", "Baumgarte"]),
+        (FIXED, "dt = 1e-3", "tolerance = 1e-8\nintegrator = \"rkmk8-joint\"", &["integrator", "RKMK8-joint", "error estimate"]),
+        (FIXED, "dt = 1e-3", "tolerance = nan\nintegrator = \"dop853-joint\"", &["tolerance", "NaN"]),
     ];
     assert_each_refused(rows);
 }
