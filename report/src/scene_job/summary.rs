@@ -277,17 +277,19 @@ fn write_impacts(out: &mut String, scene: &CheckedScene, runs: &[AlgebraRun]) ->
     for run in runs.iter().filter(|run| !run.transitions.is_empty()) {
         let counts = TransitionCounts::of(&run.transitions);
         let taken = run.impact_energy();
-        let _ =
-            writeln!(
+        let _ = writeln!(
             out,
-            "{} ({}): {} bounces, {} holds, {} releases, {} sticks, {} slips, the first at t = {:.6} s; the impacts \
+            "{} ({}): {} bounces, {} holds, {} releases, {} sticks, {} slips, the first at t = {} s; the impacts \
              changed the energy by {} J{}{}.",
             {
                 let contacts: Vec<String> = (scene.contacts.iter().enumerate()).map(|(k, c)| c.name(k)).collect();
                 let on_contact = |t: &LimitTransition| {
                     contacts.contains(&t.constraint) || scene.pairs.iter().any(|pair| pair.owns(&t.constraint))
                 };
-                match (run.transitions.iter().any(on_contact), run.transitions.iter().all(on_contact)) {
+                match (
+                    run.transitions.iter().any(on_contact),
+                    run.transitions.iter().all(on_contact),
+                ) {
                     (false, _) => "Joint limits",
                     (true, true) => "Contacts",
                     (true, false) => "Joint limits and contacts",

@@ -123,19 +123,43 @@ fn write_trajectories(
 }
 
 /// The runs whose result is suspect, in words: a conservative scene whose energy changed by more than
-/// [`ENERGY_WARNING`] (`relative` to |E₀|, or in J).
+/// [`ENERGY_WARNING`], or another whose energy change less what its impacts and its forces without a potential did,
+/// `E − E₀ − L − W`, is more than that (`relative` to |E₀|, or in J). A run on fixed steps is told that a tolerance
+/// chooses the steps by the error.
 fn energy_warnings(scene: &CheckedScene, runs: &[AlgebraRun], relative: bool) -> Vec<String> {
+    let unit = if relative { "" } else { " J" };
+    let advice = if scene.schedule.tolerance().is_none() {
+        "; a `tolerance` in place of `dt` would choose them by the error"
+    } else {
+        ""
+    };
     runs.iter()
-        .filter(|run| scene.conservative && run.max_energy_change() > ENERGY_WARNING)
-        .map(|run| {
-            format!(
-                "{}: the energy of this conservative scene changed by {}{} (more than {ENERGY_WARNING:e}): the \
-                 steps ({}) are probably too coarse for its motion",
-                run.algebra.name(),
-                scientific(run.max_energy_change()),
-                if relative { "" } else { " J" },
-                stepping(scene)
-            )
+        .filter_map(|run| {
+            let scale = match run.bodies[0].first() {
+                Some(first) if relative => first.energy.abs(),
+                _ => 1.0,
+            };
+            let unexplained = run.unexplained_energy().abs() / scale;
+            if scene.conservative && run.max_energy_change() > ENERGY_WARNING {
+                Some(format!(
+                    "{}: the energy of this conservative scene changed by {}{unit} (more than {ENERGY_WARNING:e}): the \
+                     steps ({}) are probably too coarse for its motion{advice}",
+                    run.algebra.name(),
+                    scientific(run.max_energy_change()),
+                    stepping(scene)
+                ))
+            } else if !scene.conservative && unexplained > ENERGY_WARNING {
+                Some(format!(
+                    "{}: the energy change less what the impacts and the forces without a potential did, E − E₀ − L − \
+                     W, is {}{unit} at the end (more than {ENERGY_WARNING:e}): the steps ({}) are probably too coarse \
+                     for its motion{advice}",
+                    run.algebra.name(),
+                    scientific(unexplained),
+                    stepping(scene)
+                ))
+            } else {
+                None
+            }
         })
         .collect()
 }

@@ -104,7 +104,7 @@ fn assert_same_transitions(pga: &AlgebraRun, cga: &AlgebraRun) {
 /// The shipped cube bouncing on a floor (docs/contacts.md): its corners bounce at half the speed they came with, never
 /// go below the floor at a sample by more than 1e-12 m, both algebras find the same transitions, the cube comes to
 /// rest on a face (its centre 0.1 m up, not moving vertically or tipping) and slides on at its start's 0.5 m/s, and
-/// the energy less what the impacts took holds to the tolerance.
+/// the energy less what the impacts took holds to the tolerance. The summary gives the first impact's time in full.
 #[test]
 fn the_shipped_bouncing_block_comes_to_rest_on_the_floor() {
     let (dir, [pga, cga]) = shipped_runs("bouncing_block.toml", "report-scene-file-contacts");
@@ -132,8 +132,11 @@ fn the_shipped_bouncing_block_comes_to_rest_on_the_floor() {
             " bounces, ",
             "- contact 8: the point",
             "the deepest a contact point went below",
+            // The first impact's time in full, as located (not rounded to 6 digits).
+            &format!("the first at t = {} s;", pga.transitions[0].t),
         ],
     );
+    assert!(pga.transitions[0].t.to_string().len() > 10, "{}", pga.transitions[0].t);
 }
 
 /// The shipped ball with backspin (docs/contacts.md "Friction"): friction at the floor, in impacts and while sliding,

@@ -151,8 +151,12 @@ impl RobotSpec {
             return Err(cannot(&format!("it is larger than {MAX_URDF_BYTES} bytes")));
         }
         let text = String::from_utf8(bytes).map_err(|e| cannot(&format!("it is not UTF-8 ({e})")))?;
-        let model = urdf_import::read(&text, &self.import_options())
-            .map_err(|e| invalid("robot.urdf", format!("{}: {e}", path.display())))?;
+        let model = urdf_import::read(&text, &self.import_options()).map_err(|e| {
+            invalid(
+                "robot.urdf",
+                format!("{}: {}", path.display(), in_file_terms(&e.to_string())),
+            )
+        })?;
         Ok((path, model))
     }
 }
@@ -291,4 +295,27 @@ impl LoadedRobot {
         };
         Ok(start)
     }
+}
+
+/// The importer's message with its repairs named as a scene file writes them (`repairs = { … }` in `[robot]`) in
+/// place of the Rust options (`ImportOptions::balance_inertia`) the library's users set.
+fn in_file_terms(message: &str) -> String {
+    const REPAIRS: [(&str, &str); 3] = [
+        (
+            "ImportOptions::balance_inertia repairs it",
+            "`repairs = { balance_inertia = true }` in [robot] repairs it",
+        ),
+        (
+            "MasslessSubtrees::Freeze treats such a joint as fixed, or set bound_mass and bound_inertia",
+            "`repairs = { massless_subtrees = \"freeze\" }` in [robot] treats such a joint as fixed, or \
+             `repairs = { bound_mass = …, bound_inertia = … }` (kg, kg m²) raises them",
+        ),
+        (
+            "set ImportOptions::bound_mass and bound_inertia to raise them",
+            "`repairs = { bound_mass = …, bound_inertia = … }` (kg, kg m²) in [robot] raises them",
+        ),
+    ];
+    REPAIRS
+        .iter()
+        .fold(message.to_owned(), |text, (rust, file)| text.replace(rust, file))
 }

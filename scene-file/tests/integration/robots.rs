@@ -598,12 +598,28 @@ pub(super) fn shipped(name: &str) -> String {
 }
 
 /// The `[robot]` table's keys with their careless inputs ([`FIXED`] and [`FREE`] edited), a missing, empty,
-/// massless or 100 000 elements deep URDF among them.
+/// massless, weightless, lopsided or 100 000 elements deep URDF among them (their repairs named as the file writes
+/// them).
 #[test]
 fn careless_robot_keys_fail_naming_the_entry_and_the_value() {
     let dir = fresh("careless");
     std::fs::write(dir.join("empty.urdf"), "").unwrap();
     std::fs::write(dir.join("massless.urdf"), ARM_MASSLESS_SENSOR).unwrap();
+    // A massless link with mass below it, and a link whose moments no mass distribution has.
+    let link = "<mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.002\"/></inertial></link>\n  <link name=\"sensor\">";
+    assert!(ARM.contains(link));
+    let weightless = link
+        .replace("value=\"1\"", "value=\"0\"")
+        .replace("0.01", "0")
+        .replace("0.002", "0");
+    std::fs::write(dir.join("weightless.urdf"), ARM.replace(link, &weightless)).unwrap();
+    std::fs::write(
+        dir.join("lopsided.urdf"),
+        ARM.replace(link, &link.replace("0.002", "0.05")),
+    )
+    .unwrap();
+    let [weightless, lopsided] =
+        ["weightless", "lopsided"].map(|n| dir.join(format!("{n}.urdf")).display().to_string());
     let nested = format!(
         "<robot name=\"r\"><link name=\"base\"/>{}{}</robot>",
         "<a>".repeat(100_000),
@@ -624,7 +640,10 @@ fn careless_robot_keys_fail_naming_the_entry_and_the_value() {
         (FIXED, urdf, "urdf = \"\"", &["robot.urdf", "cannot read"]),
         (FIXED, urdf, &format!("urdf = {empty:?}"), &["robot.urdf", "empty.urdf", "the URDF text is empty"]),
         (FIXED, urdf, &format!("urdf = {nested:?}"), &["robot.urdf", "nested.urdf", "nested more than 256 deep at line 1"]),
-        (FREE, "urdf = \"solo12.urdf\"", &format!("urdf = {massless:?}"), &["robot.urdf", "massless.urdf", "joint `spin`", "links `sensor`", "mass 0 kg"]),
+        (FREE, "urdf = \"solo12.urdf\"", &format!("urdf = {massless:?}"), &["robot.urdf", "massless.urdf", "joint `spin`", "links `sensor`", "mass 0 kg", "`repairs = { massless_subtrees = \"freeze\" }` in [robot]"]),
+        // The repairs each message suggests are the file's keys, not the library's options.
+        (FREE, "urdf = \"solo12.urdf\"", &format!("urdf = {weightless:?}"), &["joint `shoulder`", "mass 0 kg", "`repairs = { bound_mass = …, bound_inertia = … }`"]),
+        (FREE, "urdf = \"solo12.urdf\"", &format!("urdf = {lopsided:?}"), &["link `link`", "triangle inequality", "`repairs = { balance_inertia = true }` in [robot]"]),
         (FIXED, urdf, "urdf = 3", &["invalid type: integer `3`", "expected a string"]),
         (FIXED, urdf, &format!("urdf = {:?}", ur5.replace("ur5_robot", "solo12")), &["joint hinge: between", "no body named \"tool0\"", "base_link"]),
         // root, mimic, joint_dynamics, limits.
