@@ -64,6 +64,15 @@ impl Default for BuildOptions {
     }
 }
 
+/// What a free root that cannot move freely lacks: mass, or (with mass) moments of inertia.
+fn root_advice(mass: f64) -> &'static str {
+    if mass > 0.0 && mass.is_finite() {
+        "give its links moments of inertia (the mass is there; the inertia about some axis is not)"
+    } else {
+        "give its links mass"
+    }
+}
+
 /// Why a model cannot be built, or a start state cannot be made.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -71,7 +80,8 @@ pub enum BuildError {
     /// A free root whose body has no mass or a singular inertia.
     #[error(
         "root body `{body}`: a free root needs mass and an invertible inertia, got {mass:e} kg and principal moments \
-         {moments:?} kg m²; fix the root to the world, or give its links mass"
+         {moments:?} kg m²; fix the root to the world, or {}",
+        root_advice(*.mass)
     )]
     RootNotFree {
         /// The root body's name.

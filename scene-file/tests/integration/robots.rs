@@ -597,6 +597,25 @@ pub(super) fn shipped(name: &str) -> String {
     std::fs::read_to_string(scenes().join(name)).unwrap()
 }
 
+/// A free root that cannot move freely is refused naming what it lacks: mass, or (with mass) its moments of inertia.
+#[test]
+fn a_free_root_is_refused_naming_what_it_lacks() {
+    let dir = fresh("free-root");
+    for (mass, moments, lacks) in [
+        ("1", "0", "give its links moments of inertia"),
+        ("0", "0", "give its links mass"),
+    ] {
+        let link = format!(
+            "<robot name=\"r\"><link name=\"base\"><inertial><mass value=\"{mass}\"/><inertia ixx=\"{moments}\" \
+             ixy=\"0\" ixz=\"0\" iyy=\"{moments}\" iyz=\"0\" izz=\"{moments}\"/></inertial></link></robot>"
+        );
+        std::fs::write(dir.join("lone.urdf"), link).unwrap();
+        let text = "dt = 1e-3\nduration = 0.01\n[robot]\nurdf = \"lone.urdf\"\nroot = \"free\"\n";
+        let error = Scene::parse_in(text, &dir).unwrap_err().to_string();
+        assert!(error.contains("root body `base`") && error.contains(lacks), "{error}");
+    }
+}
+
 /// The `[robot]` table's keys with their careless inputs ([`FIXED`] and [`FREE`] edited), a missing, empty,
 /// massless, weightless, lopsided or 100 000 elements deep URDF among them (their repairs named as the file writes
 /// them).
