@@ -153,12 +153,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 let joints = self.joints.as_mut().expect("made with the stepper");
                 (joints.dense(self.dynamics, (&weights, dt, t + theta * dt), out, &mut self.workspace))
                     .map_err(|error| StepError::Constraint { t, error })?;
-                let work = weights
-                    .iter()
-                    .zip(&self.buffers.powers)
-                    .map(|(w, p)| w * p)
-                    .sum::<f64>();
-                return Ok(Some(dt * work));
+                return Ok(Some(work_over(dt, &weights, &self.buffers.powers)));
             }
             _ => return Ok(None),
         };
@@ -171,9 +166,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
                 momentum: to_world::<A>(motor, momentum),
             };
         }
-        Ok(Some(
-            dt * weights.iter().zip(&buffers.powers).map(|(w, p)| w * p).sum::<f64>(),
-        ))
+        Ok(Some(work_over(dt, weights, &buffers.powers)))
     }
 
     /// The four stages DOP853's continuous extension adds to the last step from `t` of length `dt`, once per step.
@@ -286,12 +279,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         if result.is_ok() {
             states.copy_from_slice(&self.buffers.next);
             let weights = Self::stage_weights(self.integrator);
-            self.last_work = dt
-                * weights
-                    .iter()
-                    .zip(&self.buffers.powers)
-                    .map(|(w, p)| w * p)
-                    .sum::<f64>();
+            self.last_work = work_over(dt, weights, &self.buffers.powers);
         }
         result
     }
@@ -413,6 +401,12 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
         buffers.next = next;
         result
     }
+}
+
+/// The work over a step of length `dt` (or a part of it) from the stages' powers and the method's weights for its end:
+/// the power integrated by the same method, exactly as an extra state `ẇ = P` would be.
+fn work_over(dt: f64, weights: &[f64], powers: &[f64]) -> f64 {
+    dt * weights.iter().zip(powers).map(|(w, p)| w * p).sum::<f64>()
 }
 
 /// The largest drift off the constraints ([`Dynamics::drift`], m or rad) at which [`Stepper::step`] still blames a

@@ -162,11 +162,8 @@ impl<A: Algebra> Mechanism<A> {
             .iter()
             .any(|j| j.model.as_ref().is_some_and(JointModel::is_driven));
         let first = self.limits.len();
-        let sliding = (0..self.contacts.len()).any(|c| {
-            workspace.held[first + c].is_some()
-                && self.contacts[c].friction.is_some()
-                && matches!(workspace.slips[c], Slip::Sliding { .. })
-        });
+        let sliding = (self.frictional.iter())
+            .any(|&c| workspace.held[first + c].is_some() && matches!(workspace.slips[c], Slip::Sliding { .. }));
         self.solve_articulated(articulation, t, workspace, driven || sliding)
             .map_err(|body| ConstraintError::NonFinite {
                 name: self.bodies[body].name.clone(),
