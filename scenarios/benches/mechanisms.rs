@@ -2,7 +2,7 @@
 //! projection onto the joints after each step: M1 (double pendulum), M2 (four-bar linkage, a redundant loop) and
 //! M3 (chains of N ball-jointed links, N = 1 … 64, with projection and with Baumgarte stabilisation), from a state
 //! 0.2 s into the motion. MuJoCo's RK4 steps on the same scenes are measured beside these with
-//! `../shared/scenes/multibody/mujoco/*.py` (see docs/benchmarks.md).
+//! `tools/anchors/measure` (see docs/benchmarks.md).
 //!
 //! `cargo bench -p scenarios --bench mechanisms [-- FILTER]`, e.g. `-- M3` for the chains only.
 
