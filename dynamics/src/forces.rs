@@ -97,11 +97,11 @@ impl<A: Algebra> Force<A> {
 
     /// The world wrench on `body` in `state` at time `t`.
     pub fn wrench(&self, body: &Body, t: f64, state: &State<A>) -> A::Screw {
-        self.wrench_at(body, t, state.motor, || state.momentum)
+        self.wrench_at(body, t, state.motor, || state.central_momentum)
     }
 
-    /// [`Force::wrench`] for a body at `motor` whose world momentum is computed only if a custom force
-    /// asks for it (a caller holding the body momentum saves a sandwich).
+    /// [`Force::wrench`] for a body at `motor` whose central momentum ([`State::central_momentum`]) is computed only
+    /// if a custom force asks for it (a caller holding the body momentum saves a rotation).
     pub fn wrench_at(&self, body: &Body, t: f64, motor: A::Motor, momentum: impl FnOnce() -> A::Screw) -> A::Screw {
         match self {
             Force::Gravity { acceleration } => {
@@ -114,9 +114,29 @@ impl<A: Algebra> Force<A> {
                 t,
                 &State {
                     motor,
-                    momentum: momentum(),
+                    central_momentum: momentum(),
                 },
             ),
+        }
+    }
+
+    /// [`Force::wrench_at`] about the body's centre of mass c, world axes: the weight with no moment, a force f
+    /// through p with the moment `(p − c) × f`, a couple as it is. Formed from the centre rather than as the moment
+    /// about the origin less `c × f`, whose round-off grows with the distance from the origin; only a custom force,
+    /// which gives its wrench about the origin, is moved (docs/dynamics.md, "Momentum about the centre of mass").
+    pub(crate) fn central_wrench_at(
+        &self,
+        body: &Body,
+        t: f64,
+        motor: A::Motor,
+        momentum: impl FnOnce() -> A::Screw,
+    ) -> A::Screw {
+        let centre = || A::position(A::transform_point(motor, A::point(Vector3::zeros())));
+        match self {
+            Force::Gravity { acceleration } => force_line::<A>(body.mass() * acceleration, Vector3::zeros()),
+            Force::Line { force, point } => force_line::<A>(*force, point - centre()),
+            Force::Couple { moment } => couple::<A>(*moment),
+            Force::Custom(_) => crate::motor::central_wrench::<A>(motor, self.wrench_at(body, t, motor, momentum)),
         }
     }
 

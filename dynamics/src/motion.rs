@@ -17,12 +17,14 @@ use crate::motor;
 use crate::state::State;
 
 /// What the integrators need of one body at one state: the body-frame velocity Ḃ (so `dR/dt = −½RḂ`, and Lie
-/// group methods can use Ḃ directly) and the world momentum rate `dΩ/dt`.
+/// group methods can use Ḃ directly) and the rate of the momentum about the centre of mass `dΩ_c/dt`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rates<A: Algebra> {
-    /// `Ḃ = M⁻¹[~RΩR]`, body frame.
+    /// `Ḃ = M⁻¹[Ω_b]`, body frame.
     pub body_velocity: A::Screw,
-    /// dΩ/dt: the resultant wrench (external forces and reactions), world frame.
+    /// dΩ_c/dt: the resultant wrench (external forces and reactions) about the centre of mass, world axes. The
+    /// centre's velocity is parallel to the linear momentum, so its motion adds nothing to the rate (docs/dynamics.md,
+    /// "Momentum about the centre of mass").
     pub momentum_rate: A::Screw,
 }
 
@@ -236,28 +238,6 @@ fn no_joint_coordinates() -> ConstraintError {
     }
 }
 
-/// The body view `~RΩR` of a world screw, through the motor's rigid map on screw coordinates
-/// ([`motor::ScrewFrame`]).
-pub(crate) fn to_body<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
-    A::screw(motor::ScrewFrame::of::<A>(motor).to_body(&A::screw_coordinates(world)))
-}
-
-/// The world view `RΩ_b~R` of a body screw.
-pub(crate) fn to_world<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw {
-    A::screw(motor::ScrewFrame::of::<A>(motor).to_world(&A::screw_coordinates(body)))
-}
-
-/// The body view `~RWR` of a world wrench; a free body's wrench is exactly zero, and skipping its sandwich
-/// saves four sandwiches per generic step.
-fn body_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
-    let zero = A::screw(ScrewCoordinates::default());
-    if world == zero {
-        zero
-    } else {
-        to_body::<A>(motor, world)
-    }
-}
-
 /// One rigid body under external forces, no constraints.
 #[derive(Clone, Debug)]
 pub struct FreeBody<A: Algebra> {
@@ -282,7 +262,7 @@ impl<A: Algebra> FreeBody<A> {
     /// let spin = Vector3::new(0.1, 5.0, 0.1); // rad/s about the unstable middle axis
     /// let start = State::new(&brick, Vector3::zeros(), &UnitQuaternion::identity(), spin, Vector3::x());
     /// let run = simulate(&system, &[start], Method::Rkmk4Body, &Schedule::new(1e-3, 1.0)?)?;
-    /// assert_eq!(run.final_state[0].momentum, start.momentum);
+    /// assert_eq!(run.final_state[0].central_momentum, start.central_momentum);
     /// assert!((run.body(0)[100].energy - run.body(0)[0].energy).abs() < 1e-9); // J
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -299,10 +279,10 @@ impl<A: Algebra> FreeBody<A> {
         self
     }
 
-    /// The resultant external wrench, world frame.
-    pub fn external_wrench(&self, t: f64, state: &State<A>) -> A::Screw {
+    /// The resultant external wrench about the centre of mass, world axes.
+    pub fn central_wrench(&self, t: f64, state: &State<A>) -> A::Screw {
         self.forces.iter().fold(A::screw(Default::default()), |total, force| {
-            total + force.wrench(&self.body, t, state)
+            total + force.central_wrench_at(&self.body, t, state.motor, || state.central_momentum)
         })
     }
 
@@ -311,7 +291,7 @@ impl<A: Algebra> FreeBody<A> {
     pub fn rates_at(&self, t: f64, state: &State<A>) -> Rates<A> {
         Rates {
             body_velocity: state.body_velocity(&self.body),
-            momentum_rate: self.external_wrench(t, state),
+            momentum_rate: self.central_wrench(t, state),
         }
     }
 
@@ -327,17 +307,17 @@ impl<A: Algebra> FreeBody<A> {
         }
         let world = State {
             motor,
-            momentum: to_world::<A>(motor, body_momentum),
+            central_momentum: motor::central_from_body::<A>(motor, body_momentum),
         };
         BodyRates {
             body_velocity,
-            body_wrench: body_wrench::<A>(motor, self.external_wrench(t, &world)),
+            body_wrench: motor::body_from_central::<A>(motor, self.central_wrench(t, &world)),
         }
     }
 
     /// The power of the forces other than gravity (gravity's is the rate of its potential, in the energy): each
-    /// world wrench `(f; m_O)` on the body moving with centre-of-mass velocity v and angular velocity ω,
-    /// `f·v + (m_O − c × f)·ω`.
+    /// wrench `(f; m_c)` about the centre of mass on the body moving with centre-of-mass velocity v and angular
+    /// velocity ω, `f·v + m_c·ω`.
     fn power_at(&self, t: f64, state: &State<A>) -> f64 {
         let mut forces = self
             .forces
@@ -347,12 +327,13 @@ impl<A: Algebra> FreeBody<A> {
         if forces.peek().is_none() {
             return 0.0;
         }
-        let (centre, _) = state.pose();
         let velocity = state.world_velocity(&self.body);
         forces
             .map(|force| {
-                let w = A::screw_coordinates(force.wrench(&self.body, t, state));
-                w.l.dot(&velocity.linear) + (w.t - centre.cross(&w.l)).dot(&velocity.angular)
+                let w = A::screw_coordinates(force.central_wrench_at(&self.body, t, state.motor, || {
+                    state.central_momentum
+                }));
+                w.l.dot(&velocity.linear) + w.t.dot(&velocity.angular)
             })
             .sum()
     }
@@ -433,7 +414,7 @@ impl<A: Algebra> Dynamics<A> for FreeBody<A> {
             if self.forces.iter().any(|force| !matches!(force, Force::Gravity { .. })) {
                 let state = State {
                     motor,
-                    momentum: to_world::<A>(motor, momentum),
+                    central_momentum: motor::central_from_body::<A>(motor, momentum),
                 };
                 workspace.power += self.power_at(t, &state);
             }

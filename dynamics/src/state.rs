@@ -1,4 +1,5 @@
-//! The state of one rigid body: the motor R (body → world) and the world-frame momentum Ω (`docs/theory.md` §0, §5).
+//! The state of one rigid body: the motor R (body → world) and the momentum about the centre of mass in world axes
+//! (`docs/theory.md` §0, §5; docs/dynamics.md, "Momentum about the centre of mass").
 
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -6,14 +7,19 @@ use crate::algebra::{Algebra, ScrewCoordinates};
 use crate::body::Body;
 use crate::motor;
 
-/// `[R, Ω]`: objects move as `V = R U ~R`; Ω is the momentum bivector in the world frame.
+/// `[R, Ω_c]`: objects move as `V = R U ~R`; Ω_c is the momentum bivector in world axes about the body's centre of
+/// mass, the world momentum Ω of theory §3 translated to the centre (`Ω = T Ω_c ~T`, T the motor's translation).
+///
+/// Holding the momentum about the origin, `I ω + c × m v`, would round it to ε |c| m |v| every step, an error in the
+/// spin that grows with the distance from the origin; about the centre of mass it is `I ω`, whose round-off does
+/// not depend on where the body is (docs/dynamics.md, "Momentum about the centre of mass").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct State<A: Algebra> {
     /// R (body → world).
     pub motor: A::Motor,
-    /// Ω, the momentum bivector, world frame: `l` the linear momentum, `t` the angular momentum about the world
-    /// origin (theory §3).
-    pub momentum: A::Screw,
+    /// Ω_c: `l` the linear momentum `m v`, `t` the angular momentum about the centre of mass `I ω`, both in world
+    /// axes ([`State::momentum_about_origin`] gives Ω).
+    pub central_momentum: A::Screw,
 }
 
 /// Momenta in world terms ([`State::world_momentum`]).
@@ -47,11 +53,12 @@ pub const MAX_COORDINATE: f64 = 1e50;
 pub const LARGEST_COORDINATE: f64 = 1e6;
 
 /// How far from the world origin a body's centre of mass may be at the start of a step, in its smallest radius of
-/// gyration r = √(I_min / m) ([`crate::Body::smallest_gyration_radius`]). A state holds the angular momentum about
-/// the origin, `I ω + c × m v`, whose round-off ε |c| m |v| (ε = 2.2e-16) makes a spin error of ε |c| |v| / r² and so
-/// a velocity error of ε |c| / r relative to |v| at the body's points: 1e-9 at this distance. (A 2 kg cuboid of
-/// 0.1 × 0.2 × 0.3 m, r = 0.065 m, moving at 2.3 m/s 1e6 m out lost 3e-7 rad/s of its spin in 1 s; at 1e16 m a free
-/// cuboid lost all of it.) A scene that far out belongs nearer the origin.
+/// gyration r = √(I_min / m) ([`crate::Body::smallest_gyration_radius`]). Positions there are resolved to ε |c|
+/// (ε = 2.2e-16): 1e-9 of the body's size at this distance, so the points its joints, contacts and forces act at,
+/// and its place relative to other bodies, keep nine digits fewer than at the origin. (Its spin keeps its digits:
+/// the state holds the momentum about the centre of mass. While it held the momentum about the origin, a 2 kg
+/// cuboid of 0.1 × 0.2 × 0.3 m, r = 0.065 m, moving at 2.3 m/s 1e6 m out lost 3e-7 rad/s of its spin in 1 s.) A
+/// scene that far out belongs nearer the origin.
 pub const MAX_DISTANCE_IN_GYRATION_RADII: f64 = 1e-9 / f64::EPSILON;
 
 impl<A: Algebra> State<A> {
@@ -59,7 +66,7 @@ impl<A: Algebra> State<A> {
     /// magnitude.
     pub fn is_representable(&self) -> bool {
         let motor = A::motor_coordinates(self.motor);
-        let momentum = A::screw_coordinates(self.momentum);
+        let momentum = A::screw_coordinates(self.central_momentum);
         let within = |x: &f64| x.abs() <= MAX_COORDINATE;
         within(&motor.scalar)
             && within(&motor.pseudoscalar)
@@ -171,14 +178,27 @@ impl<A: Algebra> State<A> {
             l: angular_body,
             t: linear_body,
         });
-        let momentum = A::transform_screw(motor, body.momentum::<A>(velocity));
-        State { motor, momentum }
+        State {
+            motor,
+            central_momentum: crate::motor::central_from_body::<A>(motor, body.momentum::<A>(velocity)),
+        }
     }
 
-    /// `Ω_b = ~R Ω R`.
+    /// `Ω_b = ~R Ω R`, the body momentum: the central momentum turned to body axes.
     #[inline]
     pub fn body_momentum(&self) -> A::Screw {
-        A::transform_screw(A::reverse(self.motor), self.momentum)
+        crate::motor::body_from_central::<A>(self.motor, self.central_momentum)
+    }
+
+    /// Ω, the momentum about the world origin in world axes (theory §3): `(m v, I ω + c × m v)`. Far from the origin
+    /// its angular part is a large `c × m v` plus the spin's small `I ω`; the state keeps the two apart.
+    pub fn momentum_about_origin(&self) -> A::Screw {
+        let centre = self.pose().0;
+        let central = A::screw_coordinates(self.central_momentum);
+        A::screw(ScrewCoordinates {
+            l: central.l,
+            t: central.t + centre.cross(&central.l),
+        })
     }
 
     /// `Ḃ = M⁻¹[Ω_b]`: angular velocity and centre-of-mass velocity, both in body axes (theory §3).

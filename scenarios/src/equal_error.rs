@@ -52,7 +52,7 @@ pub struct EqualError {
 pub const EQUAL_ERROR: [EqualError; 4] = [
     EqualError {
         scene: ComparedScene::Cuboid,
-        tolerance: 1e-11,
+        tolerance: 1e-10,
         fixed: Method::Rkmk8Body,
         dt: 1e-2,
     },

@@ -37,6 +37,6 @@ pub mod contacts;
 pub mod robots;
 pub mod equal_error;
 
-pub use mechanisms::{build_mechanism, MechanismId, MechanismScene};
+pub use mechanisms::{build_mechanism, build_mechanism_at, MechanismId, MechanismScene};
 pub use robots::{build_robot, RobotScene, RobotSceneError};
 pub use single_body::{build, trajectory, Formulation, Scene, SceneAlgebra, SceneError};

@@ -123,6 +123,17 @@ pub fn build_mechanism<A: PinningAlgebra>(
     formulation: Formulation,
     stabilisation: Stabilisation,
 ) -> Result<MechanismScene<A>, SceneError> {
+    build_mechanism_at(id, formulation, stabilisation, Vector3::zeros())
+}
+
+/// [`build_mechanism`] moved by `offset`: its world pivots and its bodies' initial positions, so that the same
+/// motion runs `offset` away from the world origin.
+pub fn build_mechanism_at<A: PinningAlgebra>(
+    id: MechanismId,
+    formulation: Formulation,
+    stabilisation: Stabilisation,
+    offset: Vector3<f64>,
+) -> Result<MechanismScene<A>, SceneError> {
     let mut system = Mechanism::<A>::new();
     let gravity = Force::Gravity {
         acceleration: Vector3::new(0.0, 0.0, -reference::scenes::GRAVITY),
@@ -148,7 +159,7 @@ pub fn build_mechanism<A: PinningAlgebra>(
                     formulation,
                     "hinge 1".into(),
                     (m1.hinge_1_on_link_1, Vector3::x()),
-                    (m1.pivot, Vector3::x()),
+                    (m1.pivot + offset, Vector3::x()),
                 )?,
             )?;
             system.add_joint(
@@ -176,7 +187,7 @@ pub fn build_mechanism<A: PinningAlgebra>(
             system.add_joint(
                 crank,
                 Reference::World,
-                hinge::<A>(formulation, "A".into(), (end(l1, -1.0), y), (Vector3::zeros(), y))?,
+                hinge::<A>(formulation, "A".into(), (end(l1, -1.0), y), (offset, y))?,
             )?;
             system.add_joint(
                 coupler,
@@ -195,7 +206,7 @@ pub fn build_mechanism<A: PinningAlgebra>(
                     formulation,
                     "D".into(),
                     (end(l3, -1.0), y),
-                    (Vector3::new(m2.ground, 0.0, 0.0), y),
+                    (Vector3::new(m2.ground, 0.0, 0.0) + offset, y),
                 )?,
             )?;
             classical = m2.initial_state().to_vec();
@@ -208,7 +219,7 @@ pub fn build_mechanism<A: PinningAlgebra>(
                 let (link, b) = add(&mut system, format!("link {}", k + 1), &CHAIN.link)?;
                 bodies.push(b);
                 let (reference, reference_point) = match previous {
-                    None => (Reference::World, Vector3::zeros()),
+                    None => (Reference::World, offset),
                     Some(p) => (Reference::Body(p), bottom),
                 };
                 system.add_joint(
@@ -222,7 +233,19 @@ pub fn build_mechanism<A: PinningAlgebra>(
         }
     }
     system.set_stabilisation(stabilisation)?;
-    let mut initial: Vec<State<A>> = bodies.iter().zip(&classical).map(|(b, c)| state(b, c)).collect();
+    let mut initial: Vec<State<A>> = bodies
+        .iter()
+        .zip(&classical)
+        .map(|(b, c)| {
+            state(
+                b,
+                &BodyState {
+                    position: c.position + offset,
+                    ..*c
+                },
+            )
+        })
+        .collect();
     system.project(0.0, &mut initial)?;
     Ok(MechanismScene {
         id,

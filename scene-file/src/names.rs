@@ -14,7 +14,7 @@ use serde::Deserialize;
 pub enum IntegratorName {
     /// Classic RK4, then renormalisation (the paper's method).
     Rk4,
-    /// Runge–Kutta–Munthe-Kaas of order 4, world momentum.
+    /// Runge–Kutta–Munthe-Kaas of order 4, momentum in world axes.
     Rkmk4,
     /// RKMK4 with the momentum in the body frame.
     Rkmk4Body,

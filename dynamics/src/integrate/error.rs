@@ -69,11 +69,11 @@ pub enum StepError {
         t: f64,
     },
     /// A body is farther from the world origin than [`MAX_DISTANCE_IN_GYRATION_RADII`](crate::state::MAX_DISTANCE_IN_GYRATION_RADII) of its radii of gyration,
-    /// where its momentum about the origin no longer carries its spin to 1e-9 of its points' velocities.
+    /// where positions are resolved to more than 1e-9 of its size.
     #[error(
         "at t = {t}: body {body} is {distance:.3e} m from the world origin, farther than {limit:.3e} m (4.5e6 of its \
-         radii of gyration), where its momentum about the origin no longer carries its spin to 1e-9 of its \
-         points' velocities; put the scene's origin near the bodies"
+         radii of gyration), where positions are resolved only to 1e-9 of its size; put the scene's origin near the \
+         bodies"
     )]
     TooFarFromOrigin {
         /// The time the step was to start at (s).

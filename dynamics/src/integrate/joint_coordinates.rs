@@ -256,7 +256,7 @@ pub(crate) fn step<A: Algebra, D: Dynamics<A> + ?Sized, const S: usize>(
             && end
                 .iter()
                 .zip(states.iter())
-                .all(|(a, b)| a.motor == b.motor && a.momentum == b.momentum)
+                .all(|(a, b)| a.motor == b.motor && a.central_momentum == b.central_momentum)
     };
     match buffers.written.iter().position(|(end, _, _)| same(end)) {
         Some(k) => {

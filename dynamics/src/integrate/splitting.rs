@@ -7,13 +7,14 @@ use crate::forces::Force;
 use crate::integrate::error::SplittingError;
 use crate::integrate::methods::SplittingMethod;
 use crate::motion::FreeBody;
+use crate::motor::body_from_central;
 use crate::state::State;
 
 /// A [`FreeBody`] checked to admit a splitting integrator: its Hamiltonian is the kinetic energy
 /// `Σ Lᵢ²/2Iᵢ + |p|²/2m` (body-frame angular momentum about the centre of mass, linear momentum) plus
 /// forces that depend on the configuration only.
 ///
-/// The kinetic pieces have exact flows that leave the world momentum Ω unchanged: `Lᵢ²/2Iᵢ` turns the body
+/// The kinetic pieces have exact flows that leave the momentum Ω_c unchanged: `Lᵢ²/2Iᵢ` turns the body
 /// about its axis i at the constant rate `Lᵢ/Iᵢ`, and `|p|²/2m` translates it at the constant body velocity
 /// `p/m`. Each is applied as `R ← R exp(−½ h Ḃₖ)` (theory §3). The translation commutes with the rotations
 /// (|p| is invariant under rotations, and a translation along p keeps L about the centre of mass), so it is
@@ -44,7 +45,7 @@ impl<'a, A: Algebra> KineticSplitting<'a, A> {
     ///
     /// let top = FreeBody::<Pga>::new(Body::solid_cone(0.5, 0.4, 0.1)?).with_force(Force::gravity());
     /// assert!(KineticSplitting::new(&top).is_ok());
-    /// let drag = Force::Custom(Arc::new(|_t, state: &dynamics::State<Pga>| state.momentum * -0.1));
+    /// let drag = Force::Custom(Arc::new(|_t, state: &dynamics::State<Pga>| state.momentum_about_origin() * -0.1));
     /// let dragged = top.clone().with_force(drag);
     /// assert_eq!(KineticSplitting::new(&dragged).err(), Some(SplittingError::CustomForce { index: 1 }));
     /// # Ok::<(), dynamics::BodyError>(())
@@ -99,7 +100,7 @@ pub(super) fn strang<A: Algebra>(splitting: &KineticSplitting<'_, A>, t: f64, st
             state
         } else {
             State {
-                momentum: state.momentum + system.external_wrench(at, &state) * (0.5 * h),
+                central_momentum: state.central_momentum + system.central_wrench(at, &state) * (0.5 * h),
                 ..state
             }
         }
@@ -113,7 +114,7 @@ pub(super) fn drift<A: Algebra>(system: &FreeBody<A>, axis_order: [usize; 3], st
     let [a, b, c] = axis_order;
     let mut motor = state.motor;
     for (axis, fraction) in [(a, 0.5), (b, 0.5), (c, 1.0), (b, 0.5), (a, 0.5)] {
-        let body_momentum = A::screw_coordinates(A::transform_screw(A::reverse(motor), state.momentum));
+        let body_momentum = A::screw_coordinates(body_from_central::<A>(motor, state.central_momentum));
         let mut angular = nalgebra::Vector3::zeros();
         angular[axis] = body_momentum.t[axis] / system.body.moments()[axis];
         let velocity = A::screw(ScrewCoordinates {
@@ -122,13 +123,13 @@ pub(super) fn drift<A: Algebra>(system: &FreeBody<A>, axis_order: [usize; 3], st
         });
         motor = A::compose(motor, exp::<A>(velocity * (-0.5 * fraction * h)));
     }
-    let body_momentum = A::screw_coordinates(A::transform_screw(A::reverse(motor), state.momentum));
+    let body_momentum = A::screw_coordinates(body_from_central::<A>(motor, state.central_momentum));
     let velocity = A::screw(ScrewCoordinates {
         l: nalgebra::Vector3::zeros(),
         t: body_momentum.l / system.body.mass(),
     });
     State {
         motor: A::compose(motor, exp::<A>(velocity * (-0.5 * h))),
-        momentum: state.momentum,
+        central_momentum: state.central_momentum,
     }
 }

@@ -15,7 +15,7 @@ use crate::integrate::tableaux::{
     dop853_dense_weights, dormand_prince_5_dense_weights, BUTCHER_6, COOPER_VERNER_8, DOP853, DOP853_EXTENDED_STAGES,
     DOP853_EXTENSION, DORMAND_PRINCE_5, RK4, RK4_WEIGHTS,
 };
-use crate::motion::{to_world, Dynamics};
+use crate::motion::Dynamics;
 use crate::motor;
 use crate::state::{State, MAX_DISTANCE_IN_GYRATION_RADII};
 
@@ -163,7 +163,7 @@ impl<'a, A: Algebra, D: Dynamics<A> + ?Sized> Stepper<'a, A, D> {
             let motor = A::compose(buffers.start_motors[b], exp::<A>(sigma));
             *state = State {
                 motor,
-                momentum: to_world::<A>(motor, momentum),
+                central_momentum: motor::central_from_body::<A>(motor, momentum),
             };
         }
         Ok(Some(work_over(dt, weights, &buffers.powers)))

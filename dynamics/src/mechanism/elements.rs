@@ -88,7 +88,7 @@ fn joint_rates<A: Algebra>(model: &JointModel, child: &Kinematics<A>, parent: Op
 fn state_of<A: Algebra>(body: &crate::body::Body, k: &Kinematics<A>) -> State<A> {
     State {
         motor: k.motor,
-        momentum: k.to_world(body.momentum::<A>(k.body_velocity)),
+        central_momentum: crate::motor::central_from_body::<A>(k.motor, body.momentum::<A>(k.body_velocity)),
     }
 }
 

@@ -48,9 +48,8 @@ impl<A: Algebra> Mechanism<A> {
         }
     }
 
-    /// The world wrench of the external forces on body `index` (for world-momentum rates), at its kinematics:
-    /// gravity acts along the line through the centre of mass the frame already holds (the image of the origin,
-    /// the same point [`Force::wrench`] finds by moving the origin with the motor).
+    /// The wrench of the external forces on body `index` about its centre of mass, world axes (the momentum rate
+    /// of [`crate::motion::Rates`]).
     #[inline]
     pub(super) fn external_wrench(
         &self,
@@ -62,12 +61,7 @@ impl<A: Algebra> Mechanism<A> {
         let body = &self.bodies[index];
         body.forces.iter().fold(A::screw(Default::default()), |total, force| {
             total
-                + match force {
-                    Force::Gravity { acceleration } => {
-                        crate::forces::force_line::<A>(body.body.mass() * acceleration, kinematics.frame.position)
-                    }
-                    _ => force.wrench(&body.body, t, state),
-                }
+                + force.central_wrench_at(&body.body, t, kinematics.motor, || state.central_momentum)
         })
     }
 
@@ -95,10 +89,10 @@ impl<A: Algebra> Mechanism<A> {
                     (total + weight, power)
                 }
                 _ => {
-                    let world = force.wrench_at(&body.body, kinematics.t, kinematics.motor, || {
-                        kinematics.to_world(body_momentum)
+                    let central = force.central_wrench_at(&body.body, kinematics.t, kinematics.motor, || {
+                        crate::motor::central_from_body::<A>(kinematics.motor, body_momentum)
                     });
-                    let wrench = kinematics.to_body_coordinates(&A::screw_coordinates(world));
+                    let wrench = kinematics.frame.turn_to_body(&A::screw_coordinates(central));
                     (
                         total + wrench,
                         power + wrench_power(&wrench_coordinates(&wrench), &kinematics.velocity),
@@ -468,7 +462,7 @@ impl<A: Algebra> Mechanism<A> {
         self.check_count("states", states.len())?;
         Ok(states
             .iter()
-            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum))
+            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum_about_origin()))
     }
 
     /// The largest position and velocity residuals over the joints at this state; a contact's depth below its plane
@@ -513,7 +507,7 @@ impl<A: Algebra> Mechanism<A> {
         let mut workspace = self.new_workspace();
         for (i, state) in states.iter().enumerate() {
             workspace.motors[i] = state.motor;
-            workspace.momenta[i] = crate::motion::to_body::<A>(state.motor, state.momentum);
+            workspace.momenta[i] = state.body_momentum();
         }
         let (motors, momenta) = (workspace.motors.clone(), workspace.momenta.clone());
         self.evaluate(t, &motors, &momenta, &mut workspace)?;

@@ -39,9 +39,7 @@ impl<A: Algebra> Mechanism<A> {
                 let body = &self.bodies[i].body;
                 let k = &kinematics[i];
                 let wrench = A::screw_coordinates(rate.momentum_rate);
-                let centre = k.frame.position;
-                let force = wrench.l;
-                let moment = wrench.t - centre.cross(&force);
+                let (force, moment) = (wrench.l, wrench.t);
                 let rotation = k.frame.rotation.matrix();
                 let omega_body = rotation.tr_mul(&k.angular_velocity);
                 let moments = body.moments();

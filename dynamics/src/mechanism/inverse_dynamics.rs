@@ -74,7 +74,7 @@ impl<A: Algebra> Mechanism<A> {
         // The external wrenches: the bodies' forces and the force elements that are not actuators.
         let mut external: Vec<ScrewCoordinates> = (0..self.bodies.len())
             .map(|i| {
-                self.external_body_wrench(i, &kinematics[i], kinematics[i].to_body(states[i].momentum))
+                self.external_body_wrench(i, &kinematics[i], states[i].body_momentum())
                     .0
             })
             .collect();

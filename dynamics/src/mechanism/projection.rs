@@ -64,7 +64,7 @@ impl<A: Algebra> Mechanism<A> {
     ) -> Result<(), ConstraintError> {
         for (i, state) in states.iter().enumerate() {
             workspace.motors[i] = state.motor;
-            workspace.momenta[i] = crate::motion::to_body::<A>(state.motor, state.momentum);
+            workspace.momenta[i] = state.body_momentum();
         }
         let motors = std::mem::take(&mut workspace.motors);
         let momenta = std::mem::take(&mut workspace.momenta);
@@ -292,7 +292,7 @@ impl<A: Algebra> Mechanism<A> {
         for (i, state) in states.iter_mut().enumerate() {
             let change = wrench_screw(&workspace.reactions[i]);
             let frame = &workspace.bodies[i].kinematics.frame;
-            state.momentum = state.momentum + A::screw(frame.to_world(&change));
+            state.central_momentum = state.central_momentum + A::screw(frame.turn_to_world(&change));
         }
     }
 }

@@ -35,8 +35,8 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         &self.bodies[index].body
     }
 
-    /// In the body frames; the world momentum rate is the world external wrench (as for an unconstrained body)
-    /// plus the reaction moved to the world.
+    /// In the body frames; the momentum rate is the external wrench about the centre of mass (as for an
+    /// unconstrained body) plus the reaction turned to world axes.
     #[inline]
     fn rates(
         &self,
@@ -50,12 +50,13 @@ impl<A: Algebra> Dynamics<A> for Mechanism<A> {
         self.evaluate_states(t, states, workspace)?;
         for (i, (rate, state)) in rates.iter_mut().zip(states).enumerate() {
             let kinematics = &workspace.bodies[i].kinematics;
-            // The reactions and the force elements' wrenches, body frame, moved to the world together.
+            // The reactions and the force elements' wrenches, body frame, turned to world axes together (their
+            // moments stay about the centre of mass, as the momentum rate's are).
             let mut internal = wrench_screw(&workspace.reactions[i]);
             if !self.elements.is_empty() {
                 internal = internal + workspace.element_wrenches[i];
             }
-            let reaction = A::screw(kinematics.to_world_coordinates(&internal));
+            let reaction = A::screw(kinematics.frame.turn_to_world(&internal));
             *rate = Rates {
                 body_velocity: kinematics.body_velocity,
                 momentum_rate: self.external_wrench(i, t, state, kinematics) + reaction,

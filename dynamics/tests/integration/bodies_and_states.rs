@@ -105,10 +105,10 @@ fn twists_and_momenta<A: Algebra>() {
         rotation.inverse() * omega,
         rotation.inverse() * v,
     );
-    let difference = A::screw_coordinates(in_body.momentum - world.momentum);
+    let difference = A::screw_coordinates(in_body.central_momentum - world.central_momentum);
     assert!(difference.l.norm().max(difference.t.norm()) < 1e-14);
     let mixed = State::<A>::new(&body, position, &rotation, rotation.inverse() * omega, v);
-    let difference = A::screw_coordinates(mixed.momentum - in_body.momentum);
+    let difference = A::screw_coordinates(mixed.central_momentum - in_body.central_momentum);
     assert!(difference.l.norm().max(difference.t.norm()) < 1e-15);
 
     // Momenta against the classical formulas: p = m v, L = Q I Qᵀ ω about the centre, plus c × p about O.

@@ -511,10 +511,11 @@ fn a_motor_that_is_not_a_rigid_motion_is_refused() {
     }
 }
 
-/// Far from the origin a state cannot carry a body's spin (at 1e8 m a free cuboid read its spin back 1e-6 off, at
-/// 1e16 m it lost it): beyond `MAX_DISTANCE_IN_GYRATION_RADII` radii of gyration the step is refused with the reason;
-/// just within it, the spin reads back to 1e-9 of the points' velocities. (The round-off of each step adds to it: the
-/// motion there ends 1.4e-7 rad from the same motion at the origin after 1 s of RKMK8-body at dt = 1e-2.)
+/// Far from the origin positions are resolved to ε |c|, so the body's own points lose their digits: beyond
+/// `MAX_DISTANCE_IN_GYRATION_RADII` radii of gyration (1e-9 of the body's size) the step is refused with the reason;
+/// just within it, the spin reads back to 1e-9 of the points' velocities (the state holds the momentum about the
+/// centre of mass, so it reads back whole; while it held the momentum about the origin a free cuboid read its spin
+/// back 1e-6 off at 1e8 m and lost it at 1e16 m).
 #[test]
 fn a_body_too_far_from_the_origin_is_refused_and_one_within_keeps_its_spin() {
     use dynamics::state::MAX_DISTANCE_IN_GYRATION_RADII;

@@ -271,12 +271,12 @@ fn drives_and_body_forces_do_the_work<A: Algebra>() {
 }
 
 /// A free body under gravity, a constant couple, a force along a fixed world line and a custom drag on its angular
-/// momentum about the origin: the body reports the power of every force but gravity (whose potential is in the
+/// momentum about its centre of mass: the body reports the power of every force but gravity (whose potential is in the
 /// energy), so the energy change equals the recorded work, on the world-state and the body-momentum paths.
 fn a_free_body_reports_the_work_of_its_forces<A: Algebra>() {
     let brick = Body::cuboid(2.0, Vector3::new(0.1, 0.2, 0.3)).unwrap();
     let drag = Force::Custom(Arc::new(|_t: f64, state: &State<A>| {
-        let momentum = A::screw_coordinates(state.momentum);
+        let momentum = A::screw_coordinates(state.central_momentum);
         A::screw(dynamics::ScrewCoordinates {
             l: Vector3::zeros(),
             t: -0.05 * momentum.t,

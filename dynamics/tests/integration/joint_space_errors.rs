@@ -258,7 +258,7 @@ fn careless_joint_coordinates_are_refused() {
     let arm = arm();
     let good = states();
     let mut nan = good.clone();
-    nan[1].momentum *= f64::NAN;
+    nan[1].central_momentum *= f64::NAN;
     let cases: Vec<(&str, Outcome, &[&str])> = vec![
         (
             "positions, short",
@@ -436,7 +436,7 @@ fn wrong_counts_are_refused_with_both_counts() {
     let good = states();
     let three = [good[0], good[1], good[1]];
     let mut workspace = arm.workspace();
-    let zero = good[0].momentum * 0.0;
+    let zero = good[0].central_momentum * 0.0;
     let mut rates = vec![
         Rates {
             body_velocity: zero,

@@ -162,21 +162,17 @@ fn dense_reactions<A: Algebra>(
 fn sparse_matches_dense<A: Algebra>(seed: u64, n: usize) -> Result<(), TestCaseError> {
     let mut random = Random::new(seed);
     let (mechanism, bodies, joints) = random_tree::<A>(&mut random, n);
-    let motors: Vec<A::Motor> = (0..n)
-        .map(|_| motor::from_pose::<A>(random.vector(2.0), &random.rotation()))
+    let poses: Vec<_> = (0..n).map(|_| (random.vector(2.0), random.rotation())).collect();
+    let motors: Vec<A::Motor> = poses
+        .iter()
+        .map(|(position, rotation)| motor::from_pose::<A>(*position, rotation))
         .collect();
     let states: Vec<State<A>> = bodies
         .iter()
-        .zip(&motors)
-        .map(|(body, motor)| {
-            let velocity = A::screw(ScrewCoordinates {
-                l: random.vector(3.0),
-                t: random.vector(3.0),
-            });
-            State {
-                motor: *motor,
-                momentum: A::transform_screw(*motor, body.momentum::<A>(velocity)),
-            }
+        .zip(&poses)
+        .map(|(body, (position, rotation))| {
+            let (angular, linear) = (random.vector(3.0), random.vector(3.0));
+            State::from_body_twist(body, *position, rotation, angular, linear)
         })
         .collect();
     let momenta: Vec<A::Screw> = states.iter().map(State::body_momentum).collect();

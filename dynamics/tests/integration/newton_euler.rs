@@ -60,12 +60,13 @@ fn random_case<A: Algebra>(random: &mut Random) -> Case<A> {
     }
 }
 
-/// The state reached from `state` by following the GA rates linearly for `h`.
+/// The state reached from `state` by following the GA rates linearly for `h` (the momentum rate is the wrench about
+/// the centre of mass, the rate of the state's central momentum).
 fn follow<A: Algebra>(system: &FreeBody<A>, state: &State<A>, h: f64) -> State<A> {
     let rates = system.rates_at(0.0, state);
     State {
         motor: state.motor + rates.motor_rate(state.motor) * h,
-        momentum: state.momentum + rates.momentum_rate * h,
+        central_momentum: state.central_momentum + rates.momentum_rate * h,
     }
 }
 

@@ -87,8 +87,8 @@ fn the_record_matches_the_state<A: Algebra>() {
     }
     let [state] = states;
     assert_eq!(
-        (run.final_state[0].motor, run.final_state[0].momentum),
-        (state.motor, state.momentum)
+        (run.final_state[0].motor, run.final_state[0].central_momentum),
+        (state.motor, state.central_momentum)
     );
     let (position, orientation) = state.pose();
     let last = run.body(0).last().expect("51 samples");
@@ -98,7 +98,7 @@ fn the_record_matches_the_state<A: Algebra>() {
 /// A custom force may depend on the momentum, so the splitting refuses it (and the general methods take it).
 fn splitting_refuses_custom_forces<A: Algebra>() {
     let scene = cuboid::<A>();
-    let damping = Force::<A>::Custom(Arc::new(|_, state| state.momentum * -0.1));
+    let damping = Force::<A>::Custom(Arc::new(|_, state| state.momentum_about_origin() * -0.1));
     let system = scene.system.clone().with_force(Force::gravity()).with_force(damping);
     let schedule = Schedule::new(1e-3, 0.1).expect("1e-3 divides 0.01");
     for method in SplittingMethod::ALL {
@@ -166,7 +166,7 @@ fn bad_steps_and_states_are_refused<A: Algebra>() {
         let error = stepper.step(0.0, &mut states, dt).unwrap_err();
         assert!(matches!(error, StepError::InvalidStep { .. }), "dt = {dt}: {error}");
         let unchanged = A::motor_coordinates(states[0].motor) == A::motor_coordinates(scene.initial.motor)
-            && A::screw_coordinates(states[0].momentum) == A::screw_coordinates(scene.initial.momentum);
+            && A::screw_coordinates(states[0].central_momentum) == A::screw_coordinates(scene.initial.central_momentum);
         assert!(unchanged, "dt = {dt}: the state moved");
     }
     for t in [f64::NAN, f64::INFINITY] {
@@ -174,7 +174,7 @@ fn bad_steps_and_states_are_refused<A: Algebra>() {
         assert!(matches!(error, StepError::InvalidTime { .. }), "t = {t}: {error}");
     }
     let mut broken = scene.initial;
-    broken.momentum = broken.momentum * f64::NAN;
+    broken.central_momentum = broken.central_momentum * f64::NAN;
     let mut states = [broken];
     let error = stepper.step(0.5, &mut states, 1e-3).unwrap_err();
     assert!(

@@ -863,13 +863,13 @@ fn the_sample_cap_counts_every_body() {
 }
 
 /// A step too large for the motion is named as such, with a step that works, never blamed on a joint ("rank
-/// deficient", "cannot hold together"): the slider scene of every joint kind at dt = 0.1 and 0.3 (its own step is
-/// 1e-3).
+/// deficient", "cannot hold together"): the slider scene of every joint kind at dt = 0.1, 0.3 and 0.5 (its own step
+/// is 1e-3).
 #[test]
 fn a_step_too_large_for_a_scene_names_the_step() {
     let mut constraint_step_refusals = 0;
     for joint in SLIDER_JOINTS {
-        for dt in ["0.1", "0.3"] {
+        for dt in ["0.1", "0.3", "0.5"] {
             let source = slider_scene(joint, "virtual_power", "pga")
                 .replace("dt = 1e-3", &format!("dt = {dt}"))
                 .replace(
@@ -889,8 +889,10 @@ fn a_step_too_large_for_a_scene_names_the_step() {
             }
         }
     }
-    // Measured: the point on a line at both steps and the point on a plane at 0.3 (5 of 14 runs fail by turning).
-    assert!(constraint_step_refusals >= 3, "{constraint_step_refusals}");
+    // Measured: the point on a line at 0.5 (5 of the 21 runs fail by turning, the others run). While the
+    // state held the momentum about the origin, the position projection turned a moved body's spin and the point on
+    // a line at 0.1 and 0.3 and the point on a plane at 0.3 were refused too.
+    assert!(constraint_step_refusals >= 1, "{constraint_step_refusals}");
 }
 
 /// A duration that is not a whole number of sample intervals ends with a shorter one, sampled at its end.
