@@ -330,9 +330,9 @@ impl<A: Algebra> FreeBody<A> {
         let velocity = state.world_velocity(&self.body);
         forces
             .map(|force| {
-                let w = A::screw_coordinates(force.central_wrench_at(&self.body, t, state.motor, || {
-                    state.central_momentum
-                }));
+                let w = A::screw_coordinates(
+                    force.central_wrench_at(&self.body, t, state.motor, || state.central_momentum),
+                );
                 w.l.dot(&velocity.linear) + w.t.dot(&velocity.angular)
             })
             .sum()

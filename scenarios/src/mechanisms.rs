@@ -127,13 +127,21 @@ pub fn build_mechanism<A: PinningAlgebra>(
 }
 
 /// [`build_mechanism`] moved by `offset`: its world pivots and its bodies' initial positions, so that the same
-/// motion runs `offset` away from the world origin.
+/// motion runs `offset` away from the world origin. An offset that is not finite or has a coordinate beyond
+/// [`dynamics::state::LARGEST_COORDINATE`] is [`SceneError::Offset`].
 pub fn build_mechanism_at<A: PinningAlgebra>(
     id: MechanismId,
     formulation: Formulation,
     stabilisation: Stabilisation,
     offset: Vector3<f64>,
 ) -> Result<MechanismScene<A>, SceneError> {
+    let largest = dynamics::state::LARGEST_COORDINATE;
+    if !offset.iter().all(|x| x.abs() <= largest) {
+        return Err(SceneError::Offset {
+            offset: offset.into(),
+            largest,
+        });
+    }
     let mut system = Mechanism::<A>::new();
     let gravity = Force::Gravity {
         acceleration: Vector3::new(0.0, 0.0, -reference::scenes::GRAVITY),

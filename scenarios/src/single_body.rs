@@ -60,6 +60,18 @@ pub enum SceneError {
         /// The algebra's name, e.g. `"PGA"`.
         algebra: &'static str,
     },
+    /// A mechanism's offset ([`crate::build_mechanism_at`]) that is not finite or lies beyond
+    /// [`dynamics::state::LARGEST_COORDINATE`], where the joints' points would lose every digit below a micrometre.
+    #[error(
+        "the offset {offset:?} must be finite and within {largest:e} m of the origin in each coordinate \
+         (dynamics::state::LARGEST_COORDINATE)"
+    )]
+    Offset {
+        /// The offset asked for (m).
+        offset: [f64; 3],
+        /// The largest coordinate accepted (m).
+        largest: f64,
+    },
     /// The scene's mass or moments of inertia were rejected.
     #[error(transparent)]
     Body(#[from] BodyError),

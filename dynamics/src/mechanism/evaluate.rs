@@ -60,8 +60,7 @@ impl<A: Algebra> Mechanism<A> {
     ) -> A::Screw {
         let body = &self.bodies[index];
         body.forces.iter().fold(A::screw(Default::default()), |total, force| {
-            total
-                + force.central_wrench_at(&body.body, t, kinematics.motor, || state.central_momentum)
+            total + force.central_wrench_at(&body.body, t, kinematics.motor, || state.central_momentum)
         })
     }
 
@@ -460,9 +459,9 @@ impl<A: Algebra> Mechanism<A> {
     /// origin in the t-part (theory §3). An error unless there is one state per body.
     pub fn momentum(&self, states: &[State<A>]) -> Result<A::Screw, ConstraintError> {
         self.check_count("states", states.len())?;
-        Ok(states
-            .iter()
-            .fold(A::screw(ScrewCoordinates::default()), |total, s| total + s.momentum_about_origin()))
+        Ok(states.iter().fold(A::screw(ScrewCoordinates::default()), |total, s| {
+            total + s.momentum_about_origin()
+        }))
     }
 
     /// The largest position and velocity residuals over the joints at this state; a contact's depth below its plane

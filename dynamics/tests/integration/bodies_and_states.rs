@@ -131,3 +131,45 @@ fn twists_in_either_frame_and_world_momenta_in_pga() {
 fn twists_in_either_frame_and_world_momenta_in_cga() {
     twists_and_momenta::<Cga>();
 }
+
+/// `State::momentum_about_origin` is theory §3's Ω: `(m v, I ω + c × m v)`, the same as `world_momentum`'s parts,
+/// at the origin and 1e5 m out, while the state's own `central_momentum` does not depend on where the body is.
+/// Careless states pass through without a panic: a NaN momentum gives NaN, a zero one zero, coordinates at the
+/// largest the dynamics accepts stay finite.
+fn momentum_about_origin<A: Algebra>() {
+    let body = Body::cuboid(2.0, Vector3::new(0.1, 0.2, 0.3)).unwrap();
+    let rotation = UnitQuaternion::from_scaled_axis(Vector3::new(0.3, -0.2, 0.5));
+    let (spin, velocity) = (Vector3::new(0.2, 1.0, 0.3), Vector3::new(1.0, -2.0, 0.5));
+    let at = |position: Vector3<f64>| State::<A>::new(&body, position, &rotation, spin, velocity);
+    for position in [Vector3::zeros(), Vector3::new(1e5, -3e4, 2e4)] {
+        let state = at(position);
+        let omega = A::screw_coordinates(state.momentum_about_origin());
+        let classical = state.world_momentum();
+        assert!((omega.l - classical.linear).norm() < 1e-15 * classical.linear.norm());
+        assert!(
+            (omega.t - classical.angular_about_origin).norm() <= 1e-15 * classical.angular_about_origin.norm(),
+            "{position:?}"
+        );
+        let central = A::screw_coordinates(state.central_momentum);
+        assert!((central.t - classical.angular_about_centre_of_mass).norm() < 1e-15);
+    }
+    let mut nan = at(Vector3::zeros());
+    nan.central_momentum = nan.central_momentum * f64::NAN;
+    assert!(A::screw_coordinates(nan.momentum_about_origin()).t.iter().all(|x| x.is_nan()));
+    let mut zero = at(Vector3::new(1.0, 2.0, 3.0));
+    zero.central_momentum = zero.central_momentum * 0.0;
+    assert_eq!(A::screw_coordinates(zero.momentum_about_origin()).t, Vector3::zeros());
+    let largest = at(Vector3::new(1e24, -1e24, 1e24));
+    let omega = A::screw_coordinates(largest.momentum_about_origin());
+    assert!(omega.l.iter().chain(omega.t.iter()).all(|x| x.is_finite()), "{omega:?}");
+}
+
+#[test]
+fn momentum_about_origin_in_pga() {
+    momentum_about_origin::<Pga>();
+}
+
+#[test]
+fn momentum_about_origin_in_cga() {
+    momentum_about_origin::<Cga>();
+}

@@ -107,3 +107,27 @@ fn a_step_too_large_for_a_mechanism_is_named_with_a_step_that_works() {
         .unwrap_err();
     assert!(matches!(error, StepError::StepTooLarge { body: 0, .. }), "{error}");
 }
+
+/// Careless offsets for a moved mechanism (`scenarios::build_mechanism_at`): a non-finite one, or one beyond
+/// `dynamics::state::LARGEST_COORDINATE`, is refused as an offset (not as a joint that cannot hold), never a panic; a
+/// finite one within reach builds, wrong length being impossible by type.
+#[test]
+fn careless_mechanism_offsets_are_refused_naming_the_cause() {
+    use scenarios::build_mechanism_at;
+    for id in [MechanismId::DoublePendulum, MechanismId::FourBar, MechanismId::Chain(2)] {
+        let build = |offset| build_mechanism_at::<Pga>(id, Formulation::VirtualPower, Stabilisation::PROJECTION, offset);
+        for value in [f64::NAN, f64::INFINITY, -f64::INFINITY, 1e300, -1e300, 1.5e6] {
+            for offset in [Vector3::new(value, 0.0, 0.0), Vector3::new(0.0, 0.0, value)] {
+                let error = build(offset).map(drop).unwrap_err();
+                assert!(
+                    matches!(error, SceneError::Offset { .. }) && error.to_string().contains("must be finite"),
+                    "{id:?} at {offset:?}: {error}"
+                );
+            }
+        }
+        for value in [0.0, -1e3, 1e4, 1e6] {
+            let offset = Vector3::new(value, -value, 0.0);
+            assert!(build(offset).is_ok(), "{id:?} at {value}");
+        }
+    }
+}

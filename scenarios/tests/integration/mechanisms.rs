@@ -183,7 +183,11 @@ fn cga_double_pendulum_to_the_reference() {
 fn double_pendulum_far_from_the_origin<A: PinningAlgebra>() {
     let offset = Vector3::new(600.0, -800.0, 0.0);
     let distance = offset.norm();
-    for (method, dt) in [(Method::Rkmk4Body, 1e-3), (Method::Rkmk6Body, 2e-3), (Method::Rk4, 1e-3)] {
+    for (method, dt) in [
+        (Method::Rkmk4Body, 1e-3),
+        (Method::Rkmk6Body, 2e-3),
+        (Method::Rk4, 1e-3),
+    ] {
         let near = double_pendulum_errors::<A>(Formulation::VirtualPower, method, dt);
         let far = double_pendulum_errors_at::<A>(Formulation::VirtualPower, method, dt, offset);
         let bounds = [2.5e-14, 1.5e-14, 1e-13, 1.5e-14].map(|per_metre| per_metre * distance);

@@ -189,7 +189,10 @@ fn check<A: Algebra>(integrator: Integrator, bounds: &Bounds) {
     assert!(momentum < bounds.momentum, "momentum change {momentum:.2e}");
     assert!(line < bounds.line, "distance from the straight line {line:.2e}");
     if bounds.exact_momentum {
-        assert_eq!(simulation.final_state[0].central_momentum, scene.initial.central_momentum);
+        assert_eq!(
+            simulation.final_state[0].central_momentum,
+            scene.initial.central_momentum
+        );
     }
 }
 

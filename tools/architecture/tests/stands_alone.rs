@@ -35,7 +35,10 @@ fn every_data_file_the_anchor_models_read_is_in_the_repository() {
     let data = repository().join("reference/data");
     let mut named = 0;
     for literal in text.split('"').skip(1).step_by(2) {
-        if ![".csv", ".json", ".urdf"].iter().any(|extension| literal.ends_with(extension)) {
+        if ![".csv", ".json", ".urdf"]
+            .iter()
+            .any(|extension| literal.ends_with(extension))
+        {
             continue;
         }
         for robot in ["ur5", "solo12"] {
@@ -48,5 +51,8 @@ fn every_data_file_the_anchor_models_read_is_in_the_repository() {
         }
     }
     // M1's and M2's references, each robot's facts, trajectory and URDF.
-    assert!(named >= 2 * 6, "only {named} data files found in scenes.py: has its way of naming them changed?");
+    assert!(
+        named >= 2 * 6,
+        "only {named} data files found in scenes.py: has its way of naming them changed?"
+    );
 }
