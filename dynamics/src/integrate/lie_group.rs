@@ -482,16 +482,16 @@ pub(super) fn weighted_slopes<A: Algebra>(
 ///
 /// Unless the world momentum is a constant of the motion (`conserving`: no force, no joint). The stages integrate
 /// Euler's equations for `Ω_b`, which keep `R Ω_b ~R` only to the truncation error, so a torque-free body's world
-/// momentum would wander (7e-9 relative over 10⁶ steps at dt = 1e-3, flipping about its middle axis). Then the
-/// end state is projected onto that invariant (Hairer, Lubich & Wanner, *Geometric Numerical Integration*,
-/// §IV.4): the momentum is kept exactly (the state's, about the centre of mass, is as constant as the world one),
-/// and the motor turned about the centre of mass by the shortest arc that makes the kept angular momentum, seen from
-/// the body, point along the step's (the `t` part of momentum coordinates, `Iω`). The kept momentum is seen from the
-/// body by the step's rotation alone: while the state held the momentum about the origin, it was seen through the
-/// step's position error too, which cost scene 1 up to 20× its accuracy at a given tolerance. That keeps what the body-frame methods are for: the direction of the body's angular
-/// momentum, which sets its angular velocity, comes from Euler's equations, not from the motor's error. The turn
-/// about that axis stays the step's own, and the body's linear momentum is the world one seen from the body. The
-/// correction is the size of the local error, so the method's order is kept.
+/// momentum would wander (7e-9 relative over 10⁶ steps at dt = 1e-3, flipping about its middle axis). Then the end
+/// state is projected onto that invariant (Hairer, Lubich & Wanner, *Geometric Numerical Integration*, §IV.4): the
+/// momentum is kept exactly (the state's, about the centre of mass, is as constant as the world one), and the motor
+/// turned about the centre of mass by the shortest arc that makes the kept angular momentum, seen from the body, point
+/// along the step's (the `t` part of momentum coordinates, `Iω`). That keeps what the body-frame methods are for: the
+/// direction of the body's angular momentum, which sets its angular velocity, comes from Euler's equations, not from
+/// the motor's error. The turn about that axis stays the step's own, and the body's linear momentum is the world one
+/// seen from the body. The correction is the size of the local error, so the method's order is kept. The kept momentum
+/// is seen from the body by the step's rotation alone: while the state held the momentum about the origin, it was seen
+/// through the step's position error too, which cost scene 1 up to 20× its accuracy at a given tolerance.
 pub(super) fn end_of_body_step<A: Algebra>(
     conserving: bool,
     start: &State<A>,

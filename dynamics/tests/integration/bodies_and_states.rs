@@ -155,7 +155,10 @@ fn momentum_about_origin<A: Algebra>() {
     }
     let mut nan = at(Vector3::zeros());
     nan.central_momentum = nan.central_momentum * f64::NAN;
-    assert!(A::screw_coordinates(nan.momentum_about_origin()).t.iter().all(|x| x.is_nan()));
+    assert!(A::screw_coordinates(nan.momentum_about_origin())
+        .t
+        .iter()
+        .all(|x| x.is_nan()));
     let mut zero = at(Vector3::new(1.0, 2.0, 3.0));
     zero.central_momentum = zero.central_momentum * 0.0;
     assert_eq!(A::screw_coordinates(zero.momentum_about_origin()).t, Vector3::zeros());

@@ -115,7 +115,8 @@ fn a_step_too_large_for_a_mechanism_is_named_with_a_step_that_works() {
 fn careless_mechanism_offsets_are_refused_naming_the_cause() {
     use scenarios::build_mechanism_at;
     for id in [MechanismId::DoublePendulum, MechanismId::FourBar, MechanismId::Chain(2)] {
-        let build = |offset| build_mechanism_at::<Pga>(id, Formulation::VirtualPower, Stabilisation::PROJECTION, offset);
+        let build =
+            |offset| build_mechanism_at::<Pga>(id, Formulation::VirtualPower, Stabilisation::PROJECTION, offset);
         for value in [f64::NAN, f64::INFINITY, -f64::INFINITY, 1e300, -1e300, 1.5e6] {
             for offset in [Vector3::new(value, 0.0, 0.0), Vector3::new(0.0, 0.0, value)] {
                 let error = build(offset).map(drop).unwrap_err();
