@@ -402,8 +402,8 @@ impl Anchors {
     pub(crate) fn occasion_note(&self) -> Option<String> {
         let occasion = self.occasion()?;
         Some(format!(
-            "Measured in this run: {} MuJoCo and Pinocchio figures by `tools/anchors/measure` with the reference \
-             set's scripts, {}, 1-minute load average {:.2} before and {:.2} after on {} cores; each the fastest of \
+            "Measured in this run: {} MuJoCo and Pinocchio figures by `tools/anchors/measure` (its models in \
+             `tools/anchors/scenes.py`), {}, 1-minute load average {:.2} before and {:.2} after on {} cores; each the fastest of \
              at least {MIN_REPEATS} repeats (listed with its command at the end of the report).",
             self.len(),
             occasion.when,

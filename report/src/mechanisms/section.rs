@@ -265,13 +265,13 @@ pub(crate) fn mechanism_section(
         "## Mechanisms (docs/scenes.md)\n\nSeveral bodies joined by hinges or ball joints, each body its own motor and \
          momentum, the reactions solved for the whole system in the kinetic metric (docs/mechanisms.md). Errors are \
          against the GA-independent references of `reference::multibody` (M1: reduced coordinates, DOP853; M2: the \
-         crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}.\n",
+         crank angle ODE); violations are measured from the sampled poses. MuJoCo and Pinocchio: {}\n",
         match anchors.occasion_note() {
             Some(note) => format!(
                 "their errors and the figures marked recorded, {}. {note}",
                 recorded_anchors::MECHANISMS_MEASURED
             ),
-            None => recorded_anchors::MECHANISMS_MEASURED.to_owned(),
+            None => format!("{}.", recorded_anchors::MECHANISMS_MEASURED),
         }
     );
     let _ = writeln!(out, "### Speed at MuJoCo's accuracy\n");
