@@ -176,7 +176,7 @@ pub fn run_job_with_robots(
         adaptive: adaptive_results,
         failures: Vec::new(),
     };
-    let figure_files = single_body_figures(output, &trajectories, &summary.results)?;
+    let figure_files = single_body_figures(output, &trajectories, &summary.results, anchors)?;
     write_report(&summary, &figure_files, anchors)?;
     summary.failures = failures(&summary);
     Ok(summary)
@@ -202,6 +202,7 @@ fn single_body_figures(
     output: &Path,
     trajectories: &Path,
     results: &[RunResult],
+    anchors: &Anchors,
 ) -> Result<HashMap<SceneId, Vec<String>>, JobError> {
     let mut figure_files: HashMap<SceneId, Vec<String>> = HashMap::new();
     for scene in SceneId::ALL {
@@ -209,7 +210,7 @@ fn single_body_figures(
         if runs.is_empty() {
             continue;
         }
-        figure_files.insert(scene, figures::scene_figures(output, scene, &runs)?);
+        figure_files.insert(scene, figures::scene_figures(output, scene, &runs, anchors)?);
         // The trajectories of the showcase step, one CSV per configuration.
         let outcomes: Vec<&Outcome> = runs.iter().filter_map(|(_, r)| r.as_ref().ok()).collect();
         if let Some(dt) = showcase_step(&outcomes) {
@@ -243,7 +244,7 @@ fn write_report(
     let output = &job.output;
     let threads = rayon::current_num_threads();
     let report_path = output.join("report.md");
-    let mut text = section::report(&job.results, threads, figure_files);
+    let mut text = section::report(&job.results, threads, figure_files, anchors);
     text.push_str(&mechanism_section(output, &job.mechanisms, anchors)?);
     text.push_str(&robot_section(output, &job.robots, anchors)?);
     let fixed = FixedRuns {

@@ -12,11 +12,12 @@ use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use reference::robots::RobotId;
+use reference::SceneId;
 use serde::Deserialize;
 
 use crate::recorded_anchors::{
-    CHAIN_BALL_TIME_PER_STEP, CHAIN_HINGE_TIME_PER_STEP, DOUBLE_PENDULUM, FOUR_BAR_TIME_PER_STEP, MECHANISMS_DATE,
-    PINOCCHIO_CHAIN_EVALUATION, RECORDED_WHEN,
+    self, Anchor, CHAIN_BALL_TIME_PER_STEP, CHAIN_HINGE_TIME_PER_STEP, DOUBLE_PENDULUM, FOUR_BAR_TIME_PER_STEP,
+    MECHANISMS_DATE, PINOCCHIO_CHAIN_EVALUATION, RECORDED_WHEN, SINGLE_BODY_MEASURED, SINGLE_BODY_RECORDED,
 };
 
 /// The version of the file layout this report reads.
@@ -69,8 +70,8 @@ pub enum AnchorsError {
     Machine(String),
     /// A figure the report does not use: a typo would otherwise leave the recorded constant in place silently.
     #[error(
-        "figure {0:?}: not a figure the report uses (m1, m2, m3-ball-N, m3-hinge-N, m3-pinocchio-N for N = \
-             1, 2, 4, …, 64, ur5-dt1e-3, ur5-dt1e-4, solo12-dt1e-3, solo12-dt1e-4)"
+        "figure {0:?}: not a figure the report uses (scene1, scene2, scene3a, scene4-circle, m1, m2, m3-ball-N, \
+             m3-hinge-N, m3-pinocchio-N for N = 1, 2, 4, …, 64, ur5-dt1e-3, ur5-dt1e-4, solo12-dt1e-3, solo12-dt1e-4)"
     )]
     UnknownKey(String),
     /// The same figure twice.
@@ -162,6 +163,8 @@ pub struct Anchors {
 /// A figure the report uses, by the key the anchors file names it with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Key {
+    /// A single-body scene with a recorded MuJoCo anchor, MuJoCo RK4, s per step at dt = 1e-3.
+    SingleBody(SceneId),
     /// M1, MuJoCo RK4, s per step at dt = 1e-3.
     DoublePendulum,
     /// M2, MuJoCo RK4 with the loop closed by an equality, s per step at dt = 1e-3.
@@ -177,7 +180,12 @@ pub(crate) enum Key {
 impl Key {
     /// Every figure the report can take from a file.
     fn all() -> Vec<Key> {
-        let mut keys = vec![Key::DoublePendulum, Key::FourBar];
+        let mut keys: Vec<Key> = SceneId::ALL
+            .into_iter()
+            .filter(|&scene| recorded_anchors::anchor(scene).is_some())
+            .map(Key::SingleBody)
+            .collect();
+        keys.extend([Key::DoublePendulum, Key::FourBar]);
         for &(links, _) in &CHAIN_BALL_TIME_PER_STEP {
             keys.extend([
                 Key::Chain { ball: true, links },
@@ -199,9 +207,18 @@ impl Key {
             .map(|step| Key::Robot(robot, step))
     }
 
-    /// The name in the file: "m1", "m3-ball-8", "m3-pinocchio-8", "ur5-dt1e-3".
+    /// The name in the file: "scene1", "scene4-circle", "m1", "m3-ball-8", "m3-pinocchio-8", "ur5-dt1e-3".
     fn name(self) -> String {
         match self {
+            Key::SingleBody(scene) => match scene {
+                SceneId::Cuboid => "scene1",
+                SceneId::Pendulum => "scene2",
+                SceneId::TopCusp => "scene3a",
+                SceneId::TopSteady => "scene3b",
+                SceneId::RodOnSphere => "scene4-sphere",
+                SceneId::RodOnCircle => "scene4-circle",
+            }
+            .to_owned(),
             Key::DoublePendulum => "m1".to_owned(),
             Key::FourBar => "m2".to_owned(),
             Key::Chain { ball, links } => format!("m3-{}-{links}", if ball { "ball" } else { "hinge" }),
@@ -213,7 +230,7 @@ impl Key {
     /// The step the figure is measured at (s); None for a time per dynamics evaluation.
     fn step(self) -> Option<f64> {
         match self {
-            Key::DoublePendulum | Key::FourBar | Key::Chain { .. } => Some(MECHANISM_STEP),
+            Key::SingleBody(_) | Key::DoublePendulum | Key::FourBar | Key::Chain { .. } => Some(MECHANISM_STEP),
             Key::PinocchioChain(_) => None,
             Key::Robot(_, step) => Some(ROBOT_STEPS[step].0),
         }
@@ -537,6 +554,32 @@ fn unix_seconds(text: &str) -> Option<i64> {
     Some(days * 86_400 + hour * 3600 + minute * 60 + second)
 }
 
+/// A single-body scene's MuJoCo anchor, if it has one: the recorded errors (they belong to the model, not the
+/// machine) with the time per step measured in this run where `anchors` has it; and where that time comes from.
+pub(crate) fn single_body_anchor(anchors: &Anchors, scene: SceneId) -> Option<(Anchor, Source<'_>)> {
+    let recorded = recorded_anchors::anchor(scene)?;
+    let time = anchors.time(Key::SingleBody(scene), recorded.time_per_step, SINGLE_BODY_RECORDED);
+    Some((
+        Anchor {
+            time_per_step: time.seconds,
+            ..recorded
+        },
+        time.source,
+    ))
+}
+
+/// Where a single-body scene's MuJoCo figures come from: recorded, or with the time measured in this run.
+pub(crate) fn single_body_provenance(source: &Source) -> String {
+    match source {
+        Source::Recorded(_) => SINGLE_BODY_MEASURED.to_owned(),
+        Source::Measured(..) => format!(
+            "MuJoCo 4.0 (RK4): its time per step measured in this run by `tools/anchors/measure` (its models in \
+             `tools/anchors/scenes.py`), its errors recorded in this code on {}",
+            SINGLE_BODY_RECORDED
+        ),
+    }
+}
+
 /// M1's MuJoCo time per step at dt = 1e-3: measured in this run if `anchors` has it, else [`DOUBLE_PENDULUM`]'s.
 pub(crate) fn double_pendulum_time(anchors: &Anchors) -> Time<'_> {
     anchors.time(Key::DoublePendulum, DOUBLE_PENDULUM.time_per_step, MECHANISMS_DATE)
@@ -646,5 +689,38 @@ mod tests {
         let unique: std::collections::BTreeSet<&String> = names.iter().collect();
         assert_eq!(unique.len(), names.len());
         assert!(names.contains(&"m3-hinge-64".to_owned()) && names.contains(&"solo12-dt1e-4".to_owned()));
+        // The single bodies with a recorded anchor, and no others.
+        for name in ["scene1", "scene2", "scene3a", "scene4-circle"] {
+            assert!(names.contains(&name.to_owned()), "{name}");
+        }
+        assert!(!names.contains(&"scene3b".to_owned()) && !names.contains(&"scene4-sphere".to_owned()));
+    }
+
+    /// A single body's measured time replaces the recorded one and says so; its errors stay the recorded ones; a
+    /// scene without a recorded anchor has none, measured or not.
+    #[test]
+    fn a_single_body_takes_its_measured_time_and_keeps_its_recorded_errors() {
+        let file = FILE.replace(r#""key": "m2""#, r#""key": "scene1""#);
+        let anchors = Anchors::parse(&file, SystemTime::now()).unwrap();
+        let recorded = recorded_anchors::anchor(SceneId::Cuboid).unwrap();
+        let (anchor, source) = single_body_anchor(&anchors, SceneId::Cuboid).unwrap();
+        assert_eq!(anchor.time_per_step, 8e-6);
+        assert_eq!(anchor.points, recorded.points);
+        assert_eq!(source.short(), "measured in this run");
+        assert!(single_body_provenance(&source).contains("measured in this run by `tools/anchors/measure`"));
+        let (unmeasured, source) = single_body_anchor(&anchors, SceneId::Pendulum).unwrap();
+        assert_eq!(
+            unmeasured.time_per_step,
+            recorded_anchors::anchor(SceneId::Pendulum).unwrap().time_per_step
+        );
+        assert_eq!(single_body_provenance(&source), SINGLE_BODY_MEASURED);
+        assert!(single_body_anchor(&anchors, SceneId::TopSteady).is_none());
+        // A single-body figure measured at another step is refused by name.
+        let wrong = file.replace(r#""dt": 0.001"#, r#""dt": 0.01"#);
+        let error = Anchors::parse(&wrong, SystemTime::now()).unwrap_err().to_string();
+        assert!(
+            error.contains("scene1") && error.contains("the report compares it at"),
+            "{error}"
+        );
     }
 }

@@ -44,10 +44,11 @@ pub(crate) const SINGLE_BODY_MEASURED: &str = "MuJoCo 4.0 (RK4) figures measured
      team on the project's 2-core machine and recorded in this code on 2026-11-22 (the day of the measurement is \
      not recorded); constants, not measured by this run";
 
-/// The legend of the single-body MuJoCo points on the plots.
-pub(crate) fn single_body_legend() -> String {
-    // No-break space: the legend wraps before "(recorded", not inside it.
-    format!("MuJoCo 4.0 RK4 (recorded\u{a0}{SINGLE_BODY_RECORDED})")
+/// The legend of the single-body MuJoCo points on the plots, `when` being "recorded 2026-11-22" or "measured in this
+/// run".
+pub(crate) fn single_body_legend(when: &str) -> String {
+    // No-break spaces: the legend wraps before the parenthesis, not inside it.
+    format!("MuJoCo 4.0 RK4 ({})", when.replace(' ', "\u{a0}"))
 }
 
 /// The day the mechanisms' MuJoCo and Pinocchio figures were measured ([`MECHANISMS_MEASURED`]).
@@ -76,14 +77,14 @@ pub(crate) fn anchor(scene: SceneId) -> Option<Anchor> {
     }
 }
 
-/// The anchor as (CPU per simulated second, error) points.
-pub(crate) fn work_precision_points(scene: SceneId) -> Option<Vec<(f64, f64)>> {
-    anchor(scene).map(|a| {
-        a.points
+impl Anchor {
+    /// The anchor as (CPU per simulated second, error) points.
+    pub(crate) fn work_precision_points(&self) -> Vec<(f64, f64)> {
+        self.points
             .iter()
-            .map(|&(dt, error)| (a.time_per_step / dt, error))
+            .map(|&(dt, error)| (self.time_per_step / dt, error))
             .collect()
-    })
+    }
 }
 
 /// Where the mechanisms' MuJoCo and Pinocchio figures below come from ([`MECHANISMS_DATE`]), printed beside them in

@@ -34,6 +34,19 @@ def measured(name, python, workdir):
         return command, json.load(f)
 
 
+SINGLE_BODIES = ("scene1", "scene2", "scene3a", "scene4-circle")
+
+
+def single_bodies(python, workdir):
+    """Scenes 1, 2, 3a and 4 (circle): MuJoCo RK4 s per step at dt = 1e-3; its errors at T at dt = 1e-2, 1e-3, 1e-4
+    (rad; scene 4, m)."""
+    command, runs = measured("single_bodies", python, workdir)
+    for key in SINGLE_BODIES:
+        errors = [{"dt": dt, "error": runs[f"{key}_{dt:g}"]["error"]} for dt in (1e-2, 1e-3, 1e-4)]
+        seconds = runs[f"{key}_0.001"]["seconds_per_step"]
+        yield command, key, "MuJoCo 4.0 RK4 step at dt = 1e-3", 1e-3, seconds, errors
+
+
 def m1(python, workdir):
     """M1: MuJoCo RK4 s per step at dt = 1e-3; its end orientation errors (rad) at dt = 1e-2, 1e-3, 1e-4."""
     command, steps = measured("m1", python, workdir)
@@ -78,7 +91,7 @@ def robots(python, workdir):
             yield command, key, f"MuJoCo 4.0 RK4 step at dt = {step}", float(dt), run["seconds_per_step"], errors
 
 
-MEASUREMENTS = (m1, m2, m3, m3_pinocchio, robots)
+MEASUREMENTS = (single_bodies, m1, m2, m3, m3_pinocchio, robots)
 
 
 def main():

@@ -1,8 +1,9 @@
 """MuJoCo's and Pinocchio's costs (and MuJoCo's errors) on this repository's reference scenes, one measurement per
 call, written as JSON for measure.py. Everything it reads is in the repository: the scene parameters of
-docs/scenes.md, the reference trajectories and robots of reference/data.
+docs/scenes.md, the reference trajectories and robots of reference/data. Every model is written here from those
+parameters.
 
-Usage: python scenes.py {m1,m2,m3,m3_pinocchio,robots} OUTFILE
+Usage: python scenes.py {single_bodies,m1,m2,m3,m3_pinocchio,robots} OUTFILE
 
 Times are thread CPU seconds per step (MuJoCo) or per evaluation (Pinocchio) of one run in this process; measure.py
 runs each measurement in several fresh processes and keeps the fastest. Errors compare MuJoCo's state with the
@@ -92,6 +93,60 @@ def m1():
         errors = [rotation_angle(data.xquat[model.body(f"link{k}").id],
                                  [end[f"q{c}{k}"] for c in "wxyz"]) for k in (1, 2)]
         figures[f"{dt:g}"] = {"seconds_per_step": cpu / steps, "orientation_error_rad": max(errors)}
+    return figures
+
+
+def single_body_run(reference, worldbody, gravity, start, dt):
+    """One single-body scene at dt from `start` (qpos, qvel), over its reference's span: the CPU per step, the model,
+    its data at the end and the reference's last row."""
+    rows = reference_rows(os.path.join(DATA, reference))
+    model = mujoco.MjModel.from_xml_string(
+        f'<mujoco><option gravity="0 0 {-gravity!r}" integrator="RK4" timestep="{dt!r}">'
+        f'<flag contact="disable"/></option><worldbody>{worldbody}</worldbody></mujoco>')
+    data = mujoco.MjData(model)
+    data.qpos[:], data.qvel[:] = start
+    steps = round(rows[-1]["t"] / dt)
+    cpu = stepping_cpu(model, data, steps)
+    mujoco.mj_kinematics(model, data)
+    return cpu / steps, model, data, rows[-1]
+
+
+def single_bodies():
+    """The single-body scenes of docs/scenes.md that have a MuJoCo anchor, RK4 at dt = 1e-2, 1e-3, 1e-4: per step its
+    cost, and its error at T against reference/data (the end orientation; scene 4, the centre of mass)."""
+    # The rod of scenes 2 and 4: 1 kg, 1 m, its centre of mass half a metre from the end its frame sits at.
+    rod = f'<inertial pos="0 0 -0.5" mass="1" diaginertia="{1 / 12!r} {1 / 12!r} 0.001"/>'
+    half_tilt = math.pi / 12  # scene 3 starts turned by π/6 about world x
+    scenes = {
+        # Scene 1: the free cuboid (1, 2, 3), no gravity; a free joint's angular velocity is in the body's axes.
+        "scene1": ("ref_scene1_cuboid.csv", '<body name="body"><freejoint/>'
+                   + inertial(1.0, (1.0, 2.0, 3.0), (0, 0, 0)) + "</body>", 0.0,
+                   ([0, 0, 0, 1, 0, 0, 0], [1.0, 0.5, 0.0, 0.1, 10.0, 0.0])),
+        # Scene 2: the rod hinged at its end about world y, from horizontal (+π/2 puts its centre at −x).
+        "scene2": ("ref_scene2_pendulum.csv", '<body name="body"><joint type="hinge" axis="0 1 0"/>' + rod + "</body>",
+                   GRAVITY, ([math.pi / 2], [0.0])),
+        # Scene 3a: the cone on its tip (its centre of mass 0.75 up the axis), spinning at 20 rad/s about the axis.
+        "scene3a": ("ref_scene3a_top_cusp.csv", '<body name="body"><joint type="ball"/><inertial pos="0 0 0.75" mass="1" '
+                    'diaginertia="0.1875 0.1875 0.3"/></body>', GRAVITY,
+                    ([math.cos(half_tilt), math.sin(half_tilt), 0, 0], [0.0, 0.0, 20.0])),
+        # Scene 4: the rod's end on the horizontal circle of radius 0.5 about the origin, in reduced coordinates: an
+        # arm of negligible mass (1e-14 kg; 1e-9 kg moves the end state by 8e-9 m) turning about world z carries a
+        # ball joint round the circle. The start: the end at (0.5, 0, 0) at rest, the rod spinning at 1 rad/s about x.
+        "scene4-circle": ("ref_scene4_rod_end_on_circle.csv",
+                          '<body name="arm"><joint type="hinge" axis="0 0 1"/><inertial pos="0 0 0" mass="1e-14" '
+                          'diaginertia="1e-14 1e-14 1e-14"/><body name="body" pos="0.5 0 0"><joint type="ball"/>'
+                          + rod + "</body></body>", GRAVITY, ([0.0, 1, 0, 0, 0], [0.0, 1.0, 0.0, 0.0])),
+    }
+    figures = {}
+    for key, (reference, worldbody, gravity, start) in scenes.items():
+        for dt in (1e-2, 1e-3, 1e-4):
+            seconds, model, data, end = single_body_run(reference, worldbody, gravity, start, dt)
+            body = model.body("body").id
+            if key == "scene4-circle":
+                error = float(np.linalg.norm(data.xipos[body] - [end["px"], end["py"], end["pz"]]))
+            else:
+                error = rotation_angle(data.xquat[body], [end[f"q{c}"] for c in "wxyz"])
+            figures[f"{key}_{dt:g}"] = {"seconds_per_step": seconds, "error": error}
     return figures
 
 
@@ -251,7 +306,14 @@ def robots():
     return figures
 
 
-MEASUREMENTS = {"m1": m1, "m2": m2, "m3": m3, "m3_pinocchio": m3_pinocchio, "robots": robots}
+MEASUREMENTS = {
+    "single_bodies": single_bodies,
+    "m1": m1,
+    "m2": m2,
+    "m3": m3,
+    "m3_pinocchio": m3_pinocchio,
+    "robots": robots,
+}
 
 if __name__ == "__main__":
     if len(sys.argv) != 3 or sys.argv[1] not in MEASUREMENTS:

@@ -19,6 +19,7 @@ use scene_file::AlgebraKind;
 use super::measure::headline_error;
 use super::sweep::{Outcome, RunResult};
 use crate::markdown::formulation_rank;
+use crate::measured_anchors::{single_body_anchor, single_body_provenance, Anchors};
 use crate::panels::{panel_title, running_max, slot, styled, Family, LOG_FLOOR};
 use crate::plot::{chart, figure_with_caption, Labels, Panel, PlotError, Series};
 use crate::recorded_anchors;
@@ -124,8 +125,14 @@ fn traced_path(scene: SceneId) -> (&'static str, &'static str, &'static str, Pro
     }
 }
 
-/// Draws every figure of one scene into `dir`; returns the file names.
-pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) -> Result<Vec<String>, PlotError> {
+/// Draws every figure of one scene into `dir`, MuJoCo's points at the time `anchors` measured where it has one;
+/// returns the file names.
+pub(crate) fn scene_figures(
+    dir: &Path,
+    scene: SceneId,
+    results: &[&RunResult],
+    anchors: &Anchors,
+) -> Result<Vec<String>, PlotError> {
     let outcomes: Vec<&Outcome> = results.iter().filter_map(|(_, r)| r.as_ref().ok()).collect();
     let mut files = Vec::new();
     if outcomes.is_empty() {
@@ -133,7 +140,12 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
     }
     let groups = panels_of(&outcomes);
     let titles: Vec<String> = groups.iter().map(|g| panel_title(g.formulation, g.family)).collect();
-    files.push(work_precision_figure(dir, scene, &outcomes, (&groups, &titles))?);
+    files.push(work_precision_figure(
+        dir,
+        (scene, anchors),
+        &outcomes,
+        (&groups, &titles),
+    )?);
     // Over time, at the showcase step.
     let Some(dt) = showcase_step(&outcomes) else {
         return Ok(files);
@@ -147,7 +159,7 @@ pub(crate) fn scene_figures(dir: &Path, scene: SceneId, results: &[&RunResult]) 
 /// they compare (runs of the scene's full length); returns its file name.
 fn work_precision_figure(
     dir: &Path,
-    scene: SceneId,
+    (scene, anchors): (SceneId, &Anchors),
     outcomes: &[&Outcome],
     (groups, titles): (&[PanelRuns], &[String]),
 ) -> Result<String, PlotError> {
@@ -155,7 +167,11 @@ fn work_precision_figure(
     let mismatch = outcomes
         .iter()
         .find_map(|o| crate::measure::length_mismatch(o.config.duration, full));
-    let mujoco_points = recorded_anchors::work_precision_points(scene).filter(|_| mismatch.is_none());
+    let anchor = single_body_anchor(anchors, scene);
+    let mujoco_points = anchor
+        .as_ref()
+        .filter(|_| mismatch.is_none())
+        .map(|(anchor, source)| (anchor.work_precision_points(), source.short()));
     let y = match scene {
         SceneId::RodOnSphere | SceneId::RodOnCircle => "centre-of-mass position error at T (m)",
         _ => "orientation error at T (rad)",
@@ -181,9 +197,9 @@ fn work_precision_figure(
                     styled(line, *algebra, member)
                 })
                 .collect();
-            if let Some(points) = &mujoco_points {
+            if let Some((points, when)) = &mujoco_points {
                 series.push(Series::reference_points(
-                    recorded_anchors::single_body_legend(),
+                    recorded_anchors::single_body_legend(when),
                     points.clone(),
                 ));
             }
@@ -192,15 +208,15 @@ fn work_precision_figure(
                 .log_y()
         })
         .collect();
-    let caption = match (recorded_anchors::anchor(scene), &mismatch) {
+    let caption = match (&anchor, &mismatch) {
         (None, _) => "No MuJoCo figures for this scene.".to_owned(),
         (Some(_), Some(why)) => format!(
             "MuJoCo's points are not drawn, {why}: its errors were measured at the scene's full T. Dark, solid: \
              PGA; light, dashed: CGA."
         ),
-        (Some(_), None) => format!(
+        (Some((_, source)), None) => format!(
             "Black triangles: {}, at dt = 1e-2, 1e-3, 1e-4. Dark, solid: PGA; light, dashed: CGA.",
-            recorded_anchors::SINGLE_BODY_MEASURED
+            single_body_provenance(source)
         ),
     };
     let name = format!("{}_work_precision.png", stem(scene));

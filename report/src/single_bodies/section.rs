@@ -11,7 +11,8 @@ use super::measure::headline_error;
 use super::sweep::{Config, RunResult};
 use crate::markdown::{compare_rows, formulation_rank, integrator_rank, scientific, table_header, RowKey};
 use crate::measure::{agreement, cost_at_error};
-use crate::recorded_anchors;
+use crate::measured_anchors::{single_body_anchor, single_body_provenance as mujoco_provenance, Anchors, Source};
+use crate::recorded_anchors::{self, Anchor};
 
 /// A run's [`RowKey`].
 pub(crate) fn row_key(config: &Config) -> RowKey {
@@ -119,6 +120,7 @@ fn agreement_table(out: &mut String, results: &[&RunResult]) {
 /// (see [`cost_at_error`]): (label, cost, the cheapest measured run that reaches it as (dt, error,
 /// cost)). Only configurations that reach it.
 fn costs_at_mujoco_error(scene: SceneId, runs: &[&RunResult]) -> Vec<Ranked> {
+    // The errors are the recorded ones whether or not the time was measured in this run.
     let Some(anchor) = recorded_anchors::anchor(scene) else {
         return Vec::new();
     };
@@ -166,14 +168,33 @@ pub(crate) fn length_mismatch(scene: SceneId, runs: &[&RunResult]) -> Option<Str
 /// that error as (dt, error, CPU per simulated second).
 type Ranked = (String, f64, (f64, f64, f64));
 
+/// The anchored scenes' MuJoCo figures, the time measured in this run where `anchors` has it.
+fn scene_anchors(anchors: &Anchors) -> Vec<(SceneId, Anchor, Source<'_>)> {
+    SceneId::ALL
+        .into_iter()
+        .filter_map(|scene| single_body_anchor(anchors, scene).map(|(anchor, source)| (scene, anchor, source)))
+        .collect()
+}
+
 /// Per anchored scene, the cheapest configuration at MuJoCo's accuracy and the ratio of the costs; for a run
 /// of another length than the scene's T, "n/a" instead.
-fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>, mismatches: &HashMap<SceneId, String>) {
+fn mujoco_summary(
+    out: &mut String,
+    (rankings, mismatches): (&HashMap<SceneId, Vec<Ranked>>, &HashMap<SceneId, String>),
+    anchors: &Anchors,
+) {
     let mut rows = Vec::new();
-    for scene in SceneId::ALL {
-        let Some(anchor) = recorded_anchors::anchor(scene) else {
-            continue;
-        };
+    let mut provenances: Vec<String> = Vec::new();
+    let mut whens: Vec<String> = Vec::new();
+    for (scene, anchor, source) in scene_anchors(anchors) {
+        for (list, item) in [
+            (&mut provenances, mujoco_provenance(&source)),
+            (&mut whens, source.short()),
+        ] {
+            if !list.contains(&item) {
+                list.push(item);
+            }
+        }
         if let Some(why) = mismatches.get(&scene) {
             rows.push(format!(
                 "| {} | {} | – | – | {why} | – |",
@@ -211,18 +232,24 @@ fn mujoco_summary(out: &mut String, rankings: &HashMap<SceneId, Vec<Ranked>>, mi
     let _ = writeln!(
         out,
         "| scene | MuJoCo's error at dt = 1e-3 (recorded {date}) | cheapest configuration | its CPU per simulated s (s) \
-         | MuJoCo's / ours (MuJoCo recorded {date}) | measured run |",
-        date = recorded_anchors::SINGLE_BODY_RECORDED
+         | MuJoCo's / ours (MuJoCo's time {when}) | measured run |",
+        date = recorded_anchors::SINGLE_BODY_RECORDED,
+        when = whens.join(" or ")
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|");
     for row in rows {
         let _ = writeln!(out, "{row}");
     }
-    let _ = writeln!(out, "\n{}.\n", recorded_anchors::SINGLE_BODY_MEASURED);
+    let _ = writeln!(out, "\n{}.\n", provenances.join("; "));
 }
 
 /// The whole report.
-pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<SceneId, Vec<String>>) -> String {
+pub(crate) fn report(
+    results: &[RunResult],
+    threads: usize,
+    figures: &HashMap<SceneId, Vec<String>>,
+    anchors: &Anchors,
+) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "# Work-precision report\n");
     let _ = writeln!(
@@ -247,7 +274,7 @@ pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<Sc
         .iter()
         .filter_map(|(scene, runs)| Some((*scene, length_mismatch(*scene, runs)?)))
         .collect();
-    mujoco_summary(&mut out, &rankings, &mismatches);
+    mujoco_summary(&mut out, (&rankings, &mismatches), anchors);
     for (scene, runs) in runs_by_scene {
         if runs.is_empty() {
             continue;
@@ -258,7 +285,7 @@ pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<Sc
         }
         scene_table(&mut out, &runs);
         let _ = writeln!(out);
-        if let Some(anchor) = recorded_anchors::anchor(scene) {
+        if let Some((anchor, source)) = single_body_anchor(anchors, scene) {
             let points: Vec<String> = anchor
                 .points
                 .iter()
@@ -270,7 +297,7 @@ pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<Sc
                 anchor.time_per_step * 1e6,
                 scene.parameters().duration,
                 points.join(", "),
-                recorded_anchors::SINGLE_BODY_MEASURED,
+                mujoco_provenance(&source),
             );
             let ranked = &rankings[&scene];
             if let Some(why) = mismatches.get(&scene) {
@@ -281,16 +308,16 @@ pub(crate) fn report(results: &[RunResult], threads: usize, figures: &HashMap<Sc
             } else if !ranked.is_empty() {
                 let _ = writeln!(
                     out,
-                    "At MuJoCo's error at dt = 1e-3 ({}; MuJoCo: {} s of CPU per simulated s, recorded {}), the five \
+                    "At MuJoCo's error at dt = 1e-3 ({}; MuJoCo: {} s of CPU per simulated s, {}), the five \
                      cheapest configurations:\n",
                     scientific(anchor.reference_error()),
                     scientific(anchor.reference_cost()),
-                    recorded_anchors::SINGLE_BODY_RECORDED
+                    source.short()
                 );
                 let _ = writeln!(
                     out,
-                    "| configuration | CPU per simulated s (s) | MuJoCo's / ours (MuJoCo recorded {}) |",
-                    recorded_anchors::SINGLE_BODY_RECORDED
+                    "| configuration | CPU per simulated s (s) | MuJoCo's / ours (MuJoCo's time {}) |",
+                    source.short()
                 );
                 let _ = writeln!(out, "|---|---|---|");
                 for (label, cost, _) in ranked.iter().take(5) {
@@ -402,7 +429,7 @@ mod tests {
     #[test]
     fn mujoco_ratio_is_omitted_for_a_shortened_run() {
         // At the scene's T = 10 s the runs reach MuJoCo's 2e-10 rad and the ratio is reported.
-        let full = report(&runs(10.0), 2, &HashMap::new());
+        let full = report(&runs(10.0), 2, &HashMap::new(), &Anchors::none());
         let summary_row = |text: &str| {
             text.lines()
                 .find(|l| l.starts_with("| 1 cuboid"))
@@ -413,7 +440,7 @@ mod tests {
         assert!(full.contains("the five cheapest configurations"));
         assert!(full.contains(recorded_anchors::SINGLE_BODY_MEASURED));
         // Shortened to 2 s: no cost at MuJoCo's accuracy, and the row says why.
-        let short = report(&runs(2.0), 2, &HashMap::new());
+        let short = report(&runs(2.0), 2, &HashMap::new(), &Anchors::none());
         let row = summary_row(&short);
         assert!(row.contains("n/a: shortened run (2 s of T = 10 s)"), "{row}");
         assert!(!row.contains('×'), "{row}");
