@@ -305,13 +305,16 @@ impl<A: Algebra> FreeBody<A> {
                 body_wrench: A::screw(ScrewCoordinates::default()),
             };
         }
+        // One frame turns the momentum out (for forces that read it) and the wrench back.
+        let frame = motor::ScrewFrame::of::<A>(motor);
         let world = State {
             motor,
-            central_momentum: motor::central_from_body::<A>(motor, body_momentum),
+            central_momentum: A::screw(frame.turn_to_world(&A::screw_coordinates(body_momentum))),
         };
+        let wrench = A::screw_coordinates(self.central_wrench(t, &world));
         BodyRates {
             body_velocity,
-            body_wrench: motor::body_from_central::<A>(motor, self.central_wrench(t, &world)),
+            body_wrench: A::screw(frame.turn_to_body(&wrench)),
         }
     }
 

@@ -176,7 +176,7 @@ impl ScrewFrame {
 
     /// `(l, t) ↦ (Qᵀl, Qᵀt)`: a screw about the centre of mass in world axes seen in body axes (no translation).
     #[inline]
-    pub fn turn_to_body(&self, central: &ScrewCoordinates) -> ScrewCoordinates {
+    pub(crate) fn turn_to_body(&self, central: &ScrewCoordinates) -> ScrewCoordinates {
         ScrewCoordinates {
             l: self.rotation.inverse_transform_vector(&central.l),
             t: self.rotation.inverse_transform_vector(&central.t),
@@ -185,7 +185,7 @@ impl ScrewFrame {
 
     /// `(l, t) ↦ (Ql, Qt)`: a body screw in world axes, its moment still about the centre of mass.
     #[inline]
-    pub fn turn_to_world(&self, body: &ScrewCoordinates) -> ScrewCoordinates {
+    pub(crate) fn turn_to_world(&self, body: &ScrewCoordinates) -> ScrewCoordinates {
         ScrewCoordinates {
             l: self.rotation * body.l,
             t: self.rotation * body.t,
@@ -205,22 +205,18 @@ impl ScrewFrame {
 
 /// The central view of a body screw: its parts turned to world axes, the moment kept about the centre of mass,
 /// `(l, t) ↦ (Ql, Qt)` (docs/dynamics.md, "Momentum about the centre of mass").
-pub fn central_from_body<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw {
+pub(crate) fn central_from_body<A: Algebra>(motor: A::Motor, body: A::Screw) -> A::Screw {
     A::screw(ScrewFrame::of::<A>(motor).turn_to_world(&A::screw_coordinates(body)))
 }
 
 /// The body view of a central screw, `(l, t) ↦ (Qᵀl, Qᵀt)`.
-pub fn body_from_central<A: Algebra>(motor: A::Motor, central: A::Screw) -> A::Screw {
+pub(crate) fn body_from_central<A: Algebra>(motor: A::Motor, central: A::Screw) -> A::Screw {
     A::screw(ScrewFrame::of::<A>(motor).turn_to_body(&A::screw_coordinates(central)))
 }
 
 /// A world wrench (moment about the world origin) as a central one, `(f, m_O) ↦ (f, m_O − c × f)`: the rate of
 /// the momentum about the centre of mass (docs/dynamics.md, "Momentum about the centre of mass").
-pub fn central_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
-    let zero = A::screw(ScrewCoordinates::default());
-    if world == zero {
-        return zero;
-    }
+pub(crate) fn central_wrench<A: Algebra>(motor: A::Motor, world: A::Screw) -> A::Screw {
     let centre = ScrewFrame::of::<A>(motor).position;
     let w = A::screw_coordinates(world);
     A::screw(ScrewCoordinates {

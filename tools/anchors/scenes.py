@@ -45,10 +45,10 @@ def inertial(mass, extents, centre):
     return f'<inertial pos="{" ".join(repr(c) for c in centre)}" mass="{mass!r}" diaginertia="{moments}"/>'
 
 
-def rk4_model(worldbody, dt, extra=""):
-    """A model stepped by MuJoCo's RK4 at `dt`, gravity along −z, no contact."""
+def rk4_model(worldbody, dt, extra="", gravity=GRAVITY):
+    """A model stepped by MuJoCo's RK4 at `dt`, `gravity` along −z, no contact."""
     return mujoco.MjModel.from_xml_string(
-        f'<mujoco><option gravity="0 0 {-GRAVITY!r}" integrator="RK4" timestep="{dt!r}">'
+        f'<mujoco><option gravity="0 0 {-gravity!r}" integrator="RK4" timestep="{dt!r}">'
         f'<flag contact="disable"/></option><worldbody>{worldbody}</worldbody>{extra}</mujoco>')
 
 
@@ -100,9 +100,7 @@ def single_body_run(reference, worldbody, gravity, start, dt):
     """One single-body scene at dt from `start` (qpos, qvel), over its reference's span: the CPU per step, the model,
     its data at the end and the reference's last row."""
     rows = reference_rows(os.path.join(DATA, reference))
-    model = mujoco.MjModel.from_xml_string(
-        f'<mujoco><option gravity="0 0 {-gravity!r}" integrator="RK4" timestep="{dt!r}">'
-        f'<flag contact="disable"/></option><worldbody>{worldbody}</worldbody></mujoco>')
+    model = rk4_model(worldbody, dt, gravity=gravity)
     data = mujoco.MjData(model)
     data.qpos[:], data.qvel[:] = start
     steps = round(rows[-1]["t"] / dt)

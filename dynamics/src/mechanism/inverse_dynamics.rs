@@ -74,8 +74,16 @@ impl<A: Algebra> Mechanism<A> {
         // The external wrenches: the bodies' forces and the force elements that are not actuators.
         let mut external: Vec<ScrewCoordinates> = (0..self.bodies.len())
             .map(|i| {
-                self.external_body_wrench(i, &kinematics[i], states[i].body_momentum())
-                    .0
+                self.external_body_wrench(
+                    i,
+                    &kinematics[i],
+                    A::screw(
+                        kinematics[i]
+                            .frame
+                            .turn_to_body(&A::screw_coordinates(states[i].central_momentum)),
+                    ),
+                )
+                .0
             })
             .collect();
         self.apply_elements(t, &|i: usize| &kinematics[i], &mut external, false)?;
